@@ -1,0 +1,86 @@
+// giantbubble: the command line. `giantbubble run` with no arguments is the README's main job.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+#include <map>
+
+#include "run_command.h"
+
+namespace {
+
+// Every parameter of the model can be set on the command line as --param NAME=VALUE.
+void applyParameter(gb::Params& p, const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos) throw CLI::ValidationError("--param", "expected NAME=VALUE, got '" + assignment + "'");
+  const std::string name = assignment.substr(0, eq), text = assignment.substr(eq + 1);
+  const std::map<std::string, float*> floats = {
+      {"frameTime", &p.frameTime}, {"stabilitySafety", &p.stabilitySafety},
+      {"elasticityWeight", &p.elasticityWeight}, {"elasticityThickness", &p.elasticityThickness},
+      {"areaWeight", &p.areaWeight}, {"marangoniLifetime", &p.marangoniLifetime},
+      {"springDamping", &p.springDamping}, {"filmInertia", &p.filmInertia}, {"airDrag", &p.airDrag},
+      {"gravityX", &p.gravityX}, {"gravityY", &p.gravityY}, {"gravityZ", &p.gravityZ},
+      {"airDirectionThreshold", &p.airDirectionThreshold}, {"airInflowDistance", &p.airInflowDistance},
+      {"airPressureGain", &p.airPressureGain}, {"pressureCoefficient", &p.pressureCoefficient},
+      {"thicknessThreshold", &p.thicknessThreshold}, {"sticky", &p.sticky},
+      {"collisionThreshold", &p.collisionThreshold}, {"solution", &p.solution}};
+  const std::map<std::string, int*> ints = {{"maxSubsteps", &p.maxSubsteps},
+                                            {"particlesAtFullSolution", &p.particlesAtFullSolution}};
+  size_t used = 0;
+  try {
+    if (auto f = floats.find(name); f != floats.end()) {
+      *f->second = std::stof(text, &used);
+    } else if (auto i = ints.find(name); i != ints.end()) {
+      *i->second = std::stoi(text, &used);
+    } else {
+      throw CLI::ValidationError("--param", "unknown parameter '" + name + "' (see docs/model.md for the list)");
+    }
+  } catch (const std::logic_error&) {
+    throw CLI::ValidationError("--param", "parameter " + name + ": '" + text + "' is not a number");
+  }
+  if (used != text.size()) throw CLI::ValidationError("--param", "parameter " + name + ": '" + text + "' is not a number");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"giantbubble: real-time giant soap bubbles blown and burst with your hands"};
+  app.require_subcommand(0, 1);
+
+  gb::RunOptions run;
+  std::string tool = "two-wands", gesture = "straight";
+  std::vector<std::string> assignments;
+  CLI::App* runCmd = app.add_subcommand("run", "simulate a scripted performance headless and write its outputs");
+  runCmd->add_option("--duration", run.duration, "simulated seconds")->check(CLI::Range(0.001, 3600.0));
+  runCmd->add_option("--out", run.outDir, "output folder (created if missing)");
+  runCmd->add_option("--ply-every", run.plyEvery, "write a PLY mesh every N frames, 0 for none")
+      ->check(CLI::Range(0, 1000000));
+  runCmd->add_option("--tool", tool, "bubble tool")->check(CLI::IsMember({"two-wands", "ring"}));
+  runCmd->add_option("--gesture", gesture, "scripted wand gesture")->check(CLI::IsMember(gb::gestureNames()));
+  runCmd->add_option("--speed", run.gestureOptions.speed, "peak wand speed (m/s)")->check(CLI::Range(0.0, 20.0));
+  runCmd->add_option("--solution", run.params.solution, "remaining soap solution (0, 1]")
+      ->check(CLI::Range(0.01, 1.0));
+  runCmd->add_option("--particles", run.params.particlesAtFullSolution, "particles of a film at full solution")
+      ->check(CLI::Range(16, 50000000));
+  runCmd->add_option("--param", assignments, "set a model parameter, NAME=VALUE (repeatable)");
+  runCmd->add_flag("!--no-progress", run.progress, "do not show the progress bar");
+
+  try {
+    app.parse(argc, argv);
+    for (const std::string& a : assignments) applyParameter(run.params, a);
+    if (const auto errors = gb::validate(run.params); !errors.empty()) throw CLI::ValidationError("--param", errors.front());
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  if (app.get_subcommands().empty()) {
+    std::fputs(app.help().c_str(), stdout);
+    return 0;
+  }
+  try {
+    run.tool.kind = tool == "ring" ? gb::ToolKind::Ring : gb::ToolKind::TwoWands;
+    run.gesture = gb::gestureFromName(gesture);
+    return gb::runSimulation(run);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+}

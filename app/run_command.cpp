@@ -1,0 +1,105 @@
+#include "run_command.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <unistd.h>
+
+#include "run_output.h"
+#include "simulation.h"
+
+namespace gb {
+
+namespace {
+
+// A one-line progress bar on stderr: redrawn in place on a terminal, every 10% otherwise (logs stay short).
+class ProgressBar {
+ public:
+  explicit ProgressBar(long total) : total_(total), terminal_(isatty(STDERR_FILENO) != 0) {}
+  void update(long done, double simTime, double stepsPerSecond) {
+    const int percent = static_cast<int>(100 * done / std::max(total_, 1L));
+    if (!terminal_ && percent / 10 == lastDecile_) return;
+    lastDecile_ = percent / 10;
+    constexpr int width = 30;
+    const int filled = width * percent / 100;
+    std::fprintf(stderr, "%s[%.*s%*s] %3d%%  t = %6.2f s  %8.0f substeps/s%s", terminal_ ? "\r" : "", filled,
+                 "##############################", width - filled, "", percent, simTime, stepsPerSecond,
+                 terminal_ ? "" : "\n");
+    std::fflush(stderr);
+  }
+  void finish() {
+    if (terminal_) std::fputc('\n', stderr);
+  }
+
+ private:
+  long total_;
+  bool terminal_;
+  int lastDecile_ = -1;
+};
+
+std::string meshName(long frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "mesh_%05ld.ply", frame);
+  return name;
+}
+
+void printSummary(const FrameStats& first, const FrameStats& last, long frames, int substeps, double wallSeconds,
+                  const std::filesystem::path& outDir) {
+  const double fps = static_cast<double>(frames) / std::max(wallSeconds, 1e-9);
+  std::printf("\n%-28s %s\n", "giantbubble run", "summary");
+  std::printf("%-28s %zu\n", "particles", last.particles);
+  std::printf("%-28s %zu\n", "triangles", last.triangles);
+  std::printf("%-28s %.2f s (%ld frames x %d substeps)\n", "simulated", last.time, frames, substeps);
+  std::printf("%-28s %.2f s (%.1f frames/s, %.0f substeps/s)\n", "wall time", wallSeconds, fps, fps * substeps);
+  std::printf("%-28s %.4f -> %.4f m^2\n", "film area", first.area, last.area);
+  std::printf("%-28s %.4f -> %.4f m^3\n", "swept volume", first.volume, last.volume);
+  std::printf("%-28s %.3f -> %.3f um\n", "mean thickness", first.meanThickness * 1e6, last.meanThickness * 1e6);
+  std::printf("%-28s %.3e J\n", "kinetic energy at the end", last.kineticEnergy);
+  std::printf("%-28s %s\n", "outputs", outDir.string().c_str());
+}
+
+}  // namespace
+
+int runSimulation(const RunOptions& o) {
+  std::filesystem::create_directories(o.outDir);
+  const WandState start = gestureAt(o.gesture, o.gestureOptions, 0.0);
+  Simulation sim(o.params, o.tool, start);
+  const long frames = std::max(1L, std::lround(o.duration / o.params.frameTime));
+  std::printf("giantbubble run: %zu particles, %zu triangles, %d substeps of %.3g ms per %.3g s frame, %ld frames\n",
+              sim.film().state.size(), sim.film().topology.triangleCount(), sim.substepsPerFrame(),
+              1e3 * o.params.frameTime / sim.substepsPerFrame(), o.params.frameTime, frames);
+
+  StatsWriter stats(o.outDir / "stats.csv");
+  const FrameStats first = sim.stats();
+  stats.write(0, first, sim.substepsPerFrame(), 0.0);
+  if (o.plyEvery > 0) writePly(o.outDir / meshName(0), sim.film());
+
+  ProgressBar bar(frames);
+  FrameStats last = first;
+  const auto runStart = std::chrono::steady_clock::now();
+  for (long frame = 1; frame <= frames; ++frame) {
+    const auto frameStart = std::chrono::steady_clock::now();
+    try {
+      sim.advanceFrame(gestureAt(o.gesture, o.gestureOptions, static_cast<double>(frame) * o.params.frameTime));
+    } catch (const SimulationUnstable& e) {
+      bar.finish();
+      std::fprintf(stderr, "error: %s\nstopped at frame %ld of %ld; outputs up to frame %ld are in %s\n", e.what(),
+                   frame, frames, frame - 1, o.outDir.string().c_str());
+      if (o.plyEvery > 0) writePly(o.outDir / ("unstable_" + meshName(frame)), sim.film());
+      return 3;
+    }
+    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
+    last = sim.stats();
+    stats.write(frame, last, sim.substepsPerFrame(), ms);
+    if (o.plyEvery > 0 && frame % o.plyEvery == 0) writePly(o.outDir / meshName(frame), sim.film());
+    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
+    if (o.progress) bar.update(frame, sim.time(), static_cast<double>(frame) * sim.substepsPerFrame() / wall);
+  }
+  bar.finish();
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
+  printSummary(first, last, frames, sim.substepsPerFrame(), wall, o.outDir);
+  return 0;
+}
+
+}  // namespace gb

@@ -1,0 +1,28 @@
+#pragma once
+// `giantbubble run`: a headless simulation of a scripted performance, written to an output folder.
+
+#include <filesystem>
+#include <string>
+
+#include "params.h"
+#include "scripted_gestures.h"
+#include "wire_frame.h"
+
+namespace gb {
+
+struct RunOptions {
+  Params params;
+  WandTool tool;
+  Gesture gesture = Gesture::Straight;
+  GestureOptions gestureOptions;
+  double duration = 4.0;                  // simulated seconds
+  std::filesystem::path outDir = "out";
+  int plyEvery = 25;                      // write a mesh every this many frames (0: never)
+  bool progress = true;
+};
+
+// Runs the simulation and writes its outputs; prints progress and a summary. Returns the process exit code:
+// 0 on success, 3 when the simulation became unstable (outputs up to the last good frame are kept).
+int runSimulation(const RunOptions& options);
+
+}  // namespace gb

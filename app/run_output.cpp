@@ -1,0 +1,61 @@
+#include "run_output.h"
+
+#include <bit>
+#include <stdexcept>
+#include <vector>
+
+namespace gb {
+
+namespace {
+
+template <class T>
+void writeRaw(std::ofstream& out, T value) {
+  static_assert(std::endian::native == std::endian::little, "PLY writer assumes a little-endian host");
+  out.write(reinterpret_cast<const char*>(&value), sizeof(T));
+}
+
+std::ofstream openForWriting(const std::filesystem::path& path, std::ios::openmode mode = std::ios::out) {
+  std::ofstream out(path, mode);
+  if (!out) throw std::runtime_error("cannot write " + path.string());
+  return out;
+}
+
+}  // namespace
+
+void writePly(const std::filesystem::path& path, const Film& film) {
+  const State& s = film.state;
+  const Topology& topo = film.topology;
+  std::ofstream out = openForWriting(path, std::ios::out | std::ios::binary);
+  out << "ply\nformat binary_little_endian 1.0\ncomment giantbubble film\n"
+      << "element vertex " << s.size() << "\nproperty float x\nproperty float y\nproperty float z\n"
+      << "property float thickness\nproperty float air_flow\n"
+      << "element face " << topo.triangleCount() << "\nproperty list uchar uint vertex_indices\nend_header\n";
+  for (size_t i = 0; i < s.size(); ++i) {
+    writeRaw(out, s.position.x[i]);
+    writeRaw(out, s.position.y[i]);
+    writeRaw(out, s.position.z[i]);
+    writeRaw(out, s.thickness[i]);
+    writeRaw(out, s.airFlow.get(i).norm());
+  }
+  for (size_t t = 0; t < topo.triangleCount(); ++t) {
+    writeRaw(out, static_cast<uint8_t>(3));
+    for (int c = 0; c < 3; ++c) writeRaw(out, topo.triangles[3 * t + c]);
+  }
+  if (!out.flush()) throw std::runtime_error("failed writing " + path.string());
+}
+
+StatsWriter::StatsWriter(const std::filesystem::path& path) : out_(openForWriting(path)) {
+  out_ << "frame,time_s,particles,triangles,area_m2,volume_m3,kinetic_J,elastic_J,potential_J,liquid_m3,"
+          "mean_thickness_m,max_speed_mps,mean_air_flow_m3ps,substeps,frame_ms\n";
+  out_.flush();
+}
+
+void StatsWriter::write(long frame, const FrameStats& st, int substeps, double frameMilliseconds) {
+  out_ << frame << ',' << st.time << ',' << st.particles << ',' << st.triangles << ',' << st.area << ','
+       << st.volume << ',' << st.kineticEnergy << ',' << st.elasticEnergy << ',' << st.potentialEnergy << ','
+       << st.liquid << ',' << st.meanThickness << ',' << st.maxSpeed << ',' << st.meanAirFlow << ',' << substeps
+       << ',' << frameMilliseconds << '\n';
+  out_.flush();
+}
+
+}  // namespace gb

@@ -1,0 +1,29 @@
+#pragma once
+// Built-in wand gestures (Figure 10), given directly in world space: the scripted input of a headless run.
+// Hand input from a camera, a recording or a trajectory file arrives through the stabilizer instead.
+
+#include <string>
+#include <vector>
+
+#include "wire_frame.h"
+
+namespace gb {
+
+enum class Gesture { Straight };
+
+struct GestureOptions {
+  float tipSeparation = 1.0f;  // distance between the wand tips (m)
+  float height = 1.6f;         // height of the tips above the floor, y = 0 (m)
+  float speed = 0.8f;          // peak wand speed (m/s)
+  float start = 0.5f;          // the wands rest this long first, so the new film settles (s)
+  float duration = 3.0f;       // length of the stroke (s)
+};
+
+// Both wands at time t (s). Straight (Figure 10a): both tips move together along +z, perpendicular to
+// the film, with speed speed * sin^2(pi tau / duration), so they start and stop smoothly.
+WandState gestureAt(Gesture gesture, const GestureOptions& options, double t);
+
+Gesture gestureFromName(const std::string& name);  // throws std::invalid_argument naming the choices
+std::vector<std::string> gestureNames();
+
+}  // namespace gb

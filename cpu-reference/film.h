@@ -1,0 +1,31 @@
+#pragma once
+// A film: its particles, its mesh and the facts about it that outlive a step.
+
+#include "params.h"
+#include "state.h"
+#include "wire_frame.h"
+
+namespace gb {
+
+struct Film {
+  State state;
+  Topology topology;
+  WandTool tool;
+  float stringLength = 0.0f;     // two wands: length of the hanging bottom string, fixed while the film lives
+  float referenceVolume = 0.0f;  // V_0 of Eq. (11) once the film is a closed bubble (m^3)
+};
+
+// Gives every particle its material at creation: geometry, then mass (film inertia x rest Voronoi area),
+// liquid (initial thickness x rest Voronoi area), thickness, elasticity; lifetime 0, at rest.
+void initialiseFilmMaterial(const Params& params, Film& film);
+
+// A film spanning the tool's wire frame (Sections 3 and 7): round(solution x particlesAtFullSolution)
+// particles, boundary particles spaced evenly along the frame, interior particles on a hexagonal lattice,
+// joined by a constrained Delaunay triangulation (CGAL) whose edges become springs. With less solution the
+// two-wand loop is wetted less deep, so the film is smaller and rounder (Figure 9).
+Film generateFilm(const Params& params, const WandTool& tool, const WandState& wands);
+
+// A closed spherical film (an icosphere with outward normals): a free bubble for tests and pressure scenes.
+Film generateSphere(const Params& params, const Vec3& center, float radius, int subdivisions);
+
+}  // namespace gb

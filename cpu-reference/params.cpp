@@ -1,0 +1,47 @@
+#include "params.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace gb {
+namespace {
+
+// Appends a message when value is not finite or lies outside [lo, hi].
+template <class T>
+void requireRange(std::vector<std::string>& errors, const char* name, T value, T lo, T hi, const char* unit) {
+  if (std::isfinite(static_cast<double>(value)) && value >= lo && value <= hi) return;
+  std::ostringstream msg;
+  msg << "parameter " << name << " = " << value << " is out of range [" << lo << ", " << hi << "]" << unit;
+  errors.push_back(msg.str());
+}
+
+}  // namespace
+
+std::vector<std::string> validate(const Params& p) {
+  std::vector<std::string> e;
+  requireRange(e, "frameTime", p.frameTime, 1e-5f, 0.1f, " s");
+  requireRange(e, "stabilitySafety", p.stabilitySafety, 0.01f, 1.0f, "");
+  requireRange(e, "maxSubsteps", p.maxSubsteps, 1, 1000000, "");
+  requireRange(e, "elasticityWeight", p.elasticityWeight, 1e-4f, 1e4f, " N/m");
+  requireRange(e, "elasticityThickness", p.elasticityThickness, 1e-9f, 1e-3f, " m");
+  requireRange(e, "areaWeight", p.areaWeight, 1e-4f, 10.0f, "");
+  requireRange(e, "marangoniLifetime", p.marangoniLifetime, 0.0f, 1e6f, " s");
+  requireRange(e, "springDamping", p.springDamping, 0.0f, 10.0f, " N s/m");
+  requireRange(e, "filmInertia", p.filmInertia, 1e-6f, 100.0f, " kg/m^2");
+  requireRange(e, "airDrag", p.airDrag, 0.0f, 100.0f, " Pa s/m");
+  requireRange(e, "gravityX", p.gravityX, -100.0f, 100.0f, " m/s^2");
+  requireRange(e, "gravityY", p.gravityY, -100.0f, 100.0f, " m/s^2");
+  requireRange(e, "gravityZ", p.gravityZ, -100.0f, 100.0f, " m/s^2");
+  requireRange(e, "airDirectionThreshold", p.airDirectionThreshold, 0.0f, 1.0f, "");
+  requireRange(e, "airInflowDistance", p.airInflowDistance, 1e-3f, 100.0f, " m");
+  requireRange(e, "airPressureGain", p.airPressureGain, 0.0f, 1e4f, " Pa s/m^3");
+  requireRange(e, "pressureCoefficient", p.pressureCoefficient, 1.0f, 1e7f, " Pa");
+  requireRange(e, "thicknessThreshold", p.thicknessThreshold, 0.0f, 1e-3f, " m");
+  requireRange(e, "sticky", p.sticky, 1e-3f, 1e6f, "");
+  requireRange(e, "collisionThreshold", p.collisionThreshold, 0.0f, 1e3f, " m/s");
+  requireRange(e, "solution", p.solution, 0.01f, 1.0f, "");
+  requireRange(e, "particlesAtFullSolution", p.particlesAtFullSolution, 16, 50000000, "");
+  return e;
+}
+
+}  // namespace gb

@@ -1,0 +1,147 @@
+#include "simulation.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace gb {
+
+namespace {
+
+// Eq. (5)'s MAX(cos(theta), 0): how alike the two wands' velocities are. A wand at rest has no direction;
+// the moving one then blows on its own (factor 1).
+float wandAlignment(const WandState& w) {
+  const float norms = w.leftVelocity.norm() * w.rightVelocity.norm();
+  if (norms <= 1e-12f) return 1.0f;
+  return std::max(w.leftVelocity.dot(w.rightVelocity) / norms, 0.0f);
+}
+
+Vec3 gravityOf(const Params& p) { return {p.gravityX, p.gravityY, p.gravityZ}; }
+
+// Mean position of the living particles: the volume origin of a closed bubble (any point works; a near
+// one keeps float rounding small).
+Vec3 centroid(const State& s) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  size_t count = 0;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.alive[i]) {
+      sum += s.position.get(i).cast<double>();
+      ++count;
+    }
+  return count ? Vec3((sum / static_cast<double>(count)).cast<float>()) : Vec3::Zero();
+}
+
+}  // namespace
+
+Simulation::Simulation(const Params& params, const WandTool& tool, const WandState& wands)
+    : Simulation(params, generateFilm(params, tool, wands), wands) {}
+
+Simulation::Simulation(const Params& params, Film film, const WandState& wands)
+    : params_(params), film_(std::move(film)), wands_(wands) {
+  if (const auto errors = validate(params_); !errors.empty()) throw std::invalid_argument(errors.front());
+  stepper_.refreshGeometry(params_, film_);
+  if (film_.topology.isClosed() && film_.referenceVolume <= 0)
+    film_.referenceVolume = stepper_.volume(film_, centroid(film_.state));
+  pressure_ = params_.pressureCoefficient;
+  chooseSubsteps();
+}
+
+void Simulation::chooseSubsteps() {
+  const float volume = film_.topology.isClosed() ? film_.referenceVolume : 0.0f;
+  const float dtStable = stableTimeStep(params_, film_.topology, film_.state, params_.pressureCoefficient, volume);
+  const double needed = std::ceil(params_.frameTime / dtStable);
+  if (!(needed <= params_.maxSubsteps)) {
+    std::ostringstream msg;
+    msg << "the film needs " << needed << " substeps per frame to stay stable (maxSubsteps = " << params_.maxSubsteps
+        << "): use fewer particles (particlesAtFullSolution), more filmInertia, or a shorter frameTime";
+    throw std::invalid_argument(msg.str());
+  }
+  substeps_ = std::max(1, static_cast<int>(needed));
+}
+
+StepUniforms Simulation::uniformsFor(const WandState& a, const WandState& b, float dt) const {
+  StepUniforms u;
+  u.dt = dt;
+  u.wands = a;
+  const bool ring = film_.tool.kind == ToolKind::Ring;
+  u.leftInflowWeight = ring ? 0.0f : 1.0f;
+  u.wandAlignment = ring ? 1.0f : wandAlignment(a);
+  const WireFrame frameNow = makeWireFrame(film_.tool, a, film_.stringLength, gravityOf(params_));
+  u.airVolume = frameNow.height() * frameNow.area();  // Eq. (6)
+  u.frameNext = makeWireFrame(film_.tool, b, film_.stringLength, gravityOf(params_));
+  u.closed = film_.topology.isClosed() ? 1u : 0u;
+  u.volumeOrigin = u.closed ? centroid(film_.state) : frameNow.center;
+  u.referenceVolume = film_.referenceVolume;
+  return u;
+}
+
+void Simulation::advanceFrame(const WandState& next) {
+  const float dt = params_.frameTime / static_cast<float>(substeps_);
+  for (int k = 0; k < substeps_; ++k) {
+    const float t0 = static_cast<float>(k) / static_cast<float>(substeps_);
+    const float t1 = static_cast<float>(k + 1) / static_cast<float>(substeps_);
+    pressure_ = stepper_.step(params_, uniformsFor(interpolate(wands_, next, t0), interpolate(wands_, next, t1), dt),
+                              film_);
+    ++stepCount_;
+  }
+  wands_ = next;
+  time_ += params_.frameTime;
+  checkStable();
+}
+
+void Simulation::checkStable() const {
+  // A film moving faster than this has blown up: real giant bubbles never approach it.
+  constexpr float maxSpeed = 100.0f;
+  const State& s = film_.state;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (!s.alive[i]) continue;
+    const Vec3 x = s.position.get(i), v = s.velocity.get(i);
+    if (x.allFinite() && v.allFinite() && v.norm() <= maxSpeed) continue;
+    std::ostringstream msg;
+    msg << "simulation unstable at t = " << time_ << " s (step " << stepCount_ << "): particle " << i
+        << (x.allFinite() && v.allFinite() ? " moves faster than 100 m/s" : " has a non-finite position or velocity")
+        << "; lower stabilitySafety or frameTime, or check the parameters";
+    throw SimulationUnstable(msg.str());
+  }
+}
+
+FrameStats Simulation::stats() {
+  stepper_.refreshGeometry(params_, film_);
+  const State& s = film_.state;
+  const Topology& topo = film_.topology;
+  FrameStats st;
+  st.time = time_;
+  const Eigen::Vector3d g = gravityOf(params_).cast<double>();
+  double thicknessSum = 0, airSum = 0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (!s.alive[i]) continue;
+    ++st.particles;
+    const Eigen::Vector3d v = s.velocity.get(i).cast<double>();
+    st.kineticEnergy += 0.5 * s.mass[i] * v.squaredNorm();
+    st.potentialEnergy -= s.mass[i] * g.dot(s.position.get(i).cast<double>());
+    st.liquid += s.liquid[i];
+    st.maxSpeed = std::max(st.maxSpeed, v.norm());
+    thicknessSum += s.thickness[i];
+    airSum += s.airFlow.get(i).norm();
+  }
+  st.meanThickness = st.particles ? thicknessSum / static_cast<double>(st.particles) : 0;
+  st.meanAirFlow = st.particles ? airSum / static_cast<double>(st.particles) : 0;
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    const double stretch = (s.position.get(a) - s.position.get(b)).cast<double>().norm() - topo.restLength[k];
+    st.elasticEnergy += 0.25 * (s.elasticity[a] + s.elasticity[b]) * stretch * stretch;
+  }
+  const Vec3 origin = topo.isClosed() ? centroid(s)
+                                      : makeWireFrame(film_.tool, wands_, film_.stringLength, gravityOf(params_)).center;
+  st.triangles = topo.triangleCount();
+  for (size_t t = 0; t < topo.triangleCount(); ++t) {
+    const uint32_t* tri = &topo.triangles[3 * t];
+    const Eigen::Vector3d a = (s.position.get(tri[0]) - origin).cast<double>();
+    const Eigen::Vector3d b = (s.position.get(tri[1]) - origin).cast<double>();
+    const Eigen::Vector3d c = (s.position.get(tri[2]) - origin).cast<double>();
+    st.area += 0.5 * (b - a).cross(c - a).norm();
+    st.volume += a.dot(b.cross(c)) / 6.0;
+  }
+  return st;
+}
+
+}  // namespace gb

@@ -1,0 +1,69 @@
+#pragma once
+// A film driven by wand input frame by frame: splits each frame of Params::frameTime into stable substeps,
+// feeds the stepper interpolated wand states, and stops with a clear error if the film goes unstable.
+
+#include <stdexcept>
+
+#include "cpu_stepper.h"
+#include "film.h"
+
+namespace gb {
+
+// Thrown when the state stops being finite or physical; the message says when and where.
+class SimulationUnstable : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Whole-film diagnostics, in double (CPU only).
+struct FrameStats {
+  double time = 0;
+  size_t particles = 0;
+  size_t triangles = 0;
+  double area = 0;            // film area (m^2)
+  double volume = 0;          // enclosed (bubble) or swept (open film, cone to the frame centre) volume (m^3)
+  double kineticEnergy = 0;   // J
+  double elasticEnergy = 0;   // spring energy of Eq. (3), J
+  double potentialEnergy = 0; // gravity, J, relative to y = 0
+  double liquid = 0;          // total liquid volume (m^3)
+  double meanThickness = 0;   // m
+  double maxSpeed = 0;        // m/s
+  double meanAirFlow = 0;     // mean |air| of Eqs. (7)-(8) (m^3/s)
+};
+
+class Simulation {
+ public:
+  // A new film generated on the tool's wire frame at the given wand state.
+  Simulation(const Params& params, const WandTool& tool, const WandState& wands);
+  // An existing film (e.g. a closed bubble); its wire frame, if any, is taken at `wands`.
+  Simulation(const Params& params, Film film, const WandState& wands);
+
+  // Advances one frame (Params::frameTime) while the wands move from their last state to `next`.
+  void advanceFrame(const WandState& next);
+
+  [[nodiscard]] const Film& film() const { return film_; }
+  [[nodiscard]] Film& film() { return film_; }
+  [[nodiscard]] const Params& params() const { return params_; }
+  [[nodiscard]] double time() const { return time_; }
+  [[nodiscard]] int substepsPerFrame() const { return substeps_; }
+  [[nodiscard]] float lastPressure() const { return pressure_; }
+  [[nodiscard]] FrameStats stats();
+
+  // The uniforms of a step of length dt from wand state a to b (exposed for tests and the GPU backend).
+  [[nodiscard]] StepUniforms uniformsFor(const WandState& a, const WandState& b, float dt) const;
+
+ private:
+  void chooseSubsteps();
+  void checkStable() const;
+
+  Params params_;
+  Film film_;
+  CpuStepper stepper_;
+  WandState wands_;
+  double time_ = 0;
+  int substeps_ = 1;
+  float pressure_ = 0;
+  long stepCount_ = 0;
+};
+
+}  // namespace gb

@@ -1,0 +1,196 @@
+#include "stages.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace gb {
+
+// ---- geometry ---------------------------------------------------------------------------------------------
+
+namespace {
+
+// Cotangent of the angle between a and b.
+float cotangent(const Vec3& a, const Vec3& b) {
+  const float crossNorm = a.cross(b).norm();
+  return crossNorm > 0 ? a.dot(b) / crossNorm : 0.0f;
+}
+
+// Mixed Voronoi area of corner xi of triangle (xi, xj, xk) (Meyer et al. 2003, Fig. 4): the Voronoi
+// region for a non-obtuse triangle, else half or a quarter of the triangle so that areas still tile it.
+float mixedVoronoiCorner(const Vec3& xi, const Vec3& xj, const Vec3& xk) {
+  const Vec3 eij = xj - xi, eik = xk - xi, ejk = xk - xj;
+  const float area = 0.5f * eij.cross(eik).norm();
+  if (area <= 0) return 0.0f;
+  const bool obtuseAtI = eij.dot(eik) < 0;
+  const bool obtuseAtJ = (-eij).dot(ejk) < 0;
+  const bool obtuseAtK = (-eik).dot(-ejk) < 0;
+  if (obtuseAtI) return 0.5f * area;
+  if (obtuseAtJ || obtuseAtK) return 0.25f * area;
+  const float cotK = cotangent(xi - xk, xj - xk);
+  const float cotJ = cotangent(xi - xj, xk - xj);
+  return 0.125f * (eij.squaredNorm() * cotK + eik.squaredNorm() * cotJ);
+}
+
+}  // namespace
+
+void computeVertexGeometry(const Topology& topo, State& s, size_t i) {
+  Vec3 normalSum = Vec3::Zero();
+  float area = 0.0f;
+  for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
+    const uint32_t* tri = &topo.triangles[3 * topo.triangleIndex[k]];
+    // Rotate the corners so that particle i comes first; orientation is kept.
+    const int c = tri[0] == i ? 0 : (tri[1] == i ? 1 : 2);
+    const Vec3 xi = s.position.get(tri[c]), xj = s.position.get(tri[(c + 1) % 3]),
+               xk = s.position.get(tri[(c + 2) % 3]);
+    normalSum += (xj - xi).cross(xk - xi);  // twice the triangle's area times its unit normal
+    area += mixedVoronoiCorner(xi, xj, xk);
+  }
+  const float len = normalSum.norm();
+  s.normal.set(i, len > 0 ? Vec3(normalSum / len) : Vec3::Zero());
+  s.voronoiArea[i] = area;
+}
+
+float triangleSignedVolume(const Topology& topo, const State& s, size_t t, const Vec3& origin) {
+  const uint32_t* tri = &topo.triangles[3 * t];
+  const Vec3 a = s.position.get(tri[0]) - origin, b = s.position.get(tri[1]) - origin,
+             c = s.position.get(tri[2]) - origin;
+  return a.dot(b.cross(c)) / 6.0f;
+}
+
+float treeSum(std::vector<float> v) {
+  if (v.empty()) return 0.0f;
+  size_t n = v.size();
+  while (n > 1) {
+    const size_t half = (n + 1) / 2;
+    for (size_t k = 0; k < half; ++k) v[k] = 2 * k + 1 < n ? v[2 * k] + v[2 * k + 1] : v[2 * k];
+    n = half;
+  }
+  return v[0];
+}
+
+// ---- film state ------------------------------------------------------------------------------------------
+
+float elasticity(const Params& p, float thickness, float lifetime) {
+  const float x = thickness / p.elasticityThickness;  // e_i / k
+  if (lifetime < p.marangoniLifetime) return p.elasticityWeight * 2.0f * x / (x + 2.0f);  // Marangoni
+  return p.elasticityWeight * 4.0f * x / ((x + 2.0f) * (x + 2.0f));                     // Gibbs
+}
+
+void updateFilmState(const Params& p, float dt, State& s, size_t i) {
+  const float area = s.voronoiArea[i];
+  s.thickness[i] = area > 0 ? s.liquid[i] / area : 0.0f;
+  s.elasticity[i] = elasticity(p, s.thickness[i], s.lifetime[i]);
+  s.lifetime[i] += dt;
+}
+
+// ---- air ------------------------------------------------------------------------------------------------
+
+Vec3 airInflow(const Params& p, const StepUniforms& u, const Vec3& x) {
+  const float dLeft = (x - u.wands.leftPosition).norm(), dRight = (x - u.wands.rightPosition).norm();
+  const Vec3 sources = u.leftInflowWeight * u.wands.leftVelocity / (dLeft + p.airInflowDistance) +
+                       u.wands.rightVelocity / (dRight + p.airInflowDistance);
+  return -u.airVolume * u.wandAlignment * sources;
+}
+
+void computeAirInflow(const Params& p, const StepUniforms& u, State& s, size_t i) {
+  s.airInflow.set(i, airInflow(p, u, s.position.get(i)));
+}
+
+void transferAirFlow(const Params& p, const Topology& topo, State& s, size_t i) {
+  if (topo.boundary[i]) {  // Algorithm 2, line 2: the end particles take the new inflow
+    s.airFlowNext.set(i, s.airInflow.get(i));
+    return;
+  }
+  const Vec3 xi = s.position.get(i);
+  Vec3 weighted = Vec3::Zero();
+  float weightSum = 0.0f;
+  for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
+    const uint32_t j = topo.springNeighbour[k];
+    const Vec3 airJ = s.airFlow.get(j);
+    const Vec3 toI = xi - s.position.get(j);
+    const float norms = toI.norm() * airJ.norm();
+    if (norms <= 0) continue;
+    const float aDir = std::max(toI.dot(airJ) / norms, 0.0f);  // Eq. (7), seen from the sender j
+    if (aDir <= p.airDirectionThreshold) continue;
+    weighted += aDir * airJ;
+    weightSum += aDir;
+  }
+  s.airFlowNext.set(i, weightSum > 0 ? Vec3(weighted / weightSum) : Vec3::Zero());  // Eq. (8)
+}
+
+// ---- forces ---------------------------------------------------------------------------------------------
+
+float boylePressure(const Params& p, float referenceVolume, float currentVolume) {
+  return currentVolume > 0 ? p.pressureCoefficient * referenceVolume / currentVolume : p.pressureCoefficient;
+}
+
+void computeForces(const Params& p, const StepUniforms& u, float pressure, const Topology& topo, State& s,
+                   size_t i) {
+  const Vec3 xi = s.position.get(i), vi = s.velocity.get(i), n = s.normal.get(i);
+  const float ei = s.elasticity[i], area = s.voronoiArea[i];
+  Vec3 f = Vec3::Zero();
+  for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
+    const uint32_t j = topo.springNeighbour[k];
+    const Vec3 d = s.position.get(j) - xi;
+    const float len = d.norm();
+    if (len <= 0) continue;
+    const Vec3 dir = d / len;
+    const float stiffness = 0.5f * (ei + s.elasticity[j]);
+    f += stiffness * (len - topo.restLength[topo.springIndex[k]]) * dir;        // Eq. (3)
+    f += p.springDamping * (s.velocity.get(j) - vi).dot(dir) * dir;            // Algorithm 1, line 5
+  }
+  f += s.mass[i] * Vec3(p.gravityX, p.gravityY, p.gravityZ);                    // external force
+  f -= p.airDrag * area * vi.dot(n) * n;                                        // still air resists
+  const float flowIn = s.airFlow.get(i).dot(n), directIn = s.airInflow.get(i).dot(n);
+  if (u.closed) {
+    // Eq. (10): the bubble's excess pressure over its reference, and the transferred air scaled by P_cur.
+    f += ((pressure - p.pressureCoefficient) + pressure / p.pressureCoefficient * p.airPressureGain * flowIn) *
+         area * n;
+  } else {
+    f += p.airPressureGain * (flowIn + directIn) * area * n;  // Eq. (9)
+  }
+  s.force.set(i, f);
+}
+
+// ---- integration ----------------------------------------------------------------------------------------
+
+void integrateParticle(const StepUniforms& u, const Topology& topo, State& s, size_t i) {
+  if (!s.alive[i]) return;
+  const Vec3 x = s.position.get(i);
+  if (topo.boundary[i]) {
+    const Vec3 xNext = framePoint(u.frameNext, s.frameParam[i]);
+    s.velocity.set(i, (xNext - x) / u.dt);
+    s.position.set(i, xNext);
+    return;
+  }
+  const Vec3 v = s.velocity.get(i) + u.dt * s.force.get(i) / s.mass[i];  // Eq. (12)
+  s.velocity.set(i, v);
+  s.position.set(i, x + u.dt * v);  // Eq. (13)
+}
+
+// ---- stability ------------------------------------------------------------------------------------------
+
+float elasticityBound(const Params& p) {
+  const float youngX = 2.0f * p.initialThickness() / p.elasticityThickness;
+  const float marangoni = 2.0f * youngX / (youngX + 2.0f);
+  return p.elasticityWeight * std::max(0.5f, marangoni);
+}
+
+float stableTimeStep(const Params& p, const Topology& topo, const State& s, float pressure, float volume) {
+  const float eMax = elasticityBound(p);
+  float dt = std::numeric_limits<float>::infinity();
+  const bool closed = topo.isClosed();
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (!s.alive[i] || topo.boundary[i] || s.mass[i] <= 0) continue;
+    const float springs = static_cast<float>(topo.springOffset[i + 1] - topo.springOffset[i]);
+    float stiffness = 2.0f * springs * eMax;  // Gershgorin: row sum of |K| is at most twice the diagonal
+    if (closed && volume > 0) stiffness += pressure * s.voronoiArea[i] * s.voronoiArea[i] / volume;
+    const float omega = std::sqrt(stiffness / s.mass[i]);
+    const float damping = (2.0f * springs * p.springDamping + p.airDrag * s.voronoiArea[i]) / s.mass[i];
+    dt = std::min(dt, 2.0f / (omega + damping));
+  }
+  return p.stabilitySafety * dt;
+}
+
+}  // namespace gb

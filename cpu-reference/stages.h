@@ -1,0 +1,85 @@
+#pragma once
+// The stages of one simulation step (ARCHITECTURE.md "The step"), each a function of one element that
+// reads explicit inputs and writes only that element's outputs. kernels/ will hold a compute shader of the
+// same name per stage; this file is the definition both backends follow.
+//
+// Gather, never scatter: every per-particle result is summed by the particle itself over its CSR one-ring,
+// in CSR order. Propagation (air transfer) is a Jacobi sweep from a front buffer into a back buffer.
+
+#include "params.h"
+#include "state.h"
+#include "wire_frame.h"
+
+namespace gb {
+
+// What a step needs besides the state: computed once per step on the host (push constants on the GPU).
+struct StepUniforms {
+  float dt = 0.0f;                  // substep length (s)
+  WandState wands;                  // wand tips at the start of the step, the air sources of Eq. (5)
+  float leftInflowWeight = 1.0f;    // 0 for the single ring wand, whose only source is the right hand
+  float airVolume = 0.0f;           // V_wm = H_wire * Area_wm, Eq. (6) (m^3)
+  float wandAlignment = 0.0f;       // MAX(cos(theta), 0) of Eq. (5)
+  WireFrame frameNext;              // the wire frame at the end of the step, for the boundary particles
+  Vec3 volumeOrigin = Vec3::Zero();  // apex of the cone decomposition of the (swept) volume
+  uint32_t closed = 0;              // 1 once the film is a closed bubble: Eqs. (10)-(11) replace Eq. (9)
+  float referenceVolume = 0.0f;     // V_0 of Eq. (11), the volume when the bubble closed (m^3)
+};
+
+// ---- Stage 1-2: geometry -------------------------------------------------------------------------------
+// Unit vertex normal (area-weighted triangle normals) and mixed Voronoi area (Meyer et al. 2003) of
+// particle i, from its CSR triangles.
+void computeVertexGeometry(const Topology& topo, State& s, size_t i);
+
+// Signed volume of the tetrahedron (origin, triangle t); their sum is the enclosed volume of a closed
+// film and the volume swept between an open film and the apex.
+float triangleSignedVolume(const Topology& topo, const State& s, size_t t, const Vec3& origin);
+
+// Pairwise sum with a fixed tree shape (level by level, a[k] = a[2k] + a[2k+1]): the reduction both
+// backends use for the volume, so that they add in the same order.
+float treeSum(std::vector<float> values);
+
+// ---- Stage 3: film state (Section 5.1) ---------------------------------------------------------------
+// Eq. (4): elasticity from thickness e (m) and lifetime (s). Marangoni while young, Gibbs after.
+// The paper's formulas are divided by k so that w_E carries the unit N/m (docs/model.md).
+float elasticity(const Params& p, float thickness, float lifetime);
+
+// Thickness e_i = liquid / A_Vor, elasticity E_i, and the particle's age.
+void updateFilmState(const Params& p, float dt, State& s, size_t i);
+
+// ---- Stage 4: air inflow (Section 5.2.1) ---------------------------------------------------------------
+// Eq. (5): air flow (m^3/s) at a point, created by the moving wands.
+Vec3 airInflow(const Params& p, const StepUniforms& u, const Vec3& position);
+void computeAirInflow(const Params& p, const StepUniforms& u, State& s, size_t i);
+
+// ---- Stage 5: air flow transfer (Section 5.2.2, Algorithm 2) --------------------------------------------
+// Eqs. (7)-(8) as a Jacobi gather: particle i receives the air of each neighbour j whose air points towards
+// it (a_dir > lambda_air), weighted by a_dir; its own old air is dropped ("delete air_i"). End (boundary)
+// particles are assigned the fresh inflow instead. Reads airFlow, writes airFlowNext[i].
+void transferAirFlow(const Params& p, const Topology& topo, State& s, size_t i);
+
+// ---- Stage 6: forces, Eq. (2) --------------------------------------------------------------------------
+// Surface tension Eq. (3) with the spring's stiffness the mean of its two particles' E (so the pair forces
+// cancel exactly), spring-projected damping (Algorithm 1), gravity, air drag on the normal velocity, and
+// the air force: Eq. (9) on an open film, Eqs. (10)-(11) on a closed bubble at pressure P_cur.
+void computeForces(const Params& p, const StepUniforms& u, float pressure, const Topology& topo, State& s,
+                   size_t i);
+
+// Eq. (11), Boyle's law: P_cur = P_0 V_0 / V_cur.
+float boylePressure(const Params& p, float referenceVolume, float currentVolume);
+
+// ---- Stage 7: semi-implicit Euler, Eqs. (12)-(13) --------------------------------------------------------
+// Interior particles integrate their force; boundary particles are carried to the wire frame at the end of
+// the step, with the velocity that motion implies.
+void integrateParticle(const StepUniforms& u, const Topology& topo, State& s, size_t i);
+
+// ---- Stability -----------------------------------------------------------------------------------------
+// Largest elasticity Eq. (4) can give the film: the Gibbs peak 0.5 w_E, or the Marangoni value of a young
+// film twice the initial thickness, whichever is larger.
+float elasticityBound(const Params& p);
+
+// Largest explicit substep that keeps semi-implicit Euler stable for every particle (Gershgorin bound on
+// the stiffness of its springs, damping and drag, and the pressure of a closed film), times
+// Params::stabilitySafety.
+float stableTimeStep(const Params& p, const Topology& topo, const State& s, float pressure, float volume);
+
+}  // namespace gb

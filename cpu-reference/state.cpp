@@ -1,0 +1,86 @@
+#include "state.h"
+
+#include <algorithm>
+#include <map>
+#include <stdexcept>
+#include <utility>
+
+namespace gb {
+
+void State::resize(size_t n) {
+  for (Vec3Array* a : {&position, &velocity, &force, &normal, &airInflow, &airFlow, &airFlowNext}) a->resize(n);
+  for (std::vector<float>* a : {&mass, &liquid, &voronoiArea, &thickness, &elasticity, &lifetime, &frameParam})
+    a->assign(n, 0.0f);
+  alive.assign(n, 1u);
+}
+
+bool Topology::isClosed() const {
+  return std::none_of(boundary.begin(), boundary.end(), [](uint32_t b) { return b != 0; });
+}
+
+namespace {
+
+using Edge = std::pair<uint32_t, uint32_t>;
+Edge undirected(uint32_t a, uint32_t b) { return a < b ? Edge{a, b} : Edge{b, a}; }
+
+// Counts how many triangles use each undirected edge; 1 means boundary, 2 interior, more is non-manifold.
+std::map<Edge, int> edgeUseCounts(const std::vector<uint32_t>& triangles) {
+  std::map<Edge, int> uses;
+  for (size_t t = 0; t < triangles.size(); t += 3)
+    for (int c = 0; c < 3; ++c) ++uses[undirected(triangles[t + c], triangles[t + (c + 1) % 3])];
+  return uses;
+}
+
+}  // namespace
+
+void buildAdjacency(Topology& topo) {
+  const size_t n = topo.particleCount();
+  // Spring CSR: counting sort by particle, springs in increasing id within each particle.
+  topo.springOffset.assign(n + 1, 0);
+  for (size_t s = 0; s < topo.springCount(); ++s) {
+    ++topo.springOffset[topo.springEnds[2 * s] + 1];
+    ++topo.springOffset[topo.springEnds[2 * s + 1] + 1];
+  }
+  for (size_t i = 0; i < n; ++i) topo.springOffset[i + 1] += topo.springOffset[i];
+  topo.springIndex.assign(topo.springOffset[n], 0);
+  topo.springNeighbour.assign(topo.springOffset[n], 0);
+  std::vector<uint32_t> fill(topo.springOffset.begin(), topo.springOffset.end() - 1);
+  for (uint32_t s = 0; s < topo.springCount(); ++s) {
+    const uint32_t a = topo.springEnds[2 * s], b = topo.springEnds[2 * s + 1];
+    topo.springIndex[fill[a]] = s;
+    topo.springNeighbour[fill[a]++] = b;
+    topo.springIndex[fill[b]] = s;
+    topo.springNeighbour[fill[b]++] = a;
+  }
+  // Triangle CSR, same scheme.
+  topo.triangleOffset.assign(n + 1, 0);
+  for (uint32_t v : topo.triangles) ++topo.triangleOffset[v + 1];
+  for (size_t i = 0; i < n; ++i) topo.triangleOffset[i + 1] += topo.triangleOffset[i];
+  topo.triangleIndex.assign(topo.triangleOffset[n], 0);
+  fill.assign(topo.triangleOffset.begin(), topo.triangleOffset.end() - 1);
+  for (uint32_t t = 0; t < topo.triangleCount(); ++t)
+    for (int c = 0; c < 3; ++c) topo.triangleIndex[fill[topo.triangles[3 * t + c]]++] = t;
+  // Boundary: both ends of every edge used by one triangle only.
+  topo.boundary.assign(n, 0u);
+  for (const auto& [edge, count] : edgeUseCounts(topo.triangles)) {
+    if (count > 2) throw std::runtime_error("non-manifold mesh: an edge is shared by more than two triangles");
+    if (count == 1) topo.boundary[edge.first] = topo.boundary[edge.second] = 1u;
+  }
+}
+
+Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, const Vec3Array& positions) {
+  Topology topo;
+  topo.triangles = std::move(triangles);
+  topo.boundary.assign(particleCount, 0u);
+  for (uint32_t v : topo.triangles)
+    if (v >= particleCount) throw std::runtime_error("triangle refers to a particle that does not exist");
+  for (const auto& [edge, count] : edgeUseCounts(topo.triangles)) {
+    topo.springEnds.push_back(edge.first);
+    topo.springEnds.push_back(edge.second);
+    topo.restLength.push_back((positions.get(edge.first) - positions.get(edge.second)).norm());
+  }
+  buildAdjacency(topo);
+  return topo;
+}
+
+}  // namespace gb

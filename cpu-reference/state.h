@@ -1,0 +1,83 @@
+#pragma once
+// The simulated film as a structure of arrays: one array per attribute, the layout the Vulkan backend
+// mirrors with one storage buffer per attribute. float32 throughout (ARCHITECTURE.md).
+
+#include <Eigen/Dense>
+#include <cstdint>
+#include <vector>
+
+namespace gb {
+
+using Vec3 = Eigen::Vector3f;
+
+// A 3-vector per particle stored as three component arrays, so that stages vectorise on the CPU and
+// map to three tightly packed float buffers on the GPU.
+struct Vec3Array {
+  std::vector<float> x, y, z;
+
+  [[nodiscard]] size_t size() const { return x.size(); }
+  void resize(size_t n, float value = 0.0f) {
+    x.assign(n, value);
+    y.assign(n, value);
+    z.assign(n, value);
+  }
+  [[nodiscard]] Vec3 get(size_t i) const { return {x[i], y[i], z[i]}; }
+  void set(size_t i, const Vec3& v) {
+    x[i] = v.x();
+    y[i] = v.y();
+    z[i] = v.z();
+  }
+};
+
+// Per-particle state. Indices are stable: a removed particle is flagged dead, never renumbered implicitly.
+struct State {
+  Vec3Array position;     // x_i (m)
+  Vec3Array velocity;     // v_i (m/s)
+  Vec3Array force;        // total force of Eq. (2) of the last step (N)
+  Vec3Array normal;       // unit vertex normal n_i
+  Vec3Array airInflow;    // direct air inflow of Eq. (5) (m^3/s)
+  Vec3Array airFlow;      // transferred air flow of Eqs. (7)-(8) (m^3/s), Jacobi front buffer
+  Vec3Array airFlowNext;  // Jacobi back buffer of the air transfer
+  std::vector<float> mass;         // m_i (kg), fixed at creation from the film inertia
+  std::vector<float> liquid;       // liquid volume carried by the particle (m^3); w_e of Section 5.1
+  std::vector<float> voronoiArea;  // mixed Voronoi area A_Vor(p_i) (m^2)
+  std::vector<float> thickness;    // e_i = liquid / A_Vor (m)
+  std::vector<float> elasticity;   // E_i of Eq. (4) (N/m)
+  std::vector<float> lifetime;     // time since the particle was created (s)
+  std::vector<float> frameParam;   // wire-frame coordinate of a boundary particle (see wire_frame.h)
+  std::vector<uint32_t> alive;     // 1 while the particle exists (uint32: the GPU reads it as a uint)
+
+  [[nodiscard]] size_t size() const { return mass.size(); }
+  void resize(size_t n);
+};
+
+// Mesh connectivity. Triangles are consistently oriented; springs are the mesh edges. The CSR arrays list,
+// for each particle, its springs (with the neighbour at the other end) and its triangles, in a fixed order
+// that both backends use for every sum over a one-ring.
+struct Topology {
+  std::vector<uint32_t> triangles;    // 3 particle indices per triangle, counter-clockwise about the normal
+  std::vector<uint32_t> springEnds;   // 2 particle indices per spring
+  std::vector<float> restLength;      // l_ij (m)
+
+  std::vector<uint32_t> springOffset;     // CSR: springs of particle i are [springOffset[i], springOffset[i+1])
+  std::vector<uint32_t> springIndex;      // spring id
+  std::vector<uint32_t> springNeighbour;  // particle at the other end of that spring (the one-ring)
+  std::vector<uint32_t> triangleOffset;   // CSR: triangles of particle i
+  std::vector<uint32_t> triangleIndex;    // triangle id
+  std::vector<uint32_t> boundary;         // 1 for a particle held by the wire frame (the "end particles")
+
+  [[nodiscard]] size_t triangleCount() const { return triangles.size() / 3; }
+  [[nodiscard]] size_t springCount() const { return restLength.size(); }
+  [[nodiscard]] size_t particleCount() const { return boundary.size(); }
+  // A closed film (a bubble) has no boundary edge; Eqs. (10)-(11) then apply.
+  [[nodiscard]] bool isClosed() const;
+};
+
+// Builds springs (one per mesh edge, rest length from the current distance), the CSR one-ring arrays and
+// the boundary flags (particles on an edge used by exactly one triangle) from the triangle list.
+Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, const Vec3Array& positions);
+
+// Rebuilds only the CSR arrays and boundary flags, keeping springs and rest lengths.
+void buildAdjacency(Topology& topology);
+
+}  // namespace gb

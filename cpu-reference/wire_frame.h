@@ -1,0 +1,58 @@
+#pragma once
+// The wire frame that holds the film (Figure 1): two wand tips joined by a loop of string, or a single ring.
+// A boundary particle keeps a fixed frame coordinate u and is placed at framePoint(frame, u) every step, so
+// the film's edge follows the wands.
+
+#include "state.h"
+
+namespace gb {
+
+// Wand tips in world space, the output of capture/'s stabilizer (Section 4) and the input of the model.
+struct WandState {
+  Vec3 leftPosition = Vec3::Zero();
+  Vec3 leftVelocity = Vec3::Zero();
+  Vec3 rightPosition = Vec3::Zero();
+  Vec3 rightVelocity = Vec3::Zero();
+};
+
+// Linear interpolation of two wand states, used to feed substeps between input frames.
+WandState interpolate(const WandState& a, const WandState& b, float t);
+
+enum class ToolKind : int { TwoWands = 0, Ring = 1 };
+
+// The bubble tool a performer holds (options struct; defaults are the built-in tool sizes).
+struct WandTool {
+  ToolKind kind = ToolKind::TwoWands;
+  float loopDepth = 0.8f;    // two wands: how far the string hangs below the tips after a full dip (m)
+  float ringRadius = 0.35f;  // single ring wand: ring radius (m); the ring is centred on the right hand
+};
+
+// The frame at one instant. Two wands: a straight top string from the left tip (u = 0) to the right tip
+// (u = 1), then the hanging bottom string as a half ellipse from the right tip back to the left (u in [1, 2)).
+// Ring: a circle, u in [0, 1). axis and down span the frame's plane; axis x down is the film's normal.
+struct WireFrame {
+  ToolKind kind = ToolKind::TwoWands;
+  Vec3 center = Vec3::Zero();
+  Vec3 axis = Vec3::UnitX();   // left tip -> right tip (ring: first in-plane axis)
+  Vec3 down = -Vec3::UnitY();  // in-plane direction the loop hangs towards
+  float halfWidth = 0.5f;      // half the tip separation (ring: radius)
+  float depth = 0.5f;          // how far the bottom string hangs below the tips (ring: radius)
+  [[nodiscard]] float parameterEnd() const { return kind == ToolKind::TwoWands ? 2.0f : 1.0f; }
+  // Area enclosed by the frame (Area_wm of Eq. 6) and its height (H_wire of Eq. 6).
+  [[nodiscard]] float area() const;
+  [[nodiscard]] float height() const;
+};
+
+// Position on the frame of the boundary particle with frame coordinate u.
+Vec3 framePoint(const WireFrame& frame, float u);
+
+// Length of the bottom string of a two-wand loop hanging to depth b below tips 2a apart (half-ellipse
+// perimeter, Ramanujan's approximation), and its inverse.
+float hangingStringLength(float halfWidth, float depth);
+float hangingDepth(float halfWidth, float stringLength);
+
+// The frame of the tool for the given wand tips. stringLength is the two-wand loop's bottom string
+// (fixed per film); gravity decides which way the string hangs.
+WireFrame makeWireFrame(const WandTool& tool, const WandState& wands, float stringLength, const Vec3& gravity);
+
+}  // namespace gb

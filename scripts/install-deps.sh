@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages giantbubble builds and tests with. Idempotent: a package already
+# present is left alone, so running this before every build costs one `dpkg -s` per package.
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config   # toolchain
+  libeigen3-dev                      # small fixed-size linear algebra
+  libcgal-dev libgmp-dev libmpfr-dev # constrained Delaunay triangulation of the film
+  libgtest-dev libgmock-dev          # tests
+  libbenchmark-dev                   # bench/
+  libomp-dev                         # OpenMP runtime (g++ uses libgomp; kept for clang builds)
+  libcli11-dev                       # command line of the giantbubble executable
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p")
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+if [ "$(id -u)" -ne 0 ]; then
+  echo "install-deps: missing packages: ${missing[*]}; run this script as root (or install them with apt-get)" >&2
+  exit 1
+fi
+
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends "${missing[@]}"

@@ -17,7 +17,7 @@ void applyParameter(gb::Params& p, const std::string& assignment) {
       {"frameTime", &p.frameTime}, {"stabilitySafety", &p.stabilitySafety},
       {"elasticityWeight", &p.elasticityWeight}, {"elasticityThickness", &p.elasticityThickness},
       {"areaWeight", &p.areaWeight}, {"marangoniLifetime", &p.marangoniLifetime},
-      {"springDamping", &p.springDamping}, {"filmInertia", &p.filmInertia}, {"airDrag", &p.airDrag},
+      {"springPrestrain", &p.springPrestrain}, {"springDamping", &p.springDamping}, {"filmInertia", &p.filmInertia}, {"airDrag", &p.airDrag},
       {"gravityX", &p.gravityX}, {"gravityY", &p.gravityY}, {"gravityZ", &p.gravityZ},
       {"airDirectionThreshold", &p.airDirectionThreshold}, {"airInflowDistance", &p.airInflowDistance},
       {"airPressureGain", &p.airPressureGain}, {"pressureCoefficient", &p.pressureCoefficient},

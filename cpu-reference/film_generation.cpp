@@ -248,6 +248,7 @@ std::vector<uint32_t> triangulate(const PlanarLayout& layout) {
 }  // namespace
 
 void initialiseFilmMaterial(const Params& params, Film& film) {
+  for (float& l : film.topology.restLength) l *= 1.0f - params.springPrestrain;
   State& s = film.state;
   const float e0 = params.initialThickness();
   for (size_t i = 0; i < s.size(); ++i) {

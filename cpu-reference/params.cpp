@@ -26,6 +26,7 @@ std::vector<std::string> validate(const Params& p) {
   requireRange(e, "elasticityThickness", p.elasticityThickness, 1e-9f, 1e-3f, " m");
   requireRange(e, "areaWeight", p.areaWeight, 1e-4f, 10.0f, "");
   requireRange(e, "marangoniLifetime", p.marangoniLifetime, 0.0f, 1e6f, " s");
+  requireRange(e, "springPrestrain", p.springPrestrain, 0.0f, 0.5f, "");
   requireRange(e, "springDamping", p.springDamping, 0.0f, 10.0f, " N s/m");
   requireRange(e, "filmInertia", p.filmInertia, 1e-6f, 100.0f, " kg/m^2");
   requireRange(e, "airDrag", p.airDrag, 0.0f, 100.0f, " Pa s/m");

@@ -19,9 +19,10 @@ struct Params {
   float elasticityThickness = 4e-6f;  // k, "typically 4 um" (m)
   float areaWeight = 0.035f;          // w_e, Table 2 [0.02, 0.05]; initial thickness e0 = w_e * 100 um
   float marangoniLifetime = 0.2f;     // "life time < 10": ten paper steps of h = 0.02 s (s)
+  float springPrestrain = 0.1f;       // springs rest this fraction shorter than at creation: a film is taut
   float springDamping = 0.0005f;      // k_d of Algorithm 1 (N s/m)
   float filmInertia = 0.1f;           // areal mass of the film used for its dynamics (kg/m^2)
-  float airDrag = 0.1f;               // linear drag on the film's normal velocity (Pa s/m)
+  float airDrag = 0.1f;               // linear drag of still air on the film's velocity (Pa s/m)
   float gravityX = 0.0f;              // external force field g (m/s^2), world y is up
   float gravityY = -9.81f;
   float gravityZ = 0.0f;

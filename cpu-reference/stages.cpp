@@ -141,7 +141,7 @@ void computeForces(const Params& p, const StepUniforms& u, float pressure, const
     f += p.springDamping * (s.velocity.get(j) - vi).dot(dir) * dir;            // Algorithm 1, line 5
   }
   f += s.mass[i] * Vec3(p.gravityX, p.gravityY, p.gravityZ);                    // external force
-  f -= p.airDrag * area * vi.dot(n) * n;                                        // still air resists
+  f -= p.airDrag * area * vi;                                                   // still air resists
   const float flowIn = s.airFlow.get(i).dot(n), directIn = s.airInflow.get(i).dot(n);
   if (u.closed) {
     // Eq. (10): the bubble's excess pressure over its reference, and the transferred air scaled by P_cur.

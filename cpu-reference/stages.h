@@ -59,7 +59,7 @@ void transferAirFlow(const Params& p, const Topology& topo, State& s, size_t i);
 
 // ---- Stage 6: forces, Eq. (2) --------------------------------------------------------------------------
 // Surface tension Eq. (3) with the spring's stiffness the mean of its two particles' E (so the pair forces
-// cancel exactly), spring-projected damping (Algorithm 1), gravity, air drag on the normal velocity, and
+// cancel exactly), spring-projected damping (Algorithm 1), gravity, linear air drag, and
 // the air force: Eq. (9) on an open film, Eqs. (10)-(11) on a closed bubble at pressure P_cur.
 void computeForces(const Params& p, const StepUniforms& u, float pressure, const Topology& topo, State& s,
                    size_t i);

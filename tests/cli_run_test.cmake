@@ -1,0 +1,20 @@
+# Runs a short simulation and checks that it exits 0 and leaves stats, a mesh, and the summary.
+file(REMOVE_RECURSE ${OUT})
+execute_process(COMMAND ${EXE} run --duration 0.1 --particles 400 --ply-every 5 --out ${OUT} --no-progress
+                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "giantbubble run failed (${rc}):\n${out}\n${err}")
+endif()
+foreach(f stats.csv mesh_00000.ply mesh_00005.ply)
+  if(NOT EXISTS ${OUT}/${f})
+    message(FATAL_ERROR "giantbubble run did not write ${f}")
+  endif()
+endforeach()
+file(STRINGS ${OUT}/stats.csv rows)
+list(LENGTH rows n)
+if(NOT n EQUAL 7)  # header + frame 0 + 5 frames
+  message(FATAL_ERROR "stats.csv has ${n} lines, expected 7")
+endif()
+if(NOT out MATCHES "summary")
+  message(FATAL_ERROR "no summary printed:\n${out}")
+endif()

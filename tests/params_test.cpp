@@ -1,0 +1,47 @@
+#include <gtest/gtest.h>
+
+#include "params.h"
+
+namespace gb {
+namespace {
+
+TEST(Params, DefaultsAreValidAndInsideThePapersRanges) {
+  const Params p;
+  EXPECT_TRUE(validate(p).empty());
+  // Table 2 ranges, in the paper's own numbers.
+  EXPECT_GE(p.elasticityWeight, 12.0f);
+  EXPECT_LE(p.elasticityWeight, 13.0f);
+  EXPECT_GE(p.areaWeight, 0.02f);
+  EXPECT_LE(p.areaWeight, 0.05f);
+  EXPECT_GE(p.airDirectionThreshold, 0.5f);
+  EXPECT_LE(p.airDirectionThreshold, 0.7f);
+  EXPECT_FLOAT_EQ(p.frameTime, 0.02f);
+  EXPECT_GE(p.thicknessThreshold, 20e-9f);
+  EXPECT_LE(p.thicknessThreshold, 50e-9f);
+  EXPECT_GE(p.sticky, 20.0f);
+  EXPECT_LE(p.sticky, 30.0f);
+  EXPECT_GE(p.collisionThreshold, 1.5f);
+  EXPECT_LE(p.collisionThreshold, 2.0f);
+  EXPECT_FLOAT_EQ(p.pressureCoefficient, 1010.0f);
+}
+
+TEST(Params, AreaWeightMapsToInitialThickness) {
+  Params p;
+  p.areaWeight = 0.02f;
+  EXPECT_FLOAT_EQ(p.initialThickness(), 2e-6f);  // w_e x 100 um
+}
+
+TEST(Params, AbsurdValuesAreRejectedByName) {
+  Params p;
+  p.solution = 7.0f;
+  p.frameTime = -1.0f;
+  p.filmInertia = std::numeric_limits<float>::quiet_NaN();
+  const auto errors = validate(p);
+  ASSERT_EQ(errors.size(), 3u);
+  EXPECT_NE(errors[0].find("frameTime = -1"), std::string::npos) << errors[0];
+  EXPECT_NE(errors[1].find("filmInertia = nan"), std::string::npos) << errors[1];
+  EXPECT_NE(errors[2].find("solution = 7 is out of range [0.01, 1]"), std::string::npos) << errors[2];
+}
+
+}  // namespace
+}  // namespace gb

@@ -1,0 +1,199 @@
+// Every formula of the step against a value computed by hand.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "stages.h"
+#include "test_films.h"
+
+namespace gb {
+namespace {
+
+// Float32 evaluation of a short formula: a few ulps of the result.
+constexpr float kFormulaTolerance = 1e-6f;
+
+TEST(Elasticity, MarangoniWhileYoungGibbsAfterEq4) {
+  Params p;
+  p.elasticityWeight = 12.5f;
+  p.elasticityThickness = 4e-6f;
+  p.marangoniLifetime = 0.2f;
+  // e = k: x = 1. Marangoni 2 w_E x / (x + 2) = 25 / 3; Gibbs 4 w_E x / (x + 2)^2 = 50 / 9.
+  EXPECT_NEAR(elasticity(p, 4e-6f, 0.1f), 25.0f / 3.0f, 1e-5f);
+  EXPECT_NEAR(elasticity(p, 4e-6f, 0.3f), 50.0f / 9.0f, 1e-5f);
+  // e = 2k: the Gibbs peak w_E / 2; thicker films are softer (inversely proportional to thickness).
+  EXPECT_NEAR(elasticity(p, 8e-6f, 1.0f), 6.25f, 1e-5f);
+  EXPECT_LT(elasticity(p, 40e-6f, 1.0f), elasticity(p, 8e-6f, 1.0f));
+}
+
+TEST(FilmState, ThicknessIsLiquidOverVoronoiArea) {
+  const Params p;
+  Film film = test::makeHexagon(p);
+  State& s = film.state;
+  s.liquid[0] = 3e-10f;
+  s.voronoiArea[0] = 1.5e-4f;
+  s.lifetime[0] = 0.5f;
+  updateFilmState(p, 0.01f, s, 0);
+  EXPECT_NEAR(s.thickness[0], 2e-6f, 2e-6f * kFormulaTolerance);
+  EXPECT_FLOAT_EQ(s.elasticity[0], elasticity(p, s.thickness[0], 0.5f));
+  EXPECT_FLOAT_EQ(s.lifetime[0], 0.51f);
+}
+
+TEST(Geometry, MixedVoronoiAreaOfTheRegularHexagonCentre) {
+  // Six equilateral triangles of side 1: the centre's Voronoi region is a hexagon of inradius 1/2,
+  // area 6 * (1/2)^2 / sqrt(3) = sqrt(3)/2.
+  const Params p;
+  Film film = test::makeHexagon(p);
+  computeVertexGeometry(film.topology, film.state, 0);
+  EXPECT_NEAR(film.state.voronoiArea[0], std::sqrt(3.0f) / 2.0f, kFormulaTolerance);
+  EXPECT_NEAR(film.state.normal.get(0).z(), 1.0f, kFormulaTolerance);
+}
+
+TEST(Geometry, MixedVoronoiAreasTileRightAndObtuseTriangles) {
+  const Params p;
+  // Right isosceles triangle, legs 1: the right-angle corner gets 1/4, the others 1/8 each (circumcentre
+  // on the hypotenuse).
+  Film right = test::makeFilm(p, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2});
+  for (size_t i = 0; i < 3; ++i) computeVertexGeometry(right.topology, right.state, i);
+  EXPECT_NEAR(right.state.voronoiArea[0], 0.25f, kFormulaTolerance);
+  EXPECT_NEAR(right.state.voronoiArea[1], 0.125f, kFormulaTolerance);
+  EXPECT_NEAR(right.state.voronoiArea[2], 0.125f, kFormulaTolerance);
+  // Obtuse at particle 0: it gets half the area 0.5, the others a quarter each.
+  Film obtuse = test::makeFilm(p, {{0, 0, 0}, {1, 0.2f, 0}, {-1, 0.2f, 0}}, {0, 1, 2});
+  for (size_t i = 0; i < 3; ++i) computeVertexGeometry(obtuse.topology, obtuse.state, i);
+  const float area = 0.2f;  // base 2, height 0.2
+  EXPECT_NEAR(obtuse.state.voronoiArea[0], area / 2, kFormulaTolerance);
+  EXPECT_NEAR(obtuse.state.voronoiArea[1], area / 4, kFormulaTolerance);
+  EXPECT_NEAR(obtuse.state.voronoiArea[2], area / 4, kFormulaTolerance);
+}
+
+TEST(AirInflow, Eq5FallsOffWithDistanceAndOpposesTheWands) {
+  Params p;
+  StepUniforms u;
+  u.wands.leftPosition = Vec3(-1, 0, 0);
+  u.wands.rightPosition = Vec3(3, 0, 0);
+  u.wands.leftVelocity = u.wands.rightVelocity = Vec3(0, 0, 1);
+  u.airVolume = 0.5f;
+  u.wandAlignment = 1.0f;
+  // At the origin: distances 1 and 3, so -0.5 * (1/2 + 1/4) along z.
+  const Vec3 air = airInflow(p, u, Vec3::Zero());
+  EXPECT_NEAR(air.z(), -0.375f, kFormulaTolerance);
+  EXPECT_NEAR(air.x(), 0.0f, kFormulaTolerance);
+  // The single ring wand blows with its right hand only.
+  u.leftInflowWeight = 0.0f;
+  EXPECT_NEAR(airInflow(p, u, Vec3::Zero()).z(), -0.125f, kFormulaTolerance);
+}
+
+TEST(AirTransfer, Eq7And8WeightedMeanOfNeighboursPointingIn) {
+  Params p;
+  p.airDirectionThreshold = 0.6f;
+  Film film = test::makeHexagon(p);
+  State& s = film.state;
+  // Neighbour 4 sits at (-1, 0, 0); its air points along +x, straight at the centre: a_dir = 1.
+  // Neighbour 3 at (-1/2, sqrt3/2, 0) has air along +x too: a_dir = cos 60 deg = 0.5 < 0.6, so it is ignored.
+  // Neighbour 5 at (-1/2, -sqrt3/2, 0) blows twice as hard, 12 degrees off the centre: a_dir = 0.975.
+  s.airFlow.set(4, Vec3(1, 0, 0));
+  s.airFlow.set(3, Vec3(1, 0, 0));
+  const Vec3 toCentre = -s.position.get(5);
+  const Vec3 air5 = 2.0f * (toCentre + Vec3(0.3f, 0, 0)).normalized();
+  s.airFlow.set(5, air5);
+  const float aDir5 = toCentre.normalized().dot(air5.normalized());
+  ASSERT_GT(aDir5, 0.6f);
+  film.topology.boundary[0] = 0;
+  transferAirFlow(p, film.topology, s, 0);
+  const Vec3 expected = (1.0f * Vec3(1, 0, 0) + aDir5 * air5) / (1.0f + aDir5);
+  EXPECT_NEAR((s.airFlowNext.get(0) - expected).norm(), 0.0f, kFormulaTolerance);
+  // A boundary ("end") particle takes the fresh inflow instead (Algorithm 2, line 2).
+  s.airInflow.set(1, Vec3(0, 0, -3));
+  transferAirFlow(p, film.topology, s, 1);
+  EXPECT_EQ(s.airFlowNext.get(1), Vec3(0, 0, -3));
+}
+
+TEST(Forces, Eq3SpringWithMeanElasticityAndProjectedDamping) {
+  Params p;
+  p.gravityY = 0.0f;
+  p.airDrag = 0.0f;
+  p.airPressureGain = 0.0f;
+  p.springDamping = 0.5f;
+  p.springPrestrain = 0.0f;  // rest lengths are the creation distances
+  // One triangle; stretch the spring 0-1 by 0.1 along x and give particle 1 a velocity.
+  Film film = test::makeFilm(p, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2});
+  State& s = film.state;
+  s.position.set(1, Vec3(1.1f, 0, 0));
+  s.elasticity[0] = 2.0f;
+  s.elasticity[1] = 4.0f;
+  s.elasticity[2] = 0.0f;
+  s.position.set(2, Vec3(0, 1, 0));
+  s.velocity.set(1, Vec3(0.2f, 0.7f, 0));  // only the x part lies along the spring
+  computeForces(p, StepUniforms{}, p.pressureCoefficient, film.topology, s, 0);
+  // Spring 0-1: stiffness (2 + 4) / 2 = 3, stretch 0.1 -> 0.3 along +x; damping 0.5 * 0.2 = 0.1 along +x.
+  // Spring 0-2 is at rest length and its stiffness (2 + 0) / 2 pulls nothing.
+  EXPECT_NEAR(s.force.x[0], 0.4f, kFormulaTolerance);
+  EXPECT_NEAR(s.force.y[0], 0.0f, kFormulaTolerance);
+}
+
+TEST(Forces, Eq9AirPushesAlongTheNormalOnly) {
+  Params p;
+  p.gravityY = 0.0f;
+  p.airDrag = 0.0f;
+  p.airPressureGain = 2.0f;
+  Film film = test::makeHexagon(p);
+  State& s = film.state;
+  computeVertexGeometry(film.topology, s, 0);
+  s.elasticity.assign(s.size(), 0.0f);
+  s.airFlow.set(0, Vec3(5, 0, -1));    // transferred air: only -1 along the normal +z counts
+  s.airInflow.set(0, Vec3(0, 3, -2));  // direct inflow: -2 along the normal
+  computeForces(p, StepUniforms{}, p.pressureCoefficient, film.topology, s, 0);
+  const float expected = 2.0f * (-1.0f - 2.0f) * s.voronoiArea[0];
+  EXPECT_NEAR(s.force.z[0], expected, std::abs(expected) * kFormulaTolerance);
+  EXPECT_NEAR(s.force.x[0], 0.0f, kFormulaTolerance);
+  EXPECT_NEAR(s.force.y[0], 0.0f, kFormulaTolerance);
+}
+
+TEST(Pressure, Eq11BoylesLaw) {
+  Params p;
+  p.pressureCoefficient = 1010.0f;
+  EXPECT_FLOAT_EQ(boylePressure(p, 2.0f, 1.0f), 2020.0f);
+  EXPECT_FLOAT_EQ(boylePressure(p, 2.0f, 4.0f), 505.0f);
+}
+
+TEST(Integration, Eq12And13SemiImplicitEuler) {
+  const Params p;
+  Film film = test::makeHexagon(p);
+  State& s = film.state;
+  s.mass[0] = 2.0f;
+  s.velocity.set(0, Vec3(1, 0, 0));
+  s.force.set(0, Vec3(0, 4, 0));
+  StepUniforms u;
+  u.dt = 0.5f;
+  integrateParticle(u, film.topology, s, 0);
+  // v' = v + h f / m = (1, 1, 0); x' = x + h v' = (0.5, 0.5, 0): the new velocity moves the particle.
+  EXPECT_EQ(s.velocity.get(0), Vec3(1, 1, 0));
+  EXPECT_EQ(s.position.get(0), Vec3(0.5f, 0.5f, 0));
+}
+
+TEST(Integration, BoundaryParticlesFollowTheWireFrame) {
+  const Params p;
+  Film film = test::makeHexagon(p);
+  State& s = film.state;
+  ASSERT_TRUE(film.topology.boundary[1]);
+  s.frameParam[1] = 0.25f;
+  StepUniforms u;
+  u.dt = 0.1f;
+  u.frameNext.kind = ToolKind::Ring;
+  u.frameNext.center = Vec3(0, 0, 1);
+  u.frameNext.halfWidth = u.frameNext.depth = 2.0f;
+  integrateParticle(u, film.topology, s, 1);
+  const Vec3 expected = framePoint(u.frameNext, 0.25f);
+  EXPECT_EQ(s.position.get(1), expected);
+  EXPECT_NEAR((s.velocity.get(1) - (expected - Vec3(1, 0, 0)) / 0.1f).norm(), 0.0f, 1e-5f);
+}
+
+TEST(Reduction, TreeSumHasAFixedPairwiseShape) {
+  EXPECT_FLOAT_EQ(treeSum({}), 0.0f);
+  EXPECT_FLOAT_EQ(treeSum({1, 2, 3, 4, 5}), 15.0f);
+  // ((1e8 + 1) + (-1e8 + 1)) loses both ones in float; a left-to-right sum would keep one of them.
+  EXPECT_FLOAT_EQ(treeSum({1e8f, 1.0f, -1e8f, 1.0f}), 0.0f);
+}
+
+}  // namespace
+}  // namespace gb

@@ -10,26 +10,17 @@ namespace gb {
 
 namespace {
 
-// Cotangent of the angle between a and b.
-float cotangent(const Vec3& a, const Vec3& b) {
-  const float crossNorm = a.cross(b).norm();
-  return crossNorm > 0 ? a.dot(b) / crossNorm : 0.0f;
-}
-
-// Mixed Voronoi area of corner xi of triangle (xi, xj, xk) (Meyer et al. 2003, Fig. 4): the Voronoi
-// region for a non-obtuse triangle, else half or a quarter of the triangle so that areas still tile it.
-float mixedVoronoiCorner(const Vec3& xi, const Vec3& xj, const Vec3& xk) {
-  const Vec3 eij = xj - xi, eik = xk - xi, ejk = xk - xj;
-  const float area = 0.5f * eij.cross(eik).norm();
+// Mixed Voronoi area of corner xi of triangle (xi, xj, xk) whose area is `area` (Meyer et al. 2003,
+// Fig. 4): the Voronoi region for a non-obtuse triangle, else half or a quarter of the triangle so that the
+// areas still tile it. The cotangents of Meyer's formula share the denominator |cross| = 2 area, so
+// A_i = (|e_ij|^2 cot k + |e_ik|^2 cot j) / 8 = (|e_ij|^2 dot_k + |e_ik|^2 dot_j) / (16 area).
+float mixedVoronoiCorner(const Vec3& xi, const Vec3& xj, const Vec3& xk, float area) {
   if (area <= 0) return 0.0f;
-  const bool obtuseAtI = eij.dot(eik) < 0;
-  const bool obtuseAtJ = (-eij).dot(ejk) < 0;
-  const bool obtuseAtK = (-eik).dot(-ejk) < 0;
-  if (obtuseAtI) return 0.5f * area;
-  if (obtuseAtJ || obtuseAtK) return 0.25f * area;
-  const float cotK = cotangent(xi - xk, xj - xk);
-  const float cotJ = cotangent(xi - xj, xk - xj);
-  return 0.125f * (eij.squaredNorm() * cotK + eik.squaredNorm() * cotJ);
+  const Vec3 eij = xj - xi, eik = xk - xi, ejk = xk - xj;
+  const float dotI = eij.dot(eik), dotJ = -eij.dot(ejk), dotK = eik.dot(ejk);  // cosines times lengths
+  if (dotI < 0) return 0.5f * area;
+  if (dotJ < 0 || dotK < 0) return 0.25f * area;
+  return (eij.squaredNorm() * dotK + eik.squaredNorm() * dotJ) / (16.0f * area);
 }
 
 }  // namespace
@@ -43,8 +34,9 @@ void computeVertexGeometry(const Topology& topo, State& s, size_t i) {
     const int c = tri[0] == i ? 0 : (tri[1] == i ? 1 : 2);
     const Vec3 xi = s.position.get(tri[c]), xj = s.position.get(tri[(c + 1) % 3]),
                xk = s.position.get(tri[(c + 2) % 3]);
-    normalSum += (xj - xi).cross(xk - xi);  // twice the triangle's area times its unit normal
-    area += mixedVoronoiCorner(xi, xj, xk);
+    const Vec3 doubleAreaNormal = (xj - xi).cross(xk - xi);
+    normalSum += doubleAreaNormal;  // area-weighted normals
+    area += mixedVoronoiCorner(xi, xj, xk, 0.5f * doubleAreaNormal.norm());
   }
   const float len = normalSum.norm();
   s.normal.set(i, len > 0 ? Vec3(normalSum / len) : Vec3::Zero());

@@ -87,8 +87,7 @@ void BM_Volume(benchmark::State& b) {
 }
 // The whole step; integration is timed only here because it moves the film.
 void BM_FullStep(benchmark::State& b) {
-  CpuStepper stepper;
-  runStage(b, [&](Fixture& fx, Film& f, size_t) { stepper.step(fx.params, fx.uniforms, f); });
+  runStage(b, [&](Fixture& fx, Film&, size_t) { fx.sim->stepper().run(std::span(&fx.uniforms, 1)); });
 }
 
 #define GB_SIZES Arg(10000)->Arg(25650)->Arg(100000)->Unit(benchmark::kMicrosecond)->UseRealTime()

@@ -1,8 +1,16 @@
 #include "cpu_stepper.h"
 
+#include <chrono>
+#include <stdexcept>
 #include <utility>
 
 namespace gb {
+
+const char* stageName(Stage stage) {
+  static constexpr const char* names[] = {"geometry", "volume", "film_state", "air_inflow",
+                                          "air_transfer", "forces", "integrate"};
+  return names[static_cast<int>(stage)];
+}
 
 namespace {
 
@@ -16,6 +24,20 @@ void forEach(size_t n, Body&& body) {
 }
 
 }  // namespace
+
+template <class Body>
+void CpuStepper::timed(Stage stage, Body&& body) {
+  if (!timing_) return body();
+  const auto start = std::chrono::steady_clock::now();
+  body();
+  times_[static_cast<int>(stage)] +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void CpuStepper::load(const Params& params, Film& film) {
+  params_ = params;
+  film_ = &film;
+}
 
 float CpuStepper::volume(const Film& film, const Vec3& origin) {
   triangleVolumes_.resize(film.topology.triangleCount());
@@ -32,20 +54,49 @@ void CpuStepper::refreshGeometry(const Params& params, Film& film) {
   });
 }
 
-float CpuStepper::step(const Params& params, const StepUniforms& u, Film& film) {
-  State& s = film.state;
-  const Topology& topo = film.topology;
+float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
+  if (!film_) throw std::logic_error("CpuStepper: no film loaded");
+  State& s = film_->state;
+  const Topology& topo = film_->topology;
   const size_t n = s.size();
+  float result = 0.0f;
+  timed(stage, [&] {
+    switch (stage) {
+      case Stage::Geometry: forEach(n, [&](size_t i) { computeVertexGeometry(topo, s, i); }); break;
+      case Stage::Volume: result = volume(*film_, u.volumeOrigin); break;
+      case Stage::FilmState: forEach(n, [&](size_t i) { updateFilmState(params_, u.dt, s, i); }); break;
+      case Stage::AirInflow: forEach(n, [&](size_t i) { computeAirInflow(params_, u, s, i); }); break;
+      case Stage::AirTransfer:
+        forEach(n, [&](size_t i) { transferAirFlow(params_, topo, s, i); });
+        std::swap(s.airFlow, s.airFlowNext);  // Jacobi: the new air becomes the front buffer
+        break;
+      case Stage::Forces: {
+        const float pressure = u.closed ? boylePressure(params_, u.referenceVolume, lastVolume_) : params_.pressureCoefficient;
+        forEach(n, [&](size_t i) { computeForces(params_, u, pressure, topo, s, i); });
+        break;
+      }
+      case Stage::Integrate: forEach(n, [&](size_t i) { integrateParticle(u, topo, s, i); }); break;
+      case Stage::Count: break;
+    }
+  });
+  if (stage == Stage::Volume) lastVolume_ = result;
+  return result;
+}
 
-  forEach(n, [&](size_t i) { computeVertexGeometry(topo, s, i); });               // 2. geometry
-  const float pressure = u.closed ? boylePressure(params, u.referenceVolume, volume(film, u.volumeOrigin))
-                                  : params.pressureCoefficient;                   //    volume reduction
-  forEach(n, [&](size_t i) { updateFilmState(params, u.dt, s, i); });             // 3. film state
-  forEach(n, [&](size_t i) { computeAirInflow(params, u, s, i); });               // 4. air inflow
-  forEach(n, [&](size_t i) { transferAirFlow(params, topo, s, i); });             // 5. air transfer
-  std::swap(s.airFlow, s.airFlowNext);                                            //    Jacobi swap
-  forEach(n, [&](size_t i) { computeForces(params, u, pressure, topo, s, i); });  // 6. forces
-  forEach(n, [&](size_t i) { integrateParticle(u, topo, s, i); });                // 7. integration
+float CpuStepper::step(const StepUniforms& u) {
+  runStage(Stage::Geometry, u);
+  if (u.closed) runStage(Stage::Volume, u);
+  runStage(Stage::FilmState, u);
+  runStage(Stage::AirInflow, u);
+  runStage(Stage::AirTransfer, u);
+  runStage(Stage::Forces, u);
+  runStage(Stage::Integrate, u);
+  return u.closed ? boylePressure(params_, u.referenceVolume, lastVolume_) : params_.pressureCoefficient;
+}
+
+float CpuStepper::run(std::span<const StepUniforms> substeps) {
+  float pressure = params_.pressureCoefficient;
+  for (const StepUniforms& u : substeps) pressure = step(u);
   return pressure;
 }
 

@@ -1,26 +1,35 @@
 #pragma once
 // The CPU backend: one step is the list of stages of ARCHITECTURE.md, each run over all elements in
-// parallel (OpenMP). The Vulkan stepper records the same list as dispatches.
+// parallel (OpenMP), on the host film in place. The Vulkan stepper records the same list as dispatches.
 
-#include "film.h"
-#include "stages.h"
+#include <vector>
+
+#include "stepper.h"
 
 namespace gb {
 
-class CpuStepper {
+class CpuStepper final : public Stepper {
  public:
-  // Advances the film by one substep. Returns the Boyle pressure used (Eq. 11; P_0 for an open film).
-  float step(const Params& params, const StepUniforms& uniforms, Film& film);
+  [[nodiscard]] std::string name() const override { return "cpu"; }
+  void load(const Params& params, Film& film) override;
+  float run(std::span<const StepUniforms> substeps) override;
+  float runStage(Stage stage, const StepUniforms& uniforms) override;
+  void store(Film&) override {}
 
-  // Geometry (normals, Voronoi areas) and the film state from the current positions, without stepping:
-  // what a step's first stages compute, for diagnostics and the stability bound.
-  void refreshGeometry(const Params& params, Film& film);
-
+  // Geometry (normals, Voronoi areas) and the film state from the current positions, without stepping.
+  static void refreshGeometry(const Params& params, Film& film);
   // Enclosed (closed film) or swept (open film, cone to the origin) volume with the fixed-shape tree sum.
   float volume(const Film& film, const Vec3& origin);
 
  private:
+  float step(const StepUniforms& u);
+  template <class Body>
+  void timed(Stage stage, Body&& body);
+
+  Params params_;
+  Film* film_ = nullptr;
   std::vector<float> triangleVolumes_;  // scratch for the volume reduction, reused every step
+  float lastVolume_ = 0.0f;             // result of the last Volume stage, read by Forces
 };
 
 }  // namespace gb

@@ -12,7 +12,9 @@ struct Film {
   Topology topology;
   WandTool tool;
   float stringLength = 0.0f;     // two wands: length of the hanging bottom string, fixed while the film lives
-  float referenceVolume = 0.0f;  // V_0 of Eq. (11) once the film is a closed bubble (m^3)
+  float referenceVolume = 0.0f;       // V_0 of Eq. (11) once the film is a closed bubble (m^3)
+  Vec3 volumeOrigin = Vec3::Zero();   // closed bubble: apex of the volume's cone decomposition, fixed at
+                                      // closure so that no backend needs to read the state back for it
 };
 
 // Gives every particle its material at creation: geometry, then mass (film inertia x rest Voronoi area),

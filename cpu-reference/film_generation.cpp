@@ -250,7 +250,7 @@ std::vector<uint32_t> triangulate(const PlanarLayout& layout) {
 void initialiseFilmMaterial(const Params& params, Film& film) {
   for (float& l : film.topology.restLength) l *= 1.0f - params.springPrestrain;
   State& s = film.state;
-  const float e0 = params.initialThickness();
+  const float e0 = initialThickness(params);
   for (size_t i = 0; i < s.size(); ++i) {
     computeVertexGeometry(film.topology, s, i);
     s.mass[i] = params.filmInertia * s.voronoiArea[i];

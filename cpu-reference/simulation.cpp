@@ -32,17 +32,22 @@ Vec3 centroid(const State& s) {
 
 }  // namespace
 
-Simulation::Simulation(const Params& params, const WandTool& tool, const WandState& wands)
-    : Simulation(params, generateFilm(params, tool, wands), wands) {}
+Simulation::Simulation(const Params& params, const WandTool& tool, const WandState& wands,
+                       std::unique_ptr<Stepper> stepper)
+    : Simulation(params, generateFilm(params, tool, wands), wands, std::move(stepper)) {}
 
-Simulation::Simulation(const Params& params, Film film, const WandState& wands)
-    : params_(params), film_(std::move(film)), wands_(wands) {
+Simulation::Simulation(const Params& params, Film film, const WandState& wands, std::unique_ptr<Stepper> stepper)
+    : params_(params), film_(std::move(film)), stepper_(std::move(stepper)), wands_(wands) {
   if (const auto errors = validate(params_); !errors.empty()) throw std::invalid_argument(errors.front());
-  stepper_.refreshGeometry(params_, film_);
-  if (film_.topology.isClosed() && film_.referenceVolume <= 0)
-    film_.referenceVolume = stepper_.volume(film_, centroid(film_.state));
+  if (!stepper_) stepper_ = std::make_unique<CpuStepper>();
+  CpuStepper::refreshGeometry(params_, film_);
+  if (film_.topology.isClosed() && film_.referenceVolume <= 0) {
+    film_.volumeOrigin = centroid(film_.state);
+    film_.referenceVolume = CpuStepper().volume(film_, film_.volumeOrigin);
+  }
   pressure_ = params_.pressureCoefficient;
   chooseSubsteps();
+  stepper_->load(params_, film_);
 }
 
 void Simulation::chooseSubsteps() {
@@ -69,20 +74,22 @@ StepUniforms Simulation::uniformsFor(const WandState& a, const WandState& b, flo
   u.airVolume = frameNow.height() * frameNow.area();  // Eq. (6)
   u.frameNext = makeWireFrame(film_.tool, b, film_.stringLength, gravityOf(params_));
   u.closed = film_.topology.isClosed() ? 1u : 0u;
-  u.volumeOrigin = u.closed ? centroid(film_.state) : frameNow.center;
+  u.volumeOrigin = u.closed ? film_.volumeOrigin : frameNow.center;
   u.referenceVolume = film_.referenceVolume;
   return u;
 }
 
 void Simulation::advanceFrame(const WandState& next) {
   const float dt = params_.frameTime / static_cast<float>(substeps_);
+  substepUniforms_.clear();
   for (int k = 0; k < substeps_; ++k) {
     const float t0 = static_cast<float>(k) / static_cast<float>(substeps_);
     const float t1 = static_cast<float>(k + 1) / static_cast<float>(substeps_);
-    pressure_ = stepper_.step(params_, uniformsFor(interpolate(wands_, next, t0), interpolate(wands_, next, t1), dt),
-                              film_);
-    ++stepCount_;
+    substepUniforms_.push_back(uniformsFor(interpolate(wands_, next, t0), interpolate(wands_, next, t1), dt));
   }
+  pressure_ = stepper_->run(substepUniforms_);
+  stepper_->store(film_);
+  stepCount_ += substeps_;
   wands_ = next;
   time_ += params_.frameTime;
   checkStable();
@@ -105,7 +112,7 @@ void Simulation::checkStable() const {
 }
 
 FrameStats Simulation::stats() {
-  stepper_.refreshGeometry(params_, film_);
+  CpuStepper::refreshGeometry(params_, film_);
   const State& s = film_.state;
   const Topology& topo = film_.topology;
   FrameStats st;

@@ -2,10 +2,12 @@
 // A film driven by wand input frame by frame: splits each frame of Params::frameTime into stable substeps,
 // feeds the stepper interpolated wand states, and stops with a clear error if the film goes unstable.
 
+#include <memory>
 #include <stdexcept>
 
 #include "cpu_stepper.h"
 #include "film.h"
+#include "stepper.h"
 
 namespace gb {
 
@@ -33,10 +35,16 @@ struct FrameStats {
 
 class Simulation {
  public:
-  // A new film generated on the tool's wire frame at the given wand state.
-  Simulation(const Params& params, const WandTool& tool, const WandState& wands);
+  // A new film generated on the tool's wire frame at the given wand state. Without a stepper the CPU
+  // reference runs it.
+  Simulation(const Params& params, const WandTool& tool, const WandState& wands,
+             std::unique_ptr<Stepper> stepper = nullptr);
   // An existing film (e.g. a closed bubble); its wire frame, if any, is taken at `wands`.
-  Simulation(const Params& params, Film film, const WandState& wands);
+  Simulation(const Params& params, Film film, const WandState& wands, std::unique_ptr<Stepper> stepper = nullptr);
+
+  // The stepper holds a pointer to film_: a Simulation stays where it was made.
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
 
   // Advances one frame (Params::frameTime) while the wands move from their last state to `next`.
   void advanceFrame(const WandState& next);
@@ -47,6 +55,7 @@ class Simulation {
   [[nodiscard]] double time() const { return time_; }
   [[nodiscard]] int substepsPerFrame() const { return substeps_; }
   [[nodiscard]] float lastPressure() const { return pressure_; }
+  [[nodiscard]] Stepper& stepper() { return *stepper_; }
   [[nodiscard]] FrameStats stats();
 
   // The uniforms of a step of length dt from wand state a to b (exposed for tests and the GPU backend).
@@ -58,7 +67,8 @@ class Simulation {
 
   Params params_;
   Film film_;
-  CpuStepper stepper_;
+  std::unique_ptr<Stepper> stepper_;
+  std::vector<StepUniforms> substepUniforms_;  // one frame's substeps, reused
   WandState wands_;
   double time_ = 0;
   int substeps_ = 1;

@@ -164,7 +164,7 @@ void integrateParticle(const StepUniforms& u, const Topology& topo, State& s, si
 // ---- stability ------------------------------------------------------------------------------------------
 
 float elasticityBound(const Params& p) {
-  const float youngX = 2.0f * p.initialThickness() / p.elasticityThickness;
+  const float youngX = 2.0f * initialThickness(p) / p.elasticityThickness;
   const float marangoni = 2.0f * youngX / (youngX + 2.0f);
   return p.elasticityWeight * std::max(0.5f, marangoni);
 }

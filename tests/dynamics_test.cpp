@@ -153,8 +153,8 @@ TEST(Dynamics, CompressedBubblePushesOutExpandedBubblePullsIn) {
     Simulation sim(p, generateSphere(p, centre, 0.5f, 2), WandState{});  // V_0 taken at the rest shape
     State& s = sim.film().state;
     for (size_t i = 0; i < s.size(); ++i) s.position.set(i, centre + scale * (s.position.get(i) - centre));
-    CpuStepper stepper;
-    const float pressure = stepper.step(p, sim.uniformsFor(WandState{}, WandState{}, 1e-4f), sim.film());
+    const StepUniforms u = sim.uniformsFor(WandState{}, WandState{}, 1e-4f);
+    const float pressure = sim.stepper().run(std::span(&u, 1));
     EXPECT_NEAR(pressure, p.pressureCoefficient / (scale * scale * scale), 2e-3f * p.pressureCoefficient);
     double radial = 0;
     for (size_t i = 0; i < s.size(); ++i) radial += s.velocity.get(i).dot((s.position.get(i) - centre).normalized());

@@ -68,7 +68,7 @@ TEST(FilmGeneration, MeshIsAnOrientedManifoldDiscOnTheFrame) {
       // All triangles face the same way, so every vertex normal is the frame's normal.
       EXPECT_NEAR(film.state.normal.get(i).dot(frameNormal), 1.0f, 1e-4f) << "particle " << i;
       // Thickness starts at e0 = w_e x 100 um everywhere.
-      EXPECT_NEAR(film.state.thickness[i], p.initialThickness(), 1e-3f * p.initialThickness());
+      EXPECT_NEAR(film.state.thickness[i], initialThickness(p), 1e-3f * initialThickness(p));
       if (!topo.boundary[i]) continue;
       ++boundary;
       EXPECT_NEAR((film.state.position.get(i) - framePoint(frame, film.state.frameParam[i])).norm(), 0.0f, 1e-5f);

@@ -28,7 +28,7 @@ TEST(Params, DefaultsAreValidAndInsideThePapersRanges) {
 TEST(Params, AreaWeightMapsToInitialThickness) {
   Params p;
   p.areaWeight = 0.02f;
-  EXPECT_FLOAT_EQ(p.initialThickness(), 2e-6f);  // w_e x 100 um
+  EXPECT_FLOAT_EQ(initialThickness(p), 2e-6f);  // w_e x 100 um
 }
 
 TEST(Params, AbsurdValuesAreRejectedByName) {

@@ -1,0 +1,49 @@
+#pragma once
+// What every backend offers the simulation: the same stages, in the same order, with the same semantics
+// (ARCHITECTURE.md). CpuStepper (here) is the reference; VulkanStepper (host/) runs the stages as compute
+// shaders and is checked against it.
+
+#include <array>
+#include <span>
+#include <string>
+
+#include "film.h"
+#include "stages.h"
+
+namespace gb {
+
+// The stages of a step, in order. Volume runs only for a closed film.
+enum class Stage : int { Geometry, Volume, FilmState, AirInflow, AirTransfer, Forces, Integrate, Count };
+inline constexpr int kStageCount = static_cast<int>(Stage::Count);
+const char* stageName(Stage stage);
+
+// Time spent per stage (ms) since the last reset; filled when timing is enabled.
+using StageTimes = std::array<double, kStageCount>;
+
+class Stepper {
+ public:
+  virtual ~Stepper() = default;
+  [[nodiscard]] virtual std::string name() const = 0;
+
+  // Takes a film (new, or changed by a topology event): its whole state and topology. The CPU stepper
+  // steps this Film object in place; a GPU stepper copies it to the device.
+  virtual void load(const Params& params, Film& film) = 0;
+  // Runs the substeps in order (one submission on the GPU). Returns the Boyle pressure of the last one
+  // (Eq. 11; P_0 for an open film).
+  virtual float run(std::span<const StepUniforms> substeps) = 0;
+  // Runs one stage alone on the loaded film (equivalence tests, per-stage benchmarks). Returns the volume
+  // for Stage::Volume, 0 otherwise. AirTransfer includes the Jacobi swap.
+  virtual float runStage(Stage stage, const StepUniforms& uniforms) = 0;
+  // Brings the per-particle state back into the film given to load (nothing to do on the CPU).
+  virtual void store(Film& film) = 0;
+
+  virtual void enableTiming(bool on) { timing_ = on; }
+  [[nodiscard]] const StageTimes& stageTimes() const { return times_; }
+  void resetStageTimes() { times_.fill(0.0); }
+
+ protected:
+  bool timing_ = false;
+  StageTimes times_{};
+};
+
+}  // namespace gb

@@ -1,0 +1,50 @@
+// One definition of the model's parameter block, compiled as C++ (cpu-reference/params.h includes it)
+// and as GLSL (every compute shader includes it). Every parameter of the paper (Table 2 and Sections 5-7)
+// in SI units, the paper's symbol in the comment; docs/model.md maps the paper's scale to SI.
+// Only 4-byte scalars, so the std430 layout is the C layout with no padding (checked by a test).
+#ifdef __cplusplus
+#pragma once
+#define GB_DEFAULT(value) = value
+namespace gb {
+#else
+#define GB_DEFAULT(value)
+#endif
+
+struct Params {
+  // --- Time integration (Section 5.3) ---
+  float frameTime GB_DEFAULT(0.02f);      // h, Table 2: 0.02 s. One frame of wand input, split into stable substeps
+  float stabilitySafety GB_DEFAULT(0.5f);  // fraction of the explicit stability limit taken as the substep (0, 1]
+  int maxSubsteps GB_DEFAULT(4000);        // refuse films whose stability limit needs more substeps per frame
+
+  // --- Surface tension and elasticity (Section 5.1, Eqs. 3-4) ---
+  float elasticityWeight GB_DEFAULT(12.5f);     // w_E, Table 2 [12.0, 13.0]; N/m, the stiffness scale of Eq. (4)
+  float elasticityThickness GB_DEFAULT(4e-6f);  // k, "typically 4 um" (m)
+  float areaWeight GB_DEFAULT(0.035f);          // w_e, Table 2 [0.02, 0.05]; initial thickness is w_e x 100 um
+  float marangoniLifetime GB_DEFAULT(0.2f);     // "life time < 10": ten paper steps of 0.02 s (s)
+  float springPrestrain GB_DEFAULT(0.1f);       // springs rest this fraction shorter than at creation: taut film
+  float springDamping GB_DEFAULT(0.0005f);      // k_d of Algorithm 1 (N s/m)
+  float filmInertia GB_DEFAULT(0.1f);           // areal mass of the film used for its dynamics (kg/m^2)
+  float airDrag GB_DEFAULT(0.1f);               // linear drag of still air on the film's velocity (Pa s/m)
+  float gravityX GB_DEFAULT(0.0f);              // external force field g (m/s^2), world y is up
+  float gravityY GB_DEFAULT(-9.81f);
+  float gravityZ GB_DEFAULT(0.0f);
+
+  // --- Air (Section 5.2, Eqs. 5-11) ---
+  float airDirectionThreshold GB_DEFAULT(0.6f);  // lambda_air, Table 2 [0.5, 0.7] (cosine, dimensionless)
+  float airInflowDistance GB_DEFAULT(1.0f);      // the "+ 1" of Eq. (5): distance at which the inflow halves (m)
+  float airPressureGain GB_DEFAULT(10.0f);       // kappa: pressure per unit of normal air flow (Pa s/m^3)
+  float pressureCoefficient GB_DEFAULT(1010.0f);  // P0 = 1.01 kPa, Eq. (11) (Pa)
+
+  // --- Bursting and drainage (Section 6, Eqs. 14-15; Section 8) ---
+  float thicknessThreshold GB_DEFAULT(35e-9f);  // lambda_thi, Table 2 [20, 50], read as nm (m)
+  float sticky GB_DEFAULT(25.0f);               // Sticky, Table 2 [20, 30] (dimensionless)
+  float collisionThreshold GB_DEFAULT(1.75f);   // lambda_col, Table 2 [1.5, 2.0], read as impact speed (m/s)
+
+  // --- Soap solution control (Section 7) ---
+  float solution GB_DEFAULT(1.0f);              // remaining soap solution, 1 = full dip (0, 1]
+  int particlesAtFullSolution GB_DEFAULT(9500);  // particles of a film made at solution 1.0 (Table 1: 9-10k)
+};
+
+#ifdef __cplusplus
+}  // namespace gb
+#endif

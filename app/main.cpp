@@ -63,6 +63,11 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(16, 50000000));
   runCmd->add_option("--param", assignments, "set a model parameter, NAME=VALUE (repeatable)");
   runCmd->add_flag("!--no-progress", run.progress, "do not show the progress bar");
+  std::string backend = "auto";
+  runCmd->add_option("--backend", backend, "cpu, vulkan, or auto (Vulkan when a device exists)")
+      ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
+  runCmd->add_option("--device", run.device,
+                     "Vulkan device: index or part of its name (default: $GIANTBUBBLE_VULKAN_DEVICE, else the best)");
 
   try {
     app.parse(argc, argv);
@@ -78,6 +83,7 @@ int main(int argc, char** argv) {
   try {
     run.tool.kind = tool == "ring" ? gb::ToolKind::Ring : gb::ToolKind::TwoWands;
     run.gesture = gb::gestureFromName(gesture);
+    run.backend = gb::backendFromName(backend);
     return gb::runSimulation(run);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -64,7 +64,10 @@ void printSummary(const FrameStats& first, const FrameStats& last, long frames, 
 int runSimulation(const RunOptions& o) {
   std::filesystem::create_directories(o.outDir);
   const WandState start = gestureAt(o.gesture, o.gestureOptions, 0.0);
-  Simulation sim(o.params, o.tool, start);
+  std::string backendReport;
+  std::unique_ptr<Stepper> stepper = makeStepper(o.backend, o.device, backendReport);
+  std::printf("%s\n", backendReport.c_str());
+  Simulation sim(o.params, o.tool, start, std::move(stepper));
   const long frames = std::max(1L, std::lround(o.duration / o.params.frameTime));
   std::printf("giantbubble run: %zu particles, %zu triangles, %d substeps of %.3g ms per %.3g s frame, %ld frames\n",
               sim.film().state.size(), sim.film().topology.triangleCount(), sim.substepsPerFrame(),

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <string>
 
+#include "backend.h"
 #include "params.h"
 #include "scripted_gestures.h"
 #include "wire_frame.h"
@@ -19,6 +20,8 @@ struct RunOptions {
   std::filesystem::path outDir = "out";
   int plyEvery = 25;                      // write a mesh every this many frames (0: never)
   bool progress = true;
+  Backend backend = Backend::Cpu;
+  std::string device;                     // Vulkan device index or name part (empty: best available)
 };
 
 // Runs the simulation and writes its outputs; prints progress and a summary. Returns the process exit code:

@@ -1,0 +1,37 @@
+#pragma once
+// A storage buffer on the device that owns its memory (one owner, move-only like the vk::raii handles in
+// it). Host-visible memory is mapped once and copied directly; device-only memory goes through a staging
+// buffer.
+
+#include <vulkan/vulkan_raii.hpp>
+
+#include "vulkan_context.h"
+
+namespace gb {
+
+class DeviceBuffer {
+ public:
+  DeviceBuffer() = default;
+  // Where the memory lives: fast for the device (mapped too when the device allows), or host memory
+  // the device reads over the bus (staging).
+  enum class Placement { Device, Host };
+  DeviceBuffer(const VulkanContext& context, vk::DeviceSize bytes, Placement placement = Placement::Device);
+
+  void write(const void* source, vk::DeviceSize bytes, vk::DeviceSize offset = 0);
+  void read(void* destination, vk::DeviceSize bytes, vk::DeviceSize offset = 0) const;
+
+  [[nodiscard]] vk::Buffer handle() const { return *buffer_; }
+  [[nodiscard]] vk::DeviceSize size() const { return size_; }
+
+ private:
+  void copy(vk::Buffer from, vk::Buffer to, vk::DeviceSize bytes, vk::DeviceSize fromOffset,
+            vk::DeviceSize toOffset) const;
+
+  const VulkanContext* context_ = nullptr;
+  vk::DeviceSize size_ = 0;
+  vk::raii::Buffer buffer_{nullptr};
+  vk::raii::DeviceMemory memory_{nullptr};
+  void* mapped_ = nullptr;
+};
+
+}  // namespace gb

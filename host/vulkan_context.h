@@ -1,0 +1,64 @@
+#pragma once
+// The Vulkan instance, the chosen device and its compute queue. Vulkan stays inside host/.
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+#include <vulkan/vulkan_raii.hpp>
+
+namespace gb {
+
+// No usable Vulkan: no loader, no driver, no device, or the requested device is not there.
+class VulkanUnavailable : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct VulkanDeviceInfo {
+  uint32_t index = 0;
+  std::string name;
+  std::string type;  // "discrete GPU", "integrated GPU", "virtual GPU", "CPU", "other"
+};
+
+// Every Vulkan device the loader reports; empty (never throws) when there is no loader or driver.
+std::vector<VulkanDeviceInfo> listVulkanDevices();
+
+class VulkanContext {
+ public:
+  // Picks a device: `request` (or, when it is empty, the environment variable GIANTBUBBLE_VULKAN_DEVICE)
+  // is a device index or a case-insensitive part of its name; without one, the first discrete GPU, then
+  // integrated, virtual, CPU (lavapipe). GIANTBUBBLE_VULKAN_VALIDATION=1 enables the Khronos validation
+  // layer when it is installed; its errors are printed and counted. Throws VulkanUnavailable.
+  explicit VulkanContext(const std::string& request = "");
+
+  // Submits a recorded command buffer and blocks until it has finished.
+  void submitAndWait(const vk::raii::CommandBuffer& commands) const;
+  // A memory type index with all of `wanted`, or -1.
+  [[nodiscard]] int memoryType(uint32_t typeBits, vk::MemoryPropertyFlags wanted) const;
+  [[nodiscard]] vk::raii::CommandBuffer newCommandBuffer() const;
+
+  [[nodiscard]] const VulkanDeviceInfo& info() const { return info_; }
+  [[nodiscard]] bool validationEnabled() const { return validation_; }
+  [[nodiscard]] size_t validationErrors() const { return *validationErrors_; }
+  [[nodiscard]] double timestampPeriodNs() const { return timestampPeriodNs_; }
+  [[nodiscard]] uint32_t preferredWorkgroupSize() const;
+
+  vk::raii::Context context;
+  vk::raii::Instance instance{nullptr};
+  vk::raii::PhysicalDevice physical{nullptr};
+  vk::raii::Device device{nullptr};
+  vk::raii::Queue queue{nullptr};
+  vk::raii::CommandPool commandPool{nullptr};
+
+ private:
+  VulkanDeviceInfo info_;
+  uint32_t queueFamily_ = 0;
+  bool validation_ = false;
+  double timestampPeriodNs_ = 0.0;  // 0 when the queue has no timestamps
+  std::unique_ptr<size_t> validationErrors_ = std::make_unique<size_t>(0);  // stable address for the callback
+  vk::raii::DebugUtilsMessengerEXT messenger_{nullptr};
+  vk::raii::Fence fence_{nullptr};
+};
+
+}  // namespace gb

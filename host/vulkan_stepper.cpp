@@ -1,0 +1,388 @@
+#include "vulkan_stepper.h"
+
+#include <array>
+#include <vector>
+
+#include "device_buffer.h"
+#include "shared_step.h"
+#include "spirv.h"
+#include "vulkan_context.h"
+
+namespace gb {
+
+using kernels::Kernel;
+using gpu::PushBlock;
+using gpu::StepUniformsBlock;
+
+// The shared layouts are what the shaders expect (kernels/shared_step.h): sizes and the offsets std430
+// gives the same declarations.
+static_assert(sizeof(StepUniformsBlock) == 176 && offsetof(StepUniformsBlock, dt) == 128 &&
+              offsetof(StepUniformsBlock, frameKind) == 156 && offsetof(StepUniformsBlock, closed) == 160);
+static_assert(sizeof(PushBlock) == 16);
+static_assert(alignof(Params) == 4 && sizeof(Params) % 4 == 0,
+              "Params must stay a block of 4-byte scalars, whose std430 layout is the C layout");
+
+namespace {
+
+constexpr int kKernelCount = 8;
+
+gpu::vec4 toVec4(const Vec3& v) { return {v.x(), v.y(), v.z(), 0.0f}; }
+
+StepUniformsBlock toBlock(const StepUniforms& u) {
+  StepUniformsBlock b{};
+  b.leftPosition = toVec4(u.wands.leftPosition);
+  b.leftVelocity = toVec4(u.wands.leftVelocity);
+  b.rightPosition = toVec4(u.wands.rightPosition);
+  b.rightVelocity = toVec4(u.wands.rightVelocity);
+  b.frameCenter = toVec4(u.frameNext.center);
+  b.frameAxis = toVec4(u.frameNext.axis);
+  b.frameDown = toVec4(u.frameNext.down);
+  b.volumeOrigin = toVec4(u.volumeOrigin);
+  b.dt = u.dt;
+  b.leftInflowWeight = u.leftInflowWeight;
+  b.airVolume = u.airVolume;
+  b.wandAlignment = u.wandAlignment;
+  b.frameHalfWidth = u.frameNext.halfWidth;
+  b.frameDepth = u.frameNext.depth;
+  b.referenceVolume = u.referenceVolume;
+  b.frameKind = static_cast<int>(u.frameNext.kind);
+  b.closed = u.closed;
+  return b;
+}
+
+uint32_t ceilDiv(uint32_t n, uint32_t d) { return (n + d - 1) / d; }
+
+// Makes every write of the dispatches recorded so far visible to the dispatches recorded after it: the
+// one barrier kind the step needs (a stage reads what an earlier stage of this or the last step wrote).
+void computeToComputeBarrier(const vk::raii::CommandBuffer& cb) {
+  const vk::MemoryBarrier barrier(vk::AccessFlagBits::eShaderWrite,
+                                  vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+  cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},
+                     barrier, {}, {});
+}
+
+// Makes the last dispatches' writes visible to the host reading mapped memory after the fence.
+void computeToHostBarrier(const vk::raii::CommandBuffer& cb) {
+  const vk::MemoryBarrier barrier(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eHostRead);
+  cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eHost, {}, barrier, {},
+                     {});
+}
+
+template <class T>
+void writeVector(DeviceBuffer& buffer, const std::vector<T>& values) {
+  buffer.write(values.data(), values.size() * sizeof(T));
+}
+
+void writeVec3(DeviceBuffer& buffer, const Vec3Array& a) {
+  const size_t bytes = a.size() * sizeof(float);
+  buffer.write(a.x.data(), bytes, 0);
+  buffer.write(a.y.data(), bytes, bytes);
+  buffer.write(a.z.data(), bytes, 2 * bytes);
+}
+
+void readVec3(const DeviceBuffer& buffer, Vec3Array& a) {
+  const size_t bytes = a.size() * sizeof(float);
+  buffer.read(a.x.data(), bytes, 0);
+  buffer.read(a.y.data(), bytes, bytes);
+  buffer.read(a.z.data(), bytes, 2 * bytes);
+}
+
+template <class T>
+void readVector(const DeviceBuffer& buffer, std::vector<T>& values) {
+  buffer.read(values.data(), values.size() * sizeof(T));
+}
+
+}  // namespace
+
+struct VulkanStepper::Impl {
+  std::shared_ptr<const VulkanContext> ctx;
+  uint32_t workgroup = 64;
+  vk::raii::DescriptorSetLayout setLayout{nullptr};
+  vk::raii::PipelineLayout pipelineLayout{nullptr};
+  std::vector<vk::raii::ShaderModule> modules;
+  std::vector<vk::raii::Pipeline> pipelines;
+  vk::raii::CommandBuffer commands{nullptr};
+
+  Params params;
+  uint32_t particles = 0, triangles = 0;
+  std::array<DeviceBuffer, GB_BINDING_COUNT> buffers;  // indexed by binding; AIR_FLOW/NEXT are the two air
+                                                       // buffers of descriptor set 0
+  size_t stepsCapacity = 0;
+  vk::raii::DescriptorPool pool{nullptr};
+  std::vector<vk::raii::DescriptorSet> sets;  // [0]: air A front, B back; [1]: swapped
+  int airParity = 0;                          // which set is current (Jacobi swap of the air transfer)
+  bool volumeInA = true;                      // where the last volume reduction left its result
+
+  explicit Impl(std::shared_ptr<const VulkanContext> context) : ctx(std::move(context)) {
+    const vk::raii::Device& device = ctx->device;
+    workgroup = ctx->preferredWorkgroupSize();
+    std::vector<vk::DescriptorSetLayoutBinding> bindings;
+    for (uint32_t b = 0; b < GB_BINDING_COUNT; ++b)
+      bindings.emplace_back(b, vk::DescriptorType::eStorageBuffer, 1, vk::ShaderStageFlagBits::eCompute);
+    setLayout = vk::raii::DescriptorSetLayout(device, vk::DescriptorSetLayoutCreateInfo({}, bindings));
+    const vk::PushConstantRange pushRange(vk::ShaderStageFlagBits::eCompute, 0, sizeof(PushBlock));
+    const vk::DescriptorSetLayout layoutHandle = *setLayout;
+    pipelineLayout = vk::raii::PipelineLayout(device, vk::PipelineLayoutCreateInfo({}, layoutHandle, pushRange));
+    const vk::SpecializationMapEntry entry(0, 0, sizeof(uint32_t));
+    const vk::SpecializationInfo specialization(1, &entry, sizeof(uint32_t), &workgroup);
+    for (int k = 0; k < kKernelCount; ++k) {
+      const auto code = kernels::spirv(static_cast<Kernel>(k));
+      modules.emplace_back(device, vk::ShaderModuleCreateInfo({}, code.size_bytes(), code.data()));
+      const vk::PipelineShaderStageCreateInfo stage({}, vk::ShaderStageFlagBits::eCompute, *modules.back(), "main",
+                                                    &specialization);
+      pipelines.emplace_back(device, nullptr, vk::ComputePipelineCreateInfo({}, stage, *pipelineLayout));
+    }
+    commands = ctx->newCommandBuffer();
+  }
+
+  DeviceBuffer& buffer(int binding) { return buffers[static_cast<size_t>(binding)]; }
+  // The air buffer that currently holds the transferred air (the Jacobi front).
+  DeviceBuffer& airFront() { return buffer(airParity == 0 ? GB_BINDING_AIR_FLOW : GB_BINDING_AIR_FLOW_NEXT); }
+
+  void ensureStepCapacity(size_t count) {
+    if (count <= stepsCapacity) return;
+    stepsCapacity = std::max<size_t>(count, 2 * stepsCapacity);
+    buffer(GB_BINDING_STEPS) = DeviceBuffer(*ctx, stepsCapacity * sizeof(StepUniformsBlock));
+    writeDescriptorSets();
+  }
+
+  void writeDescriptorSets() {
+    std::vector<vk::DescriptorBufferInfo> infos;
+    infos.reserve(2 * GB_BINDING_COUNT);
+    std::vector<vk::WriteDescriptorSet> writes;
+    for (int set = 0; set < 2; ++set)
+      for (int b = 0; b < GB_BINDING_COUNT; ++b) {
+        int source = b;  // set 1 swaps the two air buffers
+        if (set == 1 && b == GB_BINDING_AIR_FLOW) source = GB_BINDING_AIR_FLOW_NEXT;
+        if (set == 1 && b == GB_BINDING_AIR_FLOW_NEXT) source = GB_BINDING_AIR_FLOW;
+        infos.emplace_back(buffer(source).handle(), 0, VK_WHOLE_SIZE);
+        writes.emplace_back(*sets[static_cast<size_t>(set)], static_cast<uint32_t>(b), 0, 1,
+                            vk::DescriptorType::eStorageBuffer, nullptr, &infos.back());
+      }
+    ctx->device.updateDescriptorSets(writes, nullptr);
+  }
+
+  void dispatch(const vk::raii::CommandBuffer& cb, Kernel kernel, uint32_t count, uint32_t stepIndex,
+                uint32_t flags = 0) {
+    cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipelines[static_cast<size_t>(kernel)]);
+    const vk::DescriptorSet set = *sets[static_cast<size_t>(airParity)];
+    cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipelineLayout, 0, set, {});
+    const PushBlock push{count, particles, stepIndex, flags};
+    cb.pushConstants<PushBlock>(*pipelineLayout, vk::ShaderStageFlagBits::eCompute, 0, push);
+    cb.dispatch(ceilDiv(count, workgroup), 1, 1);
+  }
+
+  // Records one stage. Volume records its own barriers between tree levels and ends with one.
+  void recordStage(const vk::raii::CommandBuffer& cb, Stage stage, uint32_t stepIndex) {
+    switch (stage) {
+      case Stage::Geometry: dispatch(cb, Kernel::VertexGeometry, particles, stepIndex); break;
+      case Stage::Volume: {
+        dispatch(cb, Kernel::TriangleVolume, triangles, stepIndex);
+        computeToComputeBarrier(cb);
+        bool fromA = true;
+        for (uint32_t n = triangles; n > 1; n = (n + 1) / 2) {  // the levels of treeSum
+          dispatch(cb, Kernel::TreeSum, n, stepIndex, fromA ? 1u : 0u);
+          computeToComputeBarrier(cb);
+          fromA = !fromA;
+        }
+        volumeInA = fromA;
+        break;
+      }
+      case Stage::FilmState: dispatch(cb, Kernel::FilmState, particles, stepIndex); break;
+      case Stage::AirInflow: dispatch(cb, Kernel::AirInflow, particles, stepIndex); break;
+      case Stage::AirTransfer:
+        dispatch(cb, Kernel::AirTransfer, particles, stepIndex);
+        airParity = 1 - airParity;  // later dispatches see the new air as the front buffer
+        break;
+      case Stage::Forces: dispatch(cb, Kernel::Forces, particles, stepIndex, volumeInA ? 1u : 0u); break;
+      case Stage::Integrate: dispatch(cb, Kernel::Integrate, particles, stepIndex); break;
+      case Stage::Count: break;
+    }
+  }
+
+  // One substep. Barriers go only where a stage reads what the stages before it wrote: geometry, air inflow
+  // and the triangle volumes read positions only and run together; film state and air transfer need the
+  // areas and inflow; forces need everything; integration must not move particles that forces still read.
+  void recordStep(const vk::raii::CommandBuffer& cb, uint32_t stepIndex, bool closed) {
+    recordStage(cb, Stage::Geometry, stepIndex);
+    recordStage(cb, Stage::AirInflow, stepIndex);
+    if (closed) {
+      recordStage(cb, Stage::Volume, stepIndex);  // ends with a barrier
+    } else {
+      computeToComputeBarrier(cb);
+    }
+    recordStage(cb, Stage::FilmState, stepIndex);
+    recordStage(cb, Stage::AirTransfer, stepIndex);
+    computeToComputeBarrier(cb);
+    recordStage(cb, Stage::Forces, stepIndex);
+    computeToComputeBarrier(cb);
+    recordStage(cb, Stage::Integrate, stepIndex);
+    computeToComputeBarrier(cb);  // the next substep's stages read the new positions
+  }
+
+  void uploadSteps(std::span<const StepUniforms> steps) {
+    ensureStepCapacity(steps.size());
+    std::vector<StepUniformsBlock> blocks;
+    blocks.reserve(steps.size());
+    for (const StepUniforms& u : steps) blocks.push_back(toBlock(u));
+    writeVector(buffer(GB_BINDING_STEPS), blocks);
+  }
+
+  float readVolume() {
+    float volume = 0.0f;
+    buffer(volumeInA ? GB_BINDING_REDUCE_A : GB_BINDING_REDUCE_B).read(&volume, sizeof volume);
+    return volume;
+  }
+};
+
+VulkanStepper::VulkanStepper(std::shared_ptr<const VulkanContext> context)
+    : impl_(std::make_unique<Impl>(std::move(context))) {}
+VulkanStepper::~VulkanStepper() = default;
+
+const VulkanContext& VulkanStepper::context() const { return *impl_->ctx; }
+
+std::string VulkanStepper::name() const {
+  return "vulkan (" + impl_->ctx->info().name + ", " + impl_->ctx->info().type + ")";
+}
+
+void VulkanStepper::load(const Params& params, Film& film) {
+  Impl& m = *impl_;
+  const State& s = film.state;
+  const Topology& t = film.topology;
+  m.params = params;
+  m.particles = static_cast<uint32_t>(s.size());
+  m.triangles = static_cast<uint32_t>(t.triangleCount());
+  const size_t n = s.size();
+  auto make = [&](int binding, size_t bytes) { m.buffer(binding) = DeviceBuffer(*m.ctx, bytes); };
+  make(GB_BINDING_PARAMS, sizeof(Params));
+  for (int b : {GB_BINDING_POSITION, GB_BINDING_VELOCITY, GB_BINDING_FORCE, GB_BINDING_NORMAL, GB_BINDING_AIR_INFLOW,
+                GB_BINDING_AIR_FLOW, GB_BINDING_AIR_FLOW_NEXT})
+    make(b, 3 * n * sizeof(float));
+  for (int b : {GB_BINDING_MASS, GB_BINDING_LIQUID, GB_BINDING_VORONOI_AREA, GB_BINDING_THICKNESS,
+                GB_BINDING_ELASTICITY, GB_BINDING_LIFETIME, GB_BINDING_FRAME_PARAM, GB_BINDING_ALIVE,
+                GB_BINDING_BOUNDARY})
+    make(b, n * sizeof(float));
+  make(GB_BINDING_TRIANGLES, t.triangles.size() * sizeof(uint32_t));
+  make(GB_BINDING_REST_LENGTH, t.restLength.size() * sizeof(float));
+  make(GB_BINDING_SPRING_OFFSET, t.springOffset.size() * sizeof(uint32_t));
+  make(GB_BINDING_SPRING_INDEX, t.springIndex.size() * sizeof(uint32_t));
+  make(GB_BINDING_SPRING_NEIGHBOUR, t.springNeighbour.size() * sizeof(uint32_t));
+  make(GB_BINDING_TRIANGLE_OFFSET, t.triangleOffset.size() * sizeof(uint32_t));
+  make(GB_BINDING_TRIANGLE_INDEX, t.triangleIndex.size() * sizeof(uint32_t));
+  make(GB_BINDING_REDUCE_A, std::max<size_t>(m.triangles, 1) * sizeof(float));
+  make(GB_BINDING_REDUCE_B, std::max<size_t>(m.triangles, 1) * sizeof(float));
+  m.stepsCapacity = 0;
+  make(GB_BINDING_STEPS, sizeof(StepUniformsBlock));
+
+  m.buffer(GB_BINDING_PARAMS).write(&params, sizeof(Params));
+  writeVec3(m.buffer(GB_BINDING_POSITION), s.position);
+  writeVec3(m.buffer(GB_BINDING_VELOCITY), s.velocity);
+  writeVec3(m.buffer(GB_BINDING_FORCE), s.force);
+  writeVec3(m.buffer(GB_BINDING_NORMAL), s.normal);
+  writeVec3(m.buffer(GB_BINDING_AIR_INFLOW), s.airInflow);
+  writeVec3(m.buffer(GB_BINDING_AIR_FLOW), s.airFlow);
+  writeVec3(m.buffer(GB_BINDING_AIR_FLOW_NEXT), s.airFlowNext);
+  writeVector(m.buffer(GB_BINDING_MASS), s.mass);
+  writeVector(m.buffer(GB_BINDING_LIQUID), s.liquid);
+  writeVector(m.buffer(GB_BINDING_VORONOI_AREA), s.voronoiArea);
+  writeVector(m.buffer(GB_BINDING_THICKNESS), s.thickness);
+  writeVector(m.buffer(GB_BINDING_ELASTICITY), s.elasticity);
+  writeVector(m.buffer(GB_BINDING_LIFETIME), s.lifetime);
+  writeVector(m.buffer(GB_BINDING_FRAME_PARAM), s.frameParam);
+  writeVector(m.buffer(GB_BINDING_ALIVE), s.alive);
+  writeVector(m.buffer(GB_BINDING_BOUNDARY), t.boundary);
+  writeVector(m.buffer(GB_BINDING_TRIANGLES), t.triangles);
+  writeVector(m.buffer(GB_BINDING_REST_LENGTH), t.restLength);
+  writeVector(m.buffer(GB_BINDING_SPRING_OFFSET), t.springOffset);
+  writeVector(m.buffer(GB_BINDING_SPRING_INDEX), t.springIndex);
+  writeVector(m.buffer(GB_BINDING_SPRING_NEIGHBOUR), t.springNeighbour);
+  writeVector(m.buffer(GB_BINDING_TRIANGLE_OFFSET), t.triangleOffset);
+  writeVector(m.buffer(GB_BINDING_TRIANGLE_INDEX), t.triangleIndex);
+
+  m.sets.clear();
+  const vk::DescriptorPoolSize poolSize(vk::DescriptorType::eStorageBuffer, 2 * GB_BINDING_COUNT);
+  m.pool = vk::raii::DescriptorPool(
+      m.ctx->device, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 2, poolSize));
+  const std::array<vk::DescriptorSetLayout, 2> layouts = {*m.setLayout, *m.setLayout};
+  vk::raii::DescriptorSets sets(m.ctx->device, vk::DescriptorSetAllocateInfo(*m.pool, layouts));
+  for (auto& set : sets) m.sets.push_back(std::move(set));
+  m.airParity = 0;
+  m.volumeInA = true;
+  m.ensureStepCapacity(1);
+  m.writeDescriptorSets();
+}
+
+float VulkanStepper::run(std::span<const StepUniforms> substeps) {
+  Impl& m = *impl_;
+  if (m.sets.empty()) throw std::logic_error("VulkanStepper: no film loaded");
+  if (substeps.empty()) return m.params.pressureCoefficient;
+  m.uploadSteps(substeps);
+  const vk::raii::CommandBuffer& cb = m.commands;
+  cb.reset();
+  cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+  if (timing_) {
+    // Timing: every stage alone between barriers and timestamps, so each gets its own duration.
+    std::vector<Stage> order;
+    const bool closed = substeps.front().closed != 0;
+    const uint32_t queries = static_cast<uint32_t>(substeps.size()) * kStageCount + 1;
+    vk::raii::QueryPool pool(m.ctx->device, vk::QueryPoolCreateInfo({}, vk::QueryType::eTimestamp, queries));
+    cb.resetQueryPool(*pool, 0, queries);
+    uint32_t q = 0;
+    cb.writeTimestamp(vk::PipelineStageFlagBits::eComputeShader, *pool, q++);
+    for (uint32_t k = 0; k < substeps.size(); ++k)
+      for (Stage stage : {Stage::Geometry, Stage::Volume, Stage::FilmState, Stage::AirInflow, Stage::AirTransfer,
+                          Stage::Forces, Stage::Integrate}) {
+        if (stage == Stage::Volume && !closed) continue;
+        m.recordStage(cb, stage, k);
+        computeToComputeBarrier(cb);
+        cb.writeTimestamp(vk::PipelineStageFlagBits::eComputeShader, *pool, q++);
+        order.push_back(stage);
+      }
+    computeToHostBarrier(cb);
+    cb.end();
+    m.ctx->submitAndWait(cb);
+    const auto [result, ticks] = pool.getResults<uint64_t>(0, q, q * sizeof(uint64_t), sizeof(uint64_t),
+                                                           vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+    for (size_t k = 0; k < order.size(); ++k)
+      times_[static_cast<int>(order[k])] += static_cast<double>(ticks[k + 1] - ticks[k]) * m.ctx->timestampPeriodNs() * 1e-6;
+  } else {
+    for (uint32_t k = 0; k < substeps.size(); ++k) m.recordStep(cb, k, substeps[k].closed != 0);
+    computeToHostBarrier(cb);
+    cb.end();
+    m.ctx->submitAndWait(cb);
+  }
+  const StepUniforms& last = substeps.back();
+  return last.closed ? boylePressure(m.params, last.referenceVolume, m.readVolume()) : m.params.pressureCoefficient;
+}
+
+float VulkanStepper::runStage(Stage stage, const StepUniforms& uniforms) {
+  Impl& m = *impl_;
+  if (m.sets.empty()) throw std::logic_error("VulkanStepper: no film loaded");
+  m.uploadSteps(std::span(&uniforms, 1));
+  const vk::raii::CommandBuffer& cb = m.commands;
+  cb.reset();
+  cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+  m.recordStage(cb, stage, 0);
+  computeToHostBarrier(cb);
+  cb.end();
+  m.ctx->submitAndWait(cb);
+  return stage == Stage::Volume ? m.readVolume() : 0.0f;
+}
+
+void VulkanStepper::store(Film& film) {
+  Impl& m = *impl_;
+  State& s = film.state;
+  if (s.size() != m.particles) throw std::logic_error("VulkanStepper::store: not the loaded film");
+  readVec3(m.buffer(GB_BINDING_POSITION), s.position);
+  readVec3(m.buffer(GB_BINDING_VELOCITY), s.velocity);
+  readVec3(m.buffer(GB_BINDING_FORCE), s.force);
+  readVec3(m.buffer(GB_BINDING_NORMAL), s.normal);
+  readVec3(m.buffer(GB_BINDING_AIR_INFLOW), s.airInflow);
+  readVec3(m.airFront(), s.airFlow);
+  readVector(m.buffer(GB_BINDING_VORONOI_AREA), s.voronoiArea);
+  readVector(m.buffer(GB_BINDING_THICKNESS), s.thickness);
+  readVector(m.buffer(GB_BINDING_ELASTICITY), s.elasticity);
+  readVector(m.buffer(GB_BINDING_LIFETIME), s.lifetime);
+}
+
+}  // namespace gb

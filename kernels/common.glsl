@@ -1,0 +1,60 @@
+// Declarations every stage shares: the parameter block, the substep uniforms, push constants and the
+// structure-of-arrays buffers, plus the functions of cpu-reference/stages.cpp that several stages need.
+// Each function has the name and the float operations of its C++ twin.
+
+#include "shared_params.h"
+#include "shared_step.h"
+
+layout(local_size_x_id = 0) in;
+layout(push_constant) uniform Push { PushBlock pc; };
+
+layout(std430, binding = GB_BINDING_PARAMS) readonly buffer ParamsBuffer { Params params; };
+layout(std430, binding = GB_BINDING_STEPS) readonly buffer StepsBuffer { StepUniformsBlock steps[]; };
+layout(std430, binding = GB_BINDING_POSITION) buffer PositionBuffer { float position[]; };
+layout(std430, binding = GB_BINDING_VELOCITY) buffer VelocityBuffer { float velocity[]; };
+layout(std430, binding = GB_BINDING_FORCE) buffer ForceBuffer { float force[]; };
+layout(std430, binding = GB_BINDING_NORMAL) buffer NormalBuffer { float normal[]; };
+layout(std430, binding = GB_BINDING_AIR_INFLOW) buffer AirInflowBuffer { float airInflow[]; };
+layout(std430, binding = GB_BINDING_AIR_FLOW) buffer AirFlowBuffer { float airFlow[]; };
+layout(std430, binding = GB_BINDING_AIR_FLOW_NEXT) buffer AirFlowNextBuffer { float airFlowNext[]; };
+layout(std430, binding = GB_BINDING_MASS) readonly buffer MassBuffer { float mass[]; };
+layout(std430, binding = GB_BINDING_LIQUID) readonly buffer LiquidBuffer { float liquid[]; };
+layout(std430, binding = GB_BINDING_VORONOI_AREA) buffer VoronoiAreaBuffer { float voronoiArea[]; };
+layout(std430, binding = GB_BINDING_THICKNESS) buffer ThicknessBuffer { float thickness[]; };
+layout(std430, binding = GB_BINDING_ELASTICITY) buffer ElasticityBuffer { float elasticity[]; };
+layout(std430, binding = GB_BINDING_LIFETIME) buffer LifetimeBuffer { float lifetime[]; };
+layout(std430, binding = GB_BINDING_FRAME_PARAM) readonly buffer FrameParamBuffer { float frameParam[]; };
+layout(std430, binding = GB_BINDING_ALIVE) readonly buffer AliveBuffer { uint alive[]; };
+layout(std430, binding = GB_BINDING_TRIANGLES) readonly buffer TrianglesBuffer { uint triangles[]; };
+layout(std430, binding = GB_BINDING_REST_LENGTH) readonly buffer RestLengthBuffer { float restLength[]; };
+layout(std430, binding = GB_BINDING_SPRING_OFFSET) readonly buffer SpringOffsetBuffer { uint springOffset[]; };
+layout(std430, binding = GB_BINDING_SPRING_INDEX) readonly buffer SpringIndexBuffer { uint springIndex[]; };
+layout(std430, binding = GB_BINDING_SPRING_NEIGHBOUR) readonly buffer SpringNeighbourBuffer { uint springNeighbour[]; };
+layout(std430, binding = GB_BINDING_TRIANGLE_OFFSET) readonly buffer TriangleOffsetBuffer { uint triangleOffset[]; };
+layout(std430, binding = GB_BINDING_TRIANGLE_INDEX) readonly buffer TriangleIndexBuffer { uint triangleIndex[]; };
+layout(std430, binding = GB_BINDING_BOUNDARY) readonly buffer BoundaryBuffer { uint boundary[]; };
+layout(std430, binding = GB_BINDING_REDUCE_A) buffer ReduceABuffer { float reduceA[]; };
+layout(std430, binding = GB_BINDING_REDUCE_B) buffer ReduceBBuffer { float reduceB[]; };
+
+// Vector attribute access: x, y, z blocks of pc.particles floats each.
+#define LOAD3(buf, i) vec3(buf[(i)], buf[pc.particles + (i)], buf[2u * pc.particles + (i)])
+#define STORE3(buf, i, v)                   \
+  {                                         \
+    const vec3 value_ = (v);                \
+    buf[(i)] = value_.x;                    \
+    buf[pc.particles + (i)] = value_.y;     \
+    buf[2u * pc.particles + (i)] = value_.z; \
+  }
+
+// framePoint of cpu-reference/wire_frame.cpp.
+vec3 framePoint(StepUniformsBlock u, float param) {
+  const float pi = 3.14159265358979323846;
+  if (u.frameKind == 0 && param < 1.0) return u.frameCenter.xyz + (2.0 * param - 1.0) * u.frameHalfWidth * u.frameAxis.xyz;
+  const float phi = u.frameKind == 0 ? (param - 1.0) * pi : 2.0 * pi * param;
+  return u.frameCenter.xyz + u.frameHalfWidth * cos(phi) * u.frameAxis.xyz + u.frameDepth * sin(phi) * u.frameDown.xyz;
+}
+
+// boylePressure of cpu-reference/stages.cpp, Eq. (11).
+float boylePressure(float referenceVolume, float currentVolume) {
+  return currentVolume > 0.0 ? params.pressureCoefficient * referenceVolume / currentVolume : params.pressureCoefficient;
+}

@@ -1,0 +1,20 @@
+#version 450
+// updateFilmState (cpu-reference/stages.cpp): thickness e_i = liquid / A_Vor, elasticity Eq. (4), age.
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+
+// elasticity of cpu-reference/stages.cpp: Marangoni while young, Gibbs after; Eq. (4) divided by k.
+float elasticityOf(float thicknessValue, float age) {
+  const float x = thicknessValue / params.elasticityThickness;
+  if (age < params.marangoniLifetime) return params.elasticityWeight * 2.0 * x / (x + 2.0);
+  return params.elasticityWeight * 4.0 * x / ((x + 2.0) * (x + 2.0));
+}
+
+void main() {
+  const uint i = gl_GlobalInvocationID.x;
+  if (i >= pc.count) return;
+  const float area = voronoiArea[i];
+  thickness[i] = area > 0.0 ? liquid[i] / area : 0.0;
+  elasticity[i] = elasticityOf(thickness[i], lifetime[i]);
+  lifetime[i] += steps[pc.stepIndex].dt;
+}

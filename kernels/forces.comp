@@ -1,0 +1,36 @@
+#version 450
+// computeForces (cpu-reference/stages.cpp): Eq. (2) with surface tension Eq. (3), spring damping
+// (Algorithm 1), gravity, air drag, and Eq. (9) on an open film or Eqs. (10)-(11) on a closed bubble.
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+
+void main() {
+  const uint i = gl_GlobalInvocationID.x;
+  if (i >= pc.count) return;
+  const StepUniformsBlock u = steps[pc.stepIndex];
+  const vec3 xi = LOAD3(position, i), vi = LOAD3(velocity, i), n = LOAD3(normal, i);
+  const float ei = elasticity[i], area = voronoiArea[i];
+  vec3 f = vec3(0.0);
+  for (uint k = springOffset[i]; k < springOffset[i + 1u]; ++k) {
+    const uint j = springNeighbour[k];
+    const vec3 d = LOAD3(position, j) - xi;
+    const float len = length(d);
+    if (len <= 0.0) continue;
+    const vec3 dir = d / len;
+    const float stiffness = 0.5 * (ei + elasticity[j]);
+    f += stiffness * (len - restLength[springIndex[k]]) * dir;          // Eq. (3)
+    f += params.springDamping * dot(LOAD3(velocity, j) - vi, dir) * dir;  // Algorithm 1, line 5
+  }
+  f += mass[i] * vec3(params.gravityX, params.gravityY, params.gravityZ);
+  f -= params.airDrag * area * vi;
+  const float flowIn = dot(LOAD3(airFlow, i), n), directIn = dot(LOAD3(airInflow, i), n);
+  if (u.closed != 0u) {
+    const float volume = (pc.reduceFlags & 1u) != 0u ? reduceA[0] : reduceB[0];
+    const float pressure = boylePressure(u.referenceVolume, volume);
+    f += ((pressure - params.pressureCoefficient) +
+          pressure / params.pressureCoefficient * params.airPressureGain * flowIn) * area * n;  // Eq. (10)
+  } else {
+    f += params.airPressureGain * (flowIn + directIn) * area * n;  // Eq. (9)
+  }
+  STORE3(force, i, f);
+}

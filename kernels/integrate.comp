@@ -1,0 +1,22 @@
+#version 450
+// integrateParticle (cpu-reference/stages.cpp): semi-implicit Euler, Eqs. (12)-(13); boundary particles
+// are carried to the wire frame at the end of the substep.
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+
+void main() {
+  const uint i = gl_GlobalInvocationID.x;
+  if (i >= pc.count) return;
+  if (alive[i] == 0u) return;
+  const StepUniformsBlock u = steps[pc.stepIndex];
+  const vec3 x = LOAD3(position, i);
+  if (boundary[i] != 0u) {
+    const vec3 xNext = framePoint(u, frameParam[i]);
+    STORE3(velocity, i, (xNext - x) / u.dt);
+    STORE3(position, i, xNext);
+    return;
+  }
+  const vec3 v = LOAD3(velocity, i) + u.dt * LOAD3(force, i) / mass[i];  // Eq. (12)
+  STORE3(velocity, i, v);
+  STORE3(position, i, x + u.dt * v);  // Eq. (13)
+}

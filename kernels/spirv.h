@@ -1,0 +1,14 @@
+#pragma once
+// The embedded SPIR-V of every compute shader in this folder, one per stage of the step.
+
+#include <cstdint>
+#include <span>
+
+namespace gb::kernels {
+
+enum class Kernel { VertexGeometry, TriangleVolume, TreeSum, FilmState, AirInflow, AirTransfer, Forces, Integrate };
+
+std::span<const uint32_t> spirv(Kernel kernel);
+const char* kernelName(Kernel kernel);
+
+}  // namespace gb::kernels

@@ -1,0 +1,16 @@
+#version 450
+// One level of treeSum (cpu-reference/stages.cpp): out[k] = in[2k] + in[2k+1] (or in[2k] alone for the
+// odd last element), for k < ceil(n/2). The host dispatches levels until one value is left.
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+
+void main() {
+  const uint k = gl_GlobalInvocationID.x;
+  const uint n = pc.count;
+  if (k >= (n + 1u) / 2u) return;
+  if ((pc.reduceFlags & 1u) != 0u) {
+    reduceB[k] = 2u * k + 1u < n ? reduceA[2u * k] + reduceA[2u * k + 1u] : reduceA[2u * k];
+  } else {
+    reduceA[k] = 2u * k + 1u < n ? reduceB[2u * k] + reduceB[2u * k + 1u] : reduceB[2u * k];
+  }
+}

@@ -1,0 +1,15 @@
+#version 450
+// triangleSignedVolume (cpu-reference/stages.cpp) for every triangle, into reduceA: the leaves of the
+// volume's tree sum.
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+
+void main() {
+  const uint t = gl_GlobalInvocationID.x;
+  if (t >= pc.count) return;
+  const vec3 origin = steps[pc.stepIndex].volumeOrigin.xyz;
+  const vec3 a = LOAD3(position, triangles[3u * t]) - origin;
+  const vec3 b = LOAD3(position, triangles[3u * t + 1u]) - origin;
+  const vec3 c = LOAD3(position, triangles[3u * t + 2u]) - origin;
+  reduceA[t] = dot(a, cross(b, c)) / 6.0;
+}

@@ -1,0 +1,237 @@
+// The Vulkan backend against the CPU reference on the same input: every stage alone, then whole scenes.
+// Runs on whatever device VulkanContext picks (lavapipe in CI); see vulkan_test_device.h for skipping.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "cpu_stepper.h"
+#include "scripted_gestures.h"
+#include "simulation.h"
+#include "vulkan_stepper.h"
+#include "vulkan_test_device.h"
+
+namespace gb {
+namespace {
+
+// Largest error of gpu against cpu, relative to each element, with a floor of `floor` times the largest
+// magnitude in the array for elements near zero (a sum that cancels has no meaningful relative error).
+double worstRelativeError(const std::vector<float>& cpu, const std::vector<float>& gpu, double floor) {
+  double scale = 0;
+  for (float c : cpu) scale = std::max(scale, std::abs(static_cast<double>(c)));
+  double worst = 0;
+  for (size_t k = 0; k < cpu.size(); ++k) {
+    const double denominator = std::max(std::abs(static_cast<double>(cpu[k])), floor * scale);
+    if (denominator > 0) worst = std::max(worst, std::abs(static_cast<double>(gpu[k]) - cpu[k]) / denominator);
+  }
+  return worst;
+}
+
+std::vector<float> flatten(const Vec3Array& a) {
+  std::vector<float> v = a.x;
+  v.insert(v.end(), a.y.begin(), a.y.end());
+  v.insert(v.end(), a.z.begin(), a.z.end());
+  return v;
+}
+
+// A two-wand film after 20 frames of a straight stroke: stretched, bulged, with air flowing.
+struct MovingFilm {
+  Params params;
+  GestureOptions gesture;
+  Film film;
+  StepUniforms uniforms;
+
+  MovingFilm() {
+    params.particlesAtFullSolution = 2000;
+    gesture.start = 0.0f;
+    Simulation sim(params, WandTool{}, gestureAt(Gesture::Straight, gesture, 0.0));
+    for (int f = 1; f <= 20; ++f) sim.advanceFrame(gestureAt(Gesture::Straight, gesture, f * 0.02));
+    film = sim.film();
+    const float dt = params.frameTime / static_cast<float>(sim.substepsPerFrame());
+    uniforms = sim.uniformsFor(gestureAt(Gesture::Straight, gesture, 0.4), gestureAt(Gesture::Straight, gesture, 0.4 + dt), dt);
+  }
+};
+
+// Per-value tolerances of the stage test. Both backends evaluate the same float32 expressions in the same
+// order; they differ only where the GPU compiler contracts a*b+c into an fma or rounds sqrt, division,
+// sin and cos differently: a few ulps (1e-7 relative) per operation. Stages chain up to ~20 operations per
+// value, so 1e-5 relative is the bound, with a floor of 1e-4 of the array's largest value for values near
+// zero. Two outputs cancel by construction and get a few-ulp bound on their terms instead:
+//  - a force is the sum of spring terms that nearly cancel in a film at rest: its error is bounded by
+//    16 ulps of the sum of the terms' magnitudes, not of the net force;
+//  - a boundary particle's velocity is (x_new - x)/dt: one ulp of position becomes ulp(x)/dt of velocity,
+//    so velocities get 8 ulp(|x|)/dt absolute.
+constexpr double kStageTolerance = 1e-5;
+constexpr double kCancellationFloor = 1e-4;
+constexpr double kFloatEpsilon = 1.1920929e-7;
+
+// Sum of the magnitudes of the terms computeForces adds for particle i (same inputs as the stage).
+double forceTermMagnitude(const Params& p, const Film& film, size_t i) {
+  const State& s = film.state;
+  const Topology& topo = film.topology;
+  double sum = s.mass[i] * 9.81 + p.airDrag * s.voronoiArea[i] * s.velocity.get(i).norm() +
+               p.airPressureGain * (s.airFlow.get(i).norm() + s.airInflow.get(i).norm()) * s.voronoiArea[i];
+  for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
+    const uint32_t j = topo.springNeighbour[k];
+    const double len = (s.position.get(j) - s.position.get(i)).norm();
+    sum += 0.5 * (s.elasticity[i] + s.elasticity[j]) * std::abs(len - topo.restLength[topo.springIndex[k]]);
+    sum += p.springDamping * (s.velocity.get(j) - s.velocity.get(i)).norm();
+  }
+  return sum;
+}
+
+// Worst |gpu - cpu| / (ulps x epsilon x scale_i) over the elements of a 3-vector array; below 1 passes.
+double worstUlpRatio(const Vec3Array& cpu, const Vec3Array& gpu, const std::vector<double>& scale, double ulps) {
+  double worst = 0;
+  for (size_t i = 0; i < cpu.size(); ++i)
+    worst = std::max(worst, static_cast<double>((gpu.get(i) - cpu.get(i)).norm()) / (ulps * kFloatEpsilon * scale[i]));
+  return worst;
+}
+
+TEST(VulkanEquivalence, EveryStageAloneMatchesTheCpuReference) {
+  GB_REQUIRE_VULKAN(device);
+  const MovingFilm input;
+  struct Output {
+    const char* name;
+    std::vector<float> (*get)(const State&);
+  };
+  const std::vector<std::pair<Stage, std::vector<Output>>> checks = {
+      {Stage::Geometry,
+       {{"normal", [](const State& s) { return flatten(s.normal); }},
+        {"voronoiArea", [](const State& s) { return s.voronoiArea; }}}},
+      {Stage::FilmState,
+       {{"thickness", [](const State& s) { return s.thickness; }},
+        {"elasticity", [](const State& s) { return s.elasticity; }},
+        {"lifetime", [](const State& s) { return s.lifetime; }}}},
+      {Stage::AirInflow, {{"airInflow", [](const State& s) { return flatten(s.airInflow); }}}},
+      {Stage::AirTransfer, {{"airFlow", [](const State& s) { return flatten(s.airFlow); }}}},
+      {Stage::Integrate, {{"position", [](const State& s) { return flatten(s.position); }}}},
+  };
+  for (const auto& [stage, outputs] : checks) {
+    Film cpuFilm = input.film, gpuFilm = input.film;
+    CpuStepper cpu;
+    VulkanStepper gpu(device);
+    cpu.load(input.params, cpuFilm);
+    gpu.load(input.params, gpuFilm);
+    cpu.runStage(stage, input.uniforms);
+    gpu.runStage(stage, input.uniforms);
+    gpu.store(gpuFilm);
+    for (const Output& out : outputs) {
+      const double error = worstRelativeError(out.get(cpuFilm.state), out.get(gpuFilm.state), kCancellationFloor);
+      EXPECT_LT(error, kStageTolerance) << stageName(stage) << " -> " << out.name;
+      std::printf("stage %-12s %-12s worst relative error %.2e\n", stageName(stage), out.name, error);
+    }
+  }
+  // The two cancelling outputs, against their few-ulp bounds.
+  Film cpuFilm = input.film, gpuFilm = input.film;
+  CpuStepper cpu;
+  VulkanStepper gpu(device);
+  cpu.load(input.params, cpuFilm);
+  gpu.load(input.params, gpuFilm);
+  cpu.runStage(Stage::Forces, input.uniforms);
+  gpu.runStage(Stage::Forces, input.uniforms);
+  gpu.store(gpuFilm);
+  std::vector<double> termScale(input.film.state.size());
+  for (size_t i = 0; i < termScale.size(); ++i) termScale[i] = forceTermMagnitude(input.params, input.film, i);
+  const double forceRatio = worstUlpRatio(cpuFilm.state.force, gpuFilm.state.force, termScale, 16);
+  std::printf("stage forces       force        worst error %.2f x (16 ulps of the terms)\n", forceRatio);
+  EXPECT_LT(forceRatio, 1.0);
+  cpu.runStage(Stage::Integrate, input.uniforms);
+  gpu.runStage(Stage::Integrate, input.uniforms);
+  gpu.store(gpuFilm);
+  double positionScale = 0;
+  for (size_t i = 0; i < termScale.size(); ++i)
+    positionScale = std::max(positionScale, static_cast<double>(cpuFilm.state.position.get(i).norm()));
+  const std::vector<double> velocityScale(termScale.size(), positionScale / input.uniforms.dt);
+  const double velocityRatio = worstUlpRatio(cpuFilm.state.velocity, gpuFilm.state.velocity, velocityScale, 8);
+  std::printf("stage integrate    velocity     worst error %.2f x (8 ulp(x)/dt)\n", velocityRatio);
+  EXPECT_LT(velocityRatio, 1.0);
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
+TEST(VulkanEquivalence, VolumeReductionAndBubblePressureMatch) {
+  GB_REQUIRE_VULKAN(device);
+  Params p;
+  const Vec3 centre(0.2f, 1.0f, -0.1f);
+  Film sphere = generateSphere(p, centre, 0.5f, 4);  // 5120 triangles: 13 tree levels
+  Simulation reference(p, sphere, WandState{});       // fixes V_0 and the volume origin
+  Film film = reference.film();
+  for (size_t i = 0; i < film.state.size(); ++i)  // squeeze it so that Boyle's pressure acts
+    film.state.position.set(i, centre + 0.93f * (film.state.position.get(i) - centre));
+  const StepUniforms u = reference.uniformsFor(WandState{}, WandState{}, 1e-4f);
+  Film cpuFilm = film, gpuFilm = film;
+  CpuStepper cpu;
+  VulkanStepper gpu(device);
+  cpu.load(p, cpuFilm);
+  gpu.load(p, gpuFilm);
+  for (Stage s : {Stage::Geometry, Stage::FilmState}) {
+    cpu.runStage(s, u);
+    gpu.runStage(s, u);
+  }
+  const float cpuVolume = cpu.runStage(Stage::Volume, u), gpuVolume = gpu.runStage(Stage::Volume, u);
+  EXPECT_NEAR(gpuVolume, cpuVolume, kStageTolerance * cpuVolume);
+  cpu.runStage(Stage::Forces, u);
+  gpu.runStage(Stage::Forces, u);
+  gpu.store(gpuFilm);
+  std::vector<double> termScale(film.state.size());
+  for (size_t i = 0; i < termScale.size(); ++i) termScale[i] = forceTermMagnitude(p, cpuFilm, i);
+  EXPECT_LT(worstUlpRatio(cpuFilm.state.force, gpuFilm.state.force, termScale, 16), 1.0);
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
+struct SceneCase {
+  const char* name;
+  bool bubble;
+};
+
+class VulkanScene : public ::testing::TestWithParam<SceneCase> {};
+
+// Whole scenes over 500 substeps on both backends: each particle within 1 mm, and area, volume and
+// energy within 0.1% (the bounds). Differences start at the ulp level and grow only as fast as
+// the film's own dynamics amplify them; 500 substeps of a damped film amplify them far less than 1e4.
+TEST_P(VulkanScene, FiveHundredStepsStayWithinAMillimetre) {
+  GB_REQUIRE_VULKAN(device);
+  Params p;
+  p.particlesAtFullSolution = 2000;
+  GestureOptions g;
+  g.start = 0.0f;
+  auto makeSim = [&](std::unique_ptr<Stepper> stepper) {
+    if (GetParam().bubble) {
+      Film sphere = generateSphere(p, Vec3(0, 1.5f, 0), 0.4f, 3);
+      for (size_t i = 0; i < sphere.state.size(); ++i)  // start it wobbling: stretched along y
+        sphere.state.position.y[i] = 1.5f + 1.15f * (sphere.state.position.y[i] - 1.5f);
+      return std::make_unique<Simulation>(p, sphere, WandState{}, std::move(stepper));
+    }
+    return std::make_unique<Simulation>(p, WandTool{}, gestureAt(Gesture::Straight, g, 0.0), std::move(stepper));
+  };
+  auto cpu = makeSim(std::make_unique<CpuStepper>());
+  auto gpu = makeSim(std::make_unique<VulkanStepper>(device));
+  long steps = 0;
+  for (int f = 1; steps < 500; ++f) {
+    const WandState w = GetParam().bubble ? WandState{} : gestureAt(Gesture::Straight, g, static_cast<float>(f) * p.frameTime);
+    cpu->advanceFrame(w);
+    gpu->advanceFrame(w);
+    steps += cpu->substepsPerFrame();
+  }
+  double worstDistance = 0;
+  for (size_t i = 0; i < cpu->film().state.size(); ++i)
+    worstDistance = std::max(worstDistance, static_cast<double>((cpu->film().state.position.get(i) -
+                                                                 gpu->film().state.position.get(i)).norm()));
+  const FrameStats a = cpu->stats(), b = gpu->stats();
+  std::printf("%s: %ld steps, worst particle distance %.2e m\n", GetParam().name, steps, worstDistance);
+  EXPECT_LT(worstDistance, 1e-3);
+  EXPECT_NEAR(b.area, a.area, 1e-3 * a.area);
+  EXPECT_NEAR(b.volume, a.volume, 1e-3 * std::abs(a.volume));
+  const double energyA = a.kineticEnergy + a.elasticEnergy + a.potentialEnergy;
+  const double energyB = b.kineticEnergy + b.elasticEnergy + b.potentialEnergy;
+  EXPECT_NEAR(energyB, energyA, 1e-3 * std::abs(energyA));
+  EXPECT_GT(std::abs(a.volume), 1e-3) << "the scene must have moved for the comparison to mean something";
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, VulkanScene,
+                         ::testing::Values(SceneCase{"two_wand_stroke", false}, SceneCase{"wobbling_bubble", true}),
+                         [](const auto& test) { return std::string(test.param.name); });
+
+}  // namespace
+}  // namespace gb

@@ -1,0 +1,51 @@
+#pragma once
+// The Vulkan device the equivalence tests run on (lavapipe in CI). Under CI=true a missing device fails the
+// test; elsewhere the test is skipped with a loud message.
+
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <memory>
+#include <string>
+
+#include "vulkan_context.h"
+
+namespace gb::test {
+
+inline bool underCi() {
+  const char* ci = std::getenv("CI");
+  return ci && std::string(ci) == "true";
+}
+
+// Shared by every test of the process; created once with the validation layer on when it is installed.
+inline std::shared_ptr<const VulkanContext> vulkanDevice(std::string& whyNot) {
+  static std::shared_ptr<const VulkanContext> device;
+  static std::string reason;
+  static bool tried = false;
+  if (!tried) {
+    tried = true;
+    setenv("GIANTBUBBLE_VULKAN_VALIDATION", "1", 0);
+    try {
+      device = std::make_shared<const VulkanContext>();
+      std::fprintf(stderr, "Vulkan tests on %s (%s), validation layer %s\n", device->info().name.c_str(),
+                   device->info().type.c_str(), device->validationEnabled() ? "on" : "not installed");
+    } catch (const VulkanUnavailable& e) {
+      reason = e.what();
+    }
+  }
+  whyNot = reason;
+  return device;
+}
+
+}  // namespace gb::test
+
+// Gets the device into `var`, or fails (CI) / skips loudly (elsewhere).
+#define GB_REQUIRE_VULKAN(var)                                                                          \
+  std::string gbWhyNot_;                                                                                \
+  const auto var = ::gb::test::vulkanDevice(gbWhyNot_);                                                 \
+  if (!var) {                                                                                           \
+    if (::gb::test::underCi()) FAIL() << "CI=true but no Vulkan device: " << gbWhyNot_;                 \
+    std::fprintf(stderr, "\n*** SKIPPING Vulkan test: no Vulkan device (%s) ***\n\n", gbWhyNot_.c_str()); \
+    GTEST_SKIP() << "no Vulkan device: " << gbWhyNot_;                                                  \
+  }

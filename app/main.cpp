@@ -4,6 +4,7 @@
 #include <exception>
 #include <map>
 
+#include "bench_command.h"
 #include "run_command.h"
 
 namespace {
@@ -69,6 +70,14 @@ int main(int argc, char** argv) {
   runCmd->add_option("--device", run.device,
                      "Vulkan device: index or part of its name (default: $GIANTBUBBLE_VULKAN_DEVICE, else the best)");
 
+  gb::BenchOptions bench;
+  CLI::App* benchCmd = app.add_subcommand("bench", "measure step throughput on each backend for several film sizes");
+  benchCmd->add_option("--sizes", bench.sizes, "film sizes in particles")->check(CLI::Range(100, 50000000));
+  benchCmd->add_option("--backends", bench.backends, "backends to measure")->check(CLI::IsMember({"cpu", "vulkan"}));
+  benchCmd->add_option("--steps", bench.steps, "substeps timed per film")->check(CLI::Range(8, 100000));
+  benchCmd->add_option("--json", bench.json, "where to write the results");
+  benchCmd->add_option("--device", bench.device, "Vulkan device: index or part of its name");
+
   try {
     app.parse(argc, argv);
     for (const std::string& a : assignments) applyParameter(run.params, a);
@@ -80,6 +89,7 @@ int main(int argc, char** argv) {
     std::fputs(app.help().c_str(), stdout);
     return 0;
   }
+  if (benchCmd->parsed()) return gb::runBenchmark(bench);
   try {
     run.tool.kind = tool == "ring" ? gb::ToolKind::Ring : gb::ToolKind::TwoWands;
     run.gesture = gb::gestureFromName(gesture);

@@ -161,6 +161,10 @@ int VulkanContext::memoryType(uint32_t typeBits, vk::MemoryPropertyFlags wanted)
 }
 
 uint32_t VulkanContext::preferredWorkgroupSize() const {
+  if (const char* env = std::getenv("GIANTBUBBLE_VULKAN_WORKGROUP")) {
+    const long size = std::strtol(env, nullptr, 10);
+    if (size >= 1 && size <= 1024) return static_cast<uint32_t>(size);
+  }
   // A CPU driver runs a workgroup as SIMD batches on one thread: 64 keeps every core busy at 10k particles.
   // A GPU wants enough warps per workgroup to hide memory latency.
   return info_.type == "CPU" ? 64u : 256u;

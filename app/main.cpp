@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
   runCmd->add_option("--param", assignments, "set a model parameter, NAME=VALUE (repeatable)");
   runCmd->add_flag("!--no-progress", run.progress, "do not show the progress bar");
   std::string backend = "auto";
-  runCmd->add_option("--backend", backend, "cpu, vulkan, or auto (Vulkan when a device exists)")
+  runCmd->add_option("--backend", backend, "cpu, vulkan, or auto (Vulkan on a GPU, else the CPU)")
       ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
   runCmd->add_option("--device", run.device,
                      "Vulkan device: index or part of its name (default: $GIANTBUBBLE_VULKAN_DEVICE, else the best)");

@@ -20,7 +20,7 @@ struct RunOptions {
   std::filesystem::path outDir = "out";
   int plyEvery = 25;                      // write a mesh every this many frames (0: never)
   bool progress = true;
-  Backend backend = Backend::Cpu;
+  Backend backend = Backend::Auto;
   std::string device;                     // Vulkan device index or name part (empty: best available)
 };
 

@@ -21,8 +21,17 @@ std::unique_ptr<Stepper> makeStepper(Backend backend, const std::string& device,
     return std::make_unique<CpuStepper>();
   }
   try {
-    auto stepper = std::make_unique<VulkanStepper>(std::make_shared<const VulkanContext>(device));
-    report = "backend: " + stepper->name() + (backend == Backend::Auto ? " (auto: a Vulkan device exists)" : "");
+    auto context = std::make_shared<const VulkanContext>(device);
+    // A software Vulkan driver (lavapipe) runs the shaders on the same cores as the CPU backend, 2.6 to 5
+    // times slower (docs/performance.md); auto takes it only when asked for by name.
+    if (backend == Backend::Auto && context->info().type == "CPU" && device.empty()) {
+      report = "backend: cpu (auto: the only Vulkan device, " + context->info().name +
+               ", is a CPU driver, slower than the CPU backend; use --backend vulkan to run on it)";
+      return std::make_unique<CpuStepper>();
+    }
+    auto stepper = std::make_unique<VulkanStepper>(std::move(context));
+    const char* why = backend == Backend::Vulkan ? "" : device.empty() ? " (auto: a Vulkan GPU exists)" : " (auto: the requested device)";
+    report = "backend: " + stepper->name() + why;
     return stepper;
   } catch (const VulkanUnavailable& e) {
     if (backend == Backend::Vulkan) throw;

@@ -23,8 +23,10 @@ void applyParameter(gb::Params& p, const std::string& assignment) {
       {"airDirectionThreshold", &p.airDirectionThreshold}, {"airInflowDistance", &p.airInflowDistance},
       {"airPressureGain", &p.airPressureGain}, {"pressureCoefficient", &p.pressureCoefficient},
       {"thicknessThreshold", &p.thicknessThreshold}, {"sticky", &p.sticky},
-      {"collisionThreshold", &p.collisionThreshold}, {"solution", &p.solution}};
-  const std::map<std::string, int*> ints = {{"maxSubsteps", &p.maxSubsteps},
+      {"collisionThreshold", &p.collisionThreshold}, {"solution", &p.solution},
+      {"drainageRate", &p.drainageRate}, {"surfaceTension", &p.surfaceTension}, {"liquidDensity", &p.liquidDensity},
+      {"aerosolLifetime", &p.aerosolLifetime}, {"aerosolDrag", &p.aerosolDrag}};
+  const std::map<std::string, int*> ints = {{"maxSubsteps", &p.maxSubsteps}, {"holeOpening", &p.holeOpening},
                                             {"particlesAtFullSolution", &p.particlesAtFullSolution}};
   size_t used = 0;
   try {

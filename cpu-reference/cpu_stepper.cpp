@@ -8,7 +8,7 @@ namespace gb {
 
 const char* stageName(Stage stage) {
   static constexpr const char* names[] = {"geometry", "volume", "film_state", "air_inflow",
-                                          "air_transfer", "forces", "integrate"};
+                                          "air_transfer", "forces", "integrate", "drainage"};
   return names[static_cast<int>(stage)];
 }
 
@@ -76,6 +76,10 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
         break;
       }
       case Stage::Integrate: forEach(n, [&](size_t i) { integrateParticle(u, topo, s, i); }); break;
+      case Stage::Drainage:  // two Jacobi passes: every outflow is known before anyone gathers
+        forEach(n, [&](size_t i) { computeDrainageOutflow(params_, u.dt, topo, s, i); });
+        forEach(n, [&](size_t i) { gatherDrainage(params_, topo, s, i); });
+        break;
       case Stage::Count: break;
     }
   });
@@ -91,6 +95,7 @@ float CpuStepper::step(const StepUniforms& u) {
   runStage(Stage::AirTransfer, u);
   runStage(Stage::Forces, u);
   runStage(Stage::Integrate, u);
+  runStage(Stage::Drainage, u);
   return u.closed ? boylePressure(params_, u.referenceVolume, lastVolume_) : params_.pressureCoefficient;
 }
 

@@ -39,6 +39,12 @@ std::vector<std::string> validate(const Params& p) {
   requireRange(e, "pressureCoefficient", p.pressureCoefficient, 1.0f, 1e7f, " Pa");
   requireRange(e, "thicknessThreshold", p.thicknessThreshold, 0.0f, 1e-3f, " m");
   requireRange(e, "sticky", p.sticky, 1e-3f, 1e6f, "");
+  requireRange(e, "drainageRate", p.drainageRate, 0.0f, 1e3f, " 1/s");
+  requireRange(e, "surfaceTension", p.surfaceTension, 1e-4f, 1.0f, " N/m");
+  requireRange(e, "liquidDensity", p.liquidDensity, 1.0f, 1e5f, " kg/m^3");
+  requireRange(e, "holeOpening", p.holeOpening, 0, 1, "");
+  requireRange(e, "aerosolLifetime", p.aerosolLifetime, 0.0f, 1e3f, " s");
+  requireRange(e, "aerosolDrag", p.aerosolDrag, 0.0f, 1e3f, " 1/s");
   requireRange(e, "collisionThreshold", p.collisionThreshold, 0.0f, 1e3f, " m/s");
   requireRange(e, "solution", p.solution, 0.01f, 1.0f, "");
   requireRange(e, "particlesAtFullSolution", p.particlesAtFullSolution, 16, 50000000, "");

@@ -161,6 +161,33 @@ void integrateParticle(const StepUniforms& u, const Topology& topo, State& s, si
   s.position.set(i, x + u.dt * v);  // Eq. (13)
 }
 
+// ---- drainage -------------------------------------------------------------------------------------------
+
+float drainageDirection(const Vec3& xi, const Vec3& xj, const Vec3& g) {
+  const Vec3 d = xj - xi;
+  const float norms = d.norm() * g.norm();
+  return norms > 0 ? std::max(d.dot(g) / norms, 0.0f) : 0.0f;
+}
+
+void computeDrainageOutflow(const Params& p, float dt, const Topology& topo, State& s, size_t i) {
+  const Vec3 g(p.gravityX, p.gravityY, p.gravityZ), xi = s.position.get(i);
+  float weight = 0.0f;
+  for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k)
+    weight += drainageDirection(xi, s.position.get(topo.springNeighbour[k]), g);
+  s.drainWeight[i] = weight;
+  s.drainOutflow[i] = s.liquid[i] * std::min(1.0f, dt * p.drainageRate * weight / p.sticky);
+}
+
+void gatherDrainage(const Params& p, const Topology& topo, State& s, size_t j) {
+  const Vec3 g(p.gravityX, p.gravityY, p.gravityZ), xj = s.position.get(j);
+  float received = 0.0f;
+  for (uint32_t k = topo.springOffset[j]; k < topo.springOffset[j + 1]; ++k) {
+    const uint32_t i = topo.springNeighbour[k];
+    if (s.drainWeight[i] > 0) received += s.drainOutflow[i] * drainageDirection(s.position.get(i), xj, g) / s.drainWeight[i];
+  }
+  s.liquid[j] = s.liquid[j] - s.drainOutflow[j] + received;
+}
+
 // ---- stability ------------------------------------------------------------------------------------------
 
 float elasticityBound(const Params& p) {

@@ -72,6 +72,19 @@ float boylePressure(const Params& p, float referenceVolume, float currentVolume)
 // the step, with the velocity that motion implies.
 void integrateParticle(const StepUniforms& u, const Topology& topo, State& s, size_t i);
 
+// ---- Stage 8: position-dependent drainage (Section 6.2, Eqs. 14-15) --------------------------------------
+// Eq. (14): how closely the direction from sender x_i to receiver x_j follows gravity g, MAX(cos, 0).
+float drainageDirection(const Vec3& xi, const Vec3& xj, const Vec3& g);
+
+// Pass 1: particle i sends out_i = w_i min(1, dt rate D_i / Sticky) of its liquid, D_i = sum of d_dir(i->k)
+// over its neighbours; stores out_i and D_i.
+void computeDrainageOutflow(const Params& p, float dt, const Topology& topo, State& s, size_t i);
+
+// Pass 2, Eq. (15) as a gather: particle j keeps what it did not send and receives out_i d_dir(i->j) / D_i
+// from each neighbour i. What leaves a particle is exactly what its downhill neighbours receive, so the
+// total liquid is conserved to float rounding.
+void gatherDrainage(const Params& p, const Topology& topo, State& s, size_t j);
+
 // ---- Stability -----------------------------------------------------------------------------------------
 // Largest elasticity Eq. (4) can give the film: the Gibbs peak 0.5 w_E, or the Marangoni value of a young
 // film twice the initial thickness, whichever is larger.

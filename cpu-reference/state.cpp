@@ -9,7 +9,8 @@ namespace gb {
 
 void State::resize(size_t n) {
   for (Vec3Array* a : {&position, &velocity, &force, &normal, &airInflow, &airFlow, &airFlowNext}) a->resize(n);
-  for (std::vector<float>* a : {&mass, &liquid, &voronoiArea, &thickness, &elasticity, &lifetime, &frameParam})
+  for (std::vector<float>* a : {&mass, &liquid, &voronoiArea, &thickness, &elasticity, &lifetime, &frameParam,
+                                  &drainOutflow, &drainWeight})
     a->assign(n, 0.0f);
   alive.assign(n, 1u);
 }

@@ -44,6 +44,8 @@ struct State {
   std::vector<float> thickness;    // e_i = liquid / A_Vor (m)
   std::vector<float> elasticity;   // E_i of Eq. (4) (N/m)
   std::vector<float> lifetime;     // time since the particle was created (s)
+  std::vector<float> drainOutflow;  // liquid particle i sends downhill this step (m^3), drainage pass 1
+  std::vector<float> drainWeight;   // sum of d_dir of Eq. (14) over i's neighbours, drainage pass 1
   std::vector<float> frameParam;   // wire-frame coordinate of a boundary particle (see wire_frame.h)
   std::vector<uint32_t> alive;     // 1 while the particle exists (uint32: the GPU reads it as a uint)
 

@@ -13,7 +13,7 @@
 namespace gb {
 
 // The stages of a step, in order. Volume runs only for a closed film.
-enum class Stage : int { Geometry, Volume, FilmState, AirInflow, AirTransfer, Forces, Integrate, Count };
+enum class Stage : int { Geometry, Volume, FilmState, AirInflow, AirTransfer, Forces, Integrate, Drainage, Count };
 inline constexpr int kStageCount = static_cast<int>(Stage::Count);
 const char* stageName(Stage stage);
 

@@ -24,7 +24,6 @@ static_assert(alignof(Params) == 4 && sizeof(Params) % 4 == 0,
 
 namespace {
 
-constexpr int kKernelCount = 8;
 
 gpu::vec4 toVec4(const Vec3& v) { return {v.x(), v.y(), v.z(), 0.0f}; }
 
@@ -125,7 +124,7 @@ struct VulkanStepper::Impl {
     pipelineLayout = vk::raii::PipelineLayout(device, vk::PipelineLayoutCreateInfo({}, layoutHandle, pushRange));
     const vk::SpecializationMapEntry entry(0, 0, sizeof(uint32_t));
     const vk::SpecializationInfo specialization(1, &entry, sizeof(uint32_t), &workgroup);
-    for (int k = 0; k < kKernelCount; ++k) {
+    for (int k = 0; k < kernels::kKernelCount; ++k) {
       const auto code = kernels::spirv(static_cast<Kernel>(k));
       modules.emplace_back(device, vk::ShaderModuleCreateInfo({}, code.size_bytes(), code.data()));
       const vk::PipelineShaderStageCreateInfo stage({}, vk::ShaderStageFlagBits::eCompute, *modules.back(), "main",
@@ -196,6 +195,11 @@ struct VulkanStepper::Impl {
         break;
       case Stage::Forces: dispatch(cb, Kernel::Forces, particles, stepIndex, volumeInA ? 1u : 0u); break;
       case Stage::Integrate: dispatch(cb, Kernel::Integrate, particles, stepIndex); break;
+      case Stage::Drainage:
+        dispatch(cb, Kernel::DrainageOutflow, particles, stepIndex);
+        computeToComputeBarrier(cb);  // every outflow is written before anyone gathers
+        dispatch(cb, Kernel::DrainageGather, particles, stepIndex);
+        break;
       case Stage::Count: break;
     }
   }
@@ -217,7 +221,9 @@ struct VulkanStepper::Impl {
     recordStage(cb, Stage::Forces, stepIndex);
     computeToComputeBarrier(cb);
     recordStage(cb, Stage::Integrate, stepIndex);
-    computeToComputeBarrier(cb);  // the next substep's stages read the new positions
+    computeToComputeBarrier(cb);  // drainage and the next substep read the new positions
+    recordStage(cb, Stage::Drainage, stepIndex);
+    computeToComputeBarrier(cb);  // the next substep's film state reads the new liquid
   }
 
   void uploadSteps(std::span<const StepUniforms> steps) {
@@ -260,7 +266,7 @@ void VulkanStepper::load(const Params& params, Film& film) {
     make(b, 3 * n * sizeof(float));
   for (int b : {GB_BINDING_MASS, GB_BINDING_LIQUID, GB_BINDING_VORONOI_AREA, GB_BINDING_THICKNESS,
                 GB_BINDING_ELASTICITY, GB_BINDING_LIFETIME, GB_BINDING_FRAME_PARAM, GB_BINDING_ALIVE,
-                GB_BINDING_BOUNDARY})
+                GB_BINDING_BOUNDARY, GB_BINDING_DRAIN_OUTFLOW, GB_BINDING_DRAIN_WEIGHT})
     make(b, n * sizeof(float));
   make(GB_BINDING_TRIANGLES, t.triangles.size() * sizeof(uint32_t));
   make(GB_BINDING_REST_LENGTH, t.restLength.size() * sizeof(float));
@@ -288,6 +294,8 @@ void VulkanStepper::load(const Params& params, Film& film) {
   writeVector(m.buffer(GB_BINDING_THICKNESS), s.thickness);
   writeVector(m.buffer(GB_BINDING_ELASTICITY), s.elasticity);
   writeVector(m.buffer(GB_BINDING_LIFETIME), s.lifetime);
+  writeVector(m.buffer(GB_BINDING_DRAIN_OUTFLOW), s.drainOutflow);
+  writeVector(m.buffer(GB_BINDING_DRAIN_WEIGHT), s.drainWeight);
   writeVector(m.buffer(GB_BINDING_FRAME_PARAM), s.frameParam);
   writeVector(m.buffer(GB_BINDING_ALIVE), s.alive);
   writeVector(m.buffer(GB_BINDING_BOUNDARY), t.boundary);
@@ -331,7 +339,7 @@ float VulkanStepper::run(std::span<const StepUniforms> substeps) {
     cb.writeTimestamp(vk::PipelineStageFlagBits::eComputeShader, *pool, q++);
     for (uint32_t k = 0; k < substeps.size(); ++k)
       for (Stage stage : {Stage::Geometry, Stage::Volume, Stage::FilmState, Stage::AirInflow, Stage::AirTransfer,
-                          Stage::Forces, Stage::Integrate}) {
+                          Stage::Forces, Stage::Integrate, Stage::Drainage}) {
         if (stage == Stage::Volume && !closed) continue;
         m.recordStage(cb, stage, k);
         computeToComputeBarrier(cb);
@@ -383,6 +391,9 @@ void VulkanStepper::store(Film& film) {
   readVector(m.buffer(GB_BINDING_THICKNESS), s.thickness);
   readVector(m.buffer(GB_BINDING_ELASTICITY), s.elasticity);
   readVector(m.buffer(GB_BINDING_LIFETIME), s.lifetime);
+  readVector(m.buffer(GB_BINDING_LIQUID), s.liquid);
+  readVector(m.buffer(GB_BINDING_DRAIN_OUTFLOW), s.drainOutflow);
+  readVector(m.buffer(GB_BINDING_DRAIN_WEIGHT), s.drainWeight);
 }
 
 }  // namespace gb

@@ -18,7 +18,7 @@ layout(std430, binding = GB_BINDING_AIR_INFLOW) buffer AirInflowBuffer { float a
 layout(std430, binding = GB_BINDING_AIR_FLOW) buffer AirFlowBuffer { float airFlow[]; };
 layout(std430, binding = GB_BINDING_AIR_FLOW_NEXT) buffer AirFlowNextBuffer { float airFlowNext[]; };
 layout(std430, binding = GB_BINDING_MASS) readonly buffer MassBuffer { float mass[]; };
-layout(std430, binding = GB_BINDING_LIQUID) readonly buffer LiquidBuffer { float liquid[]; };
+layout(std430, binding = GB_BINDING_LIQUID) buffer LiquidBuffer { float liquid[]; };
 layout(std430, binding = GB_BINDING_VORONOI_AREA) buffer VoronoiAreaBuffer { float voronoiArea[]; };
 layout(std430, binding = GB_BINDING_THICKNESS) buffer ThicknessBuffer { float thickness[]; };
 layout(std430, binding = GB_BINDING_ELASTICITY) buffer ElasticityBuffer { float elasticity[]; };
@@ -35,6 +35,8 @@ layout(std430, binding = GB_BINDING_TRIANGLE_INDEX) readonly buffer TriangleInde
 layout(std430, binding = GB_BINDING_BOUNDARY) readonly buffer BoundaryBuffer { uint boundary[]; };
 layout(std430, binding = GB_BINDING_REDUCE_A) buffer ReduceABuffer { float reduceA[]; };
 layout(std430, binding = GB_BINDING_REDUCE_B) buffer ReduceBBuffer { float reduceB[]; };
+layout(std430, binding = GB_BINDING_DRAIN_OUTFLOW) buffer DrainOutflowBuffer { float drainOutflow[]; };
+layout(std430, binding = GB_BINDING_DRAIN_WEIGHT) buffer DrainWeightBuffer { float drainWeight[]; };
 
 // Vector attribute access: x, y, z blocks of pc.particles floats each.
 #define LOAD3(buf, i) vec3(buf[(i)], buf[pc.particles + (i)], buf[2u * pc.particles + (i)])
@@ -52,6 +54,13 @@ vec3 framePoint(StepUniformsBlock u, float param) {
   if (u.frameKind == 0 && param < 1.0) return u.frameCenter.xyz + (2.0 * param - 1.0) * u.frameHalfWidth * u.frameAxis.xyz;
   const float phi = u.frameKind == 0 ? (param - 1.0) * pi : 2.0 * pi * param;
   return u.frameCenter.xyz + u.frameHalfWidth * cos(phi) * u.frameAxis.xyz + u.frameDepth * sin(phi) * u.frameDown.xyz;
+}
+
+// drainageDirection of cpu-reference/stages.cpp, Eq. (14).
+float drainageDirection(vec3 xi, vec3 xj, vec3 g) {
+  const vec3 d = xj - xi;
+  const float norms = length(d) * length(g);
+  return norms > 0.0 ? max(dot(d, g) / norms, 0.0) : 0.0;
 }
 
 // boylePressure of cpu-reference/stages.cpp, Eq. (11).

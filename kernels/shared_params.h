@@ -38,6 +38,12 @@ struct Params {
   // --- Bursting and drainage (Section 6, Eqs. 14-15; Section 8) ---
   float thicknessThreshold GB_DEFAULT(35e-9f);  // lambda_thi, Table 2 [20, 50], read as nm (m)
   float sticky GB_DEFAULT(25.0f);               // Sticky, Table 2 [20, 30] (dimensionless)
+  float drainageRate GB_DEFAULT(2.0f);          // rate of Eq. (15): liquid fraction sent per second per unit d_dir/Sticky (1/s)
+  float surfaceTension GB_DEFAULT(0.025f);      // gamma of the soap solution, for the Taylor-Culick hole speed (N/m)
+  float liquidDensity GB_DEFAULT(1000.0f);      // rho of the soap solution (kg/m^3)
+  int holeOpening GB_DEFAULT(0);                // 0: hole front at the Taylor-Culick speed; 1: one ring per frame (paper)
+  float aerosolLifetime GB_DEFAULT(1.5f);       // aerosol droplets fade out over this time (s)
+  float aerosolDrag GB_DEFAULT(2.0f);           // linear air drag rate on a droplet (1/s)
   float collisionThreshold GB_DEFAULT(1.75f);   // lambda_col, Table 2 [1.5, 2.0], read as impact speed (m/s)
 
   // --- Soap solution control (Section 7) ---

@@ -4,6 +4,8 @@
 
 #include "spirv/air_inflow.h"
 #include "spirv/air_transfer.h"
+#include "spirv/drainage_gather.h"
+#include "spirv/drainage_outflow.h"
 #include "spirv/film_state.h"
 #include "spirv/forces.h"
 #include "spirv/integrate.h"
@@ -23,13 +25,16 @@ std::span<const uint32_t> spirv(Kernel kernel) {
     case Kernel::AirTransfer: return air_transfer_spv;
     case Kernel::Forces: return forces_spv;
     case Kernel::Integrate: return integrate_spv;
+    case Kernel::DrainageOutflow: return drainage_outflow_spv;
+    case Kernel::DrainageGather: return drainage_gather_spv;
   }
   return {};
 }
 
 const char* kernelName(Kernel kernel) {
   static constexpr const char* names[] = {"vertex_geometry", "triangle_volume", "tree_sum", "film_state",
-                                          "air_inflow", "air_transfer", "forces", "integrate"};
+                                          "air_inflow", "air_transfer", "forces", "integrate",
+                                          "drainage_outflow", "drainage_gather"};
   return names[static_cast<int>(kernel)];
 }
 

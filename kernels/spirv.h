@@ -6,7 +6,19 @@
 
 namespace gb::kernels {
 
-enum class Kernel { VertexGeometry, TriangleVolume, TreeSum, FilmState, AirInflow, AirTransfer, Forces, Integrate };
+enum class Kernel {
+  VertexGeometry,
+  TriangleVolume,
+  TreeSum,
+  FilmState,
+  AirInflow,
+  AirTransfer,
+  Forces,
+  Integrate,
+  DrainageOutflow,
+  DrainageGather
+};
+inline constexpr int kKernelCount = 10;
 
 std::span<const uint32_t> spirv(Kernel kernel);
 const char* kernelName(Kernel kernel);

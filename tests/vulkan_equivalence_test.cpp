@@ -106,6 +106,7 @@ TEST(VulkanEquivalence, EveryStageAloneMatchesTheCpuReference) {
       {Stage::AirInflow, {{"airInflow", [](const State& s) { return flatten(s.airInflow); }}}},
       {Stage::AirTransfer, {{"airFlow", [](const State& s) { return flatten(s.airFlow); }}}},
       {Stage::Integrate, {{"position", [](const State& s) { return flatten(s.position); }}}},
+      {Stage::Drainage, {{"liquid", [](const State& s) { return s.liquid; }}}},
   };
   for (const auto& [stage, outputs] : checks) {
     Film cpuFilm = input.film, gpuFilm = input.film;

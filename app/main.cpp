@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
   runCmd->add_option("--particles", run.params.particlesAtFullSolution, "particles of a film at full solution")
       ->check(CLI::Range(16, 50000000));
   runCmd->add_option("--param", assignments, "set a model parameter, NAME=VALUE (repeatable)");
+  runCmd->add_option("--burst-at", run.burstAt, "poke the top of the film at this time (s); negative: never");
   runCmd->add_flag("!--no-progress", run.progress, "do not show the progress bar");
   std::string backend = "auto";
   runCmd->add_option("--backend", backend, "cpu, vulkan, or auto (Vulkan on a GPU, else the CPU)")

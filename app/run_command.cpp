@@ -56,6 +56,7 @@ void printSummary(const FrameStats& first, const FrameStats& last, long frames, 
   std::printf("%-28s %.4f -> %.4f m^3\n", "swept volume", first.volume, last.volume);
   std::printf("%-28s %.3f -> %.3f um\n", "mean thickness", first.meanThickness * 1e6, last.meanThickness * 1e6);
   std::printf("%-28s %.3e J\n", "kinetic energy at the end", last.kineticEnergy);
+  std::printf("%-28s %zu in flight\n", "aerosol droplets", last.droplets);
   std::printf("%-28s %s\n", "outputs", outDir.string().c_str());
 }
 
@@ -75,7 +76,7 @@ int runSimulation(const RunOptions& o) {
 
   StatsWriter stats(o.outDir / "stats.csv");
   const FrameStats first = sim.stats();
-  stats.write(0, first, sim.substepsPerFrame(), 0.0);
+  stats.write(0, first, sim.substepsPerFrame(), 0.0, "film_created");
   if (o.plyEvery > 0) writePly(o.outDir / meshName(0), sim.film());
 
   ProgressBar bar(frames);
@@ -83,8 +84,14 @@ int runSimulation(const RunOptions& o) {
   const auto runStart = std::chrono::steady_clock::now();
   for (long frame = 1; frame <= frames; ++frame) {
     const auto frameStart = std::chrono::steady_clock::now();
+    std::string events;
+    const double t = static_cast<double>(frame) * o.params.frameTime;
+    if (o.burstAt >= 0 && t - o.params.frameTime < o.burstAt && o.burstAt <= t) {
+      sim.startBurst(sim.topParticle());
+      events += "poked ";
+    }
     try {
-      sim.advanceFrame(gestureAt(o.gesture, o.gestureOptions, static_cast<double>(frame) * o.params.frameTime));
+      sim.advanceFrame(gestureAt(o.gesture, o.gestureOptions, t));
     } catch (const SimulationUnstable& e) {
       bar.finish();
       std::fprintf(stderr, "error: %s\nstopped at frame %ld of %ld; outputs up to frame %ld are in %s\n", e.what(),
@@ -94,8 +101,14 @@ int runSimulation(const RunOptions& o) {
     }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
     last = sim.stats();
-    stats.write(frame, last, sim.substepsPerFrame(), ms);
-    if (o.plyEvery > 0 && frame % o.plyEvery == 0) writePly(o.outDir / meshName(frame), sim.film());
+    if (sim.lastEvents().started) events += "burst_started ";
+    if (sim.lastEvents().finished) events += "burst_finished ";
+    if (!events.empty()) events.pop_back();
+    stats.write(frame, last, sim.substepsPerFrame(), ms, events);
+    if (o.plyEvery > 0 && frame % o.plyEvery == 0) {
+      writePly(o.outDir / meshName(frame), sim.film());
+      if (sim.aerosol().size() > 0) writeAerosolPly(o.outDir / ("aerosol" + meshName(frame).substr(4)), sim.aerosol());
+    }
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
     if (o.progress) bar.update(frame, sim.time(), static_cast<double>(frame) * sim.substepsPerFrame() / wall);
   }

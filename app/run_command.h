@@ -17,6 +17,7 @@ struct RunOptions {
   Gesture gesture = Gesture::Straight;
   GestureOptions gestureOptions;
   double duration = 4.0;                  // simulated seconds
+  double burstAt = 3.5;                   // poke the top of the film at this time (s); negative: never
   std::filesystem::path outDir = "out";
   int plyEvery = 25;                      // write a mesh every this many frames (0: never)
   bool progress = true;

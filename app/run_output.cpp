@@ -44,17 +44,33 @@ void writePly(const std::filesystem::path& path, const Film& film) {
   if (!out.flush()) throw std::runtime_error("failed writing " + path.string());
 }
 
+void writeAerosolPly(const std::filesystem::path& path, const Aerosol& aerosol) {
+  std::ofstream out = openForWriting(path, std::ios::out | std::ios::binary);
+  out << "ply\nformat binary_little_endian 1.0\ncomment giantbubble aerosol droplets\n"
+      << "element vertex " << aerosol.size() << "\nproperty float x\nproperty float y\nproperty float z\n"
+      << "property float mass\nproperty float age\nend_header\n";
+  for (size_t i = 0; i < aerosol.size(); ++i) {
+    writeRaw(out, aerosol.position.x[i]);
+    writeRaw(out, aerosol.position.y[i]);
+    writeRaw(out, aerosol.position.z[i]);
+    writeRaw(out, aerosol.mass[i]);
+    writeRaw(out, aerosol.age[i]);
+  }
+  if (!out.flush()) throw std::runtime_error("failed writing " + path.string());
+}
+
 StatsWriter::StatsWriter(const std::filesystem::path& path) : out_(openForWriting(path)) {
   out_ << "frame,time_s,particles,triangles,area_m2,volume_m3,kinetic_J,elastic_J,potential_J,liquid_m3,"
-          "mean_thickness_m,max_speed_mps,mean_air_flow_m3ps,substeps,frame_ms\n";
+          "mean_thickness_m,max_speed_mps,mean_air_flow_m3ps,droplets,droplet_mass_kg,substeps,frame_ms,events\n";
   out_.flush();
 }
 
-void StatsWriter::write(long frame, const FrameStats& st, int substeps, double frameMilliseconds) {
+void StatsWriter::write(long frame, const FrameStats& st, int substeps, double frameMilliseconds,
+                        const std::string& events) {
   out_ << frame << ',' << st.time << ',' << st.particles << ',' << st.triangles << ',' << st.area << ','
        << st.volume << ',' << st.kineticEnergy << ',' << st.elasticEnergy << ',' << st.potentialEnergy << ','
-       << st.liquid << ',' << st.meanThickness << ',' << st.maxSpeed << ',' << st.meanAirFlow << ',' << substeps
-       << ',' << frameMilliseconds << '\n';
+       << st.liquid << ',' << st.meanThickness << ',' << st.maxSpeed << ',' << st.meanAirFlow << ',' << st.droplets
+       << ',' << st.dropletMass << ',' << substeps << ',' << frameMilliseconds << ',' << events << '\n';
   out_.flush();
 }
 

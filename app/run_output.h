@@ -15,11 +15,14 @@ namespace gb {
 // strength (m^3/s) per vertex, faces as vertex lists.
 void writePly(const std::filesystem::path& path, const Film& film);
 
+// The aerosol droplets as a binary PLY point cloud: x y z (m), mass (kg), age (s).
+void writeAerosolPly(const std::filesystem::path& path, const Aerosol& aerosol);
+
 // stats.csv: one row per frame.
 class StatsWriter {
  public:
   explicit StatsWriter(const std::filesystem::path& path);
-  void write(long frame, const FrameStats& stats, int substeps, double frameMilliseconds);
+  void write(long frame, const FrameStats& stats, int substeps, double frameMilliseconds, const std::string& events);
 
  private:
   std::ofstream out_;

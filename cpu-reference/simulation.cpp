@@ -1,6 +1,7 @@
 #include "simulation.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace gb {
@@ -93,6 +94,32 @@ void Simulation::advanceFrame(const WandState& next) {
   wands_ = next;
   time_ += params_.frameTime;
   checkStable();
+  events_ = advanceBurst(params_, time_, film_, burst_, aerosol_);
+  if (events_.particlesRemoved > 0) stepper_->load(params_, film_);  // the topology changed
+  aerosol_.advance(params_, params_.frameTime);
+}
+
+void Simulation::startBurst(size_t particle) { startCrack(burst_, film_, particle, time_); }
+
+size_t Simulation::topParticle() const {
+  const State& s = film_.state;
+  size_t best = 0;
+  float bestY = -std::numeric_limits<float>::infinity();
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.alive[i] && !film_.topology.boundary[i] && s.position.y[i] > bestY) {
+      bestY = s.position.y[i];
+      best = i;
+    }
+  return best;
+}
+
+void Simulation::dip(const WandState& wands) {
+  film_ = generateFilm(params_, film_.tool, wands);
+  CpuStepper::refreshGeometry(params_, film_);
+  burst_ = BurstFront{};
+  wands_ = wands;
+  chooseSubsteps();
+  stepper_->load(params_, film_);
 }
 
 void Simulation::checkStable() const {
@@ -132,6 +159,8 @@ FrameStats Simulation::stats() {
   }
   st.meanThickness = st.particles ? thicknessSum / static_cast<double>(st.particles) : 0;
   st.meanAirFlow = st.particles ? airSum / static_cast<double>(st.particles) : 0;
+  st.droplets = aerosol_.size();
+  for (float m : aerosol_.mass) st.dropletMass += m;
   for (size_t k = 0; k < topo.springCount(); ++k) {
     const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
     const double stretch = (s.position.get(a) - s.position.get(b)).cast<double>().norm() - topo.restLength[k];

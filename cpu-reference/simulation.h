@@ -5,6 +5,7 @@
 #include <memory>
 #include <stdexcept>
 
+#include "bursting.h"
 #include "cpu_stepper.h"
 #include "film.h"
 #include "stepper.h"
@@ -31,6 +32,8 @@ struct FrameStats {
   double meanThickness = 0;   // m
   double maxSpeed = 0;        // m/s
   double meanAirFlow = 0;     // mean |air| of Eqs. (7)-(8) (m^3/s)
+  size_t droplets = 0;        // aerosol droplets in flight
+  double dropletMass = 0;     // kg
 };
 
 class Simulation {
@@ -46,8 +49,20 @@ class Simulation {
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
 
-  // Advances one frame (Params::frameTime) while the wands move from their last state to `next`.
+  // Advances one frame (Params::frameTime) while the wands move from their last state to `next`, then runs
+  // the frame's topology events (bursting) and moves the aerosol.
   void advanceFrame(const WandState& next);
+
+  // Pokes the film: a crack opens at particle i now (a performer's finger, a key in the live window).
+  void startBurst(size_t particle);
+  // The living interior particle highest up: where a poke from above lands.
+  [[nodiscard]] size_t topParticle() const;
+  // Dips the wands again: a new film on the frame at `wands` (after a burst, or to start over).
+  void dip(const WandState& wands);
+
+  [[nodiscard]] const BurstFront& burst() const { return burst_; }
+  [[nodiscard]] const Aerosol& aerosol() const { return aerosol_; }
+  [[nodiscard]] const BurstEvents& lastEvents() const { return events_; }
 
   [[nodiscard]] const Film& film() const { return film_; }
   [[nodiscard]] Film& film() { return film_; }
@@ -68,6 +83,9 @@ class Simulation {
   Params params_;
   Film film_;
   std::unique_ptr<Stepper> stepper_;
+  BurstFront burst_;
+  Aerosol aerosol_;
+  BurstEvents events_;
   std::vector<StepUniforms> substepUniforms_;  // one frame's substeps, reused
   WandState wands_;
   double time_ = 0;

@@ -61,12 +61,6 @@ void buildAdjacency(Topology& topo) {
   fill.assign(topo.triangleOffset.begin(), topo.triangleOffset.end() - 1);
   for (uint32_t t = 0; t < topo.triangleCount(); ++t)
     for (int c = 0; c < 3; ++c) topo.triangleIndex[fill[topo.triangles[3 * t + c]]++] = t;
-  // Boundary: both ends of every edge used by one triangle only.
-  topo.boundary.assign(n, 0u);
-  for (const auto& [edge, count] : edgeUseCounts(topo.triangles)) {
-    if (count > 2) throw std::runtime_error("non-manifold mesh: an edge is shared by more than two triangles");
-    if (count == 1) topo.boundary[edge.first] = topo.boundary[edge.second] = 1u;
-  }
 }
 
 Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, const Vec3Array& positions) {
@@ -76,6 +70,8 @@ Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, co
   for (uint32_t v : topo.triangles)
     if (v >= particleCount) throw std::runtime_error("triangle refers to a particle that does not exist");
   for (const auto& [edge, count] : edgeUseCounts(topo.triangles)) {
+    if (count > 2) throw std::runtime_error("non-manifold mesh: an edge is shared by more than two triangles");
+    if (count == 1) topo.boundary[edge.first] = topo.boundary[edge.second] = 1u;  // the film's edge: the wire
     topo.springEnds.push_back(edge.first);
     topo.springEnds.push_back(edge.second);
     topo.restLength.push_back((positions.get(edge.first) - positions.get(edge.second)).norm());

@@ -66,7 +66,8 @@ struct Topology {
   std::vector<uint32_t> springNeighbour;  // particle at the other end of that spring (the one-ring)
   std::vector<uint32_t> triangleOffset;   // CSR: triangles of particle i
   std::vector<uint32_t> triangleIndex;    // triangle id
-  std::vector<uint32_t> boundary;         // 1 for a particle held by the wire frame (the "end particles")
+  std::vector<uint32_t> boundary;         // 1 for a particle held by the wire frame (the "end particles"),
+                                          // fixed when the film is made
 
   [[nodiscard]] size_t triangleCount() const { return triangles.size() / 3; }
   [[nodiscard]] size_t springCount() const { return restLength.size(); }
@@ -76,10 +77,12 @@ struct Topology {
 };
 
 // Builds springs (one per mesh edge, rest length from the current distance), the CSR one-ring arrays and
-// the boundary flags (particles on an edge used by exactly one triangle) from the triangle list.
+// the boundary flags (particles on an edge used by exactly one triangle: the ones the wire holds) from the
+// triangle list.
 Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, const Vec3Array& positions);
 
-// Rebuilds only the CSR arrays and boundary flags, keeping springs and rest lengths.
+// Rebuilds only the CSR arrays from the triangles and springs, keeping rest lengths and boundary flags
+// (a hole torn in the film does not make its rim part of the wire).
 void buildAdjacency(Topology& topology);
 
 }  // namespace gb

@@ -1,0 +1,188 @@
+#include "bursting.h"
+
+#include <algorithm>
+#include <cmath>
+#include <queue>
+#include <set>
+#include <utility>
+
+namespace gb {
+
+namespace {
+
+constexpr float kNever = std::numeric_limits<float>::infinity();
+
+// Makes sure the per-particle arrays cover the film (it may have been made after the front).
+void fitToFilm(BurstFront& front, const Film& film) {
+  if (front.arrival.size() != film.state.size()) front.arrival.assign(film.state.size(), kNever);
+}
+
+// Each particle's mass is shared by the triangles it belongs to, so that the droplets carry exactly the
+// mass of the particles they come from.
+void countShares(BurstFront& front, const Film& film) {
+  front.shares.assign(film.state.size(), 0u);
+  for (uint32_t v : film.topology.triangles) ++front.shares[v];
+}
+
+// Removes the dead particles' springs and triangles from the physics mesh and rebuilds the one-ring. A spring
+// stays only while a triangle of the film still holds it: a thread with no film around it is not film.
+void dropDeadElements(Film& film, BurstFront& front, BurstEvents& events) {
+  State& s = film.state;
+  Topology& topo = film.topology;
+  std::vector<uint32_t> triangles;
+  for (size_t t = 0; t < topo.triangleCount(); ++t) {
+    const uint32_t* tri = &topo.triangles[3 * t];
+    const bool intact = s.alive[tri[0]] && s.alive[tri[1]] && s.alive[tri[2]];
+    (intact ? triangles : front.torn).insert((intact ? triangles : front.torn).end(), tri, tri + 3);
+    if (!intact) ++events.trianglesRemoved;
+  }
+  topo.triangles = std::move(triangles);
+  std::set<std::pair<uint32_t, uint32_t>> edges;
+  for (size_t t = 0; t < topo.triangleCount(); ++t)
+    for (int c = 0; c < 3; ++c) edges.insert(std::minmax(topo.triangles[3 * t + c], topo.triangles[3 * t + (c + 1) % 3]));
+  std::vector<uint32_t> ends;
+  std::vector<float> rest;
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    if (!edges.count(std::minmax(a, b))) continue;
+    ends.insert(ends.end(), {a, b});
+    rest.push_back(topo.restLength[k]);
+  }
+  topo.springEnds = std::move(ends);
+  topo.restLength = std::move(rest);
+  buildAdjacency(topo);
+}
+
+// Droplets for torn triangles whose corners are now all dead: at the centroid, with the corners' mass
+// shares and their mean velocity (Section 6.1).
+void emitDroplets(Film& film, BurstFront& front, Aerosol& aerosol, BurstEvents& events) {
+  const State& s = film.state;
+  std::vector<uint32_t> stillTorn;
+  for (size_t t = 0; t < front.torn.size(); t += 3) {
+    const uint32_t* tri = &front.torn[t];
+    if (s.alive[tri[0]] || s.alive[tri[1]] || s.alive[tri[2]]) {
+      stillTorn.insert(stillTorn.end(), tri, tri + 3);
+      continue;
+    }
+    Vec3 x = Vec3::Zero(), v = Vec3::Zero();
+    float m = 0.0f;
+    for (int c = 0; c < 3; ++c) {
+      x += s.position.get(tri[c]) / 3.0f;
+      v += s.velocity.get(tri[c]) / 3.0f;
+      m += s.mass[tri[c]] / static_cast<float>(std::max(1u, front.shares[tri[c]]));
+    }
+    aerosol.add(x, v, m);
+    ++events.dropletsEmitted;
+  }
+  front.torn = std::move(stillTorn);
+}
+
+}  // namespace
+
+void Aerosol::add(const Vec3& x, const Vec3& v, float m) {
+  position.x.push_back(x.x());
+  position.y.push_back(x.y());
+  position.z.push_back(x.z());
+  velocity.x.push_back(v.x());
+  velocity.y.push_back(v.y());
+  velocity.z.push_back(v.z());
+  mass.push_back(m);
+  age.push_back(0.0f);
+}
+
+void Aerosol::advance(const Params& p, float dt) {
+  const Vec3 g(p.gravityX, p.gravityY, p.gravityZ);
+  size_t kept = 0;
+  for (size_t i = 0; i < size(); ++i) {
+    Vec3 v = velocity.get(i);
+    v += dt * (g - p.aerosolDrag * v);
+    const Vec3 x = position.get(i) + dt * v;
+    const float a = age[i] + dt;
+    if (a > p.aerosolLifetime || x.y() < 0.0f) continue;  // faded, or landed
+    position.set(kept, x);
+    velocity.set(kept, v);
+    mass[kept] = mass[i];
+    age[kept] = a;
+    ++kept;
+  }
+  for (Vec3Array* a : {&position, &velocity}) {
+    a->x.resize(kept);
+    a->y.resize(kept);
+    a->z.resize(kept);
+  }
+  mass.resize(kept);
+  age.resize(kept);
+}
+
+float taylorCulickSpeed(const Params& p, float thickness) {
+  const float e = std::max(thickness, 1e-9f);  // a vanishing film still has molecules: cap the speed
+  return std::sqrt(2.0f * p.surfaceTension / (p.liquidDensity * e));
+}
+
+void startCrack(BurstFront& front, const Film& film, size_t i, double t) {
+  fitToFilm(front, film);
+  if (!film.state.alive[i]) return;
+  front.arrival[i] = std::min(front.arrival[i], static_cast<float>(t));
+}
+
+BurstEvents advanceBurst(const Params& p, double now, Film& film, BurstFront& front, Aerosol& aerosol) {
+  BurstEvents events;
+  State& s = film.state;
+  const Topology& topo = film.topology;
+  fitToFilm(front, film);
+  // Algorithm 3, line 1: particles thinner than the threshold crack (a particle with no area left has no
+  // meaningful thickness and is left to its neighbours).
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.alive[i] && s.voronoiArea[i] > 0 && s.thickness[i] < p.thicknessThreshold) startCrack(front, film, i, now);
+
+  // The front: Dijkstra over the one-ring from every scheduled particle, settling all arrivals up to now.
+  using Entry = std::pair<float, uint32_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
+  for (uint32_t i = 0; i < s.size(); ++i)
+    if (s.alive[i] && front.arrival[i] <= now) queue.push({front.arrival[i], i});
+  std::vector<uint32_t> dying;
+  std::vector<char> settled(s.size(), 0);
+  while (!queue.empty()) {
+    const auto [t, i] = queue.top();
+    queue.pop();
+    if (t > front.arrival[i] || !s.alive[i] || settled[i]) continue;
+    settled[i] = 1;
+    dying.push_back(i);
+    for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
+      const uint32_t j = topo.springNeighbour[k];
+      // Paper's mode: the one-ring of this frame's dead is next frame's front. Taylor-Culick: the rim
+      // reaches j after the distance over the speed in j's film.
+      const float reach = p.holeOpening == 1 ? static_cast<float>(now) + p.frameTime
+                                             : t + (s.position.get(j) - s.position.get(i)).norm() /
+                                                       taylorCulickSpeed(p, s.thickness[j]);
+      if (reach < front.arrival[j]) {
+        front.arrival[j] = reach;
+        if (front.arrival[j] <= now) queue.push({front.arrival[j], j});
+      }
+    }
+  }
+  if (dying.empty()) return events;
+  if (front.started < 0) {
+    front.started = *std::min_element(front.arrival.begin(), front.arrival.end());
+    countShares(front, film);
+    events.started = true;
+  }
+  for (uint32_t i : dying) s.alive[i] = 0u;  // Algorithm 3, line 4
+  events.particlesRemoved = dying.size();
+  dropDeadElements(film, front, events);     // lines 4-6
+  emitDroplets(film, front, aerosol, events);
+  // Finished when the front has nowhere left to go: no living particle is scheduled.
+  bool scheduled = false;
+  double last = front.started;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (s.alive[i] && std::isfinite(front.arrival[i])) scheduled = true;
+    if (!s.alive[i] && std::isfinite(front.arrival[i])) last = std::max(last, static_cast<double>(front.arrival[i]));
+  }
+  if (!scheduled) {
+    front.finished = last;
+    events.finished = true;
+  }
+  return events;
+}
+
+}  // namespace gb

@@ -1,0 +1,65 @@
+#pragma once
+// Soap film bursting (Section 6.1, Algorithm 3) and its aerosol. Topology events run on the CPU between
+// frames; the stepper is then given the changed film.
+//
+// A particle thinner than the thickness threshold starts a crack. The hole front then spreads over the
+// mesh: in Taylor-Culick mode (default) it reaches neighbour j of a burst particle i at
+// t_j = t_i + |x_j - x_i| / sqrt(2 gamma / (rho e_j)), a shortest-path (Dijkstra) front measured in metres
+// and seconds, so a burst takes the same time whatever the substep and the mesh resolution; in the paper's
+// mode it advances one ring of neighbours per frame. A particle the front reaches dies (flagged, never
+// renumbered); its springs go, and so does every triangle that touched it. A triangle whose three particles
+// are all dead becomes an aerosol droplet at its centroid.
+
+#include <limits>
+#include <vector>
+
+#include "film.h"
+
+namespace gb {
+
+// Aerosol droplets (structure of arrays). They fly ballistically with gravity and linear air drag, and
+// fade out after Params::aerosolLifetime or when they reach the floor (y = 0).
+struct Aerosol {
+  Vec3Array position;
+  Vec3Array velocity;
+  std::vector<float> mass;  // kg
+  std::vector<float> age;   // s
+
+  [[nodiscard]] size_t size() const { return mass.size(); }
+  void add(const Vec3& x, const Vec3& v, float m);
+  void advance(const Params& params, float dt);
+};
+
+// Bursting bookkeeping of a film, kept by the simulation beside it.
+struct BurstFront {
+  std::vector<float> arrival;        // time the hole reaches each particle (s), +inf when not yet known
+  std::vector<uint32_t> shares;      // triangles each particle had when the burst began: its mass splits
+                                     // evenly into that many droplets
+  std::vector<uint32_t> torn;        // triangles left the physics mesh with a dead corner, 3 indices each
+  double started = -1.0;             // time of the first crack, -1 before
+  double finished = -1.0;            // time the last particle died, -1 before
+  [[nodiscard]] bool active() const { return started >= 0 && finished < 0; }
+};
+
+// What one frame's topology step did.
+struct BurstEvents {
+  bool started = false;   // the first crack of this film opened
+  bool finished = false;  // the film is gone
+  size_t particlesRemoved = 0;
+  size_t trianglesRemoved = 0;  // left the physics mesh
+  size_t dropletsEmitted = 0;
+};
+
+// Taylor-Culick speed of a hole's rim in a film of thickness e: sqrt(2 gamma / (rho e)) (m/s).
+float taylorCulickSpeed(const Params& params, float thickness);
+
+// Schedules a crack at particle i at time t (a poke, a collision, or the thickness test).
+void startCrack(BurstFront& front, const Film& film, size_t i, double t);
+
+// One frame's topology step at time `now`: cracks where the film is thinner than the threshold, the front
+// advanced to `now`, the particles it reached removed with their springs and triangles, droplets emitted
+// for triangles with no living corner, and the CSR one-ring rebuilt. Returns what happened; the film's
+// topology changed iff particlesRemoved > 0.
+BurstEvents advanceBurst(const Params& params, double now, Film& film, BurstFront& front, Aerosol& aerosol);
+
+}  // namespace gb

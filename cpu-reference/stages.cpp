@@ -156,9 +156,14 @@ void integrateParticle(const StepUniforms& u, const Topology& topo, State& s, si
     s.position.set(i, xNext);
     return;
   }
-  const Vec3 v = s.velocity.get(i) + u.dt * s.force.get(i) / s.mass[i];  // Eq. (12)
+  Vec3 v = s.velocity.get(i) + u.dt * s.force.get(i) / s.mass[i];  // Eq. (12)
+  Vec3 xNew = x + u.dt * v;                                          // Eq. (13)
+  if (xNew.y() < 0.0f) {  // the floor, y = 0: the film lands and slides, it does not pass through
+    xNew.y() = 0.0f;
+    v.y() = std::max(v.y(), 0.0f);
+  }
   s.velocity.set(i, v);
-  s.position.set(i, x + u.dt * v);  // Eq. (13)
+  s.position.set(i, xNew);
 }
 
 // ---- drainage -------------------------------------------------------------------------------------------

@@ -68,8 +68,9 @@ void computeForces(const Params& p, const StepUniforms& u, float pressure, const
 float boylePressure(const Params& p, float referenceVolume, float currentVolume);
 
 // ---- Stage 7: semi-implicit Euler, Eqs. (12)-(13) --------------------------------------------------------
-// Interior particles integrate their force; boundary particles are carried to the wire frame at the end of
-// the step, with the velocity that motion implies.
+// Interior particles integrate their force and stop at the floor (y = 0), keeping their sliding velocity;
+// boundary particles are carried to the wire frame at the end of the step, with the velocity that motion
+// implies.
 void integrateParticle(const StepUniforms& u, const Topology& topo, State& s, size_t i);
 
 // ---- Stage 8: position-dependent drainage (Section 6.2, Eqs. 14-15) --------------------------------------

@@ -16,7 +16,12 @@ void main() {
     STORE3(position, i, xNext);
     return;
   }
-  const vec3 v = LOAD3(velocity, i) + u.dt * LOAD3(force, i) / mass[i];  // Eq. (12)
+  vec3 v = LOAD3(velocity, i) + u.dt * LOAD3(force, i) / mass[i];  // Eq. (12)
+  vec3 xNew = x + u.dt * v;                                          // Eq. (13)
+  if (xNew.y < 0.0) {  // the floor, y = 0: the film lands and slides, it does not pass through
+    xNew.y = 0.0;
+    v.y = max(v.y, 0.0);
+  }
   STORE3(velocity, i, v);
-  STORE3(position, i, x + u.dt * v);  // Eq. (13)
+  STORE3(position, i, xNew);
 }

@@ -197,3 +197,25 @@ TEST(Reduction, TreeSumHasAFixedPairwiseShape) {
 
 }  // namespace
 }  // namespace gb
+
+namespace gb {
+namespace {
+
+TEST(Integration, TheFloorStopsAFallingParticleButLetsItSlide) {
+  const Params p;
+  Film film = test::makeHexagon(p);
+  State& s = film.state;
+  s.position.set(0, Vec3(0, 0.01f, 0));
+  s.velocity.set(0, Vec3(0.5f, -2.0f, 0));
+  s.force.set(0, Vec3::Zero());
+  StepUniforms u;
+  u.dt = 0.01f;
+  integrateParticle(u, film.topology, s, 0);
+  EXPECT_EQ(s.position.y[0], 0.0f);
+  EXPECT_EQ(s.velocity.y[0], 0.0f);
+  EXPECT_FLOAT_EQ(s.velocity.x[0], 0.5f);
+  EXPECT_FLOAT_EQ(s.position.x[0], 0.005f);
+}
+
+}  // namespace
+}  // namespace gb

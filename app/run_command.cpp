@@ -103,6 +103,7 @@ int runSimulation(const RunOptions& o) {
     last = sim.stats();
     if (sim.lastEvents().started) events += "burst_started ";
     if (sim.lastEvents().finished) events += "burst_finished ";
+    if (sim.lastEvents().pinchedOff) events += "pinched_off ";
     if (!events.empty()) events.pop_back();
     stats.write(frame, last, sim.substepsPerFrame(), ms, events);
     if (o.plyEvery > 0 && frame % o.plyEvery == 0) {

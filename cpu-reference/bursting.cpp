@@ -26,7 +26,7 @@ void countShares(BurstFront& front, const Film& film) {
 
 // Removes the dead particles' springs and triangles from the physics mesh and rebuilds the one-ring. A spring
 // stays only while a triangle of the film still holds it: a thread with no film around it is not film.
-void dropDeadElements(Film& film, BurstFront& front, BurstEvents& events) {
+void dropDeadElements(Film& film, BurstFront& front, TopologyEvents& events) {
   State& s = film.state;
   Topology& topo = film.topology;
   std::vector<uint32_t> triangles;
@@ -55,7 +55,7 @@ void dropDeadElements(Film& film, BurstFront& front, BurstEvents& events) {
 
 // Droplets for torn triangles whose corners are now all dead: at the centroid, with the corners' mass
 // shares and their mean velocity (Section 6.1).
-void emitDroplets(Film& film, BurstFront& front, Aerosol& aerosol, BurstEvents& events) {
+void emitDroplets(Film& film, BurstFront& front, Aerosol& aerosol, TopologyEvents& events) {
   const State& s = film.state;
   std::vector<uint32_t> stillTorn;
   for (size_t t = 0; t < front.torn.size(); t += 3) {
@@ -125,8 +125,8 @@ void startCrack(BurstFront& front, const Film& film, size_t i, double t) {
   front.arrival[i] = std::min(front.arrival[i], static_cast<float>(t));
 }
 
-BurstEvents advanceBurst(const Params& p, double now, Film& film, BurstFront& front, Aerosol& aerosol) {
-  BurstEvents events;
+TopologyEvents advanceBurst(const Params& p, double now, Film& film, BurstFront& front, Aerosol& aerosol) {
+  TopologyEvents events;
   State& s = film.state;
   const Topology& topo = film.topology;
   fitToFilm(front, film);

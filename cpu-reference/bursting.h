@@ -41,13 +41,14 @@ struct BurstFront {
   [[nodiscard]] bool active() const { return started >= 0 && finished < 0; }
 };
 
-// What one frame's topology step did.
-struct BurstEvents {
+// What one frame's topology events did.
+struct TopologyEvents {
   bool started = false;   // the first crack of this film opened
   bool finished = false;  // the film is gone
   size_t particlesRemoved = 0;
   size_t trianglesRemoved = 0;  // left the physics mesh
   size_t dropletsEmitted = 0;
+  bool pinchedOff = false;  // the film closed into a free bubble this frame (pinch_off.h)
 };
 
 // Taylor-Culick speed of a hole's rim in a film of thickness e: sqrt(2 gamma / (rho e)) (m/s).
@@ -60,6 +61,6 @@ void startCrack(BurstFront& front, const Film& film, size_t i, double t);
 // advanced to `now`, the particles it reached removed with their springs and triangles, droplets emitted
 // for triangles with no living corner, and the CSR one-ring rebuilt. Returns what happened; the film's
 // topology changed iff particlesRemoved > 0.
-BurstEvents advanceBurst(const Params& params, double now, Film& film, BurstFront& front, Aerosol& aerosol);
+TopologyEvents advanceBurst(const Params& params, double now, Film& film, BurstFront& front, Aerosol& aerosol);
 
 }  // namespace gb

@@ -96,6 +96,9 @@ void Simulation::advanceFrame(const WandState& next) {
   checkStable();
   events_ = advanceBurst(params_, time_, film_, burst_, aerosol_);
   if (events_.particlesRemoved > 0) stepper_->load(params_, film_);  // the topology changed
+  const bool tipsTogether = film_.tool.kind == ToolKind::TwoWands &&
+                            (next.rightPosition - next.leftPosition).norm() < params_.pinchDistance;
+  if (tipsTogether && !film_.topology.isClosed() && !burst_.active()) events_.pinchedOff = pinch();
   aerosol_.advance(params_, params_.frameTime);
 }
 
@@ -111,6 +114,20 @@ size_t Simulation::topParticle() const {
       best = i;
     }
   return best;
+}
+
+bool Simulation::pinch() {
+  if (film_.topology.isClosed() || burst_.active()) return false;
+  try {
+    if (!pinchOff(params_, film_)) return false;
+  } catch (const std::runtime_error&) {
+    return false;  // a torn boundary: the burst will take it
+  }
+  CpuStepper::refreshGeometry(params_, film_);
+  burst_ = BurstFront{};
+  chooseSubsteps();
+  stepper_->load(params_, film_);
+  return true;
 }
 
 void Simulation::dip(const WandState& wands) {

@@ -6,6 +6,7 @@
 #include <stdexcept>
 
 #include "bursting.h"
+#include "pinch_off.h"
 #include "cpu_stepper.h"
 #include "film.h"
 #include "stepper.h"
@@ -57,12 +58,16 @@ class Simulation {
   void startBurst(size_t particle);
   // The living interior particle highest up: where a poke from above lands.
   [[nodiscard]] size_t topParticle() const;
+  // Closes the film into a free bubble now (pinch_off.h); false if it cannot (already closed, torn, or its
+  // loop cannot be capped yet). Two-wand films also pinch off by themselves when the tips come within
+  // Params::pinchDistance.
+  bool pinch();
   // Dips the wands again: a new film on the frame at `wands` (after a burst, or to start over).
   void dip(const WandState& wands);
 
   [[nodiscard]] const BurstFront& burst() const { return burst_; }
   [[nodiscard]] const Aerosol& aerosol() const { return aerosol_; }
-  [[nodiscard]] const BurstEvents& lastEvents() const { return events_; }
+  [[nodiscard]] const TopologyEvents& lastEvents() const { return events_; }
 
   [[nodiscard]] const Film& film() const { return film_; }
   [[nodiscard]] Film& film() { return film_; }
@@ -85,7 +90,7 @@ class Simulation {
   std::unique_ptr<Stepper> stepper_;
   BurstFront burst_;
   Aerosol aerosol_;
-  BurstEvents events_;
+  TopologyEvents events_;
   std::vector<StepUniforms> substepUniforms_;  // one frame's substeps, reused
   WandState wands_;
   double time_ = 0;

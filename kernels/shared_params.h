@@ -46,6 +46,9 @@ struct Params {
   float aerosolDrag GB_DEFAULT(2.0f);           // linear air drag rate on a droplet (1/s)
   float collisionThreshold GB_DEFAULT(1.75f);   // lambda_col, Table 2 [1.5, 2.0], read as impact speed (m/s)
 
+  // --- Pinch-off ---
+  float pinchDistance GB_DEFAULT(0.1f);  // wand tips closer than this close the film into a free bubble (m)
+
   // --- Soap solution control (Section 7) ---
   float solution GB_DEFAULT(1.0f);              // remaining soap solution, 1 = full dip (0, 1]
   int particlesAtFullSolution GB_DEFAULT(9500);  // particles of a film made at solution 1.0 (Table 1: 9-10k)

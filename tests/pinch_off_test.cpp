@@ -1,0 +1,109 @@
+// Pinch-off: the film closes into a free bubble; and the performance cycle blow / pinch-off / burst / dip.
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <unistd.h>
+
+#include "mesh_checks.h"
+#include "scripted_gestures.h"
+#include "simulation.h"
+
+namespace gb {
+namespace {
+
+// A two-wand film pushed forward for `frames` frames, so that it bulges behind the wands.
+std::unique_ptr<Simulation> bulgedFilm(int particles, int frames) {
+  Params p;
+  p.particlesAtFullSolution = particles;
+  GestureOptions g;
+  g.start = 0.0f;
+  auto sim = std::make_unique<Simulation>(p, WandTool{}, gestureAt(Gesture::Straight, g, 0.0));
+  for (int f = 1; f <= frames; ++f) sim->advanceFrame(gestureAt(Gesture::Straight, g, f * 0.02));
+  return sim;
+}
+
+Vec3 centroid(const State& s) {
+  Vec3 c = Vec3::Zero();
+  for (size_t i = 0; i < s.size(); ++i) c += s.position.get(i) / static_cast<float>(s.size());
+  return c;
+}
+
+TEST(PinchOff, TheBubbleIsAClosedOrientedSphereWithOutwardNormalsAndPositiveVolume) {
+  auto sim = bulgedFilm(1500, 60);
+  ASSERT_TRUE(sim->pinch());
+  const Film& film = sim->film();
+  EXPECT_TRUE(film.topology.isClosed());
+  EXPECT_EQ(test::eulerCharacteristic(film.topology), 2);  // also asserts each directed edge once
+  test::expectAdjacencyMatchesTriangles(film.topology);
+  EXPECT_GT(film.referenceVolume, 0.0f);
+  const Vec3 c = centroid(film.state);
+  size_t outward = 0;
+  for (size_t i = 0; i < film.state.size(); ++i) outward += film.state.normal.get(i).dot(film.state.position.get(i) - c) > 0;
+  // A bulged bag is not convex everywhere; nearly all of its normals still point away from its centre.
+  EXPECT_GT(outward, 0.9 * static_cast<double>(film.state.size()));
+  EXPECT_FALSE(sim->pinch()) << "a closed film cannot pinch off again";
+}
+
+TEST(PinchOff, TheFreeBubbleKeepsItsVolumeUnderBoylesPressureAndLeavesTheWands) {
+  auto sim = bulgedFilm(1200, 60);
+  ASSERT_TRUE(sim->pinch());
+  const float v0 = sim->film().referenceVolume;
+  WandState away = gestureAt(Gesture::Straight, GestureOptions{}, 0.0);
+  away.leftPosition += Vec3(-5, 0, 0);  // the wands go elsewhere: the bubble no longer follows them
+  for (int f = 0; f < 50; ++f) sim->advanceFrame(away);
+  const FrameStats st = sim->stats();
+  EXPECT_NEAR(st.volume, v0, 0.2 * v0) << "Boyle's pressure must hold the bubble's volume";
+  EXPECT_EQ(st.particles, sim->film().state.size());
+  for (size_t i = 0; i < sim->film().state.size(); ++i) ASSERT_TRUE(sim->film().state.position.get(i).allFinite());
+}
+
+TEST(PinchOff, ClosingTheWandsPinchesTheFilmOffByItself) {
+  auto sim = bulgedFilm(1000, 50);
+  GestureOptions g;
+  g.start = 0.0f;
+  WandState w = gestureAt(Gesture::Straight, g, 1.0);
+  bool pinched = false;
+  for (int f = 0; f < 60 && !pinched; ++f) {  // the tips slide together over a second
+    w.leftPosition.x() += 0.0085f;
+    w.rightPosition.x() -= 0.0085f;
+    sim->advanceFrame(w);
+    pinched = sim->lastEvents().pinchedOff;
+  }
+  EXPECT_TRUE(pinched);
+  EXPECT_TRUE(sim->film().topology.isClosed());
+}
+
+long residentKiB() {
+  std::ifstream statm("/proc/self/statm");
+  long pages = 0, resident = 0;
+  statm >> pages >> resident;
+  return resident * sysconf(_SC_PAGESIZE) / 1024;
+}
+
+TEST(PinchOff, AHundredBlowPinchBurstCyclesDoNotGrowMemory) {
+  Params p;
+  p.particlesAtFullSolution = 300;
+  GestureOptions g;
+  g.start = 0.0f;
+  Simulation sim(p, WandTool{}, gestureAt(Gesture::Straight, g, 0.0));
+  long afterWarmUp = 0;
+  for (int cycle = 0; cycle < 100; ++cycle) {
+    sim.dip(gestureAt(Gesture::Straight, g, 0.0));
+    for (int f = 1; f <= 40; ++f) sim.advanceFrame(gestureAt(Gesture::Straight, g, f * 0.02));  // blow
+    ASSERT_TRUE(sim.pinch()) << "cycle " << cycle;
+    sim.startBurst(sim.topParticle());
+    bool finished = false;
+    for (int f = 0; f < 200 && !finished; ++f) {
+      sim.advanceFrame(gestureAt(Gesture::Straight, g, 0.8));
+      finished = sim.lastEvents().finished;
+    }
+    ASSERT_TRUE(finished) << "cycle " << cycle;
+    if (cycle == 9) afterWarmUp = residentKiB();
+  }
+  const long growth = residentKiB() - afterWarmUp;
+  std::printf("resident memory after 10 cycles %ld KiB, growth over the next 90: %ld KiB\n", afterWarmUp, growth);
+  EXPECT_LT(growth, 2048) << "memory grew by " << growth << " KiB over 90 cycles";
+}
+
+}  // namespace
+}  // namespace gb

@@ -44,10 +44,12 @@ struct Cost {
 
 Cost costPerParticleStep(double s, double t) {
   Cost c;
-  // geometry: per triangle visit the triangle id, 3 indices, 3 positions (52 B) and ~64 flops (two edge
-  // vectors, cross product, norm, the corner's dots and squared norms); per particle 2 offsets, 4 floats out.
-  c.bytes += 52 * t + 24;
-  c.flops += 64 * t + 10;
+  // geometry, pass 1 per triangle (t/3 of them per particle): 3 indices and 3 positions in, normal and 3
+  // corner areas out (72 B), ~100 flops (edges, cross product, norm, three corners' dots and squared norms);
+  // pass 2 per triangle visit: triangle id, its 3 indices (to find the corner), normal, corner area (32 B),
+  // ~5 flops; per particle 2 offsets, 4 floats out.
+  c.bytes += 72 * t / 3 + 32 * t + 24;
+  c.flops += 100 * t / 3 + 5 * t + 10;
   // film state: area, liquid, lifetime in; thickness, elasticity, lifetime out; ~10 flops.
   c.bytes += 24;
   c.flops += 10;

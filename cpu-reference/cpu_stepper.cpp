@@ -48,6 +48,8 @@ float CpuStepper::volume(const Film& film, const Vec3& origin) {
 
 void CpuStepper::refreshGeometry(const Params& params, Film& film) {
   State& s = film.state;
+  fitTriangleArrays(film.topology, s);
+  forEach(film.topology.triangleCount(), [&](size_t t) { computeTriangleGeometry(film.topology, s, t); });
   forEach(s.size(), [&](size_t i) {
     computeVertexGeometry(film.topology, s, i);
     updateFilmState(params, 0.0f, s, i);
@@ -62,7 +64,11 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
   float result = 0.0f;
   timed(stage, [&] {
     switch (stage) {
-      case Stage::Geometry: forEach(n, [&](size_t i) { computeVertexGeometry(topo, s, i); }); break;
+      case Stage::Geometry:  // two passes: every triangle is done before any particle gathers
+        fitTriangleArrays(topo, s);
+        forEach(topo.triangleCount(), [&](size_t t) { computeTriangleGeometry(topo, s, t); });
+        forEach(n, [&](size_t i) { computeVertexGeometry(topo, s, i); });
+        break;
       case Stage::Volume: result = volume(*film_, u.volumeOrigin); break;
       case Stage::FilmState: forEach(n, [&](size_t i) { updateFilmState(params_, u.dt, s, i); }); break;
       case Stage::AirInflow: forEach(n, [&](size_t i) { computeAirInflow(params_, u, s, i); }); break;

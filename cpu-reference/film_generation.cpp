@@ -251,8 +251,8 @@ void initialiseFilmMaterial(const Params& params, Film& film) {
   for (float& l : film.topology.restLength) l *= 1.0f - params.springPrestrain;
   State& s = film.state;
   const float e0 = initialThickness(params);
+  computeGeometry(film.topology, s);
   for (size_t i = 0; i < s.size(); ++i) {
-    computeVertexGeometry(film.topology, s, i);
     s.mass[i] = params.filmInertia * s.voronoiArea[i];
     s.liquid[i] = e0 * s.voronoiArea[i];
     s.lifetime[i] = 0.0f;

@@ -144,7 +144,7 @@ bool pinchOff(const Params& params, Film& film) {
   // Material of the new particles, as at film creation.
   Film result{std::move(grown), std::move(closed), film.tool, film.stringLength, 0.0f, Vec3::Zero()};
   const float e0 = initialThickness(params);
-  for (size_t i = 0; i < result.state.size(); ++i) computeVertexGeometry(result.topology, result.state, i);
+  computeGeometry(result.topology, result.state);
   for (size_t i = first; i < result.state.size(); ++i) {
     result.state.mass[i] = params.filmInertia * result.state.voronoiArea[i];
     result.state.liquid[i] = e0 * result.state.voronoiArea[i];
@@ -159,7 +159,7 @@ bool pinchOff(const Params& params, Film& film) {
     buildAdjacency(result.topology);
     volume = -volume;
   }
-  for (size_t i = 0; i < result.state.size(); ++i) computeVertexGeometry(result.topology, result.state, i);
+  computeGeometry(result.topology, result.state);
   result.referenceVolume = static_cast<float>(volume);
   film = std::move(result);
   return true;

@@ -25,22 +25,39 @@ float mixedVoronoiCorner(const Vec3& xi, const Vec3& xj, const Vec3& xk, float a
 
 }  // namespace
 
+void computeTriangleGeometry(const Topology& topo, State& s, size_t t) {
+  const uint32_t* tri = &topo.triangles[3 * t];
+  const Vec3 x[3] = {s.position.get(tri[0]), s.position.get(tri[1]), s.position.get(tri[2])};
+  const Vec3 doubleAreaNormal = (x[1] - x[0]).cross(x[2] - x[0]);
+  s.triangleNormal.set(t, doubleAreaNormal);
+  const float area = 0.5f * doubleAreaNormal.norm();
+  for (int c = 0; c < 3; ++c) s.cornerArea[3 * t + c] = mixedVoronoiCorner(x[c], x[(c + 1) % 3], x[(c + 2) % 3], area);
+}
+
 void computeVertexGeometry(const Topology& topo, State& s, size_t i) {
   Vec3 normalSum = Vec3::Zero();
   float area = 0.0f;
   for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
-    const uint32_t* tri = &topo.triangles[3 * topo.triangleIndex[k]];
-    // Rotate the corners so that particle i comes first; orientation is kept.
-    const int c = tri[0] == i ? 0 : (tri[1] == i ? 1 : 2);
-    const Vec3 xi = s.position.get(tri[c]), xj = s.position.get(tri[(c + 1) % 3]),
-               xk = s.position.get(tri[(c + 2) % 3]);
-    const Vec3 doubleAreaNormal = (xj - xi).cross(xk - xi);
-    normalSum += doubleAreaNormal;  // area-weighted normals
-    area += mixedVoronoiCorner(xi, xj, xk, 0.5f * doubleAreaNormal.norm());
+    const uint32_t t = topo.triangleIndex[k];
+    const uint32_t c = topo.triangles[3 * t] == i ? 0u : (topo.triangles[3 * t + 1] == i ? 1u : 2u);
+    normalSum += s.triangleNormal.get(t);
+    area += s.cornerArea[3 * t + c];
   }
   const float len = normalSum.norm();
   s.normal.set(i, len > 0 ? Vec3(normalSum / len) : Vec3::Zero());
   s.voronoiArea[i] = area;
+}
+
+void fitTriangleArrays(const Topology& topo, State& s) {
+  if (s.cornerArea.size() == 3 * topo.triangleCount() && s.triangleNormal.size() == topo.triangleCount()) return;
+  s.triangleNormal.resize(topo.triangleCount());
+  s.cornerArea.assign(3 * topo.triangleCount(), 0.0f);
+}
+
+void computeGeometry(const Topology& topo, State& s) {
+  fitTriangleArrays(topo, s);
+  for (size_t t = 0; t < topo.triangleCount(); ++t) computeTriangleGeometry(topo, s, t);
+  for (size_t i = 0; i < s.size(); ++i) computeVertexGeometry(topo, s, i);
 }
 
 float triangleSignedVolume(const Topology& topo, const State& s, size_t t, const Vec3& origin) {

@@ -26,9 +26,16 @@ struct StepUniforms {
 };
 
 // ---- Stage 1-2: geometry -------------------------------------------------------------------------------
-// Unit vertex normal (area-weighted triangle normals) and mixed Voronoi area (Meyer et al. 2003) of
-// particle i, from its CSR triangles.
+// Pass 1, per triangle t: its area-weighted normal and the mixed Voronoi area (Meyer et al. 2003) of each of
+// its corners. Each triangle is computed once instead of once per corner.
+void computeTriangleGeometry(const Topology& topo, State& s, size_t t);
+// Pass 2, per particle i: unit vertex normal (sum of its triangles' area-weighted normals) and mixed Voronoi
+// area (sum of its corners' areas), gathered in CSR order.
 void computeVertexGeometry(const Topology& topo, State& s, size_t i);
+// Both passes over the whole film, serially: for code outside the step (film creation, pinch-off, tests).
+void computeGeometry(const Topology& topo, State& s);
+// Sizes the per-triangle arrays for the topology.
+void fitTriangleArrays(const Topology& topo, State& s);
 
 // Signed volume of the tetrahedron (origin, triangle t); their sum is the enclosed volume of a closed
 // film and the volume swept between an open film and the apex.

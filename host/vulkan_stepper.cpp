@@ -18,7 +18,7 @@ using gpu::StepUniformsBlock;
 // gives the same declarations.
 static_assert(sizeof(StepUniformsBlock) == 176 && offsetof(StepUniformsBlock, dt) == 128 &&
               offsetof(StepUniformsBlock, frameKind) == 156 && offsetof(StepUniformsBlock, closed) == 160);
-static_assert(sizeof(PushBlock) == 16);
+static_assert(sizeof(PushBlock) == 20);
 static_assert(alignof(Params) == 4 && sizeof(Params) % 4 == 0,
               "Params must stay a block of 4-byte scalars, whose std430 layout is the C layout");
 
@@ -166,7 +166,7 @@ struct VulkanStepper::Impl {
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipelines[static_cast<size_t>(kernel)]);
     const vk::DescriptorSet set = *sets[static_cast<size_t>(airParity)];
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipelineLayout, 0, set, {});
-    const PushBlock push{count, particles, stepIndex, flags};
+    const PushBlock push{count, particles, stepIndex, flags, triangles};
     cb.pushConstants<PushBlock>(*pipelineLayout, vk::ShaderStageFlagBits::eCompute, 0, push);
     cb.dispatch(ceilDiv(count, workgroup), 1, 1);
   }
@@ -174,7 +174,11 @@ struct VulkanStepper::Impl {
   // Records one stage. Volume records its own barriers between tree levels and ends with one.
   void recordStage(const vk::raii::CommandBuffer& cb, Stage stage, uint32_t stepIndex) {
     switch (stage) {
-      case Stage::Geometry: dispatch(cb, Kernel::VertexGeometry, particles, stepIndex); break;
+      case Stage::Geometry:
+        dispatch(cb, Kernel::TriangleGeometry, triangles, stepIndex);
+        computeToComputeBarrier(cb);  // every triangle is done before any particle gathers
+        dispatch(cb, Kernel::VertexGeometry, particles, stepIndex);
+        break;
       case Stage::Volume: {
         dispatch(cb, Kernel::TriangleVolume, triangles, stepIndex);
         computeToComputeBarrier(cb);
@@ -204,8 +208,8 @@ struct VulkanStepper::Impl {
     }
   }
 
-  // One substep. Barriers go only where a stage reads what the stages before it wrote: geometry, air inflow
-  // and the triangle volumes read positions only and run together; film state and air transfer need the
+  // One substep. Barriers go only where a stage reads what the stages before it wrote: the geometry's
+  // vertex pass, air inflow and the triangle volumes read positions only and run together; film state and air transfer need the
   // areas and inflow; forces need everything; integration must not move particles that forces still read.
   void recordStep(const vk::raii::CommandBuffer& cb, uint32_t stepIndex, bool closed) {
     recordStage(cb, Stage::Geometry, stepIndex);
@@ -275,6 +279,8 @@ void VulkanStepper::load(const Params& params, Film& film) {
   make(GB_BINDING_SPRING_NEIGHBOUR, t.springNeighbour.size() * sizeof(uint32_t));
   make(GB_BINDING_TRIANGLE_OFFSET, t.triangleOffset.size() * sizeof(uint32_t));
   make(GB_BINDING_TRIANGLE_INDEX, t.triangleIndex.size() * sizeof(uint32_t));
+  make(GB_BINDING_TRIANGLE_NORMAL, 3 * t.triangleCount() * sizeof(float));
+  make(GB_BINDING_CORNER_AREA, 3 * t.triangleCount() * sizeof(float));
   make(GB_BINDING_REDUCE_A, std::max<size_t>(m.triangles, 1) * sizeof(float));
   make(GB_BINDING_REDUCE_B, std::max<size_t>(m.triangles, 1) * sizeof(float));
   m.stepsCapacity = 0;

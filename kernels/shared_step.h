@@ -36,12 +36,13 @@ struct StepUniformsBlock {
   uint pad2;
 };
 
-// Push constants of every stage (16 bytes of the 128 guaranteed).
+// Push constants of every stage (20 bytes of the 128 guaranteed).
 struct PushBlock {
   uint count;       // elements of the dispatch: particles, triangles, or reduction inputs
   uint particles;   // particle count, the stride between the x, y and z blocks of a vector attribute
   uint stepIndex;   // which StepUniformsBlock of the batch
   uint reduceFlags;  // tree_sum: 1 reads A writes B, 0 the reverse; forces: 1 if the volume is in A
+  uint triangles;    // triangle count, the stride of the per-triangle vector blocks
 };
 
 #ifdef __cplusplus
@@ -79,4 +80,6 @@ struct PushBlock {
 #define GB_BINDING_REDUCE_B 26
 #define GB_BINDING_DRAIN_OUTFLOW 27
 #define GB_BINDING_DRAIN_WEIGHT 28
-#define GB_BINDING_COUNT 29
+#define GB_BINDING_TRIANGLE_NORMAL 29
+#define GB_BINDING_CORNER_AREA 30
+#define GB_BINDING_COUNT 31

@@ -10,6 +10,7 @@
 #include "spirv/forces.h"
 #include "spirv/integrate.h"
 #include "spirv/tree_sum.h"
+#include "spirv/triangle_geometry.h"
 #include "spirv/triangle_volume.h"
 #include "spirv/vertex_geometry.h"
 
@@ -17,6 +18,7 @@ namespace gb::kernels {
 
 std::span<const uint32_t> spirv(Kernel kernel) {
   switch (kernel) {
+    case Kernel::TriangleGeometry: return triangle_geometry_spv;
     case Kernel::VertexGeometry: return vertex_geometry_spv;
     case Kernel::TriangleVolume: return triangle_volume_spv;
     case Kernel::TreeSum: return tree_sum_spv;
@@ -32,7 +34,7 @@ std::span<const uint32_t> spirv(Kernel kernel) {
 }
 
 const char* kernelName(Kernel kernel) {
-  static constexpr const char* names[] = {"vertex_geometry", "triangle_volume", "tree_sum", "film_state",
+  static constexpr const char* names[] = {"triangle_geometry", "vertex_geometry", "triangle_volume", "tree_sum", "film_state",
                                           "air_inflow", "air_transfer", "forces", "integrate",
                                           "drainage_outflow", "drainage_gather"};
   return names[static_cast<int>(kernel)];

@@ -7,6 +7,7 @@
 namespace gb::kernels {
 
 enum class Kernel {
+  TriangleGeometry,
   VertexGeometry,
   TriangleVolume,
   TreeSum,
@@ -18,7 +19,7 @@ enum class Kernel {
   DrainageOutflow,
   DrainageGather
 };
-inline constexpr int kKernelCount = 10;
+inline constexpr int kKernelCount = 11;
 
 std::span<const uint32_t> spirv(Kernel kernel);
 const char* kernelName(Kernel kernel);

@@ -92,7 +92,7 @@ TEST(Dynamics, InternalForcesSumToZero) {
     s.position.set(i, s.position.get(i) + Vec3(jitter(rng), jitter(rng), jitter(rng)));
     s.velocity.set(i, Vec3(speed(rng), speed(rng), speed(rng)));
   }
-  for (size_t i = 0; i < s.size(); ++i) computeVertexGeometry(film.topology, s, i);
+  computeGeometry(film.topology, s);
   for (size_t i = 0; i < s.size(); ++i) s.elasticity[i] = stiffness(rng);  // unequal E_i on purpose
   Eigen::Vector3d total = Eigen::Vector3d::Zero();
   double magnitude = 0;

@@ -92,9 +92,10 @@ TEST(SharedLayout, StepUniformsAndPushConstantsMatchTheCppOffsets) {
     EXPECT_EQ(m.offset, expected.at(m.name)) << m.name;
   }
   const auto push = structLayout(kernels::spirv(kernels::Kernel::TreeSum), "PushBlock");
-  ASSERT_EQ(push.size(), 4u);
+  ASSERT_EQ(push.size(), 5u);
   EXPECT_EQ(push[0].name, "count");
   EXPECT_EQ(push[3].offset, offsetof(gpu::PushBlock, reduceFlags));
+  EXPECT_EQ(push[4].offset, offsetof(gpu::PushBlock, triangles));
 }
 
 }  // namespace

@@ -43,7 +43,7 @@ TEST(Geometry, MixedVoronoiAreaOfTheRegularHexagonCentre) {
   // area 6 * (1/2)^2 / sqrt(3) = sqrt(3)/2.
   const Params p;
   Film film = test::makeHexagon(p);
-  computeVertexGeometry(film.topology, film.state, 0);
+  computeGeometry(film.topology, film.state);
   EXPECT_NEAR(film.state.voronoiArea[0], std::sqrt(3.0f) / 2.0f, kFormulaTolerance);
   EXPECT_NEAR(film.state.normal.get(0).z(), 1.0f, kFormulaTolerance);
 }
@@ -53,13 +53,13 @@ TEST(Geometry, MixedVoronoiAreasTileRightAndObtuseTriangles) {
   // Right isosceles triangle, legs 1: the right-angle corner gets 1/4, the others 1/8 each (circumcentre
   // on the hypotenuse).
   Film right = test::makeFilm(p, {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2});
-  for (size_t i = 0; i < 3; ++i) computeVertexGeometry(right.topology, right.state, i);
+  computeGeometry(right.topology, right.state);
   EXPECT_NEAR(right.state.voronoiArea[0], 0.25f, kFormulaTolerance);
   EXPECT_NEAR(right.state.voronoiArea[1], 0.125f, kFormulaTolerance);
   EXPECT_NEAR(right.state.voronoiArea[2], 0.125f, kFormulaTolerance);
   // Obtuse at particle 0: it gets half the area 0.5, the others a quarter each.
   Film obtuse = test::makeFilm(p, {{0, 0, 0}, {1, 0.2f, 0}, {-1, 0.2f, 0}}, {0, 1, 2});
-  for (size_t i = 0; i < 3; ++i) computeVertexGeometry(obtuse.topology, obtuse.state, i);
+  computeGeometry(obtuse.topology, obtuse.state);
   const float area = 0.2f;  // base 2, height 0.2
   EXPECT_NEAR(obtuse.state.voronoiArea[0], area / 2, kFormulaTolerance);
   EXPECT_NEAR(obtuse.state.voronoiArea[1], area / 4, kFormulaTolerance);
@@ -138,7 +138,7 @@ TEST(Forces, Eq9AirPushesAlongTheNormalOnly) {
   p.airPressureGain = 2.0f;
   Film film = test::makeHexagon(p);
   State& s = film.state;
-  computeVertexGeometry(film.topology, s, 0);
+  computeGeometry(film.topology, s);
   s.elasticity.assign(s.size(), 0.0f);
   s.airFlow.set(0, Vec3(5, 0, -1));    // transferred air: only -1 along the normal +z counts
   s.airInflow.set(0, Vec3(0, 3, -2));  // direct inflow: -2 along the normal

@@ -83,7 +83,7 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
       }
       case Stage::Integrate: forEach(n, [&](size_t i) { integrateParticle(u, topo, s, i); }); break;
       case Stage::Drainage:  // two Jacobi passes: every outflow is known before anyone gathers
-        forEach(n, [&](size_t i) { computeDrainageOutflow(params_, u.dt, topo, s, i); });
+        forEach(n, [&](size_t i) { computeDrainageOutflow(params_, u.drainageDt, topo, s, i); });
         forEach(n, [&](size_t i) { gatherDrainage(params_, topo, s, i); });
         break;
       case Stage::Count: break;
@@ -101,7 +101,7 @@ float CpuStepper::step(const StepUniforms& u) {
   runStage(Stage::AirTransfer, u);
   runStage(Stage::Forces, u);
   runStage(Stage::Integrate, u);
-  runStage(Stage::Drainage, u);
+  if (u.drainageDt > 0) runStage(Stage::Drainage, u);
   return u.closed ? boylePressure(params_, u.referenceVolume, lastVolume_) : params_.pressureCoefficient;
 }
 

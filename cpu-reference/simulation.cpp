@@ -88,6 +88,7 @@ void Simulation::advanceFrame(const WandState& next) {
     const float t1 = static_cast<float>(k + 1) / static_cast<float>(substeps_);
     substepUniforms_.push_back(uniformsFor(interpolate(wands_, next, t0), interpolate(wands_, next, t1), dt));
   }
+  substepUniforms_.back().drainageDt = params_.frameTime;  // the frame's drainage, after its last substep
   pressure_ = stepper_->run(substepUniforms_);
   stepper_->store(film_);
   stepCount_ += substeps_;

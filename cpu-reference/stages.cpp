@@ -15,8 +15,10 @@ namespace {
 // areas still tile it. The cotangents of Meyer's formula share the denominator |cross| = 2 area, so
 // A_i = (|e_ij|^2 cot k + |e_ik|^2 cot j) / 8 = (|e_ij|^2 dot_k + |e_ik|^2 dot_j) / (16 area).
 float mixedVoronoiCorner(const Vec3& xi, const Vec3& xj, const Vec3& xk, float area) {
-  if (area <= 0) return 0.0f;
   const Vec3 eij = xj - xi, eik = xk - xi, ejk = xk - xj;
+  // A collapsed triangle (area below 1e-6 of its edges' squares, e.g. torn film folding at a hole's rim)
+  // has no meaningful angles: its corners share its vanishing area equally instead of dividing by it.
+  if (!(area > 1e-6f * (eij.squaredNorm() + eik.squaredNorm()))) return area / 3.0f;
   const float dotI = eij.dot(eik), dotJ = -eij.dot(ejk), dotK = eik.dot(ejk);  // cosines times lengths
   if (dotI < 0) return 0.5f * area;
   if (dotJ < 0 || dotK < 0) return 0.25f * area;

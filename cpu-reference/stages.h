@@ -23,6 +23,8 @@ struct StepUniforms {
   Vec3 volumeOrigin = Vec3::Zero();  // apex of the cone decomposition of the (swept) volume
   uint32_t closed = 0;              // 1 once the film is a closed bubble: Eqs. (10)-(11) replace Eq. (9)
   float referenceVolume = 0.0f;     // V_0 of Eq. (11), the volume when the bubble closed (m^3)
+  float drainageDt = 0.0f;          // drainage runs in this step over this time, 0: not in this step. Liquid
+                                    // drains over seconds, so once per frame is enough (Simulation)
 };
 
 // ---- Stage 1-2: geometry -------------------------------------------------------------------------------
@@ -84,7 +86,7 @@ void integrateParticle(const StepUniforms& u, const Topology& topo, State& s, si
 // Eq. (14): how closely the direction from sender x_i to receiver x_j follows gravity g, MAX(cos, 0).
 float drainageDirection(const Vec3& xi, const Vec3& xj, const Vec3& g);
 
-// Pass 1: particle i sends out_i = w_i min(1, dt rate D_i / Sticky) of its liquid, D_i = sum of d_dir(i->k)
+// Pass 1: particle i sends out_i = w_i min(1, dt rate D_i / Sticky) of its liquid (dt: StepUniforms::drainageDt), D_i = sum of d_dir(i->k)
 // over its neighbours; stores out_i and D_i.
 void computeDrainageOutflow(const Params& p, float dt, const Topology& topo, State& s, size_t i);
 

@@ -15,10 +15,6 @@ void State::resize(size_t n) {
   alive.assign(n, 1u);
 }
 
-bool Topology::isClosed() const {
-  return std::none_of(boundary.begin(), boundary.end(), [](uint32_t b) { return b != 0; });
-}
-
 namespace {
 
 using Edge = std::pair<uint32_t, uint32_t>;
@@ -61,6 +57,8 @@ void buildAdjacency(Topology& topo) {
   fill.assign(topo.triangleOffset.begin(), topo.triangleOffset.end() - 1);
   for (uint32_t t = 0; t < topo.triangleCount(); ++t)
     for (int c = 0; c < 3; ++c) topo.triangleIndex[fill[topo.triangles[3 * t + c]]++] = t;
+  const auto uses = edgeUseCounts(topo.triangles);
+  topo.closed = !uses.empty() && std::none_of(uses.begin(), uses.end(), [](const auto& e) { return e.second == 1; });
 }
 
 Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, const Vec3Array& positions) {

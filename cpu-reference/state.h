@@ -75,8 +75,9 @@ struct Topology {
   [[nodiscard]] size_t triangleCount() const { return triangles.size() / 3; }
   [[nodiscard]] size_t springCount() const { return restLength.size(); }
   [[nodiscard]] size_t particleCount() const { return boundary.size(); }
-  // A closed film (a bubble) has no boundary edge; Eqs. (10)-(11) then apply.
-  [[nodiscard]] bool isClosed() const;
+  bool closed = false;                    // no edge is used by one triangle only: a bubble. Eqs. (10)-(11)
+                                          // apply; a burst tears it open again. Set by buildAdjacency.
+  [[nodiscard]] bool isClosed() const { return closed; }
 };
 
 // Builds springs (one per mesh edge, rest length from the current distance), the CSR one-ring arrays and

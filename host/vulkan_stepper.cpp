@@ -46,6 +46,7 @@ StepUniformsBlock toBlock(const StepUniforms& u) {
   b.referenceVolume = u.referenceVolume;
   b.frameKind = static_cast<int>(u.frameNext.kind);
   b.closed = u.closed;
+  b.drainageDt = u.drainageDt;
   return b;
 }
 
@@ -211,7 +212,7 @@ struct VulkanStepper::Impl {
   // One substep. Barriers go only where a stage reads what the stages before it wrote: the geometry's
   // vertex pass, air inflow and the triangle volumes read positions only and run together; film state and air transfer need the
   // areas and inflow; forces need everything; integration must not move particles that forces still read.
-  void recordStep(const vk::raii::CommandBuffer& cb, uint32_t stepIndex, bool closed) {
+  void recordStep(const vk::raii::CommandBuffer& cb, uint32_t stepIndex, bool closed, bool drainage) {
     recordStage(cb, Stage::Geometry, stepIndex);
     recordStage(cb, Stage::AirInflow, stepIndex);
     if (closed) {
@@ -226,8 +227,10 @@ struct VulkanStepper::Impl {
     computeToComputeBarrier(cb);
     recordStage(cb, Stage::Integrate, stepIndex);
     computeToComputeBarrier(cb);  // drainage and the next substep read the new positions
-    recordStage(cb, Stage::Drainage, stepIndex);
-    computeToComputeBarrier(cb);  // the next substep's film state reads the new liquid
+    if (drainage) {
+      recordStage(cb, Stage::Drainage, stepIndex);
+      computeToComputeBarrier(cb);  // the next substep's film state reads the new liquid
+    }
   }
 
   void uploadSteps(std::span<const StepUniforms> steps) {
@@ -347,6 +350,7 @@ float VulkanStepper::run(std::span<const StepUniforms> substeps) {
       for (Stage stage : {Stage::Geometry, Stage::Volume, Stage::FilmState, Stage::AirInflow, Stage::AirTransfer,
                           Stage::Forces, Stage::Integrate, Stage::Drainage}) {
         if (stage == Stage::Volume && !closed) continue;
+        if (stage == Stage::Drainage && !(substeps[k].drainageDt > 0)) continue;
         m.recordStage(cb, stage, k);
         computeToComputeBarrier(cb);
         cb.writeTimestamp(vk::PipelineStageFlagBits::eComputeShader, *pool, q++);
@@ -360,7 +364,8 @@ float VulkanStepper::run(std::span<const StepUniforms> substeps) {
     for (size_t k = 0; k < order.size(); ++k)
       times_[static_cast<int>(order[k])] += static_cast<double>(ticks[k + 1] - ticks[k]) * m.ctx->timestampPeriodNs() * 1e-6;
   } else {
-    for (uint32_t k = 0; k < substeps.size(); ++k) m.recordStep(cb, k, substeps[k].closed != 0);
+    for (uint32_t k = 0; k < substeps.size(); ++k)
+      m.recordStep(cb, k, substeps[k].closed != 0, substeps[k].drainageDt > 0);
     computeToHostBarrier(cb);
     cb.end();
     m.ctx->submitAndWait(cb);

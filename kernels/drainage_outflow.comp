@@ -12,5 +12,5 @@ void main() {
   for (uint k = springOffset[i]; k < springOffset[i + 1u]; ++k)
     weight += drainageDirection(xi, LOAD3(position, springNeighbour[k]), g);
   drainWeight[i] = weight;
-  drainOutflow[i] = liquid[i] * min(1.0, steps[pc.stepIndex].dt * params.drainageRate * weight / params.sticky);
+  drainOutflow[i] = liquid[i] * min(1.0, steps[pc.stepIndex].drainageDt * params.drainageRate * weight / params.sticky);
 }

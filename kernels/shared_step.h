@@ -31,7 +31,7 @@ struct StepUniformsBlock {
   float referenceVolume;  // V_0 of Eq. (11)
   int frameKind;          // ToolKind: 0 two wands, 1 ring
   uint closed;            // 1 for a closed bubble
-  uint pad0;
+  float drainageDt;       // drainage time of this substep, 0: no drainage
   uint pad1;
   uint pad2;
 };

@@ -6,8 +6,8 @@
 
 // mixedVoronoiCorner of cpu-reference/stages.cpp.
 float mixedVoronoiCorner(vec3 xi, vec3 xj, vec3 xk, float area) {
-  if (area <= 0.0) return 0.0;
   const vec3 eij = xj - xi, eik = xk - xi, ejk = xk - xj;
+  if (!(area > 1e-6 * (dot(eij, eij) + dot(eik, eik)))) return area / 3.0;
   const float dotI = dot(eij, eik), dotJ = -dot(eij, ejk), dotK = dot(eik, ejk);
   if (dotI < 0.0) return 0.5 * area;
   if (dotJ < 0.0 || dotK < 0.0) return 0.25 * area;

@@ -23,6 +23,7 @@ Film drainedRingFilm(Params p, float seconds) {
   stepper.load(p, film);
   StepUniforms u;
   u.dt = 0.01f;
+  u.drainageDt = 0.01f;
   for (int k = 0; k < static_cast<int>(seconds / u.dt); ++k) stepper.runStage(Stage::Drainage, u);
   CpuStepper::refreshGeometry(p, film);
   return film;

@@ -73,6 +73,18 @@ TEST(PinchOff, ClosingTheWandsPinchesTheFilmOffByItself) {
   EXPECT_TRUE(sim->film().topology.isClosed());
 }
 
+TEST(PinchOff, ABurstTearsTheBubbleOpenSoBoylesPressureStops) {
+  auto sim = bulgedFilm(800, 50);
+  ASSERT_TRUE(sim->pinch());
+  sim->startBurst(sim->topParticle());
+  sim->advanceFrame(gestureAt(Gesture::Straight, GestureOptions{}, 1.0));
+  ASSERT_GT(sim->lastEvents().particlesRemoved, 0u);
+  // The punctured bubble's inside is at ambient pressure: the pressure of Eq. (10) must not act on a
+  // volume that the hole is taking to zero.
+  EXPECT_FALSE(sim->film().topology.isClosed());
+  for (int f = 0; f < 40; ++f) ASSERT_NO_THROW(sim->advanceFrame(gestureAt(Gesture::Straight, GestureOptions{}, 1.0)));
+}
+
 long residentKiB() {
   std::ifstream statm("/proc/self/statm");
   long pages = 0, resident = 0;

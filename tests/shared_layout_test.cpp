@@ -82,7 +82,7 @@ TEST(SharedLayout, StepUniformsAndPushConstantsMatchTheCppOffsets) {
       {"referenceVolume", offsetof(StepUniformsBlock, referenceVolume)},
       {"frameKind", offsetof(StepUniformsBlock, frameKind)},
       {"closed", offsetof(StepUniformsBlock, closed)},
-      {"pad0", offsetof(StepUniformsBlock, pad0)},
+      {"drainageDt", offsetof(StepUniformsBlock, drainageDt)},
       {"pad1", offsetof(StepUniformsBlock, pad1)},
       {"pad2", offsetof(StepUniformsBlock, pad2)}};
   const auto members = structLayout(kernels::spirv(kernels::Kernel::Integrate), "StepUniformsBlock");

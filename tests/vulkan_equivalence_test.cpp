@@ -49,6 +49,7 @@ struct MovingFilm {
     film = sim.film();
     const float dt = params.frameTime / static_cast<float>(sim.substepsPerFrame());
     uniforms = sim.uniformsFor(gestureAt(Gesture::Straight, gesture, 0.4), gestureAt(Gesture::Straight, gesture, 0.4 + dt), dt);
+    uniforms.drainageDt = params.frameTime;
   }
 };
 

@@ -39,17 +39,6 @@ double signedVolume(const Film& film, const Vec3& origin) {
   return v;
 }
 
-Vec3 meanPosition(const State& s) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  size_t n = 0;
-  for (size_t i = 0; i < s.size(); ++i)
-    if (s.alive[i]) {
-      sum += s.position.get(i).cast<double>();
-      ++n;
-    }
-  return (sum / static_cast<double>(std::max<size_t>(n, 1))).cast<float>();
-}
-
 }  // namespace
 
 bool pinchOff(const Params& params, Film& film) {
@@ -151,7 +140,7 @@ bool pinchOff(const Params& params, Film& film) {
     result.state.alive[i] = 1u;
   }
   // Outward normals: a closed film encloses a positive volume.
-  result.volumeOrigin = meanPosition(result.state);
+  result.volumeOrigin = centroid(result.state);
   double volume = signedVolume(result, result.volumeOrigin);
   if (volume < 0) {
     for (size_t t = 0; t < result.topology.triangleCount(); ++t)

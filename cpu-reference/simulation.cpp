@@ -18,19 +18,6 @@ float wandAlignment(const WandState& w) {
 
 Vec3 gravityOf(const Params& p) { return {p.gravityX, p.gravityY, p.gravityZ}; }
 
-// Mean position of the living particles: the volume origin of a closed bubble (any point works; a near
-// one keeps float rounding small).
-Vec3 centroid(const State& s) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  size_t count = 0;
-  for (size_t i = 0; i < s.size(); ++i)
-    if (s.alive[i]) {
-      sum += s.position.get(i).cast<double>();
-      ++count;
-    }
-  return count ? Vec3((sum / static_cast<double>(count)).cast<float>()) : Vec3::Zero();
-}
-
 }  // namespace
 
 Simulation::Simulation(const Params& params, const WandTool& tool, const WandState& wands,

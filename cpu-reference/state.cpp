@@ -15,6 +15,17 @@ void State::resize(size_t n) {
   alive.assign(n, 1u);
 }
 
+Vec3 centroid(const State& s) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  size_t count = 0;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.alive[i]) {
+      sum += s.position.get(i).cast<double>();
+      ++count;
+    }
+  return count ? Vec3((sum / static_cast<double>(count)).cast<float>()) : Vec3::Zero();
+}
+
 namespace {
 
 using Edge = std::pair<uint32_t, uint32_t>;

@@ -56,6 +56,9 @@ struct State {
   void resize(size_t n);
 };
 
+// Mean position of the living particles (double accumulation); the origin when none lives.
+Vec3 centroid(const State& s);
+
 // Mesh connectivity. Triangles are consistently oriented; springs are the mesh edges. The CSR arrays list,
 // for each particle, its springs (with the neighbour at the other end) and its triangles, in a fixed order
 // that both backends use for every sum over a one-ring.

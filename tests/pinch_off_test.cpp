@@ -22,11 +22,6 @@ std::unique_ptr<Simulation> bulgedFilm(int particles, int frames) {
   return sim;
 }
 
-Vec3 centroid(const State& s) {
-  Vec3 c = Vec3::Zero();
-  for (size_t i = 0; i < s.size(); ++i) c += s.position.get(i) / static_cast<float>(s.size());
-  return c;
-}
 
 TEST(PinchOff, TheBubbleIsAClosedOrientedSphereWithOutwardNormalsAndPositiveVolume) {
   auto sim = bulgedFilm(1500, 60);

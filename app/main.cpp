@@ -57,6 +57,8 @@ int main(int argc, char** argv) {
   runCmd->add_option("--out", run.outDir, "output folder (created if missing)");
   runCmd->add_option("--ply-every", run.plyEvery, "write a PLY mesh every N frames, 0 for none")
       ->check(CLI::Range(0, 1000000));
+  runCmd->add_option("--images-every", run.imageEvery, "write a thickness image (PNG) every N frames, 0 for none")
+      ->check(CLI::Range(0, 1000000));
   runCmd->add_option("--tool", tool, "bubble tool")->check(CLI::IsMember({"two-wands", "ring"}));
   runCmd->add_option("--gesture", gesture, "scripted wand gesture")->check(CLI::IsMember(gb::gestureNames()));
   runCmd->add_option("--speed", run.gestureOptions.speed, "peak wand speed (m/s)")->check(CLI::Range(0.0, 20.0));

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include "run_output.h"
+#include "thickness_image.h"
 #include "simulation.h"
 
 namespace gb {
@@ -44,6 +45,12 @@ std::string meshName(long frame) {
   return name;
 }
 
+std::string imageName(long frame) {
+  char name[40];
+  std::snprintf(name, sizeof name, "thickness_%05ld.png", frame);
+  return name;
+}
+
 void printSummary(const FrameStats& first, const FrameStats& last, long frames, int substeps, double wallSeconds,
                   const std::filesystem::path& outDir) {
   const double fps = static_cast<double>(frames) / std::max(wallSeconds, 1e-9);
@@ -78,6 +85,7 @@ int runSimulation(const RunOptions& o) {
   const FrameStats first = sim.stats();
   stats.write(0, first, sim.substepsPerFrame(), 0.0, "film_created");
   if (o.plyEvery > 0) writePly(o.outDir / meshName(0), sim.film());
+  if (o.imageEvery > 0) writeThicknessImage(o.outDir / imageName(0), sim.film(), sim.aerosol(), ImageView{});
 
   ProgressBar bar(frames);
   FrameStats last = first;
@@ -106,6 +114,8 @@ int runSimulation(const RunOptions& o) {
     if (sim.lastEvents().pinchedOff) events += "pinched_off ";
     if (!events.empty()) events.pop_back();
     stats.write(frame, last, sim.substepsPerFrame(), ms, events);
+    if (o.imageEvery > 0 && frame % o.imageEvery == 0)
+      writeThicknessImage(o.outDir / imageName(frame), sim.film(), sim.aerosol(), ImageView{});
     if (o.plyEvery > 0 && frame % o.plyEvery == 0) {
       writePly(o.outDir / meshName(frame), sim.film());
       if (sim.aerosol().size() > 0) writeAerosolPly(o.outDir / ("aerosol" + meshName(frame).substr(4)), sim.aerosol());

@@ -20,6 +20,7 @@ struct RunOptions {
   double burstAt = 3.5;                   // poke the top of the film at this time (s); negative: never
   std::filesystem::path outDir = "out";
   int plyEvery = 25;                      // write a mesh every this many frames (0: never)
+  int imageEvery = 10;                    // write a thickness image every this many frames (0: never)
   bool progress = true;
   Backend backend = Backend::Auto;
   std::string device;                     // Vulkan device index or name part (empty: best available)

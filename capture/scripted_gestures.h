@@ -9,7 +9,9 @@
 
 namespace gb {
 
-enum class Gesture { Straight };
+// The wand motions of Figure 10: straight (a), left wand circling (b), both circling (c), twisted with
+// sudden, growing redirections (d), up and down (e), rising from below (f).
+enum class Gesture { Straight, CircleLeft, Circles, Twisted, UpDown, Rising };
 
 struct GestureOptions {
   float tipSeparation = 1.0f;  // distance between the wand tips (m)
@@ -19,8 +21,10 @@ struct GestureOptions {
   float duration = 3.0f;       // length of the stroke (s)
 };
 
-// Both wands at time t (s). Straight (Figure 10a): both tips move together along +z, perpendicular to
-// the film, with speed speed * sin^2(pi tau / duration), so they start and stop smoothly.
+// Both wands at time t (s). Every gesture carries both tips along +z, perpendicular to the film, with
+// speed speed * sin^2(pi tau / duration) (tau = t - start), so they start and stop smoothly; the others add
+// their own motion with the same sin^2 envelope. Velocities are the exact time derivative for straight and
+// a central difference (1e-4 s) of the positions for the others.
 WandState gestureAt(Gesture gesture, const GestureOptions& options, double t);
 
 Gesture gestureFromName(const std::string& name);  // throws std::invalid_argument naming the choices

@@ -25,7 +25,9 @@ void applyParameter(gb::Params& p, const std::string& assignment) {
       {"thicknessThreshold", &p.thicknessThreshold}, {"sticky", &p.sticky},
       {"collisionThreshold", &p.collisionThreshold}, {"solution", &p.solution},
       {"drainageRate", &p.drainageRate}, {"surfaceTension", &p.surfaceTension}, {"liquidDensity", &p.liquidDensity},
-      {"aerosolLifetime", &p.aerosolLifetime}, {"aerosolDrag", &p.aerosolDrag}, {"pinchDistance", &p.pinchDistance}};
+      {"aerosolLifetime", &p.aerosolLifetime}, {"aerosolDrag", &p.aerosolDrag}, {"pinchDistance", &p.pinchDistance},
+      {"collisionDistance", &p.collisionDistance}, {"collisionStiffness", &p.collisionStiffness},
+      {"collisionDamping", &p.collisionDamping}};
   const std::map<std::string, int*> ints = {{"maxSubsteps", &p.maxSubsteps}, {"holeOpening", &p.holeOpening},
                                             {"particlesAtFullSolution", &p.particlesAtFullSolution}};
   size_t used = 0;

@@ -39,6 +39,9 @@ std::vector<std::string> validate(const Params& p) {
   requireRange(e, "pressureCoefficient", p.pressureCoefficient, 1.0f, 1e7f, " Pa");
   requireRange(e, "thicknessThreshold", p.thicknessThreshold, 0.0f, 1e-3f, " m");
   requireRange(e, "sticky", p.sticky, 1e-3f, 1e6f, "");
+  requireRange(e, "collisionDistance", p.collisionDistance, 0.0f, 1.0f, " m");
+  requireRange(e, "collisionStiffness", p.collisionStiffness, 0.0f, 1e4f, " N/m");
+  requireRange(e, "collisionDamping", p.collisionDamping, 0.0f, 10.0f, " N s/m");
   requireRange(e, "drainageRate", p.drainageRate, 0.0f, 1e3f, " 1/s");
   requireRange(e, "surfaceTension", p.surfaceTension, 1e-4f, 1.0f, " N/m");
   requireRange(e, "liquidDensity", p.liquidDensity, 1.0f, 1e5f, " kg/m^3");

@@ -1,5 +1,7 @@
 #include "simulation.h"
 
+#include "collision.h"
+
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -87,7 +89,19 @@ void Simulation::advanceFrame(const WandState& next) {
   const bool tipsTogether = film_.tool.kind == ToolKind::TwoWands &&
                             (next.rightPosition - next.leftPosition).norm() < params_.pinchDistance;
   if (tipsTogether && !film_.topology.isClosed() && !burst_.active()) events_.pinchedOff = pinch();
+  updateContacts();
   aerosol_.advance(params_, params_.frameTime);
+}
+
+void Simulation::updateContacts() {
+  // Contacts for the next frame: within reach of what two particles can close in one frame.
+  float fastest = 0.0f;
+  const State& s = film_.state;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.alive[i]) fastest = std::max(fastest, s.velocity.get(i).norm());
+  const float margin = std::min(0.05f, 2.0f * fastest * params_.frameTime + 0.005f);
+  findContacts(params_, margin, film_);
+  stepper_->updateContacts(film_);
 }
 
 void Simulation::startBurst(size_t particle) { startCrack(burst_, film_, particle, time_); }

@@ -83,6 +83,7 @@ class Simulation {
 
  private:
   void chooseSubsteps();
+  void updateContacts();
   void checkStable() const;
 
   Params params_;

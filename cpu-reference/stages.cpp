@@ -151,6 +151,19 @@ void computeForces(const Params& p, const StepUniforms& u, float pressure, const
     f += stiffness * (len - topo.restLength[topo.springIndex[k]]) * dir;        // Eq. (3)
     f += p.springDamping * (s.velocity.get(j) - vi).dot(dir) * dir;            // Algorithm 1, line 5
   }
+  // Self-collision: contacts closer than the collision distance repel along their separation and damp their
+  // approach; the tangential motion is free, so colliding sheets slip (Section 8).
+  const uint32_t base = static_cast<uint32_t>(s.size()) + 1;
+  for (uint32_t k = topo.contacts[i]; k < topo.contacts[i + 1]; ++k) {
+    const uint32_t j = topo.contacts[base + k];
+    const Vec3 d = xi - s.position.get(j);
+    const float len = d.norm();
+    if (!(len > 0 && len < p.collisionDistance)) continue;
+    const Vec3 away = d / len;
+    const float approach = (vi - s.velocity.get(j)).dot(away);
+    f += p.collisionStiffness * (p.collisionDistance - len) * away;
+    if (approach < 0) f -= p.collisionDamping * approach * away;
+  }
   f += s.mass[i] * Vec3(p.gravityX, p.gravityY, p.gravityZ);                    // external force
   f -= p.airDrag * area * vi;                                                   // still air resists
   const float flowIn = s.airFlow.get(i).dot(n), directIn = s.airInflow.get(i).dot(n);
@@ -227,10 +240,12 @@ float stableTimeStep(const Params& p, const Topology& topo, const State& s, floa
   for (size_t i = 0; i < s.size(); ++i) {
     if (!s.alive[i] || topo.boundary[i] || s.mass[i] <= 0) continue;
     const float springs = static_cast<float>(topo.springOffset[i + 1] - topo.springOffset[i]);
-    float stiffness = 2.0f * springs * eMax;  // Gershgorin: row sum of |K| is at most twice the diagonal
+    // Gershgorin: row sum of |K| is at most twice the diagonal; up to 6 collision contacts at a time.
+    float stiffness = 2.0f * (springs * eMax + 6.0f * p.collisionStiffness);
     if (closed && volume > 0) stiffness += pressure * s.voronoiArea[i] * s.voronoiArea[i] / volume;
     const float omega = std::sqrt(stiffness / s.mass[i]);
-    const float damping = (2.0f * springs * p.springDamping + p.airDrag * s.voronoiArea[i]) / s.mass[i];
+    const float damping =
+        (2.0f * (springs * p.springDamping + 6.0f * p.collisionDamping) + p.airDrag * s.voronoiArea[i]) / s.mass[i];
     dt = std::min(dt, 2.0f / (omega + damping));
   }
   return p.stabilitySafety * dt;

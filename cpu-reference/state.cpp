@@ -68,6 +68,7 @@ void buildAdjacency(Topology& topo) {
   fill.assign(topo.triangleOffset.begin(), topo.triangleOffset.end() - 1);
   for (uint32_t t = 0; t < topo.triangleCount(); ++t)
     for (int c = 0; c < 3; ++c) topo.triangleIndex[fill[topo.triangles[3 * t + c]]++] = t;
+  topo.contacts.assign(n + 1, 0u);  // no contacts until the collision search runs
   const auto uses = edgeUseCounts(topo.triangles);
   topo.closed = !uses.empty() && std::none_of(uses.begin(), uses.end(), [](const auto& e) { return e.second == 1; });
 }

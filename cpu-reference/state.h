@@ -78,6 +78,9 @@ struct Topology {
   [[nodiscard]] size_t triangleCount() const { return triangles.size() / 3; }
   [[nodiscard]] size_t springCount() const { return restLength.size(); }
   [[nodiscard]] size_t particleCount() const { return boundary.size(); }
+  // Self-collision candidates of each particle for the current frame, as one packed CSR array:
+  // contacts[i] .. contacts[i + 1] index the neighbours stored from contacts[n + 1] on (collision.h).
+  std::vector<uint32_t> contacts;
   bool closed = false;                    // no edge is used by one triangle only: a bubble. Eqs. (10)-(11)
                                           // apply; a burst tears it open again. Set by buildAdjacency.
   [[nodiscard]] bool isClosed() const { return closed; }

@@ -36,6 +36,8 @@ class Stepper {
   virtual float runStage(Stage stage, const StepUniforms& uniforms) = 0;
   // Brings the per-particle state back into the film given to load (nothing to do on the CPU).
   virtual void store(Film& film) = 0;
+  // Takes the film's new self-collision contact list (Topology::contacts), found between frames.
+  virtual void updateContacts(const Film&) {}
 
   virtual void enableTiming(bool on) { timing_ = on; }
   [[nodiscard]] const StageTimes& stageTimes() const { return times_; }

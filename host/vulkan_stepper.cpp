@@ -282,6 +282,7 @@ void VulkanStepper::load(const Params& params, Film& film) {
   make(GB_BINDING_SPRING_NEIGHBOUR, t.springNeighbour.size() * sizeof(uint32_t));
   make(GB_BINDING_TRIANGLE_OFFSET, t.triangleOffset.size() * sizeof(uint32_t));
   make(GB_BINDING_TRIANGLE_INDEX, t.triangleIndex.size() * sizeof(uint32_t));
+  make(GB_BINDING_CONTACTS, t.contacts.size() * sizeof(uint32_t));
   make(GB_BINDING_TRIANGLE_NORMAL, 3 * t.triangleCount() * sizeof(float));
   make(GB_BINDING_CORNER_AREA, 3 * t.triangleCount() * sizeof(float));
   make(GB_BINDING_REDUCE_A, std::max<size_t>(m.triangles, 1) * sizeof(float));
@@ -315,6 +316,7 @@ void VulkanStepper::load(const Params& params, Film& film) {
   writeVector(m.buffer(GB_BINDING_SPRING_NEIGHBOUR), t.springNeighbour);
   writeVector(m.buffer(GB_BINDING_TRIANGLE_OFFSET), t.triangleOffset);
   writeVector(m.buffer(GB_BINDING_TRIANGLE_INDEX), t.triangleIndex);
+  writeVector(m.buffer(GB_BINDING_CONTACTS), t.contacts);
 
   m.sets.clear();
   const vk::DescriptorPoolSize poolSize(vk::DescriptorType::eStorageBuffer, 2 * GB_BINDING_COUNT);
@@ -386,6 +388,17 @@ float VulkanStepper::runStage(Stage stage, const StepUniforms& uniforms) {
   cb.end();
   m.ctx->submitAndWait(cb);
   return stage == Stage::Volume ? m.readVolume() : 0.0f;
+}
+
+void VulkanStepper::updateContacts(const Film& film) {
+  Impl& m = *impl_;
+  const std::vector<uint32_t>& contacts = film.topology.contacts;
+  const size_t bytes = contacts.size() * sizeof(uint32_t);
+  if (bytes > m.buffer(GB_BINDING_CONTACTS).size()) {  // grow geometrically: contacts come and go
+    m.buffer(GB_BINDING_CONTACTS) = DeviceBuffer(*m.ctx, 2 * bytes);
+    m.writeDescriptorSets();
+  }
+  writeVector(m.buffer(GB_BINDING_CONTACTS), contacts);
 }
 
 void VulkanStepper::store(Film& film) {

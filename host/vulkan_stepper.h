@@ -24,6 +24,7 @@ class VulkanStepper final : public Stepper {
   float run(std::span<const StepUniforms> substeps) override;
   float runStage(Stage stage, const StepUniforms& uniforms) override;
   void store(Film& film) override;
+  void updateContacts(const Film& film) override;
 
   [[nodiscard]] const VulkanContext& context() const;
 

@@ -39,6 +39,7 @@ layout(std430, binding = GB_BINDING_DRAIN_OUTFLOW) buffer DrainOutflowBuffer { f
 layout(std430, binding = GB_BINDING_DRAIN_WEIGHT) buffer DrainWeightBuffer { float drainWeight[]; };
 layout(std430, binding = GB_BINDING_TRIANGLE_NORMAL) buffer TriangleNormalBuffer { float triangleNormal[]; };
 layout(std430, binding = GB_BINDING_CORNER_AREA) buffer CornerAreaBuffer { float cornerArea[]; };
+layout(std430, binding = GB_BINDING_CONTACTS) readonly buffer ContactsBuffer { uint contacts[]; };
 
 // Vector attribute access: x, y, z blocks of pc.particles floats each.
 #define LOAD3(buf, i) vec3(buf[(i)], buf[pc.particles + (i)], buf[2u * pc.particles + (i)])

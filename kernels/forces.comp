@@ -21,6 +21,18 @@ void main() {
     f += stiffness * (len - restLength[springIndex[k]]) * dir;          // Eq. (3)
     f += params.springDamping * dot(LOAD3(velocity, j) - vi, dir) * dir;  // Algorithm 1, line 5
   }
+  // Self-collision contacts (packed CSR: offsets, then neighbours from pc.particles + 1).
+  const uint base = pc.particles + 1u;
+  for (uint k = contacts[i]; k < contacts[i + 1u]; ++k) {
+    const uint j = contacts[base + k];
+    const vec3 d = xi - LOAD3(position, j);
+    const float len = length(d);
+    if (!(len > 0.0 && len < params.collisionDistance)) continue;
+    const vec3 away = d / len;
+    const float approach = dot(vi - LOAD3(velocity, j), away);
+    f += params.collisionStiffness * (params.collisionDistance - len) * away;
+    if (approach < 0.0) f -= params.collisionDamping * approach * away;
+  }
   f += mass[i] * vec3(params.gravityX, params.gravityY, params.gravityZ);
   f -= params.airDrag * area * vi;
   const float flowIn = dot(LOAD3(airFlow, i), n), directIn = dot(LOAD3(airInflow, i), n);

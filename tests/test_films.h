@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "film.h"
+#include "scripted_gestures.h"
 
 namespace gb::test {
 
@@ -28,6 +29,25 @@ inline Film makeHexagon(const Params& params) {
     tri.insert(tri.end(), {0u, static_cast<uint32_t>(1 + k), static_cast<uint32_t>(1 + (k + 1) % 6)});
   }
   return makeFilm(params, p, tri);
+}
+
+// Two free parallel discs (ring films with their rims let go), the second `gap` metres further along +z,
+// the first moving towards it at `speed`: a film about to collide with itself.
+inline Film makeTwoSheets(const Params& params, float gap, float speed) {
+  WandTool ring;
+  ring.kind = ToolKind::Ring;
+  const Film a = generateFilm(params, ring, gestureAt(Gesture::Straight, GestureOptions{}, 0.0));
+  const size_t n = a.state.size();
+  std::vector<Vec3> positions;
+  for (size_t i = 0; i < n; ++i) positions.push_back(a.state.position.get(i));
+  for (size_t i = 0; i < n; ++i) positions.push_back(a.state.position.get(i) + Vec3(0, 0, gap));
+  std::vector<uint32_t> triangles = a.topology.triangles;
+  for (uint32_t v : a.topology.triangles) triangles.push_back(static_cast<uint32_t>(v + n));
+  Film film = makeFilm(params, positions, triangles);
+  film.tool = ring;
+  film.topology.boundary.assign(2 * n, 0u);  // nothing holds the rims
+  for (size_t i = 0; i < n; ++i) film.state.velocity.set(i, Vec3(0, 0, speed));
+  return film;
 }
 
 }  // namespace gb::test

@@ -1,0 +1,83 @@
+#include "collision.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <unordered_map>
+
+namespace gb {
+
+namespace {
+
+using Cell = std::array<int, 3>;
+
+uint64_t cellKey(const Cell& c) {
+  // 21 bits per axis: cells of a few centimetres cover +-20 km.
+  auto bits = [](int v) { return static_cast<uint64_t>(v + (1 << 20)) & 0x1fffff; };
+  return bits(c[0]) | (bits(c[1]) << 21) | (bits(c[2]) << 42);
+}
+
+Cell cellOf(const Vec3& x, float size) {
+  return {static_cast<int>(std::floor(x.x() / size)), static_cast<int>(std::floor(x.y() / size)),
+          static_cast<int>(std::floor(x.z() / size))};
+}
+
+bool isOneRingNeighbour(const Topology& topo, uint32_t i, uint32_t j) {
+  const auto begin = topo.springNeighbour.begin() + topo.springOffset[i];
+  const auto end = topo.springNeighbour.begin() + topo.springOffset[i + 1];
+  return std::find(begin, end, j) != end;
+}
+
+// Living particles that are still part of the film (a particle whose triangles all tore is not).
+bool inFilm(const Film& film, uint32_t i) {
+  return film.state.alive[i] && film.topology.triangleOffset[i + 1] > film.topology.triangleOffset[i];
+}
+
+}  // namespace
+
+size_t findContacts(const Params& p, float margin, Film& film) {
+  const State& s = film.state;
+  Topology& topo = film.topology;
+  const size_t n = s.size();
+  const float reach = p.collisionDistance + margin;
+  std::vector<std::vector<uint32_t>> lists(n);
+  if (reach > 0 && p.collisionStiffness > 0) {
+    std::unordered_map<uint64_t, std::vector<uint32_t>> grid;
+    for (uint32_t i = 0; i < n; ++i)
+      if (inFilm(film, i)) grid[cellKey(cellOf(s.position.get(i), reach))].push_back(i);
+    constexpr float acrossCosine = 0.7071f;  // 45 degrees
+    for (uint32_t i = 0; i < n; ++i) {
+      if (!inFilm(film, i)) continue;
+      const Vec3 xi = s.position.get(i), ni = s.normal.get(i);
+      const Cell c = cellOf(xi, reach);
+      for (int dx = -1; dx <= 1; ++dx)
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dz = -1; dz <= 1; ++dz) {
+            const auto found = grid.find(cellKey({c[0] + dx, c[1] + dy, c[2] + dz}));
+            if (found == grid.end()) continue;
+            for (uint32_t j : found->second) {
+              if (j == i) continue;
+              const Vec3 d = s.position.get(j) - xi;
+              const float len = d.norm();
+              if (!(len < reach) || len <= 0) continue;
+              const bool across = std::abs(ni.dot(d)) > acrossCosine * len ||
+                                  std::abs(s.normal.get(j).dot(d)) > acrossCosine * len;
+              if (across && !isOneRingNeighbour(topo, i, j)) lists[i].push_back(j);
+            }
+          }
+      std::sort(lists[i].begin(), lists[i].end());
+    }
+  }
+  std::vector<uint32_t> packed(n + 1, 0u);
+  size_t total = 0;
+  for (size_t i = 0; i < n; ++i) {
+    packed[i] = static_cast<uint32_t>(total);
+    total += lists[i].size();
+  }
+  packed[n] = static_cast<uint32_t>(total);
+  for (const auto& list : lists) packed.insert(packed.end(), list.begin(), list.end());
+  topo.contacts = std::move(packed);
+  return total / 2;
+}
+
+}  // namespace gb

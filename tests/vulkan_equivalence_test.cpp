@@ -28,6 +28,14 @@ double worstRelativeError(const std::vector<float>& cpu, const std::vector<float
   return worst;
 }
 
+// Largest distance between the same particle in two films (m).
+double worstParticleDistance(const Film& a, const Film& b) {
+  double worst = 0;
+  for (size_t i = 0; i < a.state.size(); ++i)
+    worst = std::max(worst, static_cast<double>((a.state.position.get(i) - b.state.position.get(i)).norm()));
+  return worst;
+}
+
 std::vector<float> flatten(const Vec3Array& a) {
   std::vector<float> v = a.x;
   v.insert(v.end(), a.y.begin(), a.y.end());
@@ -216,10 +224,7 @@ TEST_P(VulkanScene, FiveHundredStepsStayWithinAMillimetre) {
     gpu->advanceFrame(w);
     steps += cpu->substepsPerFrame();
   }
-  double worstDistance = 0;
-  for (size_t i = 0; i < cpu->film().state.size(); ++i)
-    worstDistance = std::max(worstDistance, static_cast<double>((cpu->film().state.position.get(i) -
-                                                                 gpu->film().state.position.get(i)).norm()));
+  const double worstDistance = worstParticleDistance(cpu->film(), gpu->film());
   const FrameStats a = cpu->stats(), b = gpu->stats();
   std::printf("%s: %ld steps, worst particle distance %.2e m\n", GetParam().name, steps, worstDistance);
   EXPECT_LT(worstDistance, 1e-3);
@@ -268,9 +273,7 @@ TEST(VulkanEquivalence, ATopologyEventLeavesIdenticalArrays) {
   }
   EXPECT_GT(cpu.film().topology.triangleCount(), 0u) << "the burst should still be under way";
   EXPECT_LT(cpu.film().topology.triangleCount(), cpu.film().state.size() * 2 - 100) << "the burst must have begun";
-  double worst = 0;
-  for (size_t i = 0; i < cpu.film().state.size(); ++i)
-    worst = std::max(worst, static_cast<double>((cpu.film().state.position.get(i) - gpu.film().state.position.get(i)).norm()));
+  const double worst = worstParticleDistance(cpu.film(), gpu.film());
   EXPECT_LT(worst, 1e-3);
   EXPECT_EQ(device->validationErrors(), 0u);
 }
@@ -298,9 +301,7 @@ TEST(VulkanEquivalence, CollidingSheetsMatch) {
     gpu.advanceFrame(WandState{});
   }
   EXPECT_GT(cpu.film().topology.contacts.back(), 0u) << "the sheets must be in contact";
-  double worst = 0;
-  for (size_t i = 0; i < cpu.film().state.size(); ++i)
-    worst = std::max(worst, static_cast<double>((cpu.film().state.position.get(i) - gpu.film().state.position.get(i)).norm()));
+  const double worst = worstParticleDistance(cpu.film(), gpu.film());
   std::printf("colliding sheets: worst particle distance %.2e m\n", worst);
   EXPECT_LT(worst, 1e-3);
   EXPECT_EQ(device->validationErrors(), 0u);

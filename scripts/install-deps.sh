@@ -16,6 +16,11 @@ packages=(
   libvulkan-dev glslang-tools        # Vulkan compute backend; shaders compiled to SPIR-V at build time
   mesa-vulkan-drivers                # lavapipe: the software Vulkan device the tests and CI run on
   vulkan-validationlayers            # the tests run with the Khronos validation layer
+  libfreenect-dev libfreenect-bin    # Kinect v1 depth capture; fakenect plays recordings back
+  libglfw3-dev xvfb xauth            # live window; the window test runs under Xvfb
+  ffmpeg                             # MP4 output of rendered frames (optional at run time)
+  libtomlplusplus-dev                # scene files
+  liblo-dev liblo-tools              # OSC events for show control; oscdump in tests
 )
 
 missing=()

@@ -27,7 +27,8 @@ void applyParameter(gb::Params& p, const std::string& assignment) {
       {"drainageRate", &p.drainageRate}, {"surfaceTension", &p.surfaceTension}, {"liquidDensity", &p.liquidDensity},
       {"aerosolLifetime", &p.aerosolLifetime}, {"aerosolDrag", &p.aerosolDrag}, {"pinchDistance", &p.pinchDistance},
       {"collisionDistance", &p.collisionDistance}, {"collisionStiffness", &p.collisionStiffness},
-      {"collisionDamping", &p.collisionDamping}};
+      {"collisionDamping", &p.collisionDamping}, {"solutionReserve", &p.solutionReserve},
+      {"growthStretch", &p.growthStretch}};
   const std::map<std::string, int*> ints = {{"maxSubsteps", &p.maxSubsteps}, {"holeOpening", &p.holeOpening},
                                             {"particlesAtFullSolution", &p.particlesAtFullSolution}};
   size_t used = 0;

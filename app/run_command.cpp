@@ -112,6 +112,7 @@ int runSimulation(const RunOptions& o) {
     if (sim.lastEvents().started) events += "burst_started ";
     if (sim.lastEvents().finished) events += "burst_finished ";
     if (sim.lastEvents().pinchedOff) events += "pinched_off ";
+    if (sim.lastEvents().particlesAdded > 0) events += "film_grown ";
     if (!events.empty()) events.pop_back();
     stats.write(frame, last, sim.substepsPerFrame(), ms, events);
     if (o.imageEvery > 0 && frame % o.imageEvery == 0)

@@ -61,7 +61,7 @@ void writeAerosolPly(const std::filesystem::path& path, const Aerosol& aerosol) 
 
 StatsWriter::StatsWriter(const std::filesystem::path& path) : out_(openForWriting(path)) {
   out_ << "frame,time_s,particles,triangles,area_m2,volume_m3,kinetic_J,elastic_J,potential_J,liquid_m3,"
-          "mean_thickness_m,max_speed_mps,mean_air_flow_m3ps,droplets,droplet_mass_kg,substeps,frame_ms,events\n";
+          "mean_thickness_m,max_speed_mps,mean_air_flow_m3ps,solution,droplets,droplet_mass_kg,substeps,frame_ms,events\n";
   out_.flush();
 }
 
@@ -69,7 +69,7 @@ void StatsWriter::write(long frame, const FrameStats& st, int substeps, double f
                         const std::string& events) {
   out_ << frame << ',' << st.time << ',' << st.particles << ',' << st.triangles << ',' << st.area << ','
        << st.volume << ',' << st.kineticEnergy << ',' << st.elasticEnergy << ',' << st.potentialEnergy << ','
-       << st.liquid << ',' << st.meanThickness << ',' << st.maxSpeed << ',' << st.meanAirFlow << ',' << st.droplets
+       << st.liquid << ',' << st.meanThickness << ',' << st.maxSpeed << ',' << st.meanAirFlow << ',' << st.solution << ',' << st.droplets
        << ',' << st.dropletMass << ',' << substeps << ',' << frameMilliseconds << ',' << events << '\n';
   out_.flush();
 }

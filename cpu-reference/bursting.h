@@ -49,6 +49,7 @@ struct TopologyEvents {
   size_t trianglesRemoved = 0;  // left the physics mesh
   size_t dropletsEmitted = 0;
   bool pinchedOff = false;  // the film closed into a free bubble this frame (pinch_off.h)
+  size_t particlesAdded = 0;  // new film drawn off the wire this frame (film_growth.h)
 };
 
 // Taylor-Culick speed of a hole's rim in a film of thickness e: sqrt(2 gamma / (rho e)) (m/s).

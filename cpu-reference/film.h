@@ -15,11 +15,23 @@ struct Film {
   float referenceVolume = 0.0f;       // V_0 of Eq. (11) once the film is a closed bubble (m^3)
   Vec3 volumeOrigin = Vec3::Zero();   // closed bubble: apex of the volume's cone decomposition, fixed at
                                       // closure so that no backend needs to read the state back for it
+  // Soap solution control (Section 7): liquid still on the wet wire, from which new film is drawn.
+  float wireLiquid = 0.0f;        // m^3 left
+  float wireLiquidAtDip = 0.0f;   // m^3 the wire held when the film was made
+  float wireSpacing = 0.0f;       // spacing of the wire's particles when the film was made (m)
+  // Remaining soap solution in [0, 1]: Params::solution at the dip, less what growth has used since.
+  [[nodiscard]] float solutionLeft(const Params& params) const {
+    return wireLiquidAtDip > 0 ? params.solution * wireLiquid / wireLiquidAtDip : 0.0f;
+  }
 };
 
 // Gives every particle its material at creation: geometry, then mass (film inertia x rest Voronoi area),
 // liquid (initial thickness x rest Voronoi area), thickness, elasticity; lifetime 0, at rest.
 void initialiseFilmMaterial(const Params& params, Film& film);
+
+// Gives particles [first, n) the material of a new film (mass, liquid, thickness, elasticity, at rest),
+// after updating the geometry of the whole film: new particles stitched to an existing film.
+void initialiseNewParticles(const Params& params, Film& film, size_t first);
 
 // A film spanning the tool's wire frame (Sections 3 and 7): round(solution x particlesAtFullSolution)
 // particles, boundary particles spaced evenly along the frame, interior particles on a hexagonal lattice,

@@ -34,52 +34,6 @@ using Point2 = Eigen::Vector2f;
 Point2 toPlane(const WireFrame& f, const Vec3& p) { return {(p - f.center).dot(f.axis), (p - f.center).dot(f.down)}; }
 Vec3 fromPlane(const WireFrame& f, const Point2& q) { return f.center + q.x() * f.axis + q.y() * f.down; }
 
-// Frame coordinates of n points evenly spaced by arc length over u in [u0, u1) (dense sampling, then
-// inversion of the cumulative length).
-std::vector<float> evenlySpaced(const WireFrame& f, float u0, float u1, int n) {
-  constexpr int samples = 2048;
-  std::vector<float> length(samples + 1, 0.0f);
-  Vec3 prev = framePoint(f, u0);
-  for (int k = 1; k <= samples; ++k) {
-    const Vec3 p = framePoint(f, u0 + (u1 - u0) * static_cast<float>(k) / samples);
-    length[k] = length[k - 1] + (p - prev).norm();
-    prev = p;
-  }
-  std::vector<float> us;
-  for (int m = 0; m < n; ++m) {
-    const float target = length[samples] * static_cast<float>(m) / static_cast<float>(n);
-    const auto it = std::lower_bound(length.begin(), length.end(), target);
-    const int k = std::max(1, static_cast<int>(it - length.begin()));
-    const float span = length[k] - length[k - 1];
-    const float w = span > 0 ? (target - length[k - 1]) / span : 0.0f;
-    us.push_back(u0 + (u1 - u0) * (static_cast<float>(k - 1) + w) / samples);
-  }
-  return us;
-}
-
-float arcLength(const WireFrame& f, float u0, float u1) {
-  constexpr int samples = 2048;
-  float len = 0.0f;
-  Vec3 prev = framePoint(f, u0);
-  for (int k = 1; k <= samples; ++k) {
-    const Vec3 p = framePoint(f, u0 + (u1 - u0) * static_cast<float>(k) / samples);
-    len += (p - prev).norm();
-    prev = p;
-  }
-  return len;
-}
-
-// Boundary particles' frame coordinates for a target spacing. The two-wand loop gets particles at both
-// tips, where the wands hold it.
-std::vector<float> boundaryParameters(const WireFrame& f, float spacing) {
-  auto segments = [&](float len) { return std::max(3, static_cast<int>(std::lround(len / spacing))); };
-  if (f.kind == ToolKind::Ring) return evenlySpaced(f, 0.0f, 1.0f, segments(arcLength(f, 0.0f, 1.0f)));
-  std::vector<float> us = evenlySpaced(f, 0.0f, 1.0f, segments(arcLength(f, 0.0f, 1.0f)));
-  const std::vector<float> bottom = evenlySpaced(f, 1.0f, 2.0f, segments(arcLength(f, 1.0f, 2.0f)));
-  us.insert(us.end(), bottom.begin(), bottom.end());
-  return us;
-}
-
 double distanceToSegment(const Point2& p, const Point2& a, const Point2& b) {
   const Point2 ab = b - a;
   const float t = std::clamp((p - a).dot(ab) / std::max(ab.squaredNorm(), 1e-20f), 0.0f, 1.0f);
@@ -156,7 +110,7 @@ struct PlanarLayout {
 
 PlanarLayout layoutForSpacing(const WireFrame& f, float spacing) {
   PlanarLayout layout;
-  layout.boundaryU = boundaryParameters(f, spacing);
+  layout.boundaryU = wireParameters(f, spacing);
   for (float u : layout.boundaryU) layout.boundary.push_back(toPlane(f, framePoint(f, u)));
   layout.interior = hexLatticeInside(layout.boundary, spacing);
   return layout;
@@ -245,24 +199,38 @@ std::vector<uint32_t> triangulate(const PlanarLayout& layout) {
   return triangles;
 }
 
+// The wet wire after a dip: it holds solutionReserve times the new film's liquid for growth (Section 7).
+void fillWire(const Params& params, const PlanarLayout& layout, Film& film) {
+  double liquid = 0;
+  for (float l : film.state.liquid) liquid += l;
+  film.wireLiquidAtDip = film.wireLiquid = static_cast<float>(params.solutionReserve * liquid);
+  const size_t nb = layout.boundary.size();
+  float perimeter = 0.0f;
+  for (size_t k = 0; k < nb; ++k) perimeter += (layout.boundary[(k + 1) % nb] - layout.boundary[k]).norm();
+  film.wireSpacing = perimeter / static_cast<float>(nb);
+}
+
 }  // namespace
 
-void initialiseFilmMaterial(const Params& params, Film& film) {
-  for (float& l : film.topology.restLength) l *= 1.0f - params.springPrestrain;
+void initialiseNewParticles(const Params& params, Film& film, size_t first) {
   State& s = film.state;
   const float e0 = initialThickness(params);
   computeGeometry(film.topology, s);
-  for (size_t i = 0; i < s.size(); ++i) {
+  for (size_t i = first; i < s.size(); ++i) {
     s.mass[i] = params.filmInertia * s.voronoiArea[i];
     s.liquid[i] = e0 * s.voronoiArea[i];
     s.lifetime[i] = 0.0f;
+    s.alive[i] = 1u;
+    s.velocity.set(i, Vec3::Zero());
     updateFilmState(params, 0.0f, s, i);
   }
-  s.velocity.resize(s.size());
-  s.airFlow.resize(s.size());
-  s.airFlowNext.resize(s.size());
-  s.airInflow.resize(s.size());
-  s.force.resize(s.size());
+}
+
+void initialiseFilmMaterial(const Params& params, Film& film) {
+  for (float& l : film.topology.restLength) l *= 1.0f - params.springPrestrain;
+  initialiseNewParticles(params, film, 0);
+  State& s = film.state;
+  for (Vec3Array* a : {&s.airFlow, &s.airFlowNext, &s.airInflow, &s.force}) a->resize(s.size());
 }
 
 Film generateFilm(const Params& params, const WandTool& tool, const WandState& wands) {
@@ -292,6 +260,7 @@ Film generateFilm(const Params& params, const WandTool& tool, const WandState& w
     if ((film.topology.boundary[k] != 0) != (k < layout.boundary.size()))
       throw std::runtime_error("film generation: the triangulation does not follow the wire frame");
   initialiseFilmMaterial(params, film);
+  fillWire(params, layout, film);
   return film;
 }
 

@@ -51,6 +51,8 @@ std::vector<std::string> validate(const Params& p) {
   requireRange(e, "collisionThreshold", p.collisionThreshold, 0.0f, 1e3f, " m/s");
   requireRange(e, "pinchDistance", p.pinchDistance, 0.0f, 10.0f, " m");
   requireRange(e, "solution", p.solution, 0.01f, 1.0f, "");
+  requireRange(e, "solutionReserve", p.solutionReserve, 0.0f, 100.0f, "");
+  requireRange(e, "growthStretch", p.growthStretch, 1.05f, 100.0f, "");
   requireRange(e, "particlesAtFullSolution", p.particlesAtFullSolution, 16, 50000000, "");
   return e;
 }

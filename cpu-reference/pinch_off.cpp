@@ -102,43 +102,19 @@ bool pinchOff(const Params& params, Film& film) {
 
   // New particles appended: indices of the film stay.
   State grown = s;
-  grown.resize(first + added.size());
-  auto copyRange = [&](auto member) {
-    auto& to = grown.*member;
-    const auto& from = s.*member;
-    std::copy(from.begin(), from.end(), to.begin());
-  };
-  for (auto member : {&State::mass, &State::liquid, &State::voronoiArea, &State::thickness, &State::elasticity,
-                      &State::lifetime, &State::frameParam, &State::drainOutflow, &State::drainWeight})
-    copyRange(member);
-  copyRange(&State::alive);
-  for (auto member : {&State::position, &State::velocity, &State::force, &State::normal, &State::airInflow,
-                      &State::airFlow, &State::airFlowNext})
-    for (size_t i = 0; i < first; ++i) (grown.*member).set(i, (s.*member).get(i));
+  grown.append(added.size());
   for (size_t k = 0; k < added.size(); ++k) grown.position.set(first + k, added[k]);
 
   // Springs: the film's keep their rest lengths; the cap's rest prestrained at their current length.
-  std::map<std::pair<uint32_t, uint32_t>, float> rest;
-  for (size_t k = 0; k < topo.springCount(); ++k)
-    rest[std::minmax(topo.springEnds[2 * k], topo.springEnds[2 * k + 1])] = topo.restLength[k];
   std::vector<uint32_t> triangles = topo.triangles;
   triangles.insert(triangles.end(), capTriangles.begin(), capTriangles.end());
-  Topology closed = buildTopology(grown.size(), std::move(triangles), grown.position);
-  for (size_t k = 0; k < closed.springCount(); ++k) {
-    const auto it = rest.find(std::minmax(closed.springEnds[2 * k], closed.springEnds[2 * k + 1]));
-    closed.restLength[k] = it != rest.end() ? it->second : closed.restLength[k] * (1.0f - params.springPrestrain);
-  }
+  Topology closed = rebuildTopology(topo, std::move(triangles), grown.position, params.springPrestrain);
   if (!closed.isClosed()) throw std::logic_error("pinch-off: the capped film still has a boundary");
 
-  // Material of the new particles, as at film creation.
-  Film result{std::move(grown), std::move(closed), film.tool, film.stringLength, 0.0f, Vec3::Zero()};
-  const float e0 = initialThickness(params);
-  computeGeometry(result.topology, result.state);
-  for (size_t i = first; i < result.state.size(); ++i) {
-    result.state.mass[i] = params.filmInertia * result.state.voronoiArea[i];
-    result.state.liquid[i] = e0 * result.state.voronoiArea[i];
-    result.state.alive[i] = 1u;
-  }
+  Film result = std::move(film);
+  result.state = std::move(grown);
+  result.topology = std::move(closed);
+  initialiseNewParticles(params, result, first);
   // Outward normals: a closed film encloses a positive volume.
   result.volumeOrigin = centroid(result.state);
   double volume = signedVolume(result, result.volumeOrigin);

@@ -1,6 +1,7 @@
 #include "simulation.h"
 
 #include "collision.h"
+#include "film_growth.h"
 
 #include <cmath>
 #include <limits>
@@ -71,6 +72,8 @@ StepUniforms Simulation::uniformsFor(const WandState& a, const WandState& b, flo
 
 void Simulation::advanceFrame(const WandState& next) {
   const float dt = params_.frameTime / static_cast<float>(substeps_);
+  const float wandSpeed = std::max((next.leftPosition - wands_.leftPosition).norm(),
+                                   (next.rightPosition - wands_.rightPosition).norm()) / params_.frameTime;
   substepUniforms_.clear();
   for (int k = 0; k < substeps_; ++k) {
     const float t0 = static_cast<float>(k) / static_cast<float>(substeps_);
@@ -86,11 +89,25 @@ void Simulation::advanceFrame(const WandState& next) {
   checkStable();
   events_ = advanceBurst(params_, time_, film_, burst_, aerosol_);
   if (events_.particlesRemoved > 0) stepper_->load(params_, film_);  // the topology changed
+  if (!burst_.active()) growFilm(next, wandSpeed);
   const bool tipsTogether = film_.tool.kind == ToolKind::TwoWands &&
                             (next.rightPosition - next.leftPosition).norm() < params_.pinchDistance;
   if (tipsTogether && !film_.topology.isClosed() && !burst_.active()) events_.pinchedOff = pinch();
   updateContacts();
   aerosol_.advance(params_, params_.frameTime);
+}
+
+void Simulation::growFilm(const WandState& wands, float wandSpeed) {
+  const WireFrame frame = makeWireFrame(film_.tool, wands, film_.stringLength, gravityOf(params_));
+  const GrowthEvent grew = growFilmAtWire(params_, frame, wandSpeed, film_);
+  if (grew.particlesAdded == 0) {
+    if (grew.restLengthsChanged > 0) stepper_->updateRestLengths(film_);
+    return;
+  }
+  events_.particlesAdded = grew.particlesAdded;
+  CpuStepper::refreshGeometry(params_, film_);
+  chooseSubsteps();
+  stepper_->load(params_, film_);
 }
 
 void Simulation::updateContacts() {
@@ -178,6 +195,7 @@ FrameStats Simulation::stats() {
   }
   st.meanThickness = st.particles ? thicknessSum / static_cast<double>(st.particles) : 0;
   st.meanAirFlow = st.particles ? airSum / static_cast<double>(st.particles) : 0;
+  st.solution = film_.solutionLeft(params_);
   st.droplets = aerosol_.size();
   for (float m : aerosol_.mass) st.dropletMass += m;
   for (size_t k = 0; k < topo.springCount(); ++k) {

@@ -33,6 +33,7 @@ struct FrameStats {
   double meanThickness = 0;   // m
   double maxSpeed = 0;        // m/s
   double meanAirFlow = 0;     // mean |air| of Eqs. (7)-(8) (m^3/s)
+  double solution = 0;        // soap solution left on the wire, in [0, 1] (Section 7)
   size_t droplets = 0;        // aerosol droplets in flight
   double dropletMass = 0;     // kg
 };
@@ -51,7 +52,7 @@ class Simulation {
   Simulation& operator=(const Simulation&) = delete;
 
   // Advances one frame (Params::frameTime) while the wands move from their last state to `next`, then runs
-  // the frame's topology events (bursting) and moves the aerosol.
+  // the frame's topology events (bursting, film growth at the wire, pinch-off) and moves the aerosol.
   void advanceFrame(const WandState& next);
 
   // Pokes the film: a crack opens at particle i now (a performer's finger, a key in the live window).
@@ -83,6 +84,7 @@ class Simulation {
 
  private:
   void chooseSubsteps();
+  void growFilm(const WandState& wands, float wandSpeed);
   void updateContacts();
   void checkStable() const;
 

@@ -7,12 +7,32 @@
 
 namespace gb {
 
+namespace {
+
+// Calls visit(array, value of a new particle) for every per-particle array of the state: the one list of
+// them, so that no attribute is forgotten when the state grows.
+template <class Visit>
+void forEachParticleArray(State& s, Visit&& visit) {
+  for (Vec3Array* a : {&s.position, &s.velocity, &s.force, &s.normal, &s.airInflow, &s.airFlow, &s.airFlowNext}) {
+    visit(a->x, 0.0f);
+    visit(a->y, 0.0f);
+    visit(a->z, 0.0f);
+  }
+  for (std::vector<float>* a : {&s.mass, &s.liquid, &s.voronoiArea, &s.thickness, &s.elasticity, &s.lifetime,
+                                  &s.frameParam, &s.drainOutflow, &s.drainWeight})
+    visit(*a, 0.0f);
+  visit(s.alive, 1u);
+}
+
+}  // namespace
+
 void State::resize(size_t n) {
-  for (Vec3Array* a : {&position, &velocity, &force, &normal, &airInflow, &airFlow, &airFlowNext}) a->resize(n);
-  for (std::vector<float>* a : {&mass, &liquid, &voronoiArea, &thickness, &elasticity, &lifetime, &frameParam,
-                                  &drainOutflow, &drainWeight})
-    a->assign(n, 0.0f);
-  alive.assign(n, 1u);
+  forEachParticleArray(*this, [n](auto& array, auto value) { array.assign(n, value); });
+}
+
+void State::append(size_t count) {
+  const size_t n = size() + count;
+  forEachParticleArray(*this, [n](auto& array, auto value) { array.resize(n, value); });
 }
 
 Vec3 centroid(const State& s) {
@@ -87,6 +107,19 @@ Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, co
     topo.restLength.push_back((positions.get(edge.first) - positions.get(edge.second)).norm());
   }
   buildAdjacency(topo);
+  return topo;
+}
+
+Topology rebuildTopology(const Topology& previous, std::vector<uint32_t> triangles, const Vec3Array& positions,
+                         float prestrain) {
+  std::map<Edge, float> rest;
+  for (size_t k = 0; k < previous.springCount(); ++k)
+    rest[undirected(previous.springEnds[2 * k], previous.springEnds[2 * k + 1])] = previous.restLength[k];
+  Topology topo = buildTopology(positions.size(), std::move(triangles), positions);
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const auto it = rest.find(undirected(topo.springEnds[2 * k], topo.springEnds[2 * k + 1]));
+    topo.restLength[k] = it != rest.end() ? it->second : topo.restLength[k] * (1.0f - prestrain);
+  }
   return topo;
 }
 

@@ -54,6 +54,9 @@ struct State {
 
   [[nodiscard]] size_t size() const { return mass.size(); }
   void resize(size_t n);
+  // Adds `count` living particles at the end, all attributes zero; existing particles keep their indices
+  // and values (film growth, pinch-off caps).
+  void append(size_t count);
 };
 
 // Mean position of the living particles (double accumulation); the origin when none lives.
@@ -90,6 +93,12 @@ struct Topology {
 // the boundary flags (particles on an edge used by exactly one triangle: the ones the wire holds) from the
 // triangle list.
 Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, const Vec3Array& positions);
+
+// The topology of a changed mesh (new particles and triangles stitched to an old film): springs that the
+// previous topology had keep their rest length; new springs rest `prestrain` shorter than they are now,
+// as at film creation.
+Topology rebuildTopology(const Topology& previous, std::vector<uint32_t> triangles, const Vec3Array& positions,
+                         float prestrain);
 
 // Rebuilds only the CSR arrays from the triangles and springs, keeping rest lengths and boundary flags
 // (a hole torn in the film does not make its rim part of the wire).

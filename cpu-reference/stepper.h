@@ -38,6 +38,8 @@ class Stepper {
   virtual void store(Film& film) = 0;
   // Takes the film's new self-collision contact list (Topology::contacts), found between frames.
   virtual void updateContacts(const Film&) {}
+  // Takes the film's changed spring rest lengths (the wire paying out film between frames, film_growth.h).
+  virtual void updateRestLengths(const Film&) {}
 
   virtual void enableTiming(bool on) { timing_ = on; }
   [[nodiscard]] const StageTimes& stageTimes() const { return times_; }

@@ -1,5 +1,6 @@
 #include "wire_frame.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -76,6 +77,48 @@ WireFrame makeWireFrame(const WandTool& tool, const WandState& wands, float stri
   f.halfWidth = 0.5f * width;
   f.depth = hangingDepth(f.halfWidth, stringLength);
   return f;
+}
+
+std::vector<float> evenlySpacedParameters(const WireFrame& f, float u0, float u1, int n) {
+  constexpr int samples = 2048;
+  std::vector<float> length(samples + 1, 0.0f);
+  Vec3 prev = framePoint(f, u0);
+  for (int k = 1; k <= samples; ++k) {
+    const Vec3 p = framePoint(f, u0 + (u1 - u0) * static_cast<float>(k) / samples);
+    length[k] = length[k - 1] + (p - prev).norm();
+    prev = p;
+  }
+  std::vector<float> us;
+  for (int m = 0; m < n; ++m) {
+    const float target = length[samples] * static_cast<float>(m) / static_cast<float>(n);
+    const auto it = std::lower_bound(length.begin(), length.end(), target);
+    const int k = std::max(1, static_cast<int>(it - length.begin()));
+    const float span = length[k] - length[k - 1];
+    const float w = span > 0 ? (target - length[k - 1]) / span : 0.0f;
+    us.push_back(u0 + (u1 - u0) * (static_cast<float>(k - 1) + w) / samples);
+  }
+  return us;
+}
+
+float frameArcLength(const WireFrame& f, float u0, float u1) {
+  constexpr int samples = 2048;
+  float len = 0.0f;
+  Vec3 prev = framePoint(f, u0);
+  for (int k = 1; k <= samples; ++k) {
+    const Vec3 p = framePoint(f, u0 + (u1 - u0) * static_cast<float>(k) / samples);
+    len += (p - prev).norm();
+    prev = p;
+  }
+  return len;
+}
+
+std::vector<float> wireParameters(const WireFrame& f, float spacing) {
+  auto segments = [&](float len) { return std::max(3, static_cast<int>(std::lround(len / spacing))); };
+  if (f.kind == ToolKind::Ring) return evenlySpacedParameters(f, 0.0f, 1.0f, segments(frameArcLength(f, 0.0f, 1.0f)));
+  std::vector<float> us = evenlySpacedParameters(f, 0.0f, 1.0f, segments(frameArcLength(f, 0.0f, 1.0f)));
+  const std::vector<float> bottom = evenlySpacedParameters(f, 1.0f, 2.0f, segments(frameArcLength(f, 1.0f, 2.0f)));
+  us.insert(us.end(), bottom.begin(), bottom.end());
+  return us;
 }
 
 }  // namespace gb

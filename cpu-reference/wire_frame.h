@@ -3,6 +3,8 @@
 // A boundary particle keeps a fixed frame coordinate u and is placed at framePoint(frame, u) every step, so
 // the film's edge follows the wands.
 
+#include <vector>
+
 #include "state.h"
 
 namespace gb {
@@ -54,5 +56,14 @@ float hangingDepth(float halfWidth, float stringLength);
 // The frame of the tool for the given wand tips. stringLength is the two-wand loop's bottom string
 // (fixed per film); gravity decides which way the string hangs.
 WireFrame makeWireFrame(const WandTool& tool, const WandState& wands, float stringLength, const Vec3& gravity);
+
+// Frame coordinates of n points evenly spaced by arc length over u in [u0, u1) (dense sampling, then
+// inversion of the cumulative length), and the arc length between two frame coordinates.
+std::vector<float> evenlySpacedParameters(const WireFrame& f, float u0, float u1, int n);
+float frameArcLength(const WireFrame& f, float u0, float u1);
+
+// Frame coordinates of the particles the wire holds, about `spacing` apart along it (at least 3 per part).
+// The two-wand loop gets particles at both tips (u = 0 and 1), where the wands hold it.
+std::vector<float> wireParameters(const WireFrame& f, float spacing);
 
 }  // namespace gb

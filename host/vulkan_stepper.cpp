@@ -401,6 +401,13 @@ void VulkanStepper::updateContacts(const Film& film) {
   writeVector(m.buffer(GB_BINDING_CONTACTS), contacts);
 }
 
+void VulkanStepper::updateRestLengths(const Film& film) {
+  Impl& m = *impl_;
+  if (film.topology.restLength.size() * sizeof(float) != m.buffer(GB_BINDING_REST_LENGTH).size())
+    throw std::logic_error("VulkanStepper::updateRestLengths: not the loaded film");
+  writeVector(m.buffer(GB_BINDING_REST_LENGTH), film.topology.restLength);
+}
+
 void VulkanStepper::store(Film& film) {
   Impl& m = *impl_;
   State& s = film.state;

@@ -25,6 +25,7 @@ class VulkanStepper final : public Stepper {
   float runStage(Stage stage, const StepUniforms& uniforms) override;
   void store(Film& film) override;
   void updateContacts(const Film& film) override;
+  void updateRestLengths(const Film& film) override;
 
   [[nodiscard]] const VulkanContext& context() const;
 

@@ -1,0 +1,259 @@
+// Film growth at the wire: stretch test, ring release, new ring on the wire, CGAL strip triangulation.
+// CGAL stays inside this file.
+#include "film_growth.h"
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include "pinch_off.h"
+
+namespace gb {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<uint32_t, Kernel>;
+using Tds = CGAL::Triangulation_data_structure_2<VertexBase>;
+using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, Tds>;
+
+// Distance along the wire from u = 0 to frame coordinate u, exact on the straight top string and
+// proportional to the angle on the arcs: the strip's flat coordinate, only used to pick its triangles.
+struct WireUnrolling {
+  const WireFrame& frame;
+  float topLength = 0.0f, arcLength = 0.0f;
+  explicit WireUnrolling(const WireFrame& f) : frame(f) {
+    if (f.kind == ToolKind::TwoWands) {
+      topLength = 2.0f * f.halfWidth;
+      arcLength = frameArcLength(f, 1.0f, 2.0f);
+    } else {
+      arcLength = frameArcLength(f, 0.0f, 1.0f);
+    }
+  }
+  [[nodiscard]] float at(float u) const {
+    if (frame.kind == ToolKind::Ring) return u * arcLength;
+    return u < 1.0f ? u * topLength : topLength + (u - 1.0f) * arcLength;
+  }
+  [[nodiscard]] float period() const { return topLength + arcLength; }
+};
+
+// The wire's particles and, for each, the springs to free particles of the film.
+bool isRung(const Topology& topo, uint32_t a, uint32_t b) { return topo.boundary[a] && !topo.boundary[b]; }
+
+// Where a released wire particle goes: `fraction` of the way to the mean of its free neighbours; a particle
+// with no free neighbour (a sharp tip) steps that fraction of the wire spacing towards the frame's centre.
+Vec3 releasedPosition(const Film& film, const WireFrame& frame, uint32_t i, float fraction) {
+  const Topology& topo = film.topology;
+  const State& s = film.state;
+  Vec3 mean = Vec3::Zero();
+  int count = 0;
+  for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k)
+    if (const uint32_t j = topo.springNeighbour[k]; isRung(topo, i, j)) {
+      mean += s.position.get(j);
+      ++count;
+    }
+  const Vec3 p = s.position.get(i);
+  if (count > 0) return p + fraction * (mean / static_cast<float>(count) - p);
+  const Vec3 towardsCentre = (frame.center - p).normalized();
+  return p + fraction * film.wireSpacing * towardsCentre;
+}
+
+// Triangles of the strip between the released ring (old, at height 1) and the new ring (at height 0),
+// unrolled along the wire, by CGAL's Delaunay triangulation. The unrolled strip is closed into an annulus
+// by a copy of each ring's first point one period further on, mapped back to the same particle.
+std::vector<uint32_t> triangulateStrip(const WireUnrolling& wire, const std::vector<uint32_t>& oldRing,
+                                       const std::vector<float>& oldU, const std::vector<uint32_t>& newRing,
+                                       const std::vector<float>& newU, float height) {
+  std::vector<std::pair<Kernel::Point_2, uint32_t>> points;
+  auto addRing = [&](const std::vector<uint32_t>& ring, const std::vector<float>& us, float y) {
+    size_t first = 0;
+    for (size_t k = 0; k < ring.size(); ++k) {
+      points.emplace_back(Kernel::Point_2(wire.at(us[k]), y), ring[k]);
+      if (us[k] < us[first]) first = k;
+    }
+    points.emplace_back(Kernel::Point_2(wire.at(us[first]) + wire.period(), y), ring[first]);
+  };
+  addRing(oldRing, oldU, height);
+  addRing(newRing, newU, 0.0f);
+  const Delaunay strip(points.begin(), points.end());
+  std::vector<uint32_t> triangles;
+  for (auto f = strip.finite_faces_begin(); f != strip.finite_faces_end(); ++f) {
+    const uint32_t a = f->vertex(0)->info(), b = f->vertex(1)->info(), c = f->vertex(2)->info();
+    if (a == b || b == c || c == a) continue;  // spans the whole period: its copy is the real one
+    triangles.insert(triangles.end(), {a, b, c});
+  }
+  return triangles;
+}
+
+// Flips the strip's triangles if they run the old ring's edge loop[0] -> loop[1] the way the film does:
+// the two must traverse every shared edge in opposite directions.
+void orientLike(const std::vector<uint32_t>& loop, std::vector<uint32_t>& strip) {
+  bool sameWay = false;
+  for (size_t t = 0; t < strip.size(); t += 3)
+    for (int k = 0; k < 3; ++k)
+      if (strip[t + k] == loop[0] && strip[t + (k + 1) % 3] == loop[1]) sameWay = true;
+  if (sameWay)
+    for (size_t t = 0; t < strip.size(); t += 3) std::swap(strip[t + 1], strip[t + 2]);
+}
+
+// The released ring's springs to the film were stretched past growthStretch and are now half as long: the
+// film there has been drawn out of the wire, so they rest as a new film's springs do, prestrained at their
+// current length (the wire's payout of new film relaxes the tension it had).
+void restLikeNewFilm(const Params& params, const std::vector<uint32_t>& released, Film& film) {
+  Topology& topo = film.topology;
+  std::vector<char> isReleased(film.state.size(), 0);
+  for (uint32_t i : released) isReleased[i] = 1;
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    const bool toFilm = (isReleased[a] && !isReleased[b] && !topo.boundary[b]) ||
+                        (isReleased[b] && !isReleased[a] && !topo.boundary[a]);
+    if (toFilm)
+      topo.restLength[k] = (film.state.position.get(a) - film.state.position.get(b)).norm() * (1.0f - params.springPrestrain);
+  }
+}
+
+// The strip's liquid, a new film's thickness times its area, shared among the corners of its triangles (a
+// third of each triangle to each): the new particles get their share, the released ring adds its share to
+// what it had. A wire with less liquid than that gives what it has (the last strip is thinner). Returns the
+// liquid used. Inertia is per area (Params::filmInertia), so the strip's particles get the mass of their new
+// Voronoi areas: a released ring particle now has film on both sides, and keeping its half-area wire mass
+// would halve the stable time step.
+float shareStripMaterial(const Params& params, const std::vector<uint32_t>& strip, size_t first, float available,
+                         State& s) {
+  std::vector<float> cornerArea(strip.size() / 3);
+  double area = 0;
+  for (size_t t = 0; t < strip.size(); t += 3) {
+    const Vec3 a = s.position.get(strip[t]), b = s.position.get(strip[t + 1]), c = s.position.get(strip[t + 2]);
+    cornerArea[t / 3] = 0.5f * (b - a).cross(c - a).norm() / 3.0f;
+    area += 3.0 * cornerArea[t / 3];
+  }
+  const float wanted = static_cast<float>(initialThickness(params) * area);
+  const float used = std::min(wanted, available);
+  const float thickness = area > 0 ? static_cast<float>(used / area) : 0.0f;
+  for (size_t i = first; i < s.size(); ++i) s.liquid[i] = 0.0f;
+  for (size_t t = 0; t < strip.size(); t += 3)
+    for (size_t k = 0; k < 3; ++k) {
+      s.liquid[strip[t + k]] += thickness * cornerArea[t / 3];
+      s.mass[strip[t + k]] = params.filmInertia * s.voronoiArea[strip[t + k]];
+    }
+  return used;
+}
+
+// The film's single boundary loop, or empty when it has none or several (a torn or closed film).
+std::vector<uint32_t> intactWireLoop(const Film& film) {
+  if (film.topology.isClosed()) return {};
+  for (uint32_t a : film.state.alive)
+    if (!a) return {};
+  try {
+    return boundaryLoop(film.topology);
+  } catch (const std::runtime_error&) {
+    return {};
+  }
+}
+
+}  // namespace
+
+float wireRungStretch(const Film& film) {
+  const Topology& topo = film.topology;
+  const State& s = film.state;
+  double sum = 0;
+  size_t count = 0;
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    if (!isRung(topo, a, b) && !isRung(topo, b, a)) continue;
+    if (!s.alive[a] || !s.alive[b] || topo.restLength[k] <= 0) continue;
+    sum += (s.position.get(a) - s.position.get(b)).norm() / topo.restLength[k];
+    ++count;
+  }
+  return count ? static_cast<float>(sum / static_cast<double>(count)) : 0.0f;
+}
+
+size_t payOutFilmAtWire(const Params& params, Film& film) {
+  if (film.wireLiquid <= 0.0f || intactWireLoop(film).empty()) return 0;
+  Topology& topo = film.topology;
+  const State& s = film.state;
+  size_t lengthened = 0;
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    if (!isRung(topo, a, b) && !isRung(topo, b, a)) continue;
+    const float length = (s.position.get(a) - s.position.get(b)).norm();
+    if (length <= params.growthStretch * topo.restLength[k]) continue;
+    topo.restLength[k] = length * (1.0f - params.springPrestrain);  // as taut as a new film, no more
+    ++lengthened;
+  }
+  return lengthened;
+}
+
+float wireBandWidth(const Film& film) {
+  const Topology& topo = film.topology;
+  double rungRest = 0, edgeLength = 0;
+  size_t rungs = 0, edges = 0;
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    if (isRung(topo, a, b) || isRung(topo, b, a)) {
+      rungRest += topo.restLength[k];
+      ++rungs;
+    } else if (topo.boundary[a] && topo.boundary[b]) {
+      edgeLength += (film.state.position.get(a) - film.state.position.get(b)).norm();
+      ++edges;
+    }
+  }
+  if (rungs == 0 || edges == 0 || edgeLength <= 0) return 0.0f;
+  return static_cast<float>((rungRest / static_cast<double>(rungs)) / (edgeLength / static_cast<double>(edges)));
+}
+
+GrowthEvent growFilmAtWire(const Params& params, const WireFrame& frame, float wandSpeed, Film& film) {
+  GrowthEvent event;
+  if (wandSpeed >= kDrawingSpeed) event.restLengthsChanged = payOutFilmAtWire(params, film);
+  if (wireBandWidth(film) < kRingInsertionWidth || film.tool.kind != frame.kind) return event;
+  const std::vector<uint32_t> loop = intactWireLoop(film);
+  if (loop.size() < 3 || film.wireLiquid <= 0.0f) return event;
+
+  // The new ring's spacing is that of a dip with the solution now left (particle count ~ solution), at most
+  // twice the dip's: a nearly dry wire still draws a strip the mesh can resolve.
+  const float solution = std::max(film.solutionLeft(params), 1e-6f);
+  const float spacing = film.wireSpacing * std::min(2.0f, std::sqrt(params.solution / solution));
+  const std::vector<float> newU = wireParameters(frame, spacing);
+
+  Film grown = film;
+  State& s = grown.state;
+  const size_t first = s.size();
+  constexpr float fraction = 0.5f;  // halfway: the two bands come out alike, about 0.8 spacing wide
+  std::vector<float> oldU;
+  std::vector<Vec3> released;
+  for (uint32_t i : loop) {
+    oldU.push_back(s.frameParam[i]);
+    released.push_back(releasedPosition(film, frame, i, fraction));
+  }
+  for (size_t k = 0; k < loop.size(); ++k) s.position.set(loop[k], released[k]);
+  s.append(newU.size());
+  std::vector<uint32_t> newRing;
+  for (size_t k = 0; k < newU.size(); ++k) {
+    const auto i = static_cast<uint32_t>(first + k);
+    newRing.push_back(i);
+    s.position.set(i, framePoint(frame, newU[k]));
+    s.frameParam[i] = newU[k];
+  }
+
+  std::vector<uint32_t> strip = triangulateStrip(WireUnrolling(frame), loop, oldU, newRing, newU, spacing);
+  orientLike(loop, strip);
+  event.trianglesAdded = strip.size() / 3;
+  std::vector<uint32_t> triangles = grown.topology.triangles;
+  triangles.insert(triangles.end(), strip.begin(), strip.end());
+  grown.topology = rebuildTopology(film.topology, std::move(triangles), s.position, params.springPrestrain);
+  restLikeNewFilm(params, loop, grown);
+  if (intactWireLoop(grown).size() != newRing.size())
+    throw std::logic_error("film growth: the new strip does not leave the new ring as the film's only edge");
+  initialiseNewParticles(params, grown, first);
+  event.liquidUsed = shareStripMaterial(params, strip, first, grown.wireLiquid, s);
+  grown.wireLiquid = std::max(0.0f, grown.wireLiquid - event.liquidUsed);
+  film = std::move(grown);
+  event.particlesAdded = newRing.size();
+  return event;
+}
+
+}  // namespace gb

@@ -1,0 +1,49 @@
+#pragma once
+// Film growth and soap solution control (Section 7, Figure 14c-d). A wet wire keeps drawing new film while
+// the wands stretch the film, in two steps:
+//  1. Payout, every frame: a spring joining the wire to the film ("rung") stretched past
+//     Params::growthStretch times its rest length gets the rest length of a new film at its current length
+//     (prestrained): film has come out of the wire, and the band next to the wire widens instead of
+//     stretching. Only rest lengths change, so a GPU stepper is patched, not reloaded.
+//  2. Ring insertion, when the band's rungs rest at kRingInsertionWidth wire spacings: the wire lets go of its
+//     ring of particles, which move halfway along the rungs into the film, and a new ring of particles takes
+//     the wire; the strip between the two rings is triangulated by CGAL's Delaunay triangulation. The strip's
+//     liquid (a new film's thickness) comes from the wire, whose solution runs out; the new ring's spacing
+//     follows the remaining solution as a dip with that much solution would (Figure 9): spacing ~
+//     1 / sqrt(solution). A dry wire pays out no film.
+
+#include "film.h"
+
+namespace gb {
+
+// The wire draws film only while the wands move (Section 7): a film hanging still sags under its weight but
+// does not grow. Wand tips slower than this (m/s) are still.
+inline constexpr float kDrawingSpeed = 0.05f;
+
+// Rungs this many wire spacings long at rest make room for a new ring: the two halves come out about 0.8
+// spacing wide, no slivers.
+inline constexpr float kRingInsertionWidth = 1.6f;
+
+// Mean length / rest length of the rungs; 0 when there is none (a closed bubble, a film without wire).
+float wireRungStretch(const Film& film);
+
+// Mean rest length of the rungs in units of the mean spacing of the wire's particles.
+float wireBandWidth(const Film& film);
+
+// Step 1 alone: lengthens the rest of every rung stretched past Params::growthStretch, if the film is open
+// and intact and the wire still holds liquid. Returns how many rungs it lengthened.
+size_t payOutFilmAtWire(const Params& params, Film& film);
+
+struct GrowthEvent {
+  size_t restLengthsChanged = 0;  // rungs lengthened by the payout
+  size_t particlesAdded = 0;      // the new ring (0: no ring inserted)
+  size_t trianglesAdded = 0;
+  float liquidUsed = 0.0f;  // m^3 taken from the wire
+};
+
+// Both steps on an open, intact film (one boundary loop) at the wire frame `frame` of now, the payout only
+// while the faster wand tip moves at wandSpeed >= kDrawingSpeed; a closed, torn or dry film is left as it is. New particles are appended (old indices stay); the mesh stays an oriented
+// manifold disc whose boundary is the new ring.
+GrowthEvent growFilmAtWire(const Params& params, const WireFrame& frame, float wandSpeed, Film& film);
+
+}  // namespace gb

@@ -1,0 +1,163 @@
+// Film growth at the wire and soap solution control (Section 7, Figure 14c-d).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "film_growth.h"
+#include "mesh_checks.h"
+#include "scripted_gestures.h"
+#include "simulation.h"
+
+namespace gb {
+namespace {
+
+Vec3 gravityOf(const Params& p) { return {p.gravityX, p.gravityY, p.gravityZ}; }
+
+double filmLiquid(const Film& film) {
+  double sum = 0;
+  for (size_t i = 0; i < film.state.size(); ++i)
+    if (film.state.alive[i]) sum += film.state.liquid[i];
+  return sum;
+}
+
+// A two-wand film just made, with every rung's rest length scaled: < 1 stretches the band at the wire,
+// > 1 makes it wide enough for a new ring.
+Film filmWithRungsScaled(const Params& p, float scale) {
+  Film film = generateFilm(p, WandTool{}, gestureAt(Gesture::Straight, GestureOptions{}, 0.0));
+  Topology& topo = film.topology;
+  for (size_t k = 0; k < topo.springCount(); ++k)
+    if (topo.boundary[topo.springEnds[2 * k]] != topo.boundary[topo.springEnds[2 * k + 1]]) topo.restLength[k] *= scale;
+  return film;
+}
+
+WireFrame frameOf(const Params& p, const Film& film) {
+  return makeWireFrame(film.tool, gestureAt(Gesture::Straight, GestureOptions{}, 0.0), film.stringLength, gravityOf(p));
+}
+
+TEST(FilmGrowth, StretchedRungsPayOutToANewFilmsRestLengthAndOthersStay) {
+  Params p;
+  p.particlesAtFullSolution = 1500;
+  Film film = filmWithRungsScaled(p, 0.5f);  // rungs at twice their rest: past growthStretch = 1.15
+  const Topology before = film.topology;
+  EXPECT_GT(wireRungStretch(film), p.growthStretch);
+  const size_t lengthened = payOutFilmAtWire(p, film);
+  EXPECT_GT(lengthened, 0u);
+  size_t rungs = 0;
+  for (size_t k = 0; k < before.springCount(); ++k) {
+    const uint32_t a = before.springEnds[2 * k], b = before.springEnds[2 * k + 1];
+    const float length = (film.state.position.get(a) - film.state.position.get(b)).norm();
+    if (before.boundary[a] != before.boundary[b]) {
+      ++rungs;
+      // Float rounding of one multiplication: 1e-6 relative.
+      EXPECT_NEAR(film.topology.restLength[k], length * (1.0f - p.springPrestrain), 1e-6f * length);
+    } else {
+      EXPECT_EQ(film.topology.restLength[k], before.restLength[k]) << "only rungs pay out";
+    }
+  }
+  EXPECT_EQ(lengthened, rungs);
+  EXPECT_EQ(payOutFilmAtWire(p, film), 0u) << "paid-out rungs are no longer stretched";
+}
+
+TEST(FilmGrowth, AFilmHangingStillDoesNotPayOut) {
+  Params p;
+  p.particlesAtFullSolution = 1500;
+  Film film = filmWithRungsScaled(p, 0.5f);
+  const std::vector<float> rest = film.topology.restLength;
+  const GrowthEvent still = growFilmAtWire(p, frameOf(p, film), 0.5f * kDrawingSpeed, film);
+  EXPECT_EQ(still.restLengthsChanged, 0u);
+  EXPECT_EQ(film.topology.restLength, rest);
+  const GrowthEvent moving = growFilmAtWire(p, frameOf(p, film), 2.0f * kDrawingSpeed, film);
+  EXPECT_GT(moving.restLengthsChanged, 0u);
+}
+
+TEST(FilmGrowth, AWideBandGetsANewRingOnTheWireAndStaysAnOrientedManifoldDisc) {
+  Params p;
+  p.particlesAtFullSolution = 1500;
+  Film film = filmWithRungsScaled(p, 2.0f);
+  ASSERT_GE(wireBandWidth(film), kRingInsertionWidth);
+  const size_t n0 = film.state.size();
+  const double liquid0 = filmLiquid(film) + film.wireLiquid;
+  const WireFrame frame = frameOf(p, film);
+  const GrowthEvent grew = growFilmAtWire(p, frame, 0.0f, film);
+  ASSERT_GT(grew.particlesAdded, 0u);
+  EXPECT_EQ(film.state.size(), n0 + grew.particlesAdded);
+  EXPECT_EQ(test::eulerCharacteristic(film.topology), 1);  // a disc; also asserts each directed edge once
+  test::expectAdjacencyMatchesTriangles(film.topology);
+  for (size_t i = 0; i < film.state.size(); ++i) {
+    const bool isNew = i >= n0;
+    EXPECT_EQ(film.topology.boundary[i] != 0, isNew) << "the new ring, and only it, is held by the wire: " << i;
+    if (isNew) {  // placed on the wire (float rounding of the frame evaluation)
+      EXPECT_LT((film.state.position.get(i) - framePoint(frame, film.state.frameParam[i])).norm(), 1e-6f);
+    }
+  }
+  // Normals of the strip agree with the film's: all face the same side of the frame's plane.
+  const Vec3 normal = frame.axis.cross(frame.down);
+  size_t agree = 0;
+  for (size_t i = 0; i < film.state.size(); ++i) agree += film.state.normal.get(i).dot(normal) > 0;
+  EXPECT_TRUE(agree == film.state.size() || agree == 0) << agree << " of " << film.state.size();
+  // The strip's liquid comes from the wire: film + wire conserved to float rounding of ~1500 additions.
+  EXPECT_NEAR(filmLiquid(film) + film.wireLiquid, liquid0, 1e-5 * liquid0);
+  EXPECT_GT(grew.liquidUsed, 0.0f);
+  EXPECT_LT(film.solutionLeft(p), p.solution);
+}
+
+TEST(FilmGrowth, TheNewRingsSpacingFollowsTheRemainingSolution) {
+  Params p;
+  p.particlesAtFullSolution = 1500;
+  Film full = filmWithRungsScaled(p, 2.0f);
+  Film quarter = full;
+  quarter.wireLiquid = 0.25f * quarter.wireLiquidAtDip;  // solution left: 0.25
+  const GrowthEvent a = growFilmAtWire(p, frameOf(p, full), 0.0f, full);
+  const GrowthEvent b = growFilmAtWire(p, frameOf(p, quarter), 0.0f, quarter);
+  ASSERT_GT(b.particlesAdded, 0u);
+  // Particle count ~ solution (Figure 9), so spacing ~ 1/sqrt(solution): half as many particles on the wire,
+  // within the rounding of each part of the loop to whole segments (10%).
+  EXPECT_NEAR(static_cast<double>(b.particlesAdded) / static_cast<double>(a.particlesAdded), 0.5, 0.05);
+}
+
+TEST(FilmGrowth, ADryWireDrawsNoFilm) {
+  Params p;
+  p.particlesAtFullSolution = 1500;
+  p.solutionReserve = 0.0f;
+  Film film = filmWithRungsScaled(p, 2.0f);
+  const size_t n0 = film.state.size();
+  const std::vector<float> rest = film.topology.restLength;
+  const GrowthEvent grew = growFilmAtWire(p, frameOf(p, film), 0.0f, film);
+  EXPECT_EQ(grew.particlesAdded, 0u);
+  EXPECT_EQ(film.state.size(), n0);
+  Film stretched = filmWithRungsScaled(p, 0.5f);
+  EXPECT_EQ(payOutFilmAtWire(p, stretched), 0u) << "no solution, no payout";
+}
+
+// Figure 14c-d in motion: a long, fast two-wand stroke draws new film off the wire; every growth leaves a
+// sound mesh, the solution only goes down, and film + wire liquid is conserved (drainage moves liquid
+// within the film only).
+TEST(FilmGrowth, AFastStrokeDrawsNewFilmUntilTheSolutionRunsOut) {
+  Params p;
+  p.particlesAtFullSolution = 1200;
+  p.solutionReserve = 0.3f;  // a little: the wire runs dry within the stroke
+  GestureOptions g;
+  g.start = 0.0f;
+  g.speed = 1.5f;
+  Simulation sim(p, WandTool{}, gestureAt(Gesture::Straight, g, 0.0));
+  const double total0 = filmLiquid(sim.film()) + sim.film().wireLiquid;
+  float lastSolution = sim.film().solutionLeft(p);
+  int rings = 0;
+  for (int f = 1; f <= 150; ++f) {
+    sim.advanceFrame(gestureAt(Gesture::Straight, g, f * 0.02));
+    const float solution = sim.film().solutionLeft(p);
+    EXPECT_LE(solution, lastSolution);
+    lastSolution = solution;
+    if (sim.lastEvents().particlesAdded == 0) continue;
+    ++rings;
+    EXPECT_EQ(test::eulerCharacteristic(sim.film().topology), 1) << "frame " << f;
+    test::expectAdjacencyMatchesTriangles(sim.film().topology);
+  }
+  EXPECT_GE(rings, 1) << "a 1.5 m/s stroke of 3 s stretches the film enough to draw new film";
+  // Float rounding of sums over ~2000 particles across 150 frames of drainage: 1e-4 relative.
+  EXPECT_NEAR(filmLiquid(sim.film()) + sim.film().wireLiquid, total0, 1e-4 * total0);
+  EXPECT_LT(lastSolution, 0.05f * p.solution) << "the reserve is used up by the end of the stroke";
+}
+
+}  // namespace
+}  // namespace gb

@@ -80,4 +80,32 @@ size_t findContacts(const Params& p, float margin, Film& film) {
   return total / 2;
 }
 
+float impactNumber(const Params& params, float approachSpeed, float elasticity) {
+  if (approachSpeed <= 0.0f || elasticity <= 0.0f) return 0.0f;
+  return params.filmInertia * approachSpeed * approachSpeed / elasticity;
+}
+
+Impact hardestImpact(const Params& params, float frameTime, const Film& film) {
+  const State& s = film.state;
+  const std::vector<uint32_t>& contacts = film.topology.contacts;
+  const size_t n = s.size();
+  Impact hardest;
+  if (contacts.size() <= n) return hardest;
+  for (uint32_t i = 0; i < n; ++i)
+    for (uint32_t k = contacts[i]; k < contacts[i + 1]; ++k) {
+      const uint32_t j = contacts[n + 1 + k];
+      if (j < i || !s.alive[i] || !s.alive[j]) continue;  // each pair once
+      const Vec3 d = s.position.get(j) - s.position.get(i);
+      const float distance = d.norm();
+      if (distance <= 0.0f) continue;
+      const float approach = -(s.velocity.get(j) - s.velocity.get(i)).dot(d) / distance;
+      if (!(distance - approach * frameTime < params.collisionDistance)) continue;  // no contact this frame
+      const float number = impactNumber(params, approach, 0.5f * (s.elasticity[i] + s.elasticity[j]));
+      if (number <= hardest.number) continue;
+      hardest.number = number;
+      hardest.particle = s.velocity.get(i).squaredNorm() >= s.velocity.get(j).squaredNorm() ? i : j;
+    }
+  return hardest;
+}
+
 }  // namespace gb

@@ -2,8 +2,8 @@
 // Self-collision of the film (Section 8). Between frames, a uniform hash grid finds the pairs of particles
 // that may touch during the next frame; the forces stage of both backends then repels the pairs closer
 // than Params::collisionDistance (a gather over each particle's contact list, pair forces equal and
-// opposite, tangential motion free so that the sheets slip). Bursting on a hard impact (lambda_col) is not
-// done yet: see docs/model.md.
+// opposite, tangential motion free so that the sheets slip). A contact hit too hard bursts the film there
+// (lambda_col, findImpact).
 
 #include "film.h"
 
@@ -14,5 +14,21 @@ namespace gb {
 // (their separation makes an angle under 45 degrees with one of the two normals, so neighbours along the
 // same sheet are left out). The list is symmetric and sorted. Returns the number of pairs.
 size_t findContacts(const Params& params, float margin, Film& film);
+
+// The impact of two film particles meeting at approach speed v (the closing speed along their separation):
+// the film Weber number m_A v^2 / E, the dynamic pressure of the approach over the film's tension, with m_A
+// the film's inertia per area (Params::filmInertia) and E the mean elasticity of the two (N/m, the tension
+// scale of Eq. 4). Dimensionless, like the paper's lambda_col in [1.5, 2]: the film bursts above it.
+float impactNumber(const Params& params, float approachSpeed, float elasticity);
+
+struct Impact {
+  size_t particle = 0;  // the faster particle of the hardest pair
+  float number = 0.0f;  // its impact number; 0 when no pair is in contact and closing
+};
+
+// The hardest impact the next frame will see: among the contact pairs, those closing at their current speed
+// to within Params::collisionDistance in frameTime (a fast sheet crosses the contact zone within a frame,
+// so an impact is judged before the frame, not after).
+Impact hardestImpact(const Params& params, float frameTime, const Film& film);
 
 }  // namespace gb

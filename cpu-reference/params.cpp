@@ -48,7 +48,7 @@ std::vector<std::string> validate(const Params& p) {
   requireRange(e, "holeOpening", p.holeOpening, 0, 1, "");
   requireRange(e, "aerosolLifetime", p.aerosolLifetime, 0.0f, 1e3f, " s");
   requireRange(e, "aerosolDrag", p.aerosolDrag, 0.0f, 1e3f, " 1/s");
-  requireRange(e, "collisionThreshold", p.collisionThreshold, 0.0f, 1e3f, " m/s");
+  requireRange(e, "collisionThreshold", p.collisionThreshold, 0.0f, 1e3f, "");
   requireRange(e, "pinchDistance", p.pinchDistance, 0.0f, 10.0f, " m");
   requireRange(e, "solution", p.solution, 0.01f, 1.0f, "");
   requireRange(e, "solutionReserve", p.solutionReserve, 0.0f, 100.0f, "");

@@ -1,7 +1,9 @@
 #include "pinch_off.h"
 
 #include <cmath>
+#include <limits>
 #include <map>
+#include <optional>
 #include <stdexcept>
 
 #include "stages.h"
@@ -39,23 +41,65 @@ double signedVolume(const Film& film, const Vec3& origin) {
   return v;
 }
 
-}  // namespace
-
-bool pinchOff(const Params& params, Film& film) {
-  State& s = film.state;
-  Topology& topo = film.topology;
-  const std::vector<uint32_t> loop = boundaryLoop(topo);
-  if (loop.size() < 3) return false;
-
-  // The cap: rings of the loop shrunk towards its centroid, each with fewer points, zipped together
-  // ring by ring, and a last particle at the centroid. Its triangles touch the loop only along loop edges,
-  // so no cap edge can coincide with an edge of the film.
-  Vec3 centre = Vec3::Zero();
-  for (uint32_t v : loop) centre += s.position.get(v) / static_cast<float>(loop.size());
-  float radius = 0.0f, spacing = 0.0f;
-  for (uint32_t v : loop) radius = std::max(radius, (s.position.get(v) - centre).norm());
+// Mean distance between neighbours along the loop.
+float loopSpacing(const State& s, const std::vector<uint32_t>& loop) {
+  float spacing = 0.0f;
   for (size_t k = 0; k < loop.size(); ++k)
     spacing += (s.position.get(loop[(k + 1) % loop.size()]) - s.position.get(loop[k])).norm() / static_cast<float>(loop.size());
+  return spacing;
+}
+
+// The seam of a collapsed loop (the wands brought together: the string's two sides hang side by side): the
+// loop's two halves, from its two farthest-apart particles, zipped to each other with no new particle,
+// always closing the shorter gap first. Returns the triangles (L - 2 of them), or nothing when the halves
+// are not side by side (a zip diagonal longer than maxGap: an open loop needs a cap).
+std::vector<uint32_t> zipCollapsedLoop(const State& s, const std::vector<uint32_t>& loop, float maxGap) {
+  const size_t n = loop.size();
+  auto at = [&](size_t k) { return s.position.get(loop[k % n]); };
+  size_t top = 0, bottom = 0;
+  float farthest = -1.0f;
+  for (size_t i = 0; i < n; ++i)
+    for (size_t j = i + 1; j < n; ++j)
+      if (const float d = (at(i) - at(j)).norm(); d > farthest) {
+        farthest = d;
+        top = i;
+        bottom = j;
+      }
+  // Chain a runs forward from top to bottom, chain b backward; both end at bottom.
+  std::vector<size_t> a, b;
+  for (size_t k = top; k != bottom; k = (k + 1) % n) a.push_back(k);
+  a.push_back(bottom);
+  for (size_t k = top; k != bottom; k = (k + n - 1) % n) b.push_back(k);
+  b.push_back(bottom);
+  if (a.size() < 2 || b.size() < 2) return {};
+  std::vector<uint32_t> triangles = {loop[a[0]], loop[a[1]], loop[b[1]]};
+  size_t i = 1, j = 1;  // a[i] and b[j] face each other across the seam
+  while (i + 1 < a.size() || j + 1 < b.size()) {
+    const float viaA = i + 1 < a.size() ? (at(a[i + 1]) - at(b[j])).norm() : std::numeric_limits<float>::infinity();
+    const float viaB = j + 1 < b.size() ? (at(b[j + 1]) - at(a[i])).norm() : std::numeric_limits<float>::infinity();
+    if (std::min(viaA, viaB) > maxGap) return {};
+    if (viaA <= viaB) {
+      if (a[i + 1] != b[j]) triangles.insert(triangles.end(), {loop[a[i]], loop[a[i + 1]], loop[b[j]]});
+      ++i;
+    } else {
+      if (b[j + 1] != a[i]) triangles.insert(triangles.end(), {loop[a[i]], loop[b[j + 1]], loop[b[j]]});
+      ++j;
+    }
+  }
+  if (triangles.size() != 3 * (n - 2)) return {};  // not a simple zip: leave it to the cap
+  return triangles;
+}
+
+// The cap of an open loop: rings of the loop shrunk towards its centroid, each with fewer points, zipped
+// together ring by ring, and a last particle at the centroid. Its triangles touch the loop only along loop
+// edges, so no cap edge can coincide with an edge of the film. New particles are numbered from `first`
+// and their positions appended to `added`.
+std::vector<uint32_t> ringCap(const State& s, const std::vector<uint32_t>& loop, size_t first, std::vector<Vec3>& added) {
+  Vec3 centre = Vec3::Zero();
+  for (uint32_t v : loop) centre += s.position.get(v) / static_cast<float>(loop.size());
+  float radius = 0.0f;
+  for (uint32_t v : loop) radius = std::max(radius, (s.position.get(v) - centre).norm());
+  const float spacing = loopSpacing(s, loop);
   const int rings = std::max(1, static_cast<int>(std::lround(radius / std::max(spacing, 1e-6f))));
   // Point at fraction t (0..1) around the loop, shrunk by `scale` towards the centre.
   auto around = [&](double t, float scale) {
@@ -65,8 +109,6 @@ bool pinchOff(const Params& params, Film& film) {
     const Vec3 p = (1 - w) * s.position.get(loop[k]) + w * s.position.get(loop[(k + 1) % loop.size()]);
     return Vec3(centre + scale * (p - centre));
   };
-  const size_t first = s.size();
-  std::vector<Vec3> added;
   std::vector<uint32_t> capTriangles;
   std::vector<uint32_t> outer(loop.begin(), loop.end());
   for (int ring = 1; ring <= rings; ++ring) {
@@ -93,27 +135,57 @@ bool pinchOff(const Params& params, Film& film) {
     }
     outer = std::move(inner);
   }
-  bool sameWay = false;  // does some cap triangle run loop[0] -> loop[1] like the film does?
-  for (size_t t = 0; t < capTriangles.size(); t += 3)
+  return capTriangles;
+}
+
+// Flips the seam's triangles if they run the loop's edge loop[0] -> loop[1] the way the film does: the two
+// must traverse every shared edge in opposite directions.
+void orientAgainstLoop(const std::vector<uint32_t>& loop, std::vector<uint32_t>& seam) {
+  bool sameWay = false;
+  for (size_t t = 0; t < seam.size(); t += 3)
     for (int k = 0; k < 3; ++k)
-      if (capTriangles[t + k] == loop[0] && capTriangles[t + (k + 1) % 3] == loop[1]) sameWay = true;
+      if (seam[t + k] == loop[0] && seam[t + (k + 1) % 3] == loop[1]) sameWay = true;
   if (sameWay)
-    for (size_t t = 0; t < capTriangles.size(); t += 3) std::swap(capTriangles[t + 1], capTriangles[t + 2]);
+    for (size_t t = 0; t < seam.size(); t += 3) std::swap(seam[t + 1], seam[t + 2]);
+}
 
-  // New particles appended: indices of the film stay.
+}  // namespace
+
+bool pinchOff(const Params& params, Film& film) {
+  State& s = film.state;
+  Topology& topo = film.topology;
+  const std::vector<uint32_t> loop = boundaryLoop(topo);
+  if (loop.size() < 3) return false;
+
+  // A collapsed loop is zipped shut; an open one (or a zip that would reuse an edge of the film) gets a cap.
+  // Springs: the film's keep their rest lengths; the seam's rest prestrained at their current length.
+  const size_t first = s.size();
+  std::vector<Vec3> added;
   State grown = s;
-  grown.append(added.size());
-  for (size_t k = 0; k < added.size(); ++k) grown.position.set(first + k, added[k]);
-
-  // Springs: the film's keep their rest lengths; the cap's rest prestrained at their current length.
-  std::vector<uint32_t> triangles = topo.triangles;
-  triangles.insert(triangles.end(), capTriangles.begin(), capTriangles.end());
-  Topology closed = rebuildTopology(topo, std::move(triangles), grown.position, params.springPrestrain);
-  if (!closed.isClosed()) throw std::logic_error("pinch-off: the capped film still has a boundary");
+  auto close = [&](std::vector<uint32_t> seam) {
+    orientAgainstLoop(loop, seam);
+    grown = s;  // new particles appended: indices of the film stay
+    grown.append(added.size());
+    for (size_t k = 0; k < added.size(); ++k) grown.position.set(first + k, added[k]);
+    std::vector<uint32_t> triangles = topo.triangles;
+    triangles.insert(triangles.end(), seam.begin(), seam.end());
+    return rebuildTopology(topo, std::move(triangles), grown.position, params.springPrestrain);
+  };
+  // Side by side: no farther apart than the wand tips when they pinch, or four loop spacings.
+  const float maxGap = std::max(4.0f * loopSpacing(s, loop), 1.5f * params.pinchDistance);
+  std::optional<Topology> closed;
+  if (std::vector<uint32_t> zip = zipCollapsedLoop(s, loop, maxGap); !zip.empty()) {
+    try {
+      closed = close(std::move(zip));
+    } catch (const std::runtime_error&) {  // a zip diagonal is already an edge of the film: non-manifold
+    }
+  }
+  if (!closed) closed = close(ringCap(s, loop, first, added));
+  if (!closed->isClosed()) throw std::logic_error("pinch-off: the capped film still has a boundary");
 
   Film result = std::move(film);
   result.state = std::move(grown);
-  result.topology = std::move(closed);
+  result.topology = std::move(*closed);
   initialiseNewParticles(params, result, first);
   // Outward normals: a closed film encloses a positive volume.
   result.volumeOrigin = centroid(result.state);

@@ -39,6 +39,7 @@ Simulation::Simulation(const Params& params, Film film, const WandState& wands, 
   pressure_ = params_.pressureCoefficient;
   chooseSubsteps();
   stepper_->load(params_, film_);
+  updateContacts();
 }
 
 void Simulation::chooseSubsteps() {
@@ -71,6 +72,7 @@ StepUniforms Simulation::uniformsFor(const WandState& a, const WandState& b, flo
 }
 
 void Simulation::advanceFrame(const WandState& next) {
+  burstOnHardImpact();  // judged on the contacts found after the last frame, before this one moves them
   const float dt = params_.frameTime / static_cast<float>(substeps_);
   const float wandSpeed = std::max((next.leftPosition - wands_.leftPosition).norm(),
                                    (next.rightPosition - wands_.rightPosition).norm()) / params_.frameTime;
@@ -95,6 +97,12 @@ void Simulation::advanceFrame(const WandState& next) {
   if (tipsTogether && !film_.topology.isClosed() && !burst_.active()) events_.pinchedOff = pinch();
   updateContacts();
   aerosol_.advance(params_, params_.frameTime);
+}
+
+void Simulation::burstOnHardImpact() {
+  if (burst_.active() || params_.collisionThreshold <= 0.0f) return;
+  const Impact impact = hardestImpact(params_, params_.frameTime, film_);
+  if (impact.number > params_.collisionThreshold) startCrack(burst_, film_, impact.particle, time_);
 }
 
 void Simulation::growFilm(const WandState& wands, float wandSpeed) {

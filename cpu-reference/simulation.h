@@ -85,6 +85,7 @@ class Simulation {
  private:
   void chooseSubsteps();
   void growFilm(const WandState& wands, float wandSpeed);
+  void burstOnHardImpact();
   void updateContacts();
   void checkStable() const;
 

@@ -44,7 +44,8 @@ struct Params {
   int holeOpening GB_DEFAULT(0);                // 0: hole front at the Taylor-Culick speed; 1: one ring per frame (paper)
   float aerosolLifetime GB_DEFAULT(1.5f);       // aerosol droplets fade out over this time (s)
   float aerosolDrag GB_DEFAULT(2.0f);           // linear air drag rate on a droplet (1/s)
-  float collisionThreshold GB_DEFAULT(1.75f);   // lambda_col, Table 2 [1.5, 2.0], read as impact speed (m/s)
+  float collisionThreshold GB_DEFAULT(1.75f);   // lambda_col, Table 2 [1.5, 2.0]: film Weber number of an impact
+                                                // that bursts the film (collision.h); 0 turns it off
   float collisionDistance GB_DEFAULT(0.02f);    // film particles closer than this repel (self-collision) (m)
   float collisionStiffness GB_DEFAULT(1.0f);    // stiffness of that repulsion (N/m)
   float collisionDamping GB_DEFAULT(0.0002f);   // damping of the approach speed in a contact (N s/m)

@@ -60,3 +60,37 @@ TEST(Collision, TwoSheetsPushedTogetherDoNotPassThroughEachOther) {
 
 }  // namespace
 }  // namespace gb
+
+namespace gb {
+namespace {
+
+TEST(Collision, ImpactNumberIsTheFilmWeberNumber) {
+  Params p;
+  p.filmInertia = 0.1f;
+  // 0.1 kg/m^2 x (5 m/s)^2 / 12.5 N/m = 0.2; receding or a film without tension: no impact.
+  EXPECT_FLOAT_EQ(impactNumber(p, 5.0f, 12.5f), 0.2f);
+  EXPECT_EQ(impactNumber(p, -5.0f, 12.5f), 0.0f);
+  EXPECT_EQ(impactNumber(p, 5.0f, 0.0f), 0.0f);
+}
+
+// The approach speed at which two sheets' impact number reaches lambda_col.
+float burstingSpeed(const Params& p, const Film& film) {
+  return std::sqrt(p.collisionThreshold * film.state.elasticity[0] / p.filmInertia);
+}
+
+TEST(Collision, AHardImpactBurstsTheFilmAndAGentleOneDoesNot) {
+  const Params p = twoSheetParams();
+  const float vBurst = burstingSpeed(p, test::makeTwoSheets(p, 0.04f, 0.0f));
+  for (float factor : {2.0f, 0.5f}) {
+    Simulation sim(p, test::makeTwoSheets(p, 0.04f, factor * vBurst), WandState{});
+    for (int f = 0; f < 3; ++f) sim.advanceFrame(WandState{});
+    if (factor > 1) {
+      EXPECT_GE(sim.burst().started, 0.0) << "a sheet thrown at " << factor * vBurst << " m/s must burst";
+    } else {
+      EXPECT_LT(sim.burst().started, 0.0) << "a sheet meeting another at " << factor * vBurst << " m/s must hold";
+    }
+  }
+}
+
+}  // namespace
+}  // namespace gb

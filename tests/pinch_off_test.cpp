@@ -58,14 +58,19 @@ TEST(PinchOff, ClosingTheWandsPinchesTheFilmOffByItself) {
   g.start = 0.0f;
   WandState w = gestureAt(Gesture::Straight, g, 1.0);
   bool pinched = false;
+  size_t particlesBefore = 0;
   for (int f = 0; f < 60 && !pinched; ++f) {  // the tips slide together over a second
     w.leftPosition.x() += 0.0085f;
     w.rightPosition.x() -= 0.0085f;
+    particlesBefore = sim->film().state.size();
     sim->advanceFrame(w);
     pinched = sim->lastEvents().pinchedOff;
   }
   EXPECT_TRUE(pinched);
   EXPECT_TRUE(sim->film().topology.isClosed());
+  EXPECT_EQ(test::eulerCharacteristic(sim->film().topology), 2);
+  // The collapsed string loop is zipped shut, side to side, with no new particle (a cap would add some).
+  EXPECT_EQ(sim->film().state.size(), particlesBefore + sim->lastEvents().particlesAdded);
 }
 
 TEST(PinchOff, ABurstTearsTheBubbleOpenSoBoylesPressureStops) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <unordered_map>
 
 namespace gb {
@@ -106,6 +107,31 @@ Impact hardestImpact(const Params& params, float frameTime, const Film& film) {
       hardest.particle = s.velocity.get(i).squaredNorm() >= s.velocity.get(j).squaredNorm() ? i : j;
     }
   return hardest;
+}
+
+Nearest nearestParticle(const State& s, const Vec3& x) {
+  Nearest nearest{0, std::numeric_limits<float>::infinity()};
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (!s.alive[i]) continue;
+    const float d = (s.position.get(i) - x).norm();
+    if (d < nearest.distance) nearest = {i, d};
+  }
+  return nearest;
+}
+
+double windingNumber(const Film& film, const Vec3& x) {
+  const Topology& topo = film.topology;
+  double solidAngle = 0;
+  for (size_t t = 0; t < topo.triangleCount(); ++t) {
+    const Eigen::Vector3d a = (film.state.position.get(topo.triangles[3 * t]) - x).cast<double>();
+    const Eigen::Vector3d b = (film.state.position.get(topo.triangles[3 * t + 1]) - x).cast<double>();
+    const Eigen::Vector3d c = (film.state.position.get(topo.triangles[3 * t + 2]) - x).cast<double>();
+    const double la = a.norm(), lb = b.norm(), lc = c.norm();
+    const double numerator = a.dot(b.cross(c));
+    const double denominator = la * lb * lc + a.dot(b) * lc + b.dot(c) * la + c.dot(a) * lb;
+    solidAngle += 2.0 * std::atan2(numerator, denominator);
+  }
+  return solidAngle / (4.0 * 3.14159265358979323846);
 }
 
 }  // namespace gb

@@ -21,6 +21,18 @@ size_t findContacts(const Params& params, float margin, Film& film);
 // scale of Eq. 4). Dimensionless, like the paper's lambda_col in [1.5, 2]: the film bursts above it.
 float impactNumber(const Params& params, float approachSpeed, float elasticity);
 
+// The living particle nearest to x and its distance (infinite when none lives): a linear scan, for the two
+// wand tips.
+struct Nearest {
+  size_t particle = 0;
+  float distance = 0.0f;
+};
+Nearest nearestParticle(const State& state, const Vec3& x);
+
+// Generalised winding number of a closed film around x: the sum of its triangles' signed solid angles over
+// 4 pi (Van Oosterom and Strackee 1983). 1 inside a bubble with outward normals, 0 outside, robust to folds.
+double windingNumber(const Film& film, const Vec3& x);
+
 struct Impact {
   size_t particle = 0;  // the faster particle of the hardest pair
   float number = 0.0f;  // its impact number; 0 when no pair is in contact and closing

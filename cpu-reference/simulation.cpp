@@ -89,6 +89,7 @@ void Simulation::advanceFrame(const WandState& next) {
   wands_ = next;
   time_ += params_.frameTime;
   checkStable();
+  burstOnWandTouch();
   events_ = advanceBurst(params_, time_, film_, burst_, aerosol_);
   if (events_.particlesRemoved > 0) stepper_->load(params_, film_);  // the topology changed
   if (!burst_.active()) growFilm(next, wandSpeed);
@@ -103,6 +104,20 @@ void Simulation::burstOnHardImpact() {
   if (burst_.active() || params_.collisionThreshold <= 0.0f) return;
   const Impact impact = hardestImpact(params_, params_.frameTime, film_);
   if (impact.number > params_.collisionThreshold) startCrack(burst_, film_, impact.particle, time_);
+}
+
+void Simulation::burstOnWandTouch() {
+  if (!film_.topology.isClosed() || burst_.active()) return;
+  const Vec3 tips[2] = {wands_.leftPosition, wands_.rightPosition};
+  for (int w = 0; w < 2; ++w) {
+    const Nearest nearest = nearestParticle(film_.state, tips[w]);
+    if (!wandArmed_[w]) {
+      wandArmed_[w] = nearest.distance > params_.pinchDistance;  // pulled clear of the bubble it let go of
+    } else if (nearest.distance < params_.collisionDistance || windingNumber(film_, tips[w]) > 0.5) {
+      startCrack(burst_, film_, nearest.particle, time_);
+      return;
+    }
+  }
 }
 
 void Simulation::growFilm(const WandState& wands, float wandSpeed) {
@@ -152,6 +167,7 @@ bool Simulation::pinch() {
   }
   CpuStepper::refreshGeometry(params_, film_);
   burst_ = BurstFront{};
+  wandArmed_ = {false, false};  // the tips are at the seam: they count once they have left the bubble
   chooseSubsteps();
   stepper_->load(params_, film_);
   return true;

@@ -2,6 +2,7 @@
 // A film driven by wand input frame by frame: splits each frame of Params::frameTime into stable substeps,
 // feeds the stepper interpolated wand states, and stops with a clear error if the film goes unstable.
 
+#include <array>
 #include <memory>
 #include <stdexcept>
 
@@ -60,7 +61,9 @@ class Simulation {
   // The living interior particle highest up: where a poke from above lands.
   [[nodiscard]] size_t topParticle() const;
   // Closes the film into a free bubble now (pinch_off.h); false if it cannot (already closed, torn, or its
-  // loop cannot be capped yet). Two-wand films also pinch off by themselves when the tips come within
+  // loop cannot be capped yet). The wand tips are dry sticks: once pulled clear of the free bubble (farther
+  // than pinchDistance from it), a tip that touches it (within collisionDistance, or found inside it by its
+  // winding number: it went through the film during the frame) bursts it at the particle nearest to the tip. Two-wand films also pinch off by themselves when the tips come within
   // Params::pinchDistance.
   bool pinch();
   // Dips the wands again: a new film on the frame at `wands` (after a burst, or to start over).
@@ -86,6 +89,7 @@ class Simulation {
   void chooseSubsteps();
   void growFilm(const WandState& wands, float wandSpeed);
   void burstOnHardImpact();
+  void burstOnWandTouch();
   void updateContacts();
   void checkStable() const;
 
@@ -97,6 +101,7 @@ class Simulation {
   TopologyEvents events_;
   std::vector<StepUniforms> substepUniforms_;  // one frame's substeps, reused
   WandState wands_;
+  std::array<bool, 2> wandArmed_{true, true};  // a tip bursts a free bubble it touches once armed
   double time_ = 0;
   int substeps_ = 1;
   float pressure_ = 0;

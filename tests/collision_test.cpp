@@ -94,3 +94,18 @@ TEST(Collision, AHardImpactBurstsTheFilmAndAGentleOneDoesNot) {
 
 }  // namespace
 }  // namespace gb
+
+namespace gb {
+namespace {
+
+TEST(Collision, WindingNumberTellsInsideFromOutsideOfABubble) {
+  const Film sphere = generateSphere(Params{}, Vec3(0, 1, 0), 0.5f, 2);
+  // Exact up to the float positions of the icosphere: 1e-6.
+  EXPECT_NEAR(windingNumber(sphere, Vec3(0, 1, 0)), 1.0, 1e-6);
+  EXPECT_NEAR(windingNumber(sphere, Vec3(0.3f, 1.2f, 0.1f)), 1.0, 1e-6);
+  EXPECT_NEAR(windingNumber(sphere, Vec3(2, 1, 0)), 0.0, 1e-6);
+  EXPECT_NEAR(windingNumber(sphere, Vec3(0, 1.6f, 0)), 0.0, 1e-6);
+}
+
+}  // namespace
+}  // namespace gb

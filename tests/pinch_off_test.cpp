@@ -73,6 +73,23 @@ TEST(PinchOff, ClosingTheWandsPinchesTheFilmOffByItself) {
   EXPECT_EQ(sim->film().state.size(), particlesBefore + sim->lastEvents().particlesAdded);
 }
 
+// The wand tips are dry sticks: pulled clear of the bubble they let go of, then poked into it, they burst it
+// (the poke crosses the film within one frame: the tip is found inside).
+TEST(PinchOff, AWandTipPokedIntoTheFreeBubbleBurstsIt) {
+  for (bool poke : {false, true}) {
+    auto sim = bulgedFilm(800, 40);
+    ASSERT_TRUE(sim->pinch());
+    WandState away = gestureAt(Gesture::Straight, GestureOptions{}, 0.0);
+    away.leftPosition += Vec3(-3, 0, 0);
+    away.rightPosition += Vec3(3, 0, 0);
+    for (int f = 0; f < 3; ++f) sim->advanceFrame(away);
+    EXPECT_LT(sim->burst().started, 0.0) << "touching nothing, the wands burst nothing";
+    if (poke) away.rightPosition = centroid(sim->film().state);  // through the film, into the bubble
+    for (int f = 0; f < 3; ++f) sim->advanceFrame(away);
+    EXPECT_EQ(sim->burst().started >= 0.0, poke) << (poke ? "the poke must burst the bubble" : "no poke, no burst");
+  }
+}
+
 TEST(PinchOff, ABurstTearsTheBubbleOpenSoBoylesPressureStops) {
   auto sim = bulgedFilm(800, 50);
   ASSERT_TRUE(sim->pinch());

@@ -47,6 +47,8 @@ size_t findContacts(const Params& p, float margin, Film& film) {
     for (uint32_t i = 0; i < n; ++i)
       if (inFilm(film, i)) grid[cellKey(cellOf(s.position.get(i), reach))].push_back(i);
     constexpr float acrossCosine = 0.7071f;  // 45 degrees
+    // Each particle fills its own list from the read-only grid: parallel, and the same lists in any order.
+#pragma omp parallel for schedule(dynamic, 256)
     for (uint32_t i = 0; i < n; ++i) {
       if (!inFilm(film, i)) continue;
       const Vec3 xi = s.position.get(i), ni = s.normal.get(i);

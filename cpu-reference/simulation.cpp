@@ -91,7 +91,7 @@ void Simulation::advanceFrame(const WandState& next) {
   checkStable();
   burstOnWandTouch();
   events_ = advanceBurst(params_, time_, film_, burst_, aerosol_);
-  if (events_.particlesRemoved > 0) stepper_->load(params_, film_);  // the topology changed
+  if (events_.particlesRemoved > 0) stepper_->updateTopology(params_, film_);  // the mesh shrank
   if (!burst_.active()) growFilm(next, wandSpeed);
   const bool tipsTogether = film_.tool.kind == ToolKind::TwoWands &&
                             (next.rightPosition - next.leftPosition).norm() < params_.pinchDistance;

@@ -38,6 +38,10 @@ class Stepper {
   virtual void store(Film& film) = 0;
   // Takes the film's new self-collision contact list (Topology::contacts), found between frames.
   virtual void updateContacts(const Film&) {}
+  // Takes a film whose mesh changed but whose particles did not move or change (a burst removed springs and
+  // triangles and flagged particles dead): a GPU stepper writes only the topology and the alive flags and
+  // keeps its state. By default, and whenever the particle count changed, it is a load().
+  virtual void updateTopology(const Params& params, Film& film) { load(params, film); }
   // Takes the film's changed spring rest lengths (the wire paying out film between frames, film_growth.h).
   virtual void updateRestLengths(const Film&) {}
 

@@ -401,6 +401,38 @@ void VulkanStepper::updateContacts(const Film& film) {
   writeVector(m.buffer(GB_BINDING_CONTACTS), contacts);
 }
 
+void VulkanStepper::updateTopology(const Params& params, Film& film) {
+  Impl& m = *impl_;
+  const Topology& t = film.topology;
+  auto fits = [&](int binding, size_t count, size_t elementBytes) {
+    return count * elementBytes <= m.buffer(binding).size();
+  };
+  const bool fitsBuffers =
+      film.state.size() == m.particles && t.triangleCount() <= m.triangles &&
+      fits(GB_BINDING_TRIANGLES, t.triangles.size(), sizeof(uint32_t)) &&
+      fits(GB_BINDING_REST_LENGTH, t.restLength.size(), sizeof(float)) &&
+      fits(GB_BINDING_SPRING_INDEX, t.springIndex.size(), sizeof(uint32_t)) &&
+      fits(GB_BINDING_SPRING_NEIGHBOUR, t.springNeighbour.size(), sizeof(uint32_t)) &&
+      fits(GB_BINDING_TRIANGLE_INDEX, t.triangleIndex.size(), sizeof(uint32_t)) &&
+      fits(GB_BINDING_CONTACTS, t.contacts.size(), sizeof(uint32_t));
+  if (!fitsBuffers) {
+    load(params, film);
+    return;
+  }
+  // A burst only shrinks the mesh: the buffers keep their size, the counts say how much of them is used.
+  m.triangles = static_cast<uint32_t>(t.triangleCount());
+  writeVector(m.buffer(GB_BINDING_ALIVE), film.state.alive);
+  writeVector(m.buffer(GB_BINDING_BOUNDARY), t.boundary);
+  writeVector(m.buffer(GB_BINDING_TRIANGLES), t.triangles);
+  writeVector(m.buffer(GB_BINDING_REST_LENGTH), t.restLength);
+  writeVector(m.buffer(GB_BINDING_SPRING_OFFSET), t.springOffset);
+  writeVector(m.buffer(GB_BINDING_SPRING_INDEX), t.springIndex);
+  writeVector(m.buffer(GB_BINDING_SPRING_NEIGHBOUR), t.springNeighbour);
+  writeVector(m.buffer(GB_BINDING_TRIANGLE_OFFSET), t.triangleOffset);
+  writeVector(m.buffer(GB_BINDING_TRIANGLE_INDEX), t.triangleIndex);
+  writeVector(m.buffer(GB_BINDING_CONTACTS), t.contacts);
+}
+
 void VulkanStepper::updateRestLengths(const Film& film) {
   Impl& m = *impl_;
   if (film.topology.restLength.size() * sizeof(float) != m.buffer(GB_BINDING_REST_LENGTH).size())

@@ -26,6 +26,7 @@ class VulkanStepper final : public Stepper {
   void store(Film& film) override;
   void updateContacts(const Film& film) override;
   void updateRestLengths(const Film& film) override;
+  void updateTopology(const Params& params, Film& film) override;
 
   [[nodiscard]] const VulkanContext& context() const;
 

@@ -2,7 +2,7 @@
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
-#include <map>
+#include <string>
 
 #include "bench_command.h"
 #include "run_command.h"
@@ -14,36 +14,22 @@ void applyParameter(gb::Params& p, const std::string& assignment) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos) throw CLI::ValidationError("--param", "expected NAME=VALUE, got '" + assignment + "'");
   const std::string name = assignment.substr(0, eq), text = assignment.substr(eq + 1);
-  const std::map<std::string, float*> floats = {
-      {"frameTime", &p.frameTime}, {"stabilitySafety", &p.stabilitySafety},
-      {"elasticityWeight", &p.elasticityWeight}, {"elasticityThickness", &p.elasticityThickness},
-      {"areaWeight", &p.areaWeight}, {"marangoniLifetime", &p.marangoniLifetime},
-      {"springPrestrain", &p.springPrestrain}, {"springDamping", &p.springDamping}, {"filmInertia", &p.filmInertia}, {"airDrag", &p.airDrag},
-      {"gravityX", &p.gravityX}, {"gravityY", &p.gravityY}, {"gravityZ", &p.gravityZ},
-      {"airDirectionThreshold", &p.airDirectionThreshold}, {"airInflowDistance", &p.airInflowDistance},
-      {"airPressureGain", &p.airPressureGain}, {"pressureCoefficient", &p.pressureCoefficient},
-      {"thicknessThreshold", &p.thicknessThreshold}, {"sticky", &p.sticky},
-      {"collisionThreshold", &p.collisionThreshold}, {"solution", &p.solution},
-      {"drainageRate", &p.drainageRate}, {"surfaceTension", &p.surfaceTension}, {"liquidDensity", &p.liquidDensity},
-      {"aerosolLifetime", &p.aerosolLifetime}, {"aerosolDrag", &p.aerosolDrag}, {"pinchDistance", &p.pinchDistance},
-      {"collisionDistance", &p.collisionDistance}, {"collisionStiffness", &p.collisionStiffness},
-      {"collisionDamping", &p.collisionDamping}, {"solutionReserve", &p.solutionReserve},
-      {"growthStretch", &p.growthStretch}};
-  const std::map<std::string, int*> ints = {{"maxSubsteps", &p.maxSubsteps}, {"holeOpening", &p.holeOpening},
-                                            {"particlesAtFullSolution", &p.particlesAtFullSolution}};
+  if (!gb::findParamField(name))
+    throw CLI::ValidationError("--param", "unknown parameter '" + name + "' (see docs/model.md for the list)");
   size_t used = 0;
+  double value = 0;
   try {
-    if (auto f = floats.find(name); f != floats.end()) {
-      *f->second = std::stof(text, &used);
-    } else if (auto i = ints.find(name); i != ints.end()) {
-      *i->second = std::stoi(text, &used);
-    } else {
-      throw CLI::ValidationError("--param", "unknown parameter '" + name + "' (see docs/model.md for the list)");
-    }
+    value = std::stod(text, &used);
   } catch (const std::logic_error&) {
-    throw CLI::ValidationError("--param", "parameter " + name + ": '" + text + "' is not a number");
+    used = 0;
   }
-  if (used != text.size()) throw CLI::ValidationError("--param", "parameter " + name + ": '" + text + "' is not a number");
+  if (used == 0 || used != text.size())
+    throw CLI::ValidationError("--param", "parameter " + name + ": '" + text + "' is not a number");
+  try {
+    gb::setParameter(p, name, value);
+  } catch (const std::invalid_argument& e) {
+    throw CLI::ValidationError("--param", e.what());
+  }
 }
 
 }  // namespace

@@ -1,7 +1,10 @@
 #include "params.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 namespace gb {
 namespace {
@@ -15,7 +18,45 @@ void requireRange(std::vector<std::string>& errors, const char* name, T value, T
   errors.push_back(msg.str());
 }
 
+#define GB_REAL(field) ParamField{#field, &Params::field, nullptr}
+#define GB_INTEGER(field) ParamField{#field, nullptr, &Params::field}
+// In the order of shared_params.h.
+constexpr std::array kFields = {
+    GB_REAL(frameTime), GB_REAL(stabilitySafety), GB_INTEGER(maxSubsteps), GB_REAL(elasticityWeight),
+    GB_REAL(elasticityThickness), GB_REAL(areaWeight), GB_REAL(marangoniLifetime), GB_REAL(springPrestrain),
+    GB_REAL(springDamping), GB_REAL(filmInertia), GB_REAL(airDrag), GB_REAL(gravityX), GB_REAL(gravityY),
+    GB_REAL(gravityZ), GB_REAL(airDirectionThreshold), GB_REAL(airInflowDistance), GB_REAL(airPressureGain),
+    GB_REAL(pressureCoefficient), GB_REAL(thicknessThreshold), GB_REAL(sticky), GB_REAL(drainageRate),
+    GB_REAL(surfaceTension), GB_REAL(liquidDensity), GB_INTEGER(holeOpening), GB_REAL(aerosolLifetime),
+    GB_REAL(aerosolDrag), GB_REAL(collisionThreshold), GB_REAL(collisionDistance), GB_REAL(collisionStiffness),
+    GB_REAL(collisionDamping), GB_REAL(pinchDistance), GB_REAL(solution), GB_INTEGER(particlesAtFullSolution),
+    GB_REAL(solutionReserve), GB_REAL(growthStretch)};
+#undef GB_REAL
+#undef GB_INTEGER
+
 }  // namespace
+
+std::span<const ParamField> paramFields() { return kFields; }
+
+const ParamField* findParamField(const std::string& name) {
+  const auto it = std::find_if(kFields.begin(), kFields.end(), [&](const ParamField& f) { return name == f.name; });
+  return it == kFields.end() ? nullptr : &*it;
+}
+
+void setParameter(Params& params, const std::string& name, double value) {
+  const ParamField* field = findParamField(name);
+  if (!field) throw std::invalid_argument("unknown parameter '" + name + "' (docs/model.md lists them)");
+  if (field->real) {
+    params.*field->real = static_cast<float>(value);
+    return;
+  }
+  if (!(std::isfinite(value) && value == std::floor(value) && std::abs(value) < 2e9)) {
+    std::ostringstream msg;
+    msg << "parameter " << name << " = " << value << " must be a whole number";
+    throw std::invalid_argument(msg.str());
+  }
+  params.*field->integer = static_cast<int>(value);
+}
 
 std::vector<std::string> validate(const Params& p) {
   std::vector<std::string> e;

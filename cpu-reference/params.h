@@ -2,6 +2,7 @@
 // The model's parameters: the block itself is defined once in kernels/shared_params.h, shared with the
 // compute shaders; this header adds what only C++ needs.
 
+#include <span>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,22 @@ namespace gb {
 
 // Initial film thickness e0 (m): the paper's area weight w_e read as liquid per rest area, w_e x 100 um.
 inline float initialThickness(const Params& p) { return p.areaWeight * 100e-6f; }
+
+// The parameters by name, for the command line (--param NAME=VALUE) and scene files: each field of Params
+// once, as a member pointer of its type (a test checks that they cover the whole block).
+struct ParamField {
+  const char* name;
+  float Params::*real = nullptr;   // set for float parameters
+  int Params::*integer = nullptr;  // set for int parameters
+};
+std::span<const ParamField> paramFields();
+
+// The field of that name, or nullptr.
+const ParamField* findParamField(const std::string& name);
+
+// Sets a parameter by name. Throws std::invalid_argument naming the parameter when it is unknown, or when an
+// int parameter gets a value that is not a whole number. Range checks are validate()'s.
+void setParameter(Params& params, const std::string& name, double value);
 
 // One message per parameter that is out of its valid range, each naming the parameter, its value and the
 // range. Empty when the parameters are usable.

@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <set>
+#include <string>
+
 #include "params.h"
 
 namespace gb {
@@ -41,6 +44,38 @@ TEST(Params, AbsurdValuesAreRejectedByName) {
   EXPECT_NE(errors[0].find("frameTime = -1"), std::string::npos) << errors[0];
   EXPECT_NE(errors[1].find("filmInertia = nan"), std::string::npos) << errors[1];
   EXPECT_NE(errors[2].find("solution = 7 is out of range [0.01, 1]"), std::string::npos) << errors[2];
+}
+
+}  // namespace
+}  // namespace gb
+
+namespace gb {
+namespace {
+
+TEST(Params, EveryFieldHasOneNameAndTheTableCoversTheBlock) {
+  // Params holds only 4-byte scalars (shared_params.h), so the table covers it iff it has sizeof / 4 distinct
+  // fields; distinct member pointers are checked through the offsets they address.
+  const auto fields = paramFields();
+  EXPECT_EQ(fields.size() * 4, sizeof(Params));
+  Params p;
+  std::set<const void*> addresses;
+  std::set<std::string> names;
+  for (const ParamField& f : fields) {
+    addresses.insert(f.real ? static_cast<const void*>(&(p.*f.real)) : static_cast<const void*>(&(p.*f.integer)));
+    names.insert(f.name);
+  }
+  EXPECT_EQ(addresses.size(), fields.size());
+  EXPECT_EQ(names.size(), fields.size());
+}
+
+TEST(Params, SetByNameChecksTheNameAndWholeNumbers) {
+  Params p;
+  setParameter(p, "sticky", 27.5);
+  EXPECT_EQ(p.sticky, 27.5f);
+  setParameter(p, "holeOpening", 1);
+  EXPECT_EQ(p.holeOpening, 1);
+  EXPECT_THROW(setParameter(p, "stiky", 1), std::invalid_argument);
+  EXPECT_THROW(setParameter(p, "maxSubsteps", 2.5), std::invalid_argument);
 }
 
 }  // namespace

@@ -77,7 +77,6 @@ class DepthStream {
   // file has gone since it was opened.
   Poll poll(kinect::DepthFrame& frame, double timeout);
   [[nodiscard]] std::string describe() const;
-  [[nodiscard]] bool live() const { return !recording_; }
   // A recording's length (s, first depth frame to last); nothing for a live camera.
   [[nodiscard]] std::optional<double> length() const;
   // Seconds since the stream opened (live); frame times are on this clock.

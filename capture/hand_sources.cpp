@@ -46,8 +46,7 @@ std::optional<HandSample> DepthHandSource::next() {
       case DepthStream::Poll::Frame:
         lastFrame_ = frame_.time;
         if (observer_) observer_(frame_);
-        detection_ = detectHands(frame_, detectionOptions_);
-        return tracker_.update(frame_.time, detection_);
+        return tracker_.update(frame_.time, detectHands(frame_, detectionOptions_));
     }
   }
 }

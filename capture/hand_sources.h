@@ -28,7 +28,6 @@ class DepthHandSource : public HandSource {
   [[nodiscard]] std::string describe() const override { return stream_->describe(); }
   // Called with every depth frame before detection (giantbubble record writes them as a fakenect recording).
   void onFrame(std::function<void(const kinect::DepthFrame&)> observer) { observer_ = std::move(observer); }
-  [[nodiscard]] const Detection& lastDetection() const { return detection_; }
   [[nodiscard]] std::optional<double> length() const override { return stream_->length(); }
 
   static constexpr double kFrameTimeout = 0.1;  // s without a frame: a sample with both hands held
@@ -39,7 +38,6 @@ class DepthHandSource : public HandSource {
   DetectionOptions detectionOptions_;
   HandTracker tracker_;
   kinect::DepthFrame frame_;
-  Detection detection_;
   double lastFrame_ = 0.0;
   std::function<void(const kinect::DepthFrame&)> observer_;
 };

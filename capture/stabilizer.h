@@ -100,7 +100,6 @@ class HandStabilizer {
   void add(double t, const HandObservation& hand);
   [[nodiscard]] WandPoint at(double t) const;  // t at or after the newest sample
   [[nodiscard]] double confidence() const { return confidence_; }
-  [[nodiscard]] double lastTime() const { return t_; }
 
  private:
   StabilizerOptions o_;

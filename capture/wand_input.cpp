@@ -34,7 +34,8 @@ std::string ScriptedWands::describe() const {
 StabilizedWands::StabilizedWands(std::unique_ptr<HandSource> source, const StabilizerOptions& stabilizer,
                                  const Calibration& calibration)
     : source_(std::move(source)), calibration_(calibration), describe_(source_->describe()) {
-  if (!fetch()) throw HandSourceError(describe_ + ": no samples");
+  if (!fetch())
+    throw HandSourceError(describe_ + ": no samples" + (messages_.empty() ? "" : " (" + messages_.back() + ")"));
   start_ = ahead_.front().time;
   if (calibration_.autoPerformer) {
     auto both = [](const HandSample& s) { return s.left.measured && s.right.measured; };

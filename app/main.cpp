@@ -5,6 +5,7 @@
 #include <string>
 
 #include "bench_command.h"
+#include "record_command.h"
 #include "run_command.h"
 
 namespace {
@@ -39,9 +40,9 @@ int main(int argc, char** argv) {
   app.require_subcommand(0, 1);
 
   gb::RunOptions run;
-  std::string tool = "two-wands", gesture = "straight";
+  std::string tool = "two-wands";
   std::vector<std::string> assignments;
-  CLI::App* runCmd = app.add_subcommand("run", "simulate a scripted performance headless and write its outputs");
+  CLI::App* runCmd = app.add_subcommand("run", "simulate a performance headless and write its outputs");
   runCmd->add_option("--duration", run.duration, "simulated seconds")->check(CLI::Range(0.001, 3600.0));
   runCmd->add_option("--out", run.outDir, "output folder (created if missing)");
   runCmd->add_option("--ply-every", run.plyEvery, "write a PLY mesh every N frames, 0 for none")
@@ -49,7 +50,7 @@ int main(int argc, char** argv) {
   runCmd->add_option("--images-every", run.imageEvery, "write a thickness image (PNG) every N frames, 0 for none")
       ->check(CLI::Range(0, 1000000));
   runCmd->add_option("--tool", tool, "bubble tool")->check(CLI::IsMember({"two-wands", "ring"}));
-  runCmd->add_option("--gesture", gesture, "scripted wand gesture")->check(CLI::IsMember(gb::gestureNames()));
+  gb::addInputOptions(runCmd, run.input);  // --input, --gesture and the capture options
   runCmd->add_option("--speed", run.gestureOptions.speed, "peak wand speed (m/s)")->check(CLI::Range(0.0, 20.0));
   runCmd->add_option("--solution", run.params.solution, "remaining soap solution (0, 1]")
       ->check(CLI::Range(0.01, 1.0));
@@ -72,6 +73,9 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--json", bench.json, "where to write the results");
   benchCmd->add_option("--device", bench.device, "Vulkan device: index or part of its name");
 
+  gb::RecordOptions record;
+  CLI::App* recordCmd = gb::addRecordCommand(app, record);
+
   try {
     app.parse(argc, argv);
     for (const std::string& a : assignments) applyParameter(run.params, a);
@@ -85,8 +89,9 @@ int main(int argc, char** argv) {
   }
   if (benchCmd->parsed()) return gb::runBenchmark(bench);
   try {
+    if (recordCmd->parsed()) return gb::runRecord(record);
     run.tool.kind = tool == "ring" ? gb::ToolKind::Ring : gb::ToolKind::TwoWands;
-    run.gesture = gb::gestureFromName(gesture);
+    run.durationFromInput = runCmd->count("--duration") == 0;
     run.backend = gb::backendFromName(backend);
     return gb::runSimulation(run);
   } catch (const std::exception& e) {

@@ -9,6 +9,7 @@
 #include "run_output.h"
 #include "thickness_image.h"
 #include "simulation.h"
+#include "wand_log.h"
 
 namespace gb {
 
@@ -71,12 +72,23 @@ void printSummary(const FrameStats& first, const FrameStats& last, long frames, 
 
 int runSimulation(const RunOptions& o) {
   std::filesystem::create_directories(o.outDir);
-  const WandState start = gestureAt(o.gesture, o.gestureOptions, 0.0);
+  std::unique_ptr<WandInput> input = makeWandInput(o.input, o.gestureOptions);
+  std::printf("input: %s\n", input->describe().c_str());
+  auto report = [&](bool midBar) {
+    for (const std::string& m : input->takeMessages())
+      std::fprintf(stderr, "%s%s\n", midBar && isatty(STDERR_FILENO) ? "\n" : "", m.c_str());
+  };
+  const double duration = o.durationFromInput && input->length() ? std::max(*input->length(), 0.02) : o.duration;
+  WandLog wandLog(o.outDir / "wands.csv");
+  const WandFrame startFrame = input->at(0.0);
+  report(false);
+  wandLog.add(0.0, startFrame);
+  const WandState start = startFrame.wands;
   std::string backendReport;
   std::unique_ptr<Stepper> stepper = makeStepper(o.backend, o.device, backendReport);
   std::printf("%s\n", backendReport.c_str());
   Simulation sim(o.params, o.tool, start, std::move(stepper));
-  const long frames = std::max(1L, std::lround(o.duration / o.params.frameTime));
+  const long frames = std::max(1L, std::lround(duration / o.params.frameTime));
   std::printf("giantbubble run: %zu particles, %zu triangles, %d substeps of %.3g ms per %.3g s frame, %ld frames\n",
               sim.film().state.size(), sim.film().topology.triangleCount(), sim.substepsPerFrame(),
               1e3 * o.params.frameTime / sim.substepsPerFrame(), o.params.frameTime, frames);
@@ -91,20 +103,24 @@ int runSimulation(const RunOptions& o) {
   FrameStats last = first;
   const auto runStart = std::chrono::steady_clock::now();
   for (long frame = 1; frame <= frames; ++frame) {
+    const double t = static_cast<double>(frame) * o.params.frameTime;
+    const WandFrame wands = input->at(t);  // a live camera may wait here for its next frame
+    report(o.progress);
+    wandLog.add(t, wands);
     const auto frameStart = std::chrono::steady_clock::now();
     std::string events;
-    const double t = static_cast<double>(frame) * o.params.frameTime;
     if (o.burstAt >= 0 && t - o.params.frameTime < o.burstAt && o.burstAt <= t) {
       sim.startBurst(sim.topParticle());
       events += "poked ";
     }
     try {
-      sim.advanceFrame(gestureAt(o.gesture, o.gestureOptions, t));
+      sim.advanceFrame(wands.wands);
     } catch (const SimulationUnstable& e) {
       bar.finish();
       std::fprintf(stderr, "error: %s\nstopped at frame %ld of %ld; outputs up to frame %ld are in %s\n", e.what(),
                    frame, frames, frame - 1, o.outDir.string().c_str());
       if (o.plyEvery > 0) writePly(o.outDir / ("unstable_" + meshName(frame)), sim.film());
+      wandLog.writePlot(o.outDir / "wands.svg", "giantbubble run (unstable): " + input->describe());
       return 3;
     }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
@@ -126,6 +142,7 @@ int runSimulation(const RunOptions& o) {
   }
   bar.finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
+  wandLog.writePlot(o.outDir / "wands.svg", "giantbubble run: " + input->describe());
   printSummary(first, last, frames, sim.substepsPerFrame(), wall, o.outDir);
   return 0;
 }

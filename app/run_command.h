@@ -1,10 +1,12 @@
 #pragma once
-// `giantbubble run`: a headless simulation of a scripted performance, written to an output folder.
+// `giantbubble run`: a headless simulation of a performance (scripted, recorded or live), written to an output
+// folder.
 
 #include <filesystem>
 #include <string>
 
 #include "backend.h"
+#include "input_options.h"
 #include "params.h"
 #include "scripted_gestures.h"
 #include "wire_frame.h"
@@ -14,9 +16,10 @@ namespace gb {
 struct RunOptions {
   Params params;
   WandTool tool;
-  Gesture gesture = Gesture::Straight;
+  InputOptions input;                     // what moves the wands (default: the straight scripted gesture)
   GestureOptions gestureOptions;
   double duration = 4.0;                  // simulated seconds
+  bool durationFromInput = false;         // a recorded input runs for its own length instead
   double burstAt = 3.5;                   // poke the top of the film at this time (s); negative: never
   std::filesystem::path outDir = "out";
   int plyEvery = 25;                      // write a mesh every this many frames (0: never)

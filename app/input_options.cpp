@@ -1,0 +1,82 @@
+#include "input_options.h"
+
+#include <sstream>
+#include <stdexcept>
+
+namespace gb {
+
+std::string InputOptions::spec() const {
+  if (!input.empty()) return input;
+  return "script:" + (gesture.empty() ? std::string("straight") : gesture);
+}
+
+void addInputOptions(CLI::App* command, InputOptions& o) {
+  command->add_option("--input", o.input,
+                      "where the hands come from: kinect, fakenect:DIR, trajectory:FILE or script:NAME "
+                      "(default script:straight)");
+  command->add_option("--gesture", o.gesture, "scripted wand gesture, the same as --input script:NAME")
+      ->check(CLI::IsMember(gestureNames()))
+      ->excludes("--input");
+  command->add_option("--stabilizer", o.stabilizer, "hand stabilizer for camera and file inputs")
+      ->check(CLI::IsMember({"bspline", "one-euro"}));
+  command->add_option("--performer", o.performer,
+                      "camera-space point X,Y,Z (m) between the performer's resting hands, or auto (the first "
+                      "sample with both hands)");
+  command->add_option("--reach", o.reach, "world metres per metre of hand motion")->check(CLI::Range(0.1, 20.0));
+  command->add_option("--camera-pitch", o.cameraPitch, "degrees the camera is tilted up")
+      ->check(CLI::Range(-45.0, 45.0));
+  command->add_option("--depth-band", o.depthBand, "NEAR FAR: depths (m) where the performer is looked for")
+      ->expected(2)
+      ->check(CLI::Range(0.3, 10.0));
+  command->add_flag("--mirrored", o.mirrored, "the depth image is mirrored (the performer's left hand on its left)");
+}
+
+Calibration calibrationOf(const InputOptions& o) {
+  Calibration c;
+  c.reach = o.reach;
+  c.cameraPitch = o.cameraPitch;
+  if (o.performer == "auto") {
+    c.autoPerformer = true;
+    return c;
+  }
+  std::istringstream in(o.performer);
+  char comma1 = 0, comma2 = 0;
+  double x = 0, y = 0, z = 0;
+  if (!(in >> x >> comma1 >> y >> comma2 >> z) || comma1 != ',' || comma2 != ',' || !in.eof() || z <= 0.0)
+    throw std::invalid_argument("--performer: expected X,Y,Z in metres with Z > 0, or auto; got '" + o.performer + "'");
+  c.performer = Vec3d(x, y, z);
+  return c;
+}
+
+SourceOptions sourceOptionsOf(const InputOptions& o, const GestureOptions& gesture) {
+  if (o.depthBand.size() != 2 || o.depthBand[0] >= o.depthBand[1])
+    throw std::invalid_argument("--depth-band: expected NEAR FAR with NEAR < FAR");
+  SourceOptions s;
+  s.detection.nearLimit = static_cast<float>(o.depthBand[0]);
+  s.detection.farLimit = static_cast<float>(o.depthBand[1]);
+  s.tracker.mirrored = o.mirrored;
+  s.calibration = calibrationOf(o);
+  s.gesture = gesture;
+  return s;
+}
+
+StabilizerOptions stabilizerOptionsOf(const InputOptions& o) {
+  StabilizerOptions s;
+  s.kind = stabilizerFromName(o.stabilizer);
+  return s;
+}
+
+std::unique_ptr<WandInput> makeWandInput(const InputOptions& o, const GestureOptions& gesture) {
+  const std::string spec = o.spec();
+  if (o.scripted()) {
+    try {
+      return std::make_unique<ScriptedWands>(gestureFromName(spec.substr(7)), gesture);
+    } catch (const std::invalid_argument& e) {
+      throw HandSourceError(e.what());
+    }
+  }
+  const SourceOptions source = sourceOptionsOf(o, gesture);
+  return std::make_unique<StabilizedWands>(makeHandSource(spec, source), stabilizerOptionsOf(o), source.calibration);
+}
+
+}  // namespace gb

@@ -1,0 +1,41 @@
+#pragma once
+// The hand-input options shared by `giantbubble run` and `giantbubble record`: where the hands come from
+// (--input, or the older --gesture NAME for script:NAME), the stabilizer, the calibration and the depth band.
+
+#include <CLI/CLI.hpp>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "hand_sources.h"
+#include "stabilizer.h"
+#include "wand_input.h"
+
+namespace gb {
+
+struct InputOptions {
+  std::string input;                           // kinect, fakenect:DIR, trajectory:FILE or script:NAME
+  std::string gesture;                         // --gesture NAME, kept as an alias of --input script:NAME
+  std::string stabilizer = "bspline";          // bspline (the paper) or one-euro
+  std::string performer = "0,0,2";             // camera-space point X,Y,Z (m) between the resting hands, or auto
+  double reach = 2.0;                          // world metres per metre of hand motion
+  double cameraPitch = 0.0;                    // degrees the camera is tilted up
+  std::vector<double> depthBand = {0.5, 3.0};  // metres: the performer stands inside this band
+  bool mirrored = false;                       // the depth image is mirrored
+
+  [[nodiscard]] std::string spec() const;  // --input, else script:GESTURE, else script:straight
+  [[nodiscard]] bool scripted() const { return spec().rfind("script:", 0) == 0; }
+};
+
+// Adds --input, --gesture, --stabilizer, --performer, --reach, --camera-pitch, --depth-band and --mirrored.
+void addInputOptions(CLI::App* command, InputOptions& options);
+
+Calibration calibrationOf(const InputOptions& options);  // throws std::invalid_argument on a bad --performer
+SourceOptions sourceOptionsOf(const InputOptions& options, const GestureOptions& gesture);
+StabilizerOptions stabilizerOptionsOf(const InputOptions& options);
+
+// What moves the wands of a run: a script exactly as written (world space, no stabilizer), any other input
+// through the stabilizer and the calibration. Throws HandSourceError when the input cannot be opened.
+std::unique_ptr<WandInput> makeWandInput(const InputOptions& options, const GestureOptions& gesture);
+
+}  // namespace gb

@@ -1,0 +1,210 @@
+#include "record_command.h"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <functional>
+#include <memory>
+#include <optional>
+
+#include "trajectory_file.h"
+#include "trajectory_metrics.h"
+#include "trajectory_plot.h"
+
+namespace gb {
+
+namespace {
+
+std::atomic<bool> gInterrupted{false};
+extern "C" void onInterrupt(int) { gInterrupted = true; }
+
+// The recorded input run through one stabilizer, the way `giantbubble run` would, sampled at the input's own
+// times: in world space for the plot (input hands not measured are NaN there), in camera space, the hand's
+// own metres, for the metrics (input hands held where not measured).
+struct Stabilized {
+  std::vector<Vec3> plotInput[2], wand[2];
+  std::vector<Vec3d> input[2], cameraWand[2], truth[2];
+};
+
+Stabilized stabilize(const std::vector<HandSample>& samples, StabilizerKind kind, const InputOptions& options,
+                     const ScriptedHandSource* script) {
+  StabilizerOptions stabilizer = stabilizerOptionsOf(options);
+  stabilizer.kind = kind;
+  StabilizedWands wands(std::make_unique<ReplayHandSource>(samples, "recorded input"), stabilizer,
+                        calibrationOf(options));
+  const Calibration& c = wands.calibration();
+  Stabilized out;
+  for (const HandSample& s : samples) {
+    const WandFrame f = wands.at(s.time - samples.front().time);
+    const HandSample truth = script ? script->truth(s.time) : HandSample{};
+    for (int h = 0; h < 2; ++h) {
+      const Hand hand = h == 0 ? Hand::Left : Hand::Right;
+      const HandObservation& o = s.hand(hand);
+      out.plotInput[h].push_back(o.measured ? Vec3(c.toWorld(o.position).cast<float>()) : Vec3(Vec3::Constant(NAN)));
+      if (o.seen()) out.input[h].push_back(o.position);
+      const Vec3 wand = h == 0 ? f.wands.leftPosition : f.wands.rightPosition;
+      out.wand[h].push_back(wand);
+      out.cameraWand[h].push_back(c.toCamera(wand.cast<double>()));
+      if (script) out.truth[h].push_back(truth.hand(hand).position);
+    }
+  }
+  return out;
+}
+
+double bothHands(const std::function<double(int)>& perHand) {
+  return std::sqrt(0.5 * (perHand(0) * perHand(0) + perHand(1) * perHand(1)));
+}
+
+void printReport(const std::vector<HandSample>& samples, const InputOptions& options,
+                 const ScriptedHandSource* script) {
+  const double dt = (samples.back().time - samples.front().time) / static_cast<double>(samples.size() - 1);
+  std::printf(
+      "\njitter (RMS second difference) and lag of the wands, in camera space (the hands' own metres), "
+      "%zu samples at %.1f per second\n",
+      samples.size(), 1.0 / dt);
+  std::printf("%-10s %12s %12s %10s %14s", "stabilizer", "input (mm)", "wand (mm)", "reduction", "lag/input (ms)");
+  if (script) std::printf(" %14s %15s", "lag/truth (ms)", "RMS error (mm)");
+  std::printf("\n");
+  for (const auto& [name, kind] :
+       {std::pair{"bspline", StabilizerKind::BSpline}, {"one-euro", StabilizerKind::OneEuro}}) {
+    const Stabilized s = stabilize(samples, kind, options, script);
+    if (s.input[0].size() != samples.size() || s.input[1].size() != samples.size()) {
+      std::printf("%-10s (a hand is missing from the first samples: no report)\n", name);
+      continue;
+    }
+    const double in = bothHands([&](int h) { return jitter(s.input[h]); });
+    const double out = bothHands([&](int h) { return jitter(s.cameraWand[h]); });
+    const double lagInput =
+        0.5 * (lag(s.input[0], s.cameraWand[0], dt, 0.5) + lag(s.input[1], s.cameraWand[1], dt, 0.5));
+    std::printf("%-10s %12.2f %12.2f %9.1fx %14.0f", name, 1e3 * in, 1e3 * out, in / out, 1e3 * lagInput);
+    if (script) {
+      double error[2] = {0, 0};
+      const double lagTruth = 0.5 * (lag(s.truth[0], s.cameraWand[0], dt, 0.5, &error[0]) +
+                                     lag(s.truth[1], s.cameraWand[1], dt, 0.5, &error[1]));
+      std::printf(" %14.0f %15.1f", 1e3 * lagTruth, 1e3 * bothHands([&](int h) { return error[h]; }));
+    }
+    std::printf("\n");
+  }
+}
+
+}  // namespace
+
+CLI::App* addRecordCommand(CLI::App& app, RecordOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "record", "read a hand input and keep it: a fakenect recording of the depth, a trajectory CSV, a plot, a report");
+  addInputOptions(cmd, o.input);
+  cmd->add_option("--trajectory", o.trajectory, "write the hands as a trajectory CSV (camera space)");
+  cmd->add_option("--fakenect", o.fakenect,
+                  "write the depth frames as a fakenect recording into this new folder "
+                  "(input kinect or fakenect:DIR)");
+  cmd->add_option("--plot", o.plot, "write the input hands against the stabilized wands as SVG");
+  cmd->add_flag("--report", o.report, "print the jitter and lag of both stabilizers on this input");
+  cmd->add_option("--duration", o.duration,
+                  "seconds to record (default: all of a recorded input, a script's "
+                  "stroke, a live camera until Ctrl-C)")
+      ->check(CLI::Range(0.0, 86400.0));
+  cmd->add_option("--speed", o.gesture.speed, "peak wand speed of a scripted input (m/s)")
+      ->check(CLI::Range(0.0, 20.0));
+  cmd->add_option("--noise", o.noise.sigma, "Gaussian noise (m, per coordinate) added to a scripted input")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--outliers", o.noise.outlierRate, "fraction of a scripted input's samples made outliers")
+      ->check(CLI::Range(0.0, 1.0));
+  cmd->add_option("--outlier-distance", o.noise.outlierDistance, "how far an outlier lands (m)")
+      ->check(CLI::Range(0.0, 5.0));
+  cmd->add_option("--seed", o.noise.seed, "random seed of the noise");
+  return cmd;
+}
+
+int runRecord(const RecordOptions& o) {
+  if (o.trajectory.empty() && o.fakenect.empty() && o.plot.empty() && !o.report) {
+    std::fprintf(stderr, "error: nothing to record: give --trajectory FILE, --fakenect DIR, --plot FILE or --report\n");
+    return 1;
+  }
+  const std::string spec = o.input.spec();
+  const bool noisy = o.noise.sigma > 0 || o.noise.outlierRate > 0;
+  if (noisy && !o.input.scripted()) {
+    std::fprintf(stderr, "error: --noise and --outliers apply to a scripted input (script:NAME) only\n");
+    return 1;
+  }
+  SourceOptions sourceOptions = sourceOptionsOf(o.input, o.gesture);
+  sourceOptions.noise = o.noise;
+  std::unique_ptr<HandSource> source = makeHandSource(spec, sourceOptions);
+  const auto* script = dynamic_cast<const ScriptedHandSource*>(source.get());
+  auto* depth = dynamic_cast<DepthHandSource*>(source.get());
+  std::printf("recording from %s\n", source->describe().c_str());
+
+  std::unique_ptr<FakenectWriter> fakenect;
+  if (!o.fakenect.empty()) {
+    if (!depth) {
+      std::fprintf(stderr, "error: --fakenect records depth frames: the input must be kinect or fakenect:DIR\n");
+      return 1;
+    }
+    fakenect = std::make_unique<FakenectWriter>(o.fakenect);
+    const double base = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+    depth->onFrame([&, base](const kinect::DepthFrame& f) { fakenect->write(f, base + f.time); });
+  }
+  std::unique_ptr<TrajectoryWriter> trajectory;
+  if (!o.trajectory.empty()) trajectory = std::make_unique<TrajectoryWriter>(o.trajectory);
+
+  double duration = o.duration;
+  if (duration < 0 && script) duration = o.gesture.start + o.gesture.duration + 0.5;
+  const bool live = depth && !source->length();
+  if (live && duration < 0) std::printf("recording until Ctrl-C\n");
+  gInterrupted = false;
+  std::signal(SIGINT, onInterrupt);
+
+  std::vector<HandSample> samples;
+  double lastProgress = -1.0;
+  try {
+    while (!gInterrupted) {
+      std::optional<HandSample> s = source->next();
+      if (!s) break;
+      if (!samples.empty() && duration >= 0 && s->time - samples.front().time > duration + 1e-9) break;
+      samples.push_back(*s);
+      if (trajectory) trajectory->write(*s);
+      const double elapsed = s->time - samples.front().time;
+      if (live && elapsed - lastProgress >= 1.0) {
+        lastProgress = elapsed;
+        std::fprintf(stderr, "%.0f s, %zu frames, left hand %s, right hand %s\n", elapsed, samples.size(),
+                     s->left.measured ? "seen" : "not seen", s->right.measured ? "seen" : "not seen");
+      }
+    }
+  } catch (const HandSourceLost& e) {
+    std::fprintf(stderr, "warning: input lost after %zu samples: %s; what was recorded is kept\n", samples.size(),
+                 e.what());
+  }
+  std::signal(SIGINT, SIG_DFL);
+  if (samples.empty()) {
+    std::fprintf(stderr, "error: no samples from %s\n", source->describe().c_str());
+    return 1;
+  }
+  std::printf("%zu samples, %.2f s\n", samples.size(), samples.back().time - samples.front().time);
+  if (trajectory) std::printf("trajectory written to %s\n", o.trajectory.c_str());
+  if (fakenect)
+    std::printf("fakenect recording written to %s (%d depth frames)\n", o.fakenect.c_str(), fakenect->frames());
+  if (!o.plot.empty()) {
+    const Stabilized s = stabilize(samples, stabilizerFromName(o.input.stabilizer), o.input, script);
+    TrajectoryPlot plot;
+    plot.title = source->describe() + ", " + o.input.stabilizer + " stabilizer";
+    plot.leftInput = s.plotInput[0];
+    plot.rightInput = s.plotInput[1];
+    plot.leftWand = s.wand[0];
+    plot.rightWand = s.wand[1];
+    writeTrajectoryPlot(o.plot, plot);
+    std::printf("plot written to %s\n", o.plot.c_str());
+  }
+  if (o.report) {
+    if (samples.size() < 10) {
+      std::fprintf(stderr, "error: too few samples for a report\n");
+      return 1;
+    }
+    printReport(samples, o.input, script);
+  }
+  return 0;
+}
+
+}  // namespace gb

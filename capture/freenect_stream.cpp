@@ -1,0 +1,336 @@
+#include "freenect_stream.h"
+
+#include <dlfcn.h>
+#include <libfreenect.h>
+#include <sys/time.h>
+
+#include <atomic>
+#include <chrono>
+#include <cinttypes>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+
+#include "hand_source.h"
+
+#ifndef GB_FREENECT_LIBRARY
+#define GB_FREENECT_LIBRARY "libfreenect.so.0.5"
+#endif
+#ifndef GB_FAKENECT_LIBRARY
+#define GB_FAKENECT_LIBRARY "/usr/lib/x86_64-linux-gnu/fakenect/libfreenect.so.0.5"
+#endif
+
+namespace gb {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr size_t kDepthBytes = static_cast<size_t>(kinect::kPixels) * 2;
+
+double steadySeconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// Bytes after the one-line header of a depth file, or -1 when there is no header line.
+long long depthPayload(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string header;
+  if (!in || !std::getline(in, header) || in.eof() || header.size() > 64) return -1;
+  return static_cast<long long>(fs::file_size(file)) - static_cast<long long>(header.size() + 1);
+}
+
+// Why fakenect could not read this entry's file now (empty when it can).
+std::string fileProblem(const fs::path& folder, const FakenectEntry& e) {
+  const fs::path path = folder / e.file;
+  std::error_code ec;
+  if (!fs::is_regular_file(path, ec)) return "file " + path.string() + " is missing";
+  const auto size = fs::file_size(path, ec);
+  if (ec || size == 0) return "file " + path.string() + " is empty";
+  if (e.type != 'd') return {};
+  const long long payload = depthPayload(path);
+  if (payload < 0) return "depth file " + path.string() + " has no one-line PGM header";
+  if (payload < static_cast<long long>(kDepthBytes))
+    return "depth file " + path.string() + " is truncated: " + std::to_string(payload) + " bytes of depth, expected " +
+           std::to_string(kDepthBytes) + " (640x480 16-bit values)";
+  return {};
+}
+
+}  // namespace
+
+FakenectIndex readFakenectIndex(const fs::path& folder) {
+  const std::string where = "fakenect recording " + folder.string();
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec)) throw HandSourceError(where + ": no such folder");
+  std::ifstream in(folder / "INDEX.txt");
+  if (!in)
+    throw HandSourceError(where + ": no INDEX.txt (not a recording made by fakenect-record or giantbubble record)");
+  FakenectIndex index;
+  index.folder = folder;
+  std::string line;
+  int lineNumber = 0, blankLine = 0;
+  while (std::getline(in, line)) {
+    ++lineNumber;
+    if (line.empty()) {  // fakenect stops reading at an empty line
+      if (!blankLine) blankLine = lineNumber;
+      continue;
+    }
+    const std::string at = where + ", INDEX.txt line " + std::to_string(lineNumber);
+    if (blankLine)
+      throw HandSourceError(at + ": entries after the empty line " + std::to_string(blankLine) +
+                            " (fakenect stops there)");
+    FakenectEntry e;
+    unsigned int timestamp = 0;
+    int used = 0;
+    if (std::sscanf(line.c_str(), "%c-%lf-%u%n", &e.type, &e.time, &timestamp, &used) != 3 ||
+        (e.type != 'd' && e.type != 'r' && e.type != 'a') || !std::isfinite(e.time))
+      throw HandSourceError(at + ": '" + line + "' is not a fakenect entry (TYPE-TIME-TIMESTAMP…, TYPE d, r or a)");
+    e.timestamp = timestamp;
+    e.file = line;
+    if (const std::string problem = fileProblem(folder, e); !problem.empty())
+      throw HandSourceError(at + ": " + problem);
+    if (e.type == 'd') {
+      if (index.depthFrames > 0 && e.time < index.entries.back().time)
+        throw HandSourceError(at + ": time " + std::to_string(e.time) + " goes backwards");
+      ++index.depthFrames;
+    }
+    index.entries.push_back(e);
+  }
+  if (index.depthFrames == 0) throw HandSourceError(where + ": empty recording (no depth frames in INDEX.txt)");
+  return index;
+}
+
+FakenectWriter::FakenectWriter(const fs::path& folder) : folder_(folder) {
+  std::error_code ec;
+  if (fs::exists(folder, ec) && !(fs::is_directory(folder, ec) && fs::is_empty(folder, ec)))
+    throw HandSourceError("will not record into " + folder.string() + ": it exists and is not an empty folder");
+  fs::create_directories(folder, ec);
+  if (ec) throw HandSourceError("cannot create " + folder.string() + ": " + ec.message());
+}
+
+void FakenectWriter::write(const kinect::DepthFrame& frame, double recordTime) {
+  char name[96];
+  std::snprintf(name, sizeof name, "d-%f-%" PRIu32 ".pgm", recordTime, frame.timestamp);
+  {
+    std::ofstream out(folder_ / name, std::ios::binary);
+    out << "P5 " << kinect::kWidth << ' ' << kinect::kHeight << " 65535\n";
+    std::vector<unsigned char> bytes(kDepthBytes);
+    for (size_t i = 0; i < frame.raw.size(); ++i) {  // little-endian, what libfreenect hands out on x86 and ARM
+      bytes[2 * i] = static_cast<unsigned char>(frame.raw[i] & 0xff);
+      bytes[2 * i + 1] = static_cast<unsigned char>(frame.raw[i] >> 8);
+    }
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    if (!out) throw HandSourceError("cannot write " + (folder_ / name).string());
+  }
+  index_ += name;
+  index_ += '\n';
+  std::ofstream index(folder_ / "INDEX.txt", std::ios::trunc);
+  index << index_;
+  if (!index) throw HandSourceError("cannot write " + (folder_ / "INDEX.txt").string());
+  ++frames_;
+}
+
+// One dlopen'ed libfreenect build and the device opened through it.
+class FreenectLibrary {
+ public:
+  explicit FreenectLibrary(const std::string& path) {
+    handle_ = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!handle_) throw HandSourceError("cannot load libfreenect (" + path + "): " + dlerror());
+    bind(init, "freenect_init");
+    bind(shutdown, "freenect_shutdown");
+    bind(setLogLevel, "freenect_set_log_level");
+    bind(selectSubdevices, "freenect_select_subdevices");
+    bind(numDevices, "freenect_num_devices");
+    bind(openDevice, "freenect_open_device");
+    bind(closeDevice, "freenect_close_device");
+    bind(findDepthMode, "freenect_find_depth_mode");
+    bind(setDepthMode, "freenect_set_depth_mode");
+    bind(setDepthCallback, "freenect_set_depth_callback");
+    bind(startDepth, "freenect_start_depth");
+    bind(stopDepth, "freenect_stop_depth");
+    bind(processEvents, "freenect_process_events_timeout");
+  }
+  ~FreenectLibrary() {
+    if (device) {
+      if (depthStarted) stopDepth(device);
+      closeDevice(device);
+    }
+    if (context) shutdown(context);
+    dlclose(handle_);  // unloads fakenect, so that the next recording starts from fresh globals
+  }
+  FreenectLibrary(const FreenectLibrary&) = delete;  // owns the dlopen handle
+  FreenectLibrary& operator=(const FreenectLibrary&) = delete;
+
+  // libfreenect calls back from inside process_events on the calling thread; this is the library being polled.
+  static thread_local FreenectLibrary* polling;
+  static void onDepth(freenect_device*, void* depth, uint32_t timestamp) {
+    FreenectLibrary* self = polling;
+    if (!self || !self->target) return;
+    std::memcpy(self->target->raw.data(), depth, kDepthBytes);
+    self->target->timestamp = timestamp;
+    self->gotFrame = true;
+  }
+
+  // Initialises libfreenect and starts 11-bit depth on the first device; a message naming the failure otherwise.
+  void start(const std::string& what) {
+    if (init(&context, nullptr) < 0) {
+      context = nullptr;
+      throw HandSourceError("no Kinect found: libfreenect could not start (" + what + ", no USB access?)");
+    }
+    setLogLevel(context, FREENECT_LOG_ERROR);
+    selectSubdevices(context, FREENECT_DEVICE_CAMERA);  // camera only: tilt motor and LED untouched
+    if (numDevices(context) < 1)
+      throw HandSourceError("no Kinect found (" + what + "): is a Kinect v1 plugged in and powered?");
+    if (openDevice(context, &device, 0) < 0) {
+      device = nullptr;
+      throw HandSourceError("no Kinect found: the Kinect could not be opened (" + what +
+                            "; permissions on /dev/bus/usb?)");
+    }
+    setDepthCallback(device, &FreenectLibrary::onDepth);
+    const freenect_frame_mode mode = findDepthMode(FREENECT_RESOLUTION_MEDIUM, FREENECT_DEPTH_11BIT);
+    if (!mode.is_valid || setDepthMode(device, mode) < 0 || startDepth(device) < 0)
+      throw HandSourceError("the Kinect refused 640x480 11-bit depth (" + what + ")");
+    depthStarted = true;
+  }
+
+  // One round of libfreenect events; true when a depth frame arrived into `frame`.
+  bool pump(kinect::DepthFrame& frame, double timeout, int& status) {
+    timeval tv{static_cast<time_t>(timeout), static_cast<suseconds_t>(std::fmod(timeout, 1.0) * 1e6)};
+    target = &frame;
+    gotFrame = false;
+    polling = this;
+    status = processEvents(context, &tv);
+    polling = nullptr;
+    target = nullptr;
+    return gotFrame;
+  }
+
+  int (*init)(freenect_context**, freenect_usb_context*) = nullptr;
+  int (*shutdown)(freenect_context*) = nullptr;
+  void (*setLogLevel)(freenect_context*, freenect_loglevel) = nullptr;
+  void (*selectSubdevices)(freenect_context*, freenect_device_flags) = nullptr;
+  int (*numDevices)(freenect_context*) = nullptr;
+  int (*openDevice)(freenect_context*, freenect_device**, int) = nullptr;
+  int (*closeDevice)(freenect_device*) = nullptr;
+  freenect_frame_mode (*findDepthMode)(freenect_resolution, freenect_depth_format) = nullptr;
+  int (*setDepthMode)(freenect_device*, freenect_frame_mode) = nullptr;
+  void (*setDepthCallback)(freenect_device*, freenect_depth_cb) = nullptr;
+  int (*startDepth)(freenect_device*) = nullptr;
+  int (*stopDepth)(freenect_device*) = nullptr;
+  int (*processEvents)(freenect_context*, timeval*) = nullptr;
+
+  freenect_context* context = nullptr;
+  freenect_device* device = nullptr;
+  bool depthStarted = false;
+
+ private:
+  template <typename F>
+  void bind(F& f, const char* name) {
+    f = reinterpret_cast<F>(dlsym(handle_, name));
+    if (!f) {
+      dlclose(handle_);
+      throw HandSourceError(std::string("libfreenect has no ") + name + ": not a libfreenect 0.5 build?");
+    }
+  }
+  void* handle_ = nullptr;
+  kinect::DepthFrame* target = nullptr;
+  bool gotFrame = false;
+};
+
+thread_local FreenectLibrary* FreenectLibrary::polling = nullptr;
+
+namespace {
+std::atomic<bool> gPlaybackOpen{false};  // fakenect's globals allow one recording at a time
+}
+
+DepthStream::DepthStream() : openedAt_(steadySeconds()) {}
+
+DepthStream::~DepthStream() {
+  lib_.reset();
+  if (recording_) gPlaybackOpen = false;
+}
+
+std::unique_ptr<DepthStream> DepthStream::openKinect() {
+  const char* path = std::getenv("GIANTBUBBLE_FREENECT_LIBRARY");
+  std::unique_ptr<DepthStream> s(new DepthStream());
+  s->lib_ = std::make_unique<FreenectLibrary>(path ? path : GB_FREENECT_LIBRARY);
+  s->lib_->start("live Kinect");
+  s->openedAt_ = steadySeconds();
+  return s;
+}
+
+std::unique_ptr<DepthStream> DepthStream::openRecording(const fs::path& folder) {
+  auto index = std::make_unique<FakenectIndex>(readFakenectIndex(folder));
+  index->folder = fs::absolute(folder);
+  if (gPlaybackOpen.exchange(true))
+    throw HandSourceError("fakenect recording " + folder.string() +
+                          ": another recording is already playing (one at a time)");
+  std::unique_ptr<DepthStream> s(new DepthStream());
+  s->recording_ = std::move(index);  // from here the destructor releases gPlaybackOpen
+  for (const FakenectEntry& e : s->recording_->entries) {
+    if (e.type == 'd') {
+      s->firstDepthTime_ = e.time;
+      break;
+    }
+  }
+  // fakenect reads FAKENECT_PATH when it starts playing; it must not be unset while the recording plays.
+  setenv("FAKENECT_PATH", s->recording_->folder.c_str(), 1);
+  const char* path = std::getenv("GIANTBUBBLE_FAKENECT_LIBRARY");
+  s->lib_ = std::make_unique<FreenectLibrary>(path ? path : GB_FAKENECT_LIBRARY);
+  s->lib_->start("fakenect playback of " + folder.string());
+  return s;
+}
+
+std::optional<double> DepthStream::length() const {
+  if (!recording_) return std::nullopt;
+  double last = firstDepthTime_;
+  for (const FakenectEntry& e : recording_->entries)
+    if (e.type == 'd') last = e.time;
+  return last - firstDepthTime_;
+}
+
+double DepthStream::clock() const { return steadySeconds() - openedAt_; }
+
+DepthStream::Poll DepthStream::poll(kinect::DepthFrame& frame, double timeout) {
+  if (recording_) {
+    // fakenect consumes one INDEX.txt line per call; stop at the last one rather than let it run off the end.
+    while (cursor_ < recording_->entries.size()) {
+      const FakenectEntry& e = recording_->entries[cursor_];
+      if (const std::string problem = fileProblem(recording_->folder, e); !problem.empty())
+        throw HandSourceLost("fakenect recording " + recording_->folder.string() + ": " + problem +
+                             " (since it was opened)");
+      int status = 0;
+      const bool got = lib_->pump(frame, 0.0, status);
+      ++cursor_;
+      if (status < 0) throw HandSourceLost("fakenect playback failed at " + e.file);
+      if (got) {
+        frame.time = e.time - firstDepthTime_;
+        return Poll::Frame;
+      }
+    }
+    return Poll::End;
+  }
+  const double start = clock();
+  while (true) {
+    int status = 0;
+    const double left = timeout - (clock() - start);
+    if (lib_->pump(frame, std::max(0.0, std::min(left, 0.05)), status)) {
+      frame.time = clock();
+      return Poll::Frame;
+    }
+    if (status < 0)
+      throw HandSourceLost("the Kinect stopped responding (unplugged?): libusb error " + std::to_string(status));
+    if (clock() - start >= timeout) return Poll::Nothing;
+  }
+}
+
+std::string DepthStream::describe() const {
+  if (recording_)
+    return "fakenect recording " + recording_->folder.string() + " (" + std::to_string(recording_->depthFrames) +
+           " depth frames)";
+  return "live Kinect v1 (libfreenect, 640x480 11-bit depth)";
+}
+
+}  // namespace gb

@@ -1,0 +1,95 @@
+#pragma once
+// Raw 11-bit depth frames through libfreenect, from a live Kinect v1 or from a fakenect recording, by the
+// same calls on the same code path. Both are libfreenect builds with the same API: the live library
+// (libfreenect.so.0.5) and Debian's fakenect build of it (…/fakenect/libfreenect.so.0.5, which reads the
+// folder named by FAKENECT_PATH). We dlopen the one we need (RTLD_LOCAL, so the two never bind to each
+// other's symbols) instead of linking either, and the `fakenect` wrapper script is not needed.
+//
+// Depth is always asked for as FREENECT_DEPTH_11BIT: Debian's fakenect 0.5.3 plays back nothing else.
+// Only the camera subdevice is opened: the tilt motor and the LED are left alone.
+//
+// fakenect keeps its playback state in globals and calls exit() on a missing or malformed file, so a
+// recording is validated in full before playback starts and each file is checked again just before
+// fakenect reads it; one recording plays at a time per process.
+
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "kinect_depth.h"
+
+namespace gb {
+
+// A fakenect recording folder: INDEX.txt lists one file per line, named TYPE-TIME-TIMESTAMP…, where TYPE is
+// d (depth, a one-line PGM header then 640x480 little-endian uint16 raw values), r (RGB) or a (accelerometer),
+// TIME the wall-clock seconds when it was recorded and TIMESTAMP the Kinect's frame counter (docs/formats.md).
+struct FakenectEntry {
+  char type = 'd';
+  double time = 0.0;
+  uint32_t timestamp = 0;
+  std::string file;
+};
+
+struct FakenectIndex {
+  std::filesystem::path folder;
+  std::vector<FakenectEntry> entries;
+  int depthFrames = 0;
+};
+
+// Reads and checks a recording: every listed file present and non-empty, every depth file complete.
+// Throws HandSourceError naming the folder, the line or the file and what is wrong.
+FakenectIndex readFakenectIndex(const std::filesystem::path& folder);
+
+// Writes depth frames as a fakenect recording, the way fakenect-record does (raw values in the machine's
+// little-endian order after a "P5 640 480 65535" line). INDEX.txt is rewritten after every frame, so a
+// recording that stops early is still complete up to its last frame.
+class FakenectWriter {
+ public:
+  explicit FakenectWriter(const std::filesystem::path& folder);  // creates the folder; refuses a non-empty one
+  // recordTime: wall-clock seconds of the frame (fakenect replays the differences).
+  void write(const kinect::DepthFrame& frame, double recordTime);
+  [[nodiscard]] int frames() const { return frames_; }
+
+ private:
+  std::filesystem::path folder_;
+  std::string index_;
+  int frames_ = 0;
+};
+
+class FreenectLibrary;
+
+class DepthStream {
+ public:
+  // The first Kinect on the USB bus. Throws HandSourceError("no Kinect found …") without one.
+  static std::unique_ptr<DepthStream> openKinect();
+  // A recording, validated first (readFakenectIndex), then played through the fakenect library.
+  static std::unique_ptr<DepthStream> openRecording(const std::filesystem::path& folder);
+  ~DepthStream();
+  DepthStream(const DepthStream&) = delete;  // owns the library handle and libfreenect's device
+  DepthStream& operator=(const DepthStream&) = delete;
+
+  enum class Poll { Frame, Nothing, End };
+  // Waits up to `timeout` seconds for the next depth frame. Frame: `frame` holds it. Nothing: none came (a live
+  // camera only). End: the recording is over. Throws HandSourceLost when libfreenect fails or a recording's
+  // file has gone since it was opened.
+  Poll poll(kinect::DepthFrame& frame, double timeout);
+  [[nodiscard]] std::string describe() const;
+  // A recording's length (s, first depth frame to last); nothing for a live camera.
+  [[nodiscard]] std::optional<double> length() const;
+  // Seconds since the stream opened (live); frame times are on this clock.
+  [[nodiscard]] double clock() const;
+
+ private:
+  DepthStream();
+  std::unique_ptr<FreenectLibrary> lib_;
+  std::unique_ptr<FakenectIndex> recording_;
+  size_t cursor_ = 0;  // next INDEX.txt entry fakenect will read
+  double firstDepthTime_ = 0.0;
+  double openedAt_ = 0.0;  // steady clock at open (s)
+  friend class FreenectLibrary;
+};
+
+}  // namespace gb

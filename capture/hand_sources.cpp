@@ -1,0 +1,195 @@
+#include "hand_sources.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+
+#include "trajectory_file.h"
+
+namespace gb {
+
+HandObservation HandHold::update(double t, const std::optional<Vec3d>& measurement) {
+  HandObservation o;
+  if (measurement) {
+    last_ = *measurement;
+    lastTime_ = t;
+    o.position = last_;
+    o.confidence = 1.0;
+    o.measured = true;
+    return o;
+  }
+  o.position = last_;
+  o.confidence = o.seen() ? std::exp(-(t - lastTime_) / holdTime_) : 0.0;
+  return o;
+}
+
+DepthHandSource::DepthHandSource(std::unique_ptr<DepthStream> stream, const DetectionOptions& detection,
+                                 const TrackerOptions& tracker)
+    : stream_(std::move(stream)), detectionOptions_(detection), tracker_(tracker) {}
+
+std::optional<HandSample> DepthHandSource::next() {
+  while (true) {
+    switch (stream_->poll(frame_, kFrameTimeout)) {
+      case DepthStream::Poll::End:
+        return std::nullopt;
+      case DepthStream::Poll::Nothing: {
+        // A live camera late with its frame: both hands held; lost for good after kLostAfter.
+        const double now = stream_->clock();
+        if (now - lastFrame_ > kLostAfter) {
+          char text[96];
+          std::snprintf(text, sizeof text, "no depth frame from the Kinect for %.1f s (unplugged?)", now - lastFrame_);
+          throw HandSourceLost(text);
+        }
+        return tracker_.update(now, Detection{});
+      }
+      case DepthStream::Poll::Frame:
+        lastFrame_ = frame_.time;
+        if (observer_) observer_(frame_);
+        return tracker_.update(frame_.time, detectHands(frame_, detectionOptions_));
+    }
+  }
+}
+
+ReplayHandSource::ReplayHandSource(std::vector<HandSample> samples, std::string describe)
+    : samples_(std::move(samples)), describe_(std::move(describe)) {}
+
+std::optional<HandSample> ReplayHandSource::next() {
+  if (next_ >= samples_.size()) return std::nullopt;
+  return samples_[next_++];
+}
+
+std::optional<double> ReplayHandSource::length() const {
+  if (samples_.empty()) return 0.0;
+  return samples_.back().time - samples_.front().time;
+}
+
+double ReplayHandSource::period() const {
+  if (samples_.size() < 2) return 1.0 / 30.0;
+  return *length() / static_cast<double>(samples_.size() - 1);
+}
+
+std::unique_ptr<HandSource> openTrajectory(const std::filesystem::path& path) {
+  std::vector<HandSample> samples = readTrajectory(path);
+  char describe[64];
+  std::snprintf(describe, sizeof describe, " (%zu samples, %.2f s)", samples.size(),
+                samples.back().time - samples.front().time);
+  return std::make_unique<ReplayHandSource>(std::move(samples), "trajectory file " + path.string() + describe);
+}
+
+ScriptedHandSource::ScriptedHandSource(Gesture gesture, const GestureOptions& options, const Calibration& calibration,
+                                       double rate, const SourceNoise& noise)
+    : gesture_(gesture), options_(options), calibration_(calibration), rate_(rate), noise_(noise), random_(noise.seed) {
+  describe_ = "scripted gesture";
+  for (const std::string& name : gestureNames())
+    if (gestureFromName(name) == gesture) describe_ += " '" + name + "'";
+  if (noise.sigma > 0 || noise.outlierRate > 0) {
+    char text[96];
+    std::snprintf(text, sizeof text, " with %.2g cm noise and %.2g%% outliers of %.2g cm", 100 * noise.sigma,
+                  100 * noise.outlierRate, 100 * noise.outlierDistance);
+    describe_ += text;
+  }
+}
+
+HandSample ScriptedHandSource::truth(double t) const {
+  const WandState w = gestureAt(gesture_, options_, t);
+  HandSample s;
+  s.time = t;
+  s.left.position = calibration_.toCamera(w.leftPosition.cast<double>());
+  s.right.position = calibration_.toCamera(w.rightPosition.cast<double>());
+  for (HandObservation* h : {&s.left, &s.right}) {
+    h->confidence = 1.0;
+    h->measured = true;
+  }
+  return s;
+}
+
+std::optional<HandSample> ScriptedHandSource::next() {
+  HandSample s = truth(static_cast<double>(index_++) / rate_);
+  std::normal_distribution<double> gauss(0.0, 1.0);
+  std::uniform_real_distribution<double> uniform(0.0, 1.0);
+  for (HandObservation* h : {&s.left, &s.right}) {
+    // The same draws whatever the settings, so that runs differing only in outliers share their noise.
+    const Vec3d noise(gauss(random_), gauss(random_), gauss(random_));
+    const Vec3d direction = Vec3d(gauss(random_), gauss(random_), gauss(random_)).normalized();
+    const bool outlier = uniform(random_) < noise_.outlierRate;
+    h->position += noise_.sigma * noise + (outlier ? noise_.outlierDistance : 0.0) * direction;
+  }
+  return s;
+}
+
+PointerHandSource::PointerHandSource(const Calibration& calibration, std::function<double()> clock)
+    : clock_(std::move(clock)), calibration_(calibration) {
+  if (!clock_) {
+    const auto start = std::chrono::steady_clock::now();
+    clock_ = [start] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
+  }
+  hands_[0] = calibration.restHand(Hand::Left);
+  hands_[1] = calibration.restHand(Hand::Right);
+}
+
+Vec3d PointerHandSource::anchorOf(int hand) const {
+  // The pointer's point on the plane through the hand parallel to the image, world x right and y up: the
+  // window spans 1 m of hand motion, `reach` metres of world.
+  const Vec3d world = calibration_.toWorld(hands_[hand]);
+  const double across = calibration_.reach * 1.0;
+  const Vec3d onPlane(calibration_.anchor.x() + (pointer_[0] - 0.5) * across,
+                      calibration_.anchor.y() + (0.5 - pointer_[1]) * across, world.z());
+  return calibration_.toCamera(onPlane);
+}
+
+void PointerHandSource::setPointer(double x, double y) {
+  std::lock_guard lock(mutex_);
+  Vec3d before[2] = {anchorOf(0), anchorOf(1)};
+  pointer_[0] = x;
+  pointer_[1] = y;
+  for (int h = 0; h < 2; ++h)
+    if (held_[h]) hands_[h] += anchorOf(h) - before[h];  // a drag: the hand moves with the pointer, no jump
+}
+
+void PointerHandSource::setButton(Hand hand, bool down) {
+  std::lock_guard lock(mutex_);
+  held_[static_cast<int>(hand)] = down;
+}
+
+void PointerHandSource::pushHands(double metres) {
+  std::lock_guard lock(mutex_);
+  for (int h = 0; h < 2; ++h)
+    if (held_[h]) hands_[h].z() -= metres;  // towards the camera is the performer's forward
+}
+
+std::optional<HandSample> PointerHandSource::next() {
+  std::lock_guard lock(mutex_);
+  HandSample s;
+  s.time = std::max(clock_(), lastTime_);
+  lastTime_ = s.time;
+  for (int h = 0; h < 2; ++h) {
+    HandObservation& o = s.hand(h == 0 ? Hand::Left : Hand::Right);
+    o.position = hands_[h];
+    o.confidence = 1.0;
+    o.measured = true;
+  }
+  return s;
+}
+
+std::unique_ptr<HandSource> makeHandSource(const std::string& spec, const SourceOptions& o) {
+  const size_t colon = spec.find(':');
+  const std::string kind = spec.substr(0, colon), argument = colon == std::string::npos ? "" : spec.substr(colon + 1);
+  if (kind == "kinect" && colon == std::string::npos)
+    return std::make_unique<DepthHandSource>(DepthStream::openKinect(), o.detection, o.tracker);
+  if (colon != std::string::npos && argument.empty())
+    throw HandSourceError("input '" + spec + "': nothing after the colon");
+  if (kind == "fakenect" && colon != std::string::npos)
+    return std::make_unique<DepthHandSource>(DepthStream::openRecording(argument), o.detection, o.tracker);
+  if (kind == "trajectory" && colon != std::string::npos) return openTrajectory(argument);
+  if (kind == "script" && colon != std::string::npos) {
+    try {
+      return std::make_unique<ScriptedHandSource>(gestureFromName(argument), o.gesture, o.calibration, 30.0, o.noise);
+    } catch (const std::invalid_argument& e) {
+      throw HandSourceError(e.what());
+    }
+  }
+  throw HandSourceError("unknown input '" + spec + "' (expected kinect, fakenect:DIR, trajectory:FILE or script:NAME)");
+}
+
+}  // namespace gb

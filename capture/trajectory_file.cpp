@@ -1,0 +1,120 @@
+#include "trajectory_file.h"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <optional>
+#include <string>
+
+namespace gb {
+
+namespace {
+
+constexpr const char* kColumns[] = {"t", "left_x", "left_y", "left_z", "right_x", "right_y", "right_z"};
+constexpr const char* kHeader = "t,left_x,left_y,left_z,right_x,right_y,right_z";
+
+std::string trim(const std::string& s) {
+  const size_t a = s.find_first_not_of(" \t\r"), b = s.find_last_not_of(" \t\r");
+  return a == std::string::npos ? std::string() : s.substr(a, b - a + 1);
+}
+
+std::vector<std::string> splitFields(const std::string& line) {
+  std::vector<std::string> fields;
+  size_t start = 0;
+  while (true) {
+    const size_t comma = line.find(',', start);
+    fields.push_back(trim(line.substr(start, comma == std::string::npos ? std::string::npos : comma - start)));
+    if (comma == std::string::npos) return fields;
+    start = comma + 1;
+  }
+}
+
+std::optional<double> number(const std::string& field) {
+  double value = 0.0;
+  const char* end = field.data() + field.size();
+  const auto [ptr, ec] = std::from_chars(field.data(), end, value);
+  if (ec != std::errc() || ptr != end || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+}  // namespace
+
+std::vector<HandSample> readTrajectory(const std::filesystem::path& path, double holdTime) {
+  const std::string file = "trajectory file " + path.string();
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw HandSourceError(file + ": no such file");
+  std::ifstream in(path);
+  if (!in) throw HandSourceError(file + ": cannot be read");
+  std::vector<HandSample> samples;
+  HandHold hold[2] = {HandHold(holdTime), HandHold(holdTime)};
+  bool header = false;
+  std::string line;
+  for (int lineNumber = 1; std::getline(in, line); ++lineNumber) {
+    line = trim(line);
+    if (line.empty() || line[0] == '#') continue;
+    const std::string at = file + ", line " + std::to_string(lineNumber);
+    const std::vector<std::string> fields = splitFields(line);
+    if (!header) {
+      bool matches = fields.size() == std::size(kColumns);
+      for (size_t i = 0; matches && i < fields.size(); ++i) matches = fields[i] == kColumns[i];
+      if (!matches) throw HandSourceError(at + ": expected the header '" + kHeader + "', got '" + line + "'");
+      header = true;
+      continue;
+    }
+    if (fields.size() != std::size(kColumns))
+      throw HandSourceError(at + ": " + std::to_string(fields.size()) + " fields, expected 7 (" + kHeader + ")");
+    const std::optional<double> t = number(fields[0]);
+    if (!t) throw HandSourceError(at + ": time '" + fields[0] + "' is not a number");
+    if (!samples.empty() && *t <= samples.back().time)
+      throw HandSourceError(at + ": time " + fields[0] + " s is not after the previous row's");
+    HandSample s;
+    s.time = *t;
+    for (int h = 0; h < 2; ++h) {
+      const char* name = h == 0 ? "left" : "right";
+      int present = 0;
+      Vec3d p;
+      for (int k = 0; k < 3; ++k) {
+        const std::string& f = fields[1 + 3 * h + k];
+        if (f.empty()) continue;
+        const std::optional<double> v = number(f);
+        if (!v) throw HandSourceError(at + ": " + kColumns[1 + 3 * h + k] + " '" + f + "' is not a number");
+        p[k] = *v;
+        ++present;
+      }
+      if (present != 0 && present != 3)
+        throw HandSourceError(at + ": the " + name + " hand has " + std::to_string(present) +
+                              " of 3 coordinates (leave all three empty to mark it missing)");
+      s.hand(h == 0 ? Hand::Left : Hand::Right) = hold[h].update(*t, present ? std::optional<Vec3d>(p) : std::nullopt);
+    }
+    samples.push_back(s);
+  }
+  if (!header) throw HandSourceError(file + ": empty (expected the header '" + std::string(kHeader) + "')");
+  if (samples.empty()) throw HandSourceError(file + ": no samples after the header");
+  return samples;
+}
+
+TrajectoryWriter::TrajectoryWriter(const std::filesystem::path& path) {
+  file_ = std::fopen(path.c_str(), "w");
+  if (!file_) throw HandSourceError("cannot write the trajectory file " + path.string());
+  std::fprintf(file_,
+               "# giantbubble hand trajectory: camera space (x right, y up, z away from the camera), m and s\n%s\n",
+               kHeader);
+}
+
+TrajectoryWriter::~TrajectoryWriter() {
+  if (file_) std::fclose(file_);
+}
+
+void TrajectoryWriter::write(const HandSample& s) {
+  std::fprintf(file_, "%.6f", s.time);
+  for (const HandObservation* h : {&s.left, &s.right}) {
+    if (h->measured)
+      std::fprintf(file_, ",%.6f,%.6f,%.6f", h->position.x(), h->position.y(), h->position.z());
+    else
+      std::fputs(",,,", file_);
+  }
+  std::fputc('\n', file_);
+  std::fflush(file_);
+}
+
+}  // namespace gb

@@ -1,0 +1,23 @@
+#pragma once
+// The input hand trajectories against the stabilized wand trajectories, as in the paper's Figure 4 and the
+// side panels of Figure 10: one column per hand (left red, right blue), a front view (x right, y up) above a
+// top view (x right, z forward, the stroke direction), input dotted, wand solid, start +, end x. SVG.
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "state.h"
+
+namespace gb {
+
+struct TrajectoryPlot {
+  std::string title;
+  std::vector<Vec3> leftInput, rightInput;  // world space; a NaN point is a gap (hand not measured)
+  std::vector<Vec3> leftWand, rightWand;    // world space
+};
+
+// Throws std::runtime_error when the file cannot be written.
+void writeTrajectoryPlot(const std::filesystem::path& path, const TrajectoryPlot& plot);
+
+}  // namespace gb

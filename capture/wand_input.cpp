@@ -1,0 +1,139 @@
+#include "wand_input.h"
+
+#include <cmath>
+#include <cstdio>
+
+namespace gb {
+
+namespace {
+
+std::string seconds(double t) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f s", t);
+  return text;
+}
+
+const char* handName(int h) { return h == 0 ? "left" : "right"; }
+
+}  // namespace
+
+WandFrame ScriptedWands::at(double t) {
+  WandFrame f;
+  f.wands = gestureAt(gesture_, options_, t);
+  f.leftHand = f.wands.leftPosition;
+  f.rightHand = f.wands.rightPosition;
+  return f;
+}
+
+std::string ScriptedWands::describe() const {
+  for (const std::string& name : gestureNames())
+    if (gestureFromName(name) == gesture_) return "scripted gesture '" + name + "' (world space, exact)";
+  return "scripted gesture";
+}
+
+StabilizedWands::StabilizedWands(std::unique_ptr<HandSource> source, const StabilizerOptions& stabilizer,
+                                 const Calibration& calibration)
+    : source_(std::move(source)), calibration_(calibration), describe_(source_->describe()) {
+  if (!fetch())
+    throw HandSourceError(describe_ + ": no samples" + (messages_.empty() ? "" : " (" + messages_.back() + ")"));
+  start_ = ahead_.front().time;
+  if (calibration_.autoPerformer) {
+    auto both = [](const HandSample& s) { return s.left.measured && s.right.measured; };
+    while (!both(ahead_.back()) && ahead_.back().time - start_ < 3.0 && fetch()) {
+    }
+    if (both(ahead_.back())) {
+      calibration_.performer = 0.5 * (ahead_.back().left.position + ahead_.back().right.position);
+      char text[160];
+      std::snprintf(text, sizeof text,
+                    "note: calibration: performer at (%.2f, %.2f, %.2f) m, between the hands at t = %s",
+                    calibration_.performer.x(), calibration_.performer.y(), calibration_.performer.z(),
+                    seconds(ahead_.back().time - start_).c_str());
+      messages_.push_back(text);
+    } else {
+      messages_.push_back(
+          "warning: calibration: no sample with both hands in the first 3 s; the performer stays at "
+          "the configured point");
+    }
+  }
+  StabilizerOptions options = stabilizer;
+  options.period = source_->period();
+  stabilizer_ =
+      std::make_unique<Stabilizer>(options, calibration_.restHand(Hand::Left), calibration_.restHand(Hand::Right));
+  lastMeasured_[0] = lastMeasured_[1] = start_;
+  feed(ahead_.front());
+  ahead_.pop_front();
+}
+
+std::string StabilizedWands::describe() const { return describe_ + ", stabilized"; }
+
+bool StabilizedWands::fetch() {
+  if (finished_) return false;
+  const double now = lastFed_ - start_;
+  try {
+    std::optional<HandSample> s = source_->next();
+    if (s) {
+      ahead_.push_back(*s);
+      return true;
+    }
+    messages_.push_back("note: input ended at t = " + seconds(now) + "; the wands hold still");
+  } catch (const HandSourceLost& e) {
+    messages_.push_back("warning: input lost at t = " + seconds(now) + ": " + e.what() + "; the wands hold still");
+  }
+  finished_ = true;
+  return false;
+}
+
+void StabilizedWands::feed(const HandSample& sample) {
+  stabilizer_->add(sample);
+  lastFed_ = sample.time;
+  latest_ = sample;
+  for (int h = 0; h < 2; ++h) {
+    const HandObservation& o = sample.hand(h == 0 ? Hand::Left : Hand::Right);
+    if (o.measured) {
+      if (reportedLost_[h])
+        messages_.push_back(std::string("note: ") + handName(h) +
+                            " hand seen again at t = " + seconds(sample.time - start_));
+      reportedLost_[h] = false;
+      lastMeasured_[h] = sample.time;
+    } else if (!finished_ && !reportedLost_[h] && sample.time - lastMeasured_[h] > kLostHandAfter) {
+      messages_.push_back(std::string("warning: ") + handName(h) +
+                          " hand not seen since t = " + seconds(lastMeasured_[h] - start_) + "; its wand holds still");
+      reportedLost_[h] = true;
+    }
+  }
+}
+
+WandFrame StabilizedWands::at(double t) {
+  const double T = start_ + t, period = source_->period(), gap = 3.0 * period;
+  // A hold: both hands where they were last measured, not measured now.
+  auto holdUntil = [&](double until) {
+    while (lastFed_ + period <= until) {
+      HandSample hold = latest_;
+      hold.time = lastFed_ + period;
+      for (HandObservation* o : {&hold.left, &hold.right}) {
+        o->measured = false;
+        o->confidence *= std::exp(-period / 0.5);
+      }
+      feed(hold);
+    }
+  };
+  while ((!ahead_.empty() || fetch()) && ahead_.front().time <= T) {
+    const HandSample s = ahead_.front();
+    ahead_.pop_front();
+    if (s.time - lastFed_ > gap) holdUntil(s.time - period);  // a gap in the input: the wands rest through it
+    feed(s);
+  }
+  if (T - lastFed_ > gap || (finished_ && ahead_.empty())) holdUntil(T);
+
+  WandFrame f;
+  const WandPoint left = stabilizer_->at(Hand::Left, T), right = stabilizer_->at(Hand::Right, T);
+  f.wands.leftPosition = calibration_.toWorld(left.position).cast<float>();
+  f.wands.leftVelocity = calibration_.velocityToWorld(left.velocity).cast<float>();
+  f.wands.rightPosition = calibration_.toWorld(right.position).cast<float>();
+  f.wands.rightVelocity = calibration_.velocityToWorld(right.velocity).cast<float>();
+  if (latest_.left.measured) f.leftHand = calibration_.toWorld(latest_.left.position).cast<float>();
+  if (latest_.right.measured) f.rightHand = calibration_.toWorld(latest_.right.position).cast<float>();
+  return f;
+}
+
+}  // namespace gb

@@ -1,0 +1,87 @@
+#pragma once
+// What moves the wands of a run, frame by frame, in world space: a scripted gesture directly, or any hand
+// source through the stabilizer and the calibration. The run loop asks for the wands at its own frame times;
+// StabilizedWands reads the source up to that time and carries the wands on between samples by Eq. (1).
+//
+// Failures mid-performance never stop a run: when the source is lost (camera unplugged, recording file gone)
+// or ends, the wands come to rest and hold still, and a message says so; a hand not seen for a while, and its
+// return, are reported the same way.
+
+#include <cmath>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "calibration.h"
+#include "hand_source.h"
+#include "scripted_gestures.h"
+#include "stabilizer.h"
+
+namespace gb {
+
+struct WandFrame {
+  WandState wands;                      // world space
+  Vec3 leftHand = Vec3::Constant(NAN);  // the newest measured input hands, world space (NaN: not measured)
+  Vec3 rightHand = Vec3::Constant(NAN);
+};
+
+class WandInput {
+ public:
+  virtual ~WandInput() = default;
+  // The wands at run time t (s, from 0, not decreasing between calls).
+  virtual WandFrame at(double t) = 0;
+  [[nodiscard]] virtual std::string describe() const = 0;
+  // Seconds of input a recorded source holds; nothing for scripts and live sources.
+  [[nodiscard]] virtual std::optional<double> length() const { return std::nullopt; }
+  // Warnings and notes since the last call, each one line ("warning: …" or "note: …").
+  std::vector<std::string> takeMessages() { return std::exchange(messages_, {}); }
+
+ protected:
+  std::vector<std::string> messages_;
+};
+
+class ScriptedWands : public WandInput {
+ public:
+  ScriptedWands(Gesture gesture, const GestureOptions& options) : gesture_(gesture), options_(options) {}
+  WandFrame at(double t) override;
+  [[nodiscard]] std::string describe() const override;
+
+ private:
+  Gesture gesture_;
+  GestureOptions options_;
+};
+
+class StabilizedWands : public WandInput {
+ public:
+  // With calibration.autoPerformer, reads ahead until a sample shows both hands (at most the first 3 s) and
+  // centres the calibration between them.
+  StabilizedWands(std::unique_ptr<HandSource> source, const StabilizerOptions& stabilizer,
+                  const Calibration& calibration);
+  WandFrame at(double t) override;
+  [[nodiscard]] std::string describe() const override;
+  [[nodiscard]] std::optional<double> length() const override { return source_->length(); }
+  [[nodiscard]] const Calibration& calibration() const { return calibration_; }
+  [[nodiscard]] double confidence(Hand hand) const { return stabilizer_->confidence(hand); }
+
+  static constexpr double kLostHandAfter = 0.25;  // s unmeasured before a hand is reported lost
+
+ private:
+  std::unique_ptr<HandSource> source_;
+  Calibration calibration_;
+  std::unique_ptr<Stabilizer> stabilizer_;
+  std::deque<HandSample> ahead_;  // read from the source, not yet given to the stabilizer
+  bool finished_ = false;         // the source ended or was lost: only holds from here on
+  double start_ = 0.0;            // source time at run time 0
+  double lastFed_ = 0.0;          // source time of the newest sample the stabilizer has
+  double lastMeasured_[2] = {0.0, 0.0};
+  bool reportedLost_[2] = {false, false};
+  HandSample latest_;
+  std::string describe_;
+  bool fetch();  // reads one more sample into ahead_; false when there are no more
+  void feed(const HandSample& sample);
+};
+
+}  // namespace gb

@@ -1,0 +1,158 @@
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "freenect_stream.h"
+#include "hand_sources.h"
+#include "synthetic_depth.h"
+
+namespace gb {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A fresh path under this process's scratch folder, which is removed when the tests end.
+fs::path scratch(const std::string& name) {
+  static const struct Root {
+    fs::path path = fs::temp_directory_path() / ("giantbubble_fakenect_test_" + std::to_string(::getpid()));
+    ~Root() { fs::remove_all(path); }
+  } root;
+  const fs::path dir = root.path / name;
+  fs::remove_all(dir);
+  fs::create_directories(root.path);
+  return dir;
+}
+
+// A synthetic session of `frames` depth frames at 30 Hz, written as a fakenect recording.
+std::vector<kinect::DepthFrame> writeSession(const fs::path& dir, int frames) {
+  FakenectWriter writer(dir);
+  std::vector<kinect::DepthFrame> written;
+  for (int i = 0; i < frames; ++i) {
+    const double t = i / 30.0;
+    written.push_back(test::renderPerformer(test::sessionPose(t), t, 1000u + 2000000u * static_cast<uint32_t>(i)));
+    writer.write(written.back(), 1700000000.0 + t);
+  }
+  return written;
+}
+
+template <typename F>
+std::string errorOf(F&& f) {
+  try {
+    f();
+  } catch (const HandSourceError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(Fakenect, ASyntheticSessionPlayedThroughLibfreenectsFakenectGivesTheSameHands) {
+  const fs::path dir = scratch("session");
+  const std::vector<kinect::DepthFrame> frames = writeSession(dir, 12);
+
+  // Straight from the frames, without libfreenect.
+  HandTracker direct;
+  std::vector<HandSample> expected;
+  for (const kinect::DepthFrame& f : frames)
+    expected.push_back(direct.update(f.time, detectHands(f, DetectionOptions{})));
+
+  // Through fakenect, the code path of a live camera.
+  DepthHandSource played(DepthStream::openRecording(dir), DetectionOptions{}, TrackerOptions{});
+  EXPECT_NE(played.describe().find("12 depth frames"), std::string::npos) << played.describe();
+  std::vector<uint16_t> firstRaw;
+  played.onFrame([&](const kinect::DepthFrame& f) {
+    if (firstRaw.empty()) firstRaw = f.raw;
+  });
+  for (size_t i = 0; i < expected.size(); ++i) {
+    const std::optional<HandSample> s = played.next();
+    ASSERT_TRUE(s) << "frame " << i;
+    EXPECT_NEAR(s->time, expected[i].time, 1e-5);  // from the file names, microseconds
+    ASSERT_TRUE(s->left.measured && s->right.measured) << i;
+    EXPECT_EQ(s->left.position, expected[i].left.position) << i;
+    EXPECT_EQ(s->right.position, expected[i].right.position) << i;
+    // And those are the hands of the session, within 2 cm.
+    const test::SyntheticPerformer pose = test::sessionPose(frames[i].time);
+    EXPECT_LT((s->left.position - *pose.leftHand).norm(), 0.02) << i;
+    EXPECT_LT((s->right.position - *pose.rightHand).norm(), 0.02) << i;
+  }
+  EXPECT_EQ(firstRaw, frames.front().raw);
+  EXPECT_FALSE(played.next());  // the end of the recording, without fakenect's complaint
+}
+
+TEST(Fakenect, RecordingsPlayOneAfterAnotherInOneProcess) {
+  const fs::path a = scratch("first"), b = scratch("second");
+  writeSession(a, 2);
+  FakenectWriter writer(b);
+  test::SyntheticPerformer still;
+  writer.write(test::renderPerformer(still), 5.0);
+  for (int round = 0; round < 2; ++round) {
+    auto first = DepthStream::openRecording(a);
+    EXPECT_THROW(DepthStream::openRecording(b), HandSourceError);  // fakenect's globals: one at a time
+    kinect::DepthFrame f;
+    EXPECT_EQ(first->poll(f, 1.0), DepthStream::Poll::Frame);
+    first.reset();
+    auto second = DepthStream::openRecording(b);
+    EXPECT_EQ(second->poll(f, 1.0), DepthStream::Poll::Frame);
+    EXPECT_EQ(f.raw, test::renderPerformer(still).raw);  // the second recording, from its first frame
+    EXPECT_EQ(second->poll(f, 1.0), DepthStream::Poll::End);
+  }
+}
+
+TEST(Fakenect, BadRecordingsAreClearErrorsBeforeFakenectSeesThem) {
+  EXPECT_NE(errorOf([] { DepthStream::openRecording(scratch("absent")); }).find("no such folder"), std::string::npos);
+
+  const fs::path empty = scratch("empty");
+  fs::create_directories(empty);
+  EXPECT_NE(errorOf([&] { DepthStream::openRecording(empty); }).find("no INDEX.txt"), std::string::npos);
+  std::ofstream(empty / "INDEX.txt").flush();
+  EXPECT_NE(errorOf([&] { DepthStream::openRecording(empty); }).find("empty recording"), std::string::npos);
+
+  const fs::path truncated = scratch("truncated");
+  writeSession(truncated, 3);
+  const std::string second = [&] {
+    std::ifstream index(truncated / "INDEX.txt");
+    std::string line;
+    std::getline(index, line);
+    std::getline(index, line);
+    return line;
+  }();
+  fs::resize_file(truncated / second, 1000);
+  const std::string message = errorOf([&] { DepthStream::openRecording(truncated); });
+  EXPECT_NE(message.find("line 2"), std::string::npos) << message;
+  EXPECT_NE(message.find("truncated"), std::string::npos) << message;
+
+  fs::remove(truncated / second);
+  EXPECT_NE(errorOf([&] { DepthStream::openRecording(truncated); }).find("is missing"), std::string::npos);
+
+  std::ofstream(truncated / "INDEX.txt") << "not a fakenect line\n";
+  EXPECT_NE(errorOf([&] { DepthStream::openRecording(truncated); }).find("not a fakenect entry"), std::string::npos);
+
+  EXPECT_NE(errorOf([] { FakenectWriter writer(fs::temp_directory_path()); }).find("not an empty folder"),
+            std::string::npos);
+}
+
+TEST(Fakenect, AFileGoneMidPlaybackIsALostInputNotACrash) {
+  const fs::path dir = scratch("vanishing");
+  writeSession(dir, 3);
+  DepthHandSource played(DepthStream::openRecording(dir), DetectionOptions{}, TrackerOptions{});
+  ASSERT_TRUE(played.next());
+  fs::remove_all(dir);  // fakenect itself would exit() reading the next file
+  EXPECT_THROW(played.next(), HandSourceLost);
+}
+
+TEST(Kinect, WithoutACameraTheLiveSourceSaysNoKinectFound) {
+  std::unique_ptr<DepthStream> stream;
+  try {
+    stream = DepthStream::openKinect();
+  } catch (const HandSourceError& e) {
+    EXPECT_NE(std::string(e.what()).find("no Kinect found"), std::string::npos) << e.what();
+    EXPECT_NE(errorOf([] { makeHandSource("kinect", SourceOptions{}); }).find("no Kinect found"), std::string::npos);
+    return;
+  }
+  GTEST_SKIP() << "a Kinect is plugged in: " << stream->describe();
+}
+
+}  // namespace
+}  // namespace gb

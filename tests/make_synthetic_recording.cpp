@@ -1,0 +1,33 @@
+// Writes the synthetic performer session (synthetic_depth.h) as a fakenect recording, for the command-line
+// tests: make_synthetic_recording DIR FRAMES [--truncate]. With --truncate the last depth file is cut short.
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "freenect_stream.h"
+#include "synthetic_depth.h"
+
+int main(int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr, "usage: %s DIR FRAMES [--truncate]\n", argv[0]);
+    return 2;
+  }
+  const std::filesystem::path dir = argv[1];
+  const int frames = std::atoi(argv[2]);
+  std::filesystem::remove_all(dir);
+  gb::FakenectWriter writer(dir);
+  for (int i = 0; i < frames; ++i) {
+    const double t = i / 30.0;
+    writer.write(gb::test::renderPerformer(gb::test::sessionPose(t), t, static_cast<uint32_t>(i)), 1000.0 + t);
+  }
+  if (argc > 3 && std::string(argv[3]) == "--truncate") {
+    std::ifstream index(dir / "INDEX.txt");
+    std::string line, last;
+    while (std::getline(index, line)) last = line;
+    std::filesystem::resize_file(dir / last, 4096);
+  }
+  std::printf("wrote %d frames to %s\n", frames, dir.c_str());
+  return 0;
+}

@@ -1,0 +1,186 @@
+#include "wand_input.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <numbers>
+
+#include "hand_sources.h"
+
+namespace gb {
+namespace {
+
+// A source from a function of time, that ends or fails after a number of samples.
+class FunctionSource : public HandSource {
+ public:
+  FunctionSource(std::function<HandSample(double)> f, int samples, bool fails)
+      : f_(std::move(f)), samples_(samples), fails_(fails) {}
+  std::optional<HandSample> next() override {
+    if (index_ == samples_) {
+      if (fails_) throw HandSourceLost("the Kinect stopped responding (unplugged?)");
+      return std::nullopt;
+    }
+    return f_(10.0 + index_++ / 30.0);  // source times need not start at 0
+  }
+  [[nodiscard]] std::string describe() const override { return "function"; }
+
+ private:
+  std::function<HandSample(double)> f_;
+  int samples_, index_ = 0;
+  bool fails_;
+};
+
+HandSample moving(double t) {
+  HandSample s;
+  s.time = t;
+  s.left.position = Vec3d(0.25 + 0.3 * (t - 10.0), 0.0, 2.0);
+  s.right.position = Vec3d(-0.25, 0.1 * (t - 10.0), 2.0);
+  for (HandObservation* h : {&s.left, &s.right}) {
+    h->measured = true;
+    h->confidence = 1.0;
+  }
+  return s;
+}
+
+bool mentions(const std::vector<std::string>& messages, const std::string& text) {
+  for (const std::string& m : messages)
+    if (m.find(text) != std::string::npos) return true;
+  return false;
+}
+
+TEST(Calibration, MapsTheCameraToTheWorldAndBack) {
+  Calibration c;
+  EXPECT_LT((c.toWorld(c.performer) - c.anchor).norm(), 1e-12);
+  // The performer's left hand is on the camera's +x side; it becomes the left wand at world -x.
+  EXPECT_LT(c.toWorld(c.performer + Vec3d(0.25, 0, 0)).x(), c.anchor.x());
+  // A push towards the camera is a stroke towards world +z, scaled by the reach; up stays up.
+  EXPECT_NEAR(c.toWorld(c.performer + Vec3d(0, 0, -0.5)).z() - c.anchor.z(), 0.5 * c.reach, 1e-12);
+  EXPECT_NEAR(c.toWorld(c.performer + Vec3d(0, 0.1, 0)).y() - c.anchor.y(), 0.1 * c.reach, 1e-12);
+  EXPECT_NEAR((c.restHand(Hand::Left) - c.restHand(Hand::Right)).norm(), c.restSeparation / c.reach, 1e-12);
+  EXPECT_LT(c.toWorld(c.restHand(Hand::Left)).x(), 0.0);
+  // A camera pitched up sees a level point below its axis; the calibration puts it back level.
+  c.cameraPitch = 20.0;
+  const double a = 20.0 * std::numbers::pi / 180.0;
+  const Vec3d ahead = c.performer + Vec3d(0.0, -std::sin(a), std::cos(a)) * 0.4;  // 0.4 m further away, level
+  EXPECT_NEAR(c.toWorld(ahead).y(), c.toWorld(c.performer).y(), 1e-12);
+  const Vec3d p(0.1, 0.2, 1.7);
+  EXPECT_LT((c.toCamera(c.toWorld(p)) - p).norm(), 1e-12);
+  EXPECT_LT((c.velocityToWorld(p) - (c.toWorld(p) - c.toWorld(Vec3d::Zero()))).norm(), 1e-12);
+}
+
+TEST(WandInput, AScriptThroughTheStabilizerFollowsTheScriptedWandsInTheWorld) {
+  const GestureOptions g;
+  ScriptedWands exact(Gesture::Circles, g);
+  StabilizedWands stabilized(std::make_unique<ScriptedHandSource>(Gesture::Circles, g, Calibration{}),
+                             StabilizerOptions{}, Calibration{});
+  const double lagTime = 0.1;                 // the B-spline's three samples at 30 Hz
+  for (double t = 0.0; t < 4.0; t += 0.02) {  // the simulation's frames, 50 Hz
+    const WandFrame f = stabilized.at(t);
+    const WandState truth = exact.at(std::max(0.0, t - lagTime)).wands;
+    EXPECT_LT((f.wands.leftPosition - truth.leftPosition).norm(), 0.03) << t;
+    EXPECT_LT((f.wands.rightPosition - truth.rightPosition).norm(), 0.03) << t;
+  }
+  EXPECT_TRUE(stabilized.takeMessages().empty());
+}
+
+TEST(WandInput, ALostCameraMidPerformanceWarnsAndTheWandsHoldStill) {
+  StabilizedWands input(std::make_unique<FunctionSource>(moving, 30, true), StabilizerOptions{}, Calibration{});
+  for (double t = 0.0; t < 0.9; t += 0.02) input.at(t);
+  EXPECT_TRUE(input.takeMessages().empty());
+  std::vector<std::string> messages;
+  WandFrame previous = input.at(0.9);
+  double largestStep = 0.0;
+  for (double t = 0.92; t < 3.0; t += 0.02) {
+    const WandFrame f = input.at(t);
+    for (const std::string& m : input.takeMessages()) messages.push_back(m);
+    largestStep = std::max(largestStep, double((f.wands.leftPosition - previous.wands.leftPosition).norm()));
+    previous = f;
+  }
+  EXPECT_TRUE(mentions(messages, "warning: input lost at t = 0.9")) << (messages.empty() ? "" : messages[0]);
+  EXPECT_TRUE(mentions(messages, "unplugged"));
+  EXPECT_TRUE(mentions(messages, "the wands hold still"));
+  EXPECT_LT(largestStep, 0.3 * 2.0 * 0.02 + 1e-4);  // never faster than the hand moved (world: reach 2)
+  EXPECT_LT(previous.wands.leftVelocity.norm(), 1e-4);
+  const WandFrame last = input.at(3.5);
+  EXPECT_LT((last.wands.leftPosition - previous.wands.leftPosition).norm(), 1e-5);
+  EXPECT_FALSE(std::isfinite(last.leftHand.x()));  // no measured input any more
+}
+
+TEST(WandInput, AHandNotSeenIsReportedHeldAndReportedAgainWhenItComesBack) {
+  auto blinking = [](double t) {
+    HandSample s = moving(t);
+    if (t > 10.31 && t < 10.8) {
+      s.right.measured = false;
+      s.right.confidence = 0.5;
+    }
+    return s;
+  };
+  StabilizedWands input(std::make_unique<FunctionSource>(blinking, 60, false), StabilizerOptions{}, Calibration{});
+  std::vector<std::string> messages;
+  for (double t = 0.0; t < 2.5; t += 0.02) {
+    input.at(t);
+    for (const std::string& m : input.takeMessages()) messages.push_back(m);
+  }
+  EXPECT_TRUE(mentions(messages, "warning: right hand not seen since t = 0.30 s"));
+  EXPECT_TRUE(mentions(messages, "note: right hand seen again"));
+  EXPECT_TRUE(mentions(messages, "note: input ended at t = 1.97 s"));  // and no more about hands after that
+  EXPECT_FALSE(mentions(messages, "left hand"));
+}
+
+TEST(WandInput, AGapInTheInputIsRestedThroughNotJumpedOver) {
+  auto gappy = [](double t) {
+    HandSample s = moving(t < 10.5 ? t : t + 1.0);  // one second missing after 0.5 s
+    return s;
+  };
+  StabilizedWands input(std::make_unique<FunctionSource>(gappy, 45, false), StabilizerOptions{}, Calibration{});
+  Vec3 previous = input.at(0.0).wands.leftPosition;
+  double largestStep = 0.0;
+  for (double t = 0.02; t < 3.0; t += 0.02) {
+    const Vec3 p = input.at(t).wands.leftPosition;
+    largestStep = std::max(largestStep, double((p - previous).norm()));
+    previous = p;
+  }
+  EXPECT_LT(largestStep, StabilizerOptions{}.maxSpeed * 2.0 * 0.02 + 1e-4);
+}
+
+TEST(WandInput, AutomaticCalibrationCentresThePerformerBetweenTheHands) {
+  Calibration c;
+  c.autoPerformer = true;
+  auto offCentre = [](double t) {
+    HandSample s = moving(t);
+    s.left.position += Vec3d(1.0, 0.2, 0.5);
+    s.right.position += Vec3d(1.0, 0.2, 0.5);
+    if (t < 10.19) s.right.measured = false;  // the right hand shows up a little later
+    return s;
+  };
+  StabilizedWands input(std::make_unique<FunctionSource>(offCentre, 30, false), StabilizerOptions{}, c);
+  const auto messages = input.takeMessages();
+  EXPECT_TRUE(mentions(messages, "calibration: performer at (1.03, 0.21, 2.50) m")) << messages.front();
+  EXPECT_NEAR(input.calibration().performer.x(), 1.0 + 0.5 * 0.3 * 0.2, 1e-3);
+}
+
+TEST(PointerHandSource, DraggingMovesOnlyTheHeldHandWithoutAJump) {
+  double now = 0.0;
+  Calibration c;
+  PointerHandSource pointer(c, [&] { return now; });
+  const HandSample rest = *pointer.next();
+  EXPECT_LT((rest.left.position - c.restHand(Hand::Left)).norm(), 1e-12);
+  pointer.setPointer(0.9, 0.1);  // no button: nothing moves
+  now = 0.1;
+  EXPECT_EQ(pointer.next()->left.position, rest.left.position);
+  pointer.setButton(Hand::Left, true);
+  pointer.setPointer(0.8, 0.1);  // drag a tenth of the window to the left: the window spans 1 m times the reach
+  pointer.pushHands(0.2);
+  now = 0.2;
+  const HandSample moved = *pointer.next();
+  EXPECT_EQ(moved.right.position, rest.right.position);
+  const Vec3d world = c.toWorld(moved.left.position) - c.toWorld(rest.left.position);
+  EXPECT_NEAR(world.x(), -0.1 * c.reach, 1e-12);  // the window's left, as seen from the front
+  EXPECT_NEAR(world.y(), 0.0, 1e-12);
+  EXPECT_NEAR(world.z(), 0.2 * c.reach, 1e-12);  // pushed towards the camera: forward
+  EXPECT_GT(moved.time, rest.time);
+}
+
+}  // namespace
+}  // namespace gb

@@ -7,6 +7,7 @@
 #include "bench_command.h"
 #include "record_command.h"
 #include "run_command.h"
+#include "scene_file.h"
 
 namespace {
 
@@ -33,6 +34,23 @@ void applyParameter(gb::Params& p, const std::string& assignment) {
   }
 }
 
+// The value of --scene NAME or --scene=NAME, if given: the scene is the base the other options change, so it
+// is read before them.
+std::string sceneArgument(int argc, char** argv) {
+  for (int k = 1; k < argc; ++k) {
+    const std::string arg = argv[k];
+    if (arg == "--scene" && k + 1 < argc) return argv[k + 1];
+    if (arg.rfind("--scene=", 0) == 0) return arg.substr(8);
+  }
+  return {};
+}
+
+int listScenes() {
+  for (const std::string& name : gb::builtinSceneNames())
+    std::printf("%-8s %s\n", name.c_str(), gb::builtinScene(name).description.c_str());
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -40,9 +58,21 @@ int main(int argc, char** argv) {
   app.require_subcommand(0, 1);
 
   gb::RunOptions run;
-  std::string tool = "two-wands";
+  std::string sceneName = sceneArgument(argc, argv);
+  if (!sceneName.empty()) {
+    try {
+      run = gb::resolveScene(sceneName).run;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return 2;
+    }
+  }
+  const bool sceneSetsDuration = !sceneName.empty();
+  std::string tool = run.tool.kind == gb::ToolKind::Ring ? "ring" : "two-wands";
   std::vector<std::string> assignments;
   CLI::App* runCmd = app.add_subcommand("run", "simulate a performance headless and write its outputs");
+  runCmd->add_option("--scene", sceneName, "a built-in scene (giantbubble scenes lists them) or a scene file (.toml); "
+                                           "the other options change it");
   runCmd->add_option("--duration", run.duration, "simulated seconds")->check(CLI::Range(0.001, 3600.0));
   runCmd->add_option("--out", run.outDir, "output folder (created if missing)");
   runCmd->add_option("--ply-every", run.plyEvery, "write a PLY mesh every N frames, 0 for none")
@@ -73,6 +103,8 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--json", bench.json, "where to write the results");
   benchCmd->add_option("--device", bench.device, "Vulkan device: index or part of its name");
 
+  CLI::App* scenesCmd = app.add_subcommand("scenes", "list the built-in scenes (the paper's figures), one per line");
+
   gb::RecordOptions record;
   CLI::App* recordCmd = gb::addRecordCommand(app, record);
 
@@ -88,10 +120,11 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (benchCmd->parsed()) return gb::runBenchmark(bench);
+  if (scenesCmd->parsed()) return listScenes();
   try {
     if (recordCmd->parsed()) return gb::runRecord(record);
     run.tool.kind = tool == "ring" ? gb::ToolKind::Ring : gb::ToolKind::TwoWands;
-    run.durationFromInput = runCmd->count("--duration") == 0;
+    run.durationFromInput = runCmd->count("--duration") == 0 && !sceneSetsDuration;
     run.backend = gb::backendFromName(backend);
     return gb::runSimulation(run);
   } catch (const std::exception& e) {

@@ -30,7 +30,7 @@ constexpr std::array kFields = {
     GB_REAL(surfaceTension), GB_REAL(liquidDensity), GB_INTEGER(holeOpening), GB_REAL(aerosolLifetime),
     GB_REAL(aerosolDrag), GB_REAL(collisionThreshold), GB_REAL(collisionDistance), GB_REAL(collisionStiffness),
     GB_REAL(collisionDamping), GB_REAL(pinchDistance), GB_REAL(solution), GB_INTEGER(particlesAtFullSolution),
-    GB_REAL(solutionReserve), GB_REAL(growthStretch)};
+    GB_REAL(solutionReserve), GB_REAL(growthStretch), GB_INTEGER(airTransfer)};
 #undef GB_REAL
 #undef GB_INTEGER
 
@@ -94,6 +94,7 @@ std::vector<std::string> validate(const Params& p) {
   requireRange(e, "solution", p.solution, 0.01f, 1.0f, "");
   requireRange(e, "solutionReserve", p.solutionReserve, 0.0f, 100.0f, "");
   requireRange(e, "growthStretch", p.growthStretch, 1.05f, 100.0f, "");
+  requireRange(e, "airTransfer", p.airTransfer, 0, 1, "");
   requireRange(e, "particlesAtFullSolution", p.particlesAtFullSolution, 16, 50000000, "");
   return e;
 }

@@ -109,7 +109,7 @@ void computeAirInflow(const Params& p, const StepUniforms& u, State& s, size_t i
 }
 
 void transferAirFlow(const Params& p, const Topology& topo, State& s, size_t i) {
-  if (topo.boundary[i]) {  // Algorithm 2, line 2: the end particles take the new inflow
+  if (topo.boundary[i] || p.airTransfer == 0) {  // Algorithm 2, line 2: the end particles take the new inflow
     s.airFlowNext.set(i, s.airInflow.get(i));
     return;
   }

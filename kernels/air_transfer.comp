@@ -7,7 +7,7 @@
 void main() {
   const uint i = gl_GlobalInvocationID.x;
   if (i >= pc.count) return;
-  if (boundary[i] != 0u) {  // Algorithm 2, line 2: the end particles take the new inflow
+  if (boundary[i] != 0u || params.airTransfer == 0) {  // Algorithm 2, line 2: the end particles take the new inflow
     STORE3(airFlowNext, i, LOAD3(airInflow, i));
     return;
   }

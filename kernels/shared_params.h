@@ -59,6 +59,8 @@ struct Params {
   float solutionReserve GB_DEFAULT(1.0f);  // liquid a full dip leaves on the wire for new film, in films' worth
   float growthStretch GB_DEFAULT(1.15f);    // new film is drawn off the wire when the springs joining the wire
                                            // to the film are this many times their rest length (mean)
+  int airTransfer GB_DEFAULT(1);  // 1: air flow transfer, Eqs. (7)-(8) (the paper); 0: each particle feels only
+                                  // the inflow of Eq. (5) where it arrives (Figure 12a's comparison)
 };
 
 #ifdef __cplusplus

@@ -1,0 +1,15 @@
+#pragma once
+// The built-in scenes: scenes/*.toml, embedded as text at build time (app/CMakeLists.txt).
+
+#include <span>
+
+namespace gb {
+
+struct BuiltinScene {
+  const char* name;  // the file name without .toml
+  const char* text;  // the TOML
+};
+
+std::span<const BuiltinScene> builtinScenes();  // sorted by name: the order of the paper's figures
+
+}  // namespace gb

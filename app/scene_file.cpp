@@ -1,0 +1,227 @@
+// Scene files: TOML (toml++) to RunOptions, with every mistake named by file, line and key.
+#include "scene_file.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <fstream>
+#include <functional>
+#include <map>
+#include <sstream>
+
+#include "builtin_scenes.h"
+
+namespace gb {
+namespace {
+
+// Where a node is, for messages: "file:line:column".
+std::string where(const std::string& source, const toml::source_region& region) {
+  std::ostringstream out;
+  out << source << ':' << region.begin.line << ':' << region.begin.column;
+  return out.str();
+}
+
+[[noreturn]] void fail(const std::string& source, const toml::source_region& region, const std::string& message) {
+  throw SceneError(where(source, region) + ": " + message);
+}
+
+// Reads one table's keys through a handler per key; any other key is an error naming it.
+class TableReader {
+ public:
+  TableReader(const std::string& source, std::string tableName) : source_(source), table_(std::move(tableName)) {}
+
+  void on(const std::string& key, std::function<void(const toml::node&)> handler) {
+    handlers_[key] = std::move(handler);
+  }
+
+  void read(const toml::table& table) const {
+    for (auto&& [key, node] : table) {
+      const auto it = handlers_.find(std::string(key.str()));
+      if (it == handlers_.end()) fail(source_, key.source(), "unknown key '" + std::string(key.str()) + "'" + in() + known());
+      it->second(node);
+    }
+  }
+
+  [[nodiscard]] double number(const toml::node& node, const std::string& key, double lo, double hi) const {
+    if (!node.is_number()) fail(source_, node.source(), key + in() + " must be a number");
+    const double v = node.value<double>().value_or(0.0);
+    if (!(v >= lo && v <= hi)) {
+      std::ostringstream msg;
+      msg << key << in() << " = " << v << " is out of range [" << lo << ", " << hi << "]";
+      fail(source_, node.source(), msg.str());
+    }
+    return v;
+  }
+  [[nodiscard]] int integer(const toml::node& node, const std::string& key, int lo, int hi) const {
+    if (!node.is_integer()) fail(source_, node.source(), key + in() + " must be a whole number");
+    return static_cast<int>(number(node, key, lo, hi));
+  }
+  [[nodiscard]] std::string text(const toml::node& node, const std::string& key,
+                                 const std::vector<std::string>& choices = {}) const {
+    if (!node.is_string()) fail(source_, node.source(), key + in() + " must be a string");
+    std::string v = node.value<std::string>().value_or("");
+    if (!choices.empty() && std::find(choices.begin(), choices.end(), v) == choices.end()) {
+      std::string list;
+      for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
+      fail(source_, node.source(), key + in() + " = '" + v + "' is not one of: " + list);
+    }
+    return v;
+  }
+  [[nodiscard]] bool boolean(const toml::node& node, const std::string& key) const {
+    if (!node.is_boolean()) fail(source_, node.source(), key + in() + " must be true or false");
+    return node.value<bool>().value_or(false);
+  }
+  [[nodiscard]] std::array<float, 3> point(const toml::node& node, const std::string& key) const {
+    const toml::array* a = node.as_array();
+    const auto isNumber = [](const toml::node& n) { return n.is_number(); };
+    if (!a || a->size() != 3 || !std::all_of(a->begin(), a->end(), isNumber))
+      fail(source_, node.source(), key + in() + " must be three numbers [x, y, z] (m)");
+    std::array<float, 3> p{};
+    for (size_t k = 0; k < 3; ++k) p[k] = static_cast<float>((*a)[k].value<double>().value_or(0.0));
+    return p;
+  }
+
+ private:
+  [[nodiscard]] std::string in() const { return table_.empty() ? "" : " in [" + table_ + "]"; }
+  [[nodiscard]] std::string known() const {
+    std::string list;
+    for (const auto& [k, h] : handlers_) list += (list.empty() ? "" : ", ") + k;
+    return " (known: " + list + ")";
+  }
+  const std::string& source_;
+  std::string table_;
+  std::map<std::string, std::function<void(const toml::node&)>> handlers_;
+};
+
+const toml::table& subTable(const std::string& source, const toml::node& node, const std::string& name) {
+  const toml::table* table = node.as_table();
+  if (!table) fail(source, node.source(), "[" + name + "] must be a table");
+  return *table;
+}
+
+// An input naming a file or folder must name one that exists; relative paths are the scene file's.
+std::string resolveInput(const std::string& source, const toml::node& node, const std::string& spec,
+                         const std::filesystem::path& baseDir) {
+  for (const std::string prefix : {"trajectory:", "fakenect:"}) {
+    if (spec.rfind(prefix, 0) != 0) continue;
+    std::filesystem::path path = spec.substr(prefix.size());
+    if (path.is_relative()) path = baseDir / path;
+    if (!std::filesystem::exists(path)) fail(source, node.source(), "input file '" + path.string() + "' does not exist");
+    return prefix + path.string();
+  }
+  if (spec != "kinect" && spec.rfind("script:", 0) != 0)
+    fail(source, node.source(), "input = '" + spec + "' is not kinect, fakenect:DIR, trajectory:FILE or script:NAME");
+  if (spec.rfind("script:", 0) == 0) {
+    try {
+      (void)gestureFromName(spec.substr(7));
+    } catch (const std::invalid_argument& e) {
+      fail(source, node.source(), e.what());
+    }
+  }
+  return spec;
+}
+
+void readParams(const std::string& source, const toml::table& table, Params& params) {
+  std::map<std::string, toml::source_region> lines;
+  for (auto&& [key, node] : table) {
+    const std::string name(key.str());
+    const ParamField* field = findParamField(name);
+    if (!field) fail(source, key.source(), "unknown parameter '" + name + "' in [params] (docs/model.md lists them)");
+    if (!node.is_number()) fail(source, node.source(), name + " in [params] must be a number");
+    if (field->integer && !node.is_integer()) fail(source, node.source(), name + " in [params] must be a whole number");
+    setParameter(params, name, node.value<double>().value_or(0.0));
+    lines[name] = node.source();
+  }
+  // validate() names the parameter first: "parameter NAME = ..."; point at its line when the scene set it.
+  for (const std::string& error : validate(params)) {
+    const std::string name = error.substr(10, error.find(' ', 10) - 10);
+    const auto it = lines.find(name);
+    if (it != lines.end()) fail(source, it->second, error);
+    throw SceneError(source + ": " + error);
+  }
+}
+
+}  // namespace
+
+Scene parseScene(std::string_view text, const std::string& source, const std::filesystem::path& baseDir) {
+  toml::table root;
+  try {
+    root = toml::parse(text, source);
+  } catch (const toml::parse_error& e) {
+    fail(source, e.source(), std::string(e.description()));
+  }
+  Scene scene;
+  RunOptions& run = scene.run;
+  TableReader top(source, "");
+  top.on("name", [&](const toml::node& n) { scene.name = top.text(n, "name"); });
+  top.on("description", [&](const toml::node& n) { scene.description = top.text(n, "description"); });
+  top.on("duration", [&](const toml::node& n) { run.duration = top.number(n, "duration", 0.001, 3600.0); });
+  top.on("burst_at", [&](const toml::node& n) { run.burstAt = top.number(n, "burst_at", -1.0, 3600.0); });
+
+  TableReader tool(source, "tool");
+  tool.on("kind", [&](const toml::node& n) {
+    run.tool.kind = tool.text(n, "kind", {"two-wands", "ring"}) == "ring" ? ToolKind::Ring : ToolKind::TwoWands;
+  });
+  tool.on("loop_depth", [&](const toml::node& n) { run.tool.loopDepth = static_cast<float>(tool.number(n, "loop_depth", 0.05, 5.0)); });
+  tool.on("ring_radius", [&](const toml::node& n) { run.tool.ringRadius = static_cast<float>(tool.number(n, "ring_radius", 0.02, 5.0)); });
+  top.on("tool", [&](const toml::node& n) { tool.read(subTable(source, n, "tool")); });
+
+  TableReader input(source, "input");
+  input.on("source", [&](const toml::node& n) { run.input.input = resolveInput(source, n, input.text(n, "source"), baseDir); });
+  input.on("stabilizer", [&](const toml::node& n) { run.input.stabilizer = input.text(n, "stabilizer", {"bspline", "one-euro"}); });
+  input.on("speed", [&](const toml::node& n) { run.gestureOptions.speed = static_cast<float>(input.number(n, "speed", 0.0, 20.0)); });
+  input.on("start", [&](const toml::node& n) { run.gestureOptions.start = static_cast<float>(input.number(n, "start", 0.0, 3600.0)); });
+  input.on("stroke", [&](const toml::node& n) { run.gestureOptions.duration = static_cast<float>(input.number(n, "stroke", 0.01, 3600.0)); });
+  input.on("tip_separation", [&](const toml::node& n) { run.gestureOptions.tipSeparation = static_cast<float>(input.number(n, "tip_separation", 0.05, 5.0)); });
+  input.on("height", [&](const toml::node& n) { run.gestureOptions.height = static_cast<float>(input.number(n, "height", 0.1, 5.0)); });
+  top.on("input", [&](const toml::node& n) { input.read(subTable(source, n, "input")); });
+
+  top.on("params", [&](const toml::node& n) { readParams(source, subTable(source, n, "params"), run.params); });
+
+  TableReader output(source, "output");
+  output.on("ply_every", [&](const toml::node& n) { run.plyEvery = output.integer(n, "ply_every", 0, 1000000); });
+  output.on("images_every", [&](const toml::node& n) { run.imageEvery = output.integer(n, "images_every", 0, 1000000); });
+  top.on("output", [&](const toml::node& n) { output.read(subTable(source, n, "output")); });
+
+  TableReader view(source, "render");
+  view.on("width", [&](const toml::node& n) { scene.view.width = view.integer(n, "width", 16, 16384); });
+  view.on("height", [&](const toml::node& n) { scene.view.height = view.integer(n, "height", 16, 16384); });
+  view.on("colouring", [&](const toml::node& n) { scene.view.colouring = view.text(n, "colouring", {"interference", "thickness", "air"}); });
+  view.on("video", [&](const toml::node& n) { scene.view.video = view.boolean(n, "video"); });
+  view.on("camera", [&](const toml::node& n) { scene.view.camera = view.point(n, "camera"); });
+  view.on("target", [&](const toml::node& n) { scene.view.target = view.point(n, "target"); });
+  top.on("render", [&](const toml::node& n) { view.read(subTable(source, n, "render")); });
+
+  top.read(root);
+  if (scene.name.empty()) throw SceneError(source + ": the scene has no name (name = \"...\")");
+  return scene;
+}
+
+Scene loadSceneFile(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw SceneError("cannot read scene file '" + path.string() + "'");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parseScene(text.str(), path.string(), path.parent_path());
+}
+
+std::vector<std::string> builtinSceneNames() {
+  std::vector<std::string> names;
+  for (const BuiltinScene& s : builtinScenes()) names.emplace_back(s.name);
+  return names;
+}
+
+Scene builtinScene(const std::string& name) {
+  for (const BuiltinScene& s : builtinScenes())
+    if (name == s.name) return parseScene(s.text, "builtin:" + name, std::filesystem::current_path());
+  std::string list;
+  for (const std::string& n : builtinSceneNames()) list += (list.empty() ? "" : ", ") + n;
+  throw SceneError("unknown scene '" + name + "' (built-in scenes: " + list + "; or give a path to a .toml file)");
+}
+
+Scene resolveScene(const std::string& nameOrPath) {
+  const bool looksLikePath = nameOrPath.find('/') != std::string::npos || nameOrPath.ends_with(".toml");
+  return looksLikePath ? loadSceneFile(nameOrPath) : builtinScene(nameOrPath);
+}
+
+}  // namespace gb

@@ -1,0 +1,54 @@
+#pragma once
+// Scenes as data (docs/scenes.md): a TOML file holds the tool, the input, every model parameter, the output
+// and render settings and the duration of a run. The paper's figures are built-in scenes (scenes/*.toml,
+// embedded at build time), listed by `giantbubble scenes` and run by `giantbubble run --scene NAME`.
+
+#include <array>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "run_command.h"
+
+namespace gb {
+
+// A scene that cannot be used; the message names the file (or builtin:NAME), the line and column, and the key.
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// How a scene wants to be looked at; used by the renderer.
+struct SceneView {
+  int width = 1280;
+  int height = 720;
+  std::string colouring = "interference";  // interference, thickness or air
+  bool video = false;                      // write an MP4 of the rendered frames
+  std::array<float, 3> camera = {0.0f, 1.5f, 3.5f};  // eye position (m, world)
+  std::array<float, 3> target = {0.0f, 1.2f, 0.0f};  // point looked at
+};
+
+struct Scene {
+  std::string name;
+  std::string description;  // one line, for `giantbubble scenes`
+  RunOptions run;           // everything a run needs, from the defaults the scene did not change
+  SceneView view;
+};
+
+// Parses a scene. `source` names it in messages; relative input paths resolve against `baseDir`. Unknown
+// keys, wrong types, out-of-range values and missing input files are SceneErrors.
+Scene parseScene(std::string_view text, const std::string& source, const std::filesystem::path& baseDir);
+
+// A scene file on disk (SceneError if it cannot be read).
+Scene loadSceneFile(const std::filesystem::path& path);
+
+// The built-in scenes, in the order of the paper's figures.
+std::vector<std::string> builtinSceneNames();
+Scene builtinScene(const std::string& name);  // SceneError naming the choices for an unknown name
+
+// A built-in scene's name or a path to a scene file.
+Scene resolveScene(const std::string& nameOrPath);
+
+}  // namespace gb

@@ -61,7 +61,9 @@ int main(int argc, char** argv) {
   std::string sceneName = sceneArgument(argc, argv);
   if (!sceneName.empty()) {
     try {
-      run = gb::resolveScene(sceneName).run;
+      const gb::Scene scene = gb::resolveScene(sceneName);
+      run = scene.run;
+      run.scene = scene.name;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "error: %s\n", e.what());
       return 2;

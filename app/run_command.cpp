@@ -94,8 +94,10 @@ int runSimulation(const RunOptions& o) {
               1e3 * o.params.frameTime / sim.substepsPerFrame(), o.params.frameTime, frames);
 
   StatsWriter stats(o.outDir / "stats.csv");
+  RunRecord record;
   const FrameStats first = sim.stats();
   stats.write(0, first, sim.substepsPerFrame(), 0.0, "film_created");
+  record.start(first);
   if (o.plyEvery > 0) writePly(o.outDir / meshName(0), sim.film());
   if (o.imageEvery > 0) writeThicknessImage(o.outDir / imageName(0), sim.film(), sim.aerosol(), ImageView{});
 
@@ -121,6 +123,7 @@ int runSimulation(const RunOptions& o) {
                    frame, frames, frame - 1, o.outDir.string().c_str());
       if (o.plyEvery > 0) writePly(o.outDir / ("unstable_" + meshName(frame)), sim.film());
       wandLog.writePlot(o.outDir / "wands.svg", "giantbubble run (unstable): " + input->describe());
+      record.writeJson(o.outDir / "stats.json", o.scene, "unstable at frame " + std::to_string(frame) + ": " + e.what());
       return 3;
     }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
@@ -131,6 +134,7 @@ int runSimulation(const RunOptions& o) {
     if (sim.lastEvents().particlesAdded > 0) events += "film_grown ";
     if (!events.empty()) events.pop_back();
     stats.write(frame, last, sim.substepsPerFrame(), ms, events);
+    record.addFrame(last, sim.substepsPerFrame(), ms, events);
     if (o.imageEvery > 0 && frame % o.imageEvery == 0)
       writeThicknessImage(o.outDir / imageName(frame), sim.film(), sim.aerosol(), ImageView{});
     if (o.plyEvery > 0 && frame % o.plyEvery == 0) {
@@ -143,7 +147,9 @@ int runSimulation(const RunOptions& o) {
   bar.finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
   wandLog.writePlot(o.outDir / "wands.svg", "giantbubble run: " + input->describe());
+  record.writeJson(o.outDir / "stats.json", o.scene, "finished");
   printSummary(first, last, frames, sim.substepsPerFrame(), wall, o.outDir);
+  record.printTable1(o.scene);
   return 0;
 }
 

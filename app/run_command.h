@@ -14,6 +14,7 @@
 namespace gb {
 
 struct RunOptions {
+  std::string scene = "default";          // the scene's name, for stats.json and the summary
   Params params;
   WandTool tool;
   InputOptions input;                     // what moves the wands (default: the straight scripted gesture)

@@ -1,6 +1,9 @@
 #include "run_output.h"
 
 #include <bit>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <sstream>
 #include <stdexcept>
 #include <vector>
 
@@ -72,6 +75,69 @@ void StatsWriter::write(long frame, const FrameStats& st, int substeps, double f
        << st.liquid << ',' << st.meanThickness << ',' << st.maxSpeed << ',' << st.meanAirFlow << ',' << st.solution << ',' << st.droplets
        << ',' << st.dropletMass << ',' << substeps << ',' << frameMilliseconds << ',' << events << '\n';
   out_.flush();
+}
+
+void RunRecord::start(const FrameStats& first) {
+  first_ = last_ = first;
+  events_.emplace_back(first.time, "film_created");
+}
+
+void RunRecord::addFrame(const FrameStats& stats, int substeps, double frameMilliseconds, const std::string& events) {
+  last_ = stats;
+  ++frames_;
+  particleSum_ += static_cast<double>(stats.particles);
+  triangleSum_ += static_cast<double>(stats.triangles);
+  millisecondSum_ += frameMilliseconds;
+  substepSum_ += substeps;
+  std::istringstream words(events);
+  for (std::string event; words >> event;) events_.emplace_back(stats.time, event);
+}
+
+namespace {
+
+nlohmann::json frameJson(const FrameStats& s) {
+  return {{"time_s", s.time},           {"particles", s.particles},   {"triangles", s.triangles},
+          {"area_m2", s.area},          {"volume_m3", s.volume},      {"liquid_m3", s.liquid},
+          {"solution", s.solution},     {"droplets", s.droplets},     {"kinetic_J", s.kineticEnergy},
+          {"mean_thickness_m", s.meanThickness}};
+}
+
+}  // namespace
+
+void RunRecord::writeJson(const std::filesystem::path& path, const std::string& scene, const std::string& status) const {
+  const double n = static_cast<double>(std::max(frames_, 1L));
+  const double msPerFrame = millisecondSum_ / n;
+  nlohmann::json j;
+  j["scene"] = scene;
+  j["status"] = status;
+  j["frames"] = frames_;
+  j["average"] = {{"particles", particleSum_ / n},
+                  {"triangles", triangleSum_ / n},
+                  {"frame_ms", msPerFrame},
+                  {"frames_per_second", msPerFrame > 0 ? 1e3 / msPerFrame : 0.0},
+                  {"substeps_per_frame", substepSum_ / n},
+                  {"step_ms", substepSum_ > 0 ? millisecondSum_ / substepSum_ : 0.0}};
+  j["first_frame"] = frameJson(first_);
+  j["last_frame"] = frameJson(last_);
+  nlohmann::json events = nlohmann::json::array();
+  for (const auto& [time, name] : events_) events.push_back({{"time_s", time}, {"event", name}});
+  j["events"] = events;
+  const std::filesystem::path partial = path.string() + ".partial";
+  {
+    std::ofstream out(partial);
+    out << j.dump(2) << '\n';
+    if (!out) throw std::runtime_error("cannot write " + partial.string());
+  }
+  std::filesystem::rename(partial, path);
+}
+
+void RunRecord::printTable1(const std::string& scene) const {
+  const double n = static_cast<double>(std::max(frames_, 1L));
+  const double msPerFrame = millisecondSum_ / n;
+  std::printf("\n%-12s %18s %18s %26s\n", "Example", "Avg. Particle Size", "Avg. Triangle Size",
+              "Avg. Time (fps) (simulation)");
+  std::printf("%-12s %18.0f %18.0f %26.1f\n", scene.c_str(), particleSum_ / n, triangleSum_ / n,
+              msPerFrame > 0 ? 1e3 / msPerFrame : 0.0);
 }
 
 }  // namespace gb

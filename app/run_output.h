@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "film.h"
 #include "simulation.h"
@@ -17,6 +19,25 @@ void writePly(const std::filesystem::path& path, const Film& film);
 
 // The aerosol droplets as a binary PLY point cloud: x y z (m), mass (kg), age (s).
 void writeAerosolPly(const std::filesystem::path& path, const Aerosol& aerosol);
+
+// The whole run in figures, for stats.json and the Table 1 summary: averages over frames, and the events.
+class RunRecord {
+ public:
+  void start(const FrameStats& first);  // the new film, before any frame ran
+  void addFrame(const FrameStats& stats, int substeps, double frameMilliseconds, const std::string& events);
+  // stats.json: the scene, status ("finished" or why it stopped), frames, averages as in Table 1 of the
+  // paper, the first and last frame's figures and every event with its time. Written whole, atomically
+  // (a temporary file renamed), so a reader never sees half of it.
+  void writeJson(const std::filesystem::path& path, const std::string& scene, const std::string& status) const;
+  // The paper's Table 1 row for this run: example, average particles, average triangles, average frames/s.
+  void printTable1(const std::string& scene) const;
+
+ private:
+  long frames_ = 0;
+  double particleSum_ = 0, triangleSum_ = 0, millisecondSum_ = 0, substepSum_ = 0;
+  FrameStats first_, last_;
+  std::vector<std::pair<double, std::string>> events_;
+};
 
 // stats.csv: one row per frame.
 class StatsWriter {

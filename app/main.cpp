@@ -91,6 +91,7 @@ int main(int argc, char** argv) {
   runCmd->add_option("--param", assignments, "set a model parameter, NAME=VALUE (repeatable)");
   runCmd->add_option("--burst-at", run.burstAt, "poke the top of the film at this time (s); negative: never");
   runCmd->add_flag("!--no-progress", run.progress, "do not show the progress bar");
+  runCmd->add_option("--osc", run.osc, "send events and the bubble's size and position as OSC to HOST:PORT (UDP)");
   std::string backend = "auto";
   runCmd->add_option("--backend", backend, "cpu, vulkan, or auto (Vulkan on a GPU, else the CPU)")
       ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));

@@ -4,8 +4,10 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <sstream>
 #include <unistd.h>
 
+#include "osc_events.h"
 #include "run_output.h"
 #include "thickness_image.h"
 #include "simulation.h"
@@ -68,6 +70,31 @@ void printSummary(const FrameStats& first, const FrameStats& last, long frames, 
   std::printf("%-28s %s\n", "outputs", outDir.string().c_str());
 }
 
+// Sends a frame's events and the bubble's state when OSC is on; a failed send is reported once and the run
+// goes on.
+class ShowControl {
+ public:
+  explicit ShowControl(const std::string& target) {
+    if (!target.empty()) sender_ = std::make_unique<OscSender>(target);
+  }
+  void frame(const Simulation& sim, const FrameStats& stats, const std::string& events) {
+    if (!sender_) return;
+    std::istringstream words(events);
+    bool ok = true;
+    for (std::string event; words >> event;) ok = sender_->event(event, stats.time) && ok;
+    ok = sender_->bubble(stats.time, centroid(sim.film().state), stats.area, stats.volume, stats.solution) && ok;
+    if (!ok && !warned_) {
+      std::fprintf(stderr, "warning: OSC messages are not getting through (%s); the run goes on\n",
+                   sender_->lastError().c_str());
+      warned_ = true;
+    }
+  }
+
+ private:
+  std::unique_ptr<OscSender> sender_;
+  bool warned_ = false;
+};
+
 }  // namespace
 
 int runSimulation(const RunOptions& o) {
@@ -98,6 +125,8 @@ int runSimulation(const RunOptions& o) {
   const FrameStats first = sim.stats();
   stats.write(0, first, sim.substepsPerFrame(), 0.0, "film_created");
   record.start(first);
+  ShowControl show(o.osc);
+  show.frame(sim, first, "film_created");
   if (o.plyEvery > 0) writePly(o.outDir / meshName(0), sim.film());
   if (o.imageEvery > 0) writeThicknessImage(o.outDir / imageName(0), sim.film(), sim.aerosol(), ImageView{});
 
@@ -135,6 +164,7 @@ int runSimulation(const RunOptions& o) {
     if (!events.empty()) events.pop_back();
     stats.write(frame, last, sim.substepsPerFrame(), ms, events);
     record.addFrame(last, sim.substepsPerFrame(), ms, events);
+    show.frame(sim, last, events);
     if (o.imageEvery > 0 && frame % o.imageEvery == 0)
       writeThicknessImage(o.outDir / imageName(frame), sim.film(), sim.aerosol(), ImageView{});
     if (o.plyEvery > 0 && frame % o.plyEvery == 0) {

@@ -28,6 +28,7 @@ struct RunOptions {
   bool progress = true;
   Backend backend = Backend::Auto;
   std::string device;                     // Vulkan device index or name part (empty: best available)
+  std::string osc;                        // HOST:PORT to send events and the bubble's state to (empty: off)
 };
 
 // Runs the simulation and writes its outputs; prints progress and a summary. Returns the process exit code:

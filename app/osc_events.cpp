@@ -1,0 +1,43 @@
+#include "osc_events.h"
+
+#include <lo/lo.h>
+
+#include <stdexcept>
+
+namespace gb {
+
+struct OscSender::Address {
+  lo_address handle = nullptr;
+  ~Address() {
+    if (handle) lo_address_free(handle);
+  }
+};
+
+OscSender::OscSender(const std::string& target) : address_(std::make_unique<Address>()) {
+  const auto colon = target.rfind(':');
+  if (colon == std::string::npos || colon == 0 || colon + 1 == target.size())
+    throw std::invalid_argument("OSC target '" + target + "' is not HOST:PORT");
+  const std::string host = target.substr(0, colon), port = target.substr(colon + 1);
+  if (port.find_first_not_of("0123456789") != std::string::npos)
+    throw std::invalid_argument("OSC target '" + target + "': the port must be a number");
+  address_->handle = lo_address_new(host.c_str(), port.c_str());
+  if (!address_->handle) throw std::invalid_argument("OSC target '" + target + "' cannot be used");
+}
+
+OscSender::~OscSender() = default;
+
+bool OscSender::event(const std::string& name, double time) {
+  if (lo_send(address_->handle, "/giantbubble/event", "sd", name.c_str(), time) >= 0) return true;
+  lastError_ = lo_address_errstr(address_->handle);
+  return false;
+}
+
+bool OscSender::bubble(double time, const Vec3& centre, double area, double volume, double solution) {
+  if (lo_send(address_->handle, "/giantbubble/bubble", "dffffff", time, centre.x(), centre.y(), centre.z(),
+              static_cast<float>(area), static_cast<float>(volume), static_cast<float>(solution)) >= 0)
+    return true;
+  lastError_ = lo_address_errstr(address_->handle);
+  return false;
+}
+
+}  // namespace gb

@@ -29,6 +29,12 @@ struct Film {
 // liquid (initial thickness x rest Voronoi area), thickness, elasticity; lifetime 0, at rest.
 void initialiseFilmMaterial(const Params& params, Film& film);
 
+// The mass of a particle with that Voronoi area and liquid: the paper's film has a chosen inertia per area
+// (filmInertia); the physical one (tensionModel 1) weighs what its liquid weighs.
+inline float particleMass(const Params& p, float voronoiArea, float liquid) {
+  return p.tensionModel == 1 ? p.liquidDensity * liquid : p.filmInertia * voronoiArea;
+}
+
 // Gives particles [first, n) the material of a new film (mass, liquid, thickness, elasticity, at rest),
 // after updating the geometry of the whole film: new particles stitched to an existing film.
 void initialiseNewParticles(const Params& params, Film& film, size_t first);

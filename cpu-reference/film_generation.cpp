@@ -217,8 +217,8 @@ void initialiseNewParticles(const Params& params, Film& film, size_t first) {
   const float e0 = initialThickness(params);
   computeGeometry(film.topology, s);
   for (size_t i = first; i < s.size(); ++i) {
-    s.mass[i] = params.filmInertia * s.voronoiArea[i];
     s.liquid[i] = e0 * s.voronoiArea[i];
+    s.mass[i] = particleMass(params, s.voronoiArea[i], s.liquid[i]);
     s.lifetime[i] = 0.0f;
     s.alive[i] = 1u;
     s.velocity.set(i, Vec3::Zero());

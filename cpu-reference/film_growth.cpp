@@ -136,10 +136,8 @@ float shareStripMaterial(const Params& params, const std::vector<uint32_t>& stri
   const float thickness = area > 0 ? static_cast<float>(used / area) : 0.0f;
   for (size_t i = first; i < s.size(); ++i) s.liquid[i] = 0.0f;
   for (size_t t = 0; t < strip.size(); t += 3)
-    for (size_t k = 0; k < 3; ++k) {
-      s.liquid[strip[t + k]] += thickness * cornerArea[t / 3];
-      s.mass[strip[t + k]] = params.filmInertia * s.voronoiArea[strip[t + k]];
-    }
+    for (size_t k = 0; k < 3; ++k) s.liquid[strip[t + k]] += thickness * cornerArea[t / 3];
+  for (uint32_t i : strip) s.mass[i] = particleMass(params, s.voronoiArea[i], s.liquid[i]);
   return used;
 }
 

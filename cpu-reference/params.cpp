@@ -30,7 +30,8 @@ constexpr std::array kFields = {
     GB_REAL(surfaceTension), GB_REAL(liquidDensity), GB_INTEGER(holeOpening), GB_REAL(aerosolLifetime),
     GB_REAL(aerosolDrag), GB_REAL(collisionThreshold), GB_REAL(collisionDistance), GB_REAL(collisionStiffness),
     GB_REAL(collisionDamping), GB_REAL(pinchDistance), GB_REAL(solution), GB_INTEGER(particlesAtFullSolution),
-    GB_REAL(solutionReserve), GB_REAL(growthStretch), GB_INTEGER(airTransfer)};
+    GB_REAL(solutionReserve), GB_REAL(growthStretch), GB_INTEGER(airTransfer),
+    GB_INTEGER(tensionModel), GB_REAL(gibbsElasticity)};
 #undef GB_REAL
 #undef GB_INTEGER
 
@@ -95,6 +96,8 @@ std::vector<std::string> validate(const Params& p) {
   requireRange(e, "solutionReserve", p.solutionReserve, 0.0f, 100.0f, "");
   requireRange(e, "growthStretch", p.growthStretch, 1.05f, 100.0f, "");
   requireRange(e, "airTransfer", p.airTransfer, 0, 1, "");
+  requireRange(e, "tensionModel", p.tensionModel, 0, 1, "");
+  requireRange(e, "gibbsElasticity", p.gibbsElasticity, 0.0f, 1.0f, " N/m");
   requireRange(e, "particlesAtFullSolution", p.particlesAtFullSolution, 16, 50000000, "");
   return e;
 }

@@ -88,10 +88,16 @@ float elasticity(const Params& p, float thickness, float lifetime) {
   return p.elasticityWeight * 4.0f * x / ((x + 2.0f) * (x + 2.0f));                     // Gibbs
 }
 
+float filmTension(const Params& p, float thickness) {
+  const float gamma0 = p.surfaceTension;
+  const float gamma = gamma0 + 0.5f * p.gibbsElasticity * std::log(initialThickness(p) / std::max(thickness, 1e-12f));
+  return 2.0f * std::clamp(gamma, 0.5f * gamma0, 2.0f * gamma0);
+}
+
 void updateFilmState(const Params& p, float dt, State& s, size_t i) {
   const float area = s.voronoiArea[i];
   s.thickness[i] = area > 0 ? s.liquid[i] / area : 0.0f;
-  s.elasticity[i] = elasticity(p, s.thickness[i], s.lifetime[i]);
+  s.elasticity[i] = p.tensionModel == 1 ? filmTension(p, s.thickness[i]) : elasticity(p, s.thickness[i], s.lifetime[i]);
   s.lifetime[i] += dt;
 }
 
@@ -136,11 +142,29 @@ float boylePressure(const Params& p, float referenceVolume, float currentVolume)
   return currentVolume > 0 ? p.pressureCoefficient * referenceVolume / currentVolume : p.pressureCoefficient;
 }
 
+Vec3 areaTensionForce(const Topology& topo, const State& s, size_t i) {
+  Vec3 f = Vec3::Zero();
+  for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
+    const uint32_t t = topo.triangleIndex[k];
+    const uint32_t* tri = &topo.triangles[3 * t];
+    const uint32_t c = tri[0] == i ? 0u : (tri[1] == i ? 1u : 2u);
+    const uint32_t j = tri[(c + 1) % 3], l = tri[(c + 2) % 3];
+    const Vec3 twiceAreaNormal = s.triangleNormal.get(t);
+    const float twiceArea = twiceAreaNormal.norm();
+    if (twiceArea <= 0) continue;
+    const float tension = (s.elasticity[tri[0]] + s.elasticity[tri[1]] + s.elasticity[tri[2]]) / 3.0f;
+    // grad_i A_t = 1/2 n_t x (x_l - x_j): the film pulls i towards the opposite edge, in the triangle's plane.
+    f -= tension * 0.5f * (twiceAreaNormal / twiceArea).cross(s.position.get(l) - s.position.get(j));
+  }
+  return f;
+}
+
 void computeForces(const Params& p, const StepUniforms& u, float pressure, const Topology& topo, State& s,
                    size_t i) {
   const Vec3 xi = s.position.get(i), vi = s.velocity.get(i), n = s.normal.get(i);
   const float ei = s.elasticity[i], area = s.voronoiArea[i];
-  Vec3 f = Vec3::Zero();
+  const bool physical = p.tensionModel == 1;
+  Vec3 f = physical ? areaTensionForce(topo, s, i) : Vec3::Zero();
   for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
     const uint32_t j = topo.springNeighbour[k];
     const Vec3 d = s.position.get(j) - xi;
@@ -148,8 +172,8 @@ void computeForces(const Params& p, const StepUniforms& u, float pressure, const
     if (len <= 0) continue;
     const Vec3 dir = d / len;
     const float stiffness = 0.5f * (ei + s.elasticity[j]);
-    f += stiffness * (len - topo.restLength[topo.springIndex[k]]) * dir;        // Eq. (3)
-    f += p.springDamping * (s.velocity.get(j) - vi).dot(dir) * dir;            // Algorithm 1, line 5
+    if (!physical) f += stiffness * (len - topo.restLength[topo.springIndex[k]]) * dir;  // Eq. (3)
+    f += p.springDamping * (s.velocity.get(j) - vi).dot(dir) * dir;                     // Algorithm 1, line 5
   }
   // Self-collision: contacts closer than the collision distance repel along their separation and damp their
   // approach; the tangential motion is free, so colliding sheets slip (Section 8).
@@ -233,15 +257,37 @@ float elasticityBound(const Params& p) {
   return p.elasticityWeight * std::max(0.5f, marangoni);
 }
 
+namespace {
+
+// Physical model: the diagonal of the Hessian of i's triangle areas, sum_t |opposite edge|^2 / (4 A_t) (m^0);
+// times the largest tension it bounds the stiffness the area force gives particle i.
+float areaHessianDiagonal(const Topology& topo, const State& s, size_t i) {
+  float sum = 0.0f;
+  for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
+    const uint32_t t = topo.triangleIndex[k];
+    const uint32_t* tri = &topo.triangles[3 * t];
+    const uint32_t c = tri[0] == i ? 0u : (tri[1] == i ? 1u : 2u);
+    const float twiceArea = s.triangleNormal.get(t).norm();
+    const float edge2 = (s.position.get(tri[(c + 2) % 3]) - s.position.get(tri[(c + 1) % 3])).squaredNorm();
+    if (twiceArea > 0) sum += edge2 / (2.0f * twiceArea);
+  }
+  return sum;
+}
+
+}  // namespace
+
 float stableTimeStep(const Params& p, const Topology& topo, const State& s, float pressure, float volume) {
   const float eMax = elasticityBound(p);
+  const float tensionMax = 4.0f * p.surfaceTension;  // filmTension is at most 2 x 2 gamma_0
   float dt = std::numeric_limits<float>::infinity();
   const bool closed = topo.isClosed();
   for (size_t i = 0; i < s.size(); ++i) {
     if (!s.alive[i] || topo.boundary[i] || s.mass[i] <= 0) continue;
     const float springs = static_cast<float>(topo.springOffset[i + 1] - topo.springOffset[i]);
     // Gershgorin: row sum of |K| is at most twice the diagonal; up to 6 collision contacts at a time.
-    float stiffness = 2.0f * (springs * eMax + 6.0f * p.collisionStiffness);
+    const float filmStiffness =
+        p.tensionModel == 1 ? tensionMax * areaHessianDiagonal(topo, s, i) : springs * eMax;
+    float stiffness = 2.0f * (filmStiffness + 6.0f * p.collisionStiffness);
     if (closed && volume > 0) stiffness += pressure * s.voronoiArea[i] * s.voronoiArea[i] / volume;
     const float omega = std::sqrt(stiffness / s.mass[i]);
     const float damping =

@@ -52,7 +52,18 @@ float treeSum(std::vector<float> values);
 // The paper's formulas are divided by k so that w_E carries the unit N/m (docs/model.md).
 float elasticity(const Params& p, float thickness, float lifetime);
 
-// Thickness e_i = liquid / A_Vor, elasticity E_i, and the particle's age.
+// Physical model: the film's tension 2 gamma (N/m), gamma following the thickness e through Gibbs-Marangoni
+// elasticity, gamma = gamma_0 + (E_G / 2) ln(e_0 / e) (a thinner, stretched film has less surfactant per area),
+// kept within [gamma_0 / 2, 2 gamma_0].
+float filmTension(const Params& p, float thickness);
+
+// Physical model, per particle i: -sum over its triangles t of T_t grad_i A_t, T_t the mean tension 2 gamma of
+// t's corners: the discrete mean-curvature force 2 gamma (2 H) A_i n on a smooth film, and an in-plane pull
+// where the tension varies (Marangoni). Needs the geometry stage's triangle normals.
+Vec3 areaTensionForce(const Topology& topo, const State& s, size_t i);
+
+// Thickness e_i = liquid / A_Vor, elasticity E_i (the paper) or the film tension 2 gamma_i (physical
+// model: the same N/m slot), and the particle's age.
 void updateFilmState(const Params& p, float dt, State& s, size_t i);
 
 // ---- Stage 4: air inflow (Section 5.2.1) ---------------------------------------------------------------

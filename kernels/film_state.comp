@@ -1,5 +1,6 @@
 #version 450
-// updateFilmState (cpu-reference/stages.cpp): thickness e_i = liquid / A_Vor, elasticity Eq. (4), age.
+// updateFilmState (cpu-reference/stages.cpp): thickness e_i = liquid / A_Vor, elasticity Eq. (4) or the
+// physical film tension, age.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
@@ -10,11 +11,19 @@ float elasticityOf(float thicknessValue, float age) {
   return params.elasticityWeight * 4.0 * x / ((x + 2.0) * (x + 2.0));
 }
 
+// filmTension of cpu-reference/stages.cpp: 2 gamma, gamma from the thickness through Gibbs-Marangoni elasticity.
+float filmTension(float thicknessValue) {
+  const float gamma0 = params.surfaceTension;
+  const float e0 = params.areaWeight * 100e-6;  // initialThickness
+  const float gamma = gamma0 + 0.5 * params.gibbsElasticity * log(e0 / max(thicknessValue, 1e-12));
+  return 2.0 * clamp(gamma, 0.5 * gamma0, 2.0 * gamma0);
+}
+
 void main() {
   const uint i = gl_GlobalInvocationID.x;
   if (i >= pc.count) return;
   const float area = voronoiArea[i];
   thickness[i] = area > 0.0 ? liquid[i] / area : 0.0;
-  elasticity[i] = elasticityOf(thickness[i], lifetime[i]);
+  elasticity[i] = params.tensionModel == 1 ? filmTension(thickness[i]) : elasticityOf(thickness[i], lifetime[i]);
   lifetime[i] += steps[pc.stepIndex].dt;
 }

@@ -61,6 +61,11 @@ struct Params {
                                            // to the film are this many times their rest length (mean)
   int airTransfer GB_DEFAULT(1);  // 1: air flow transfer, Eqs. (7)-(8) (the paper); 0: each particle feels only
                                   // the inflow of Eq. (5) where it arrives (Figure 12a's comparison)
+
+  // --- Physical surface tension (docs/model.md, "Tension models") ---
+  int tensionModel GB_DEFAULT(0);          // 0: the paper's springs, Eq. (3); 1: physical, 2 gamma times the area
+                                           // gradient (mean curvature), with the film's real mass
+  float gibbsElasticity GB_DEFAULT(0.02f);  // E_G = 2 d(gamma)/d(ln A) of the film (N/m), physical model
 };
 
 #ifdef __cplusplus

@@ -58,7 +58,7 @@ TEST(SharedLayout, ParamsBlockHasTheCppLayoutInEveryShader) {
     for (size_t k = 0; k < members.size(); ++k)
       EXPECT_EQ(members[k].offset, 4 * k) << kernels::kernelName(kernel) << ": " << members[k].name;
     EXPECT_EQ(members.front().name, "frameTime");
-    EXPECT_EQ(members.back().name, "airTransfer");
+    EXPECT_EQ(members.back().name, "gibbsElasticity");
   }
 }
 

@@ -9,16 +9,18 @@
 #include <stdexcept>
 #include <vector>
 
+#include "colour_maps.h"
+
 namespace gb {
 
 namespace {
 
 using Rgb = std::array<float, 3>;
 
-// Blue (thin) through green to red (thick).
+// Blue (thin) through green to red (thick): the colour map of kernels/colour_maps.h, shared with the renderer.
 Rgb thicknessColour(float e, const ImageView& v) {
   const float t = std::clamp((e - v.thinColour) / (v.thickColour - v.thinColour), 0.0f, 1.0f);
-  return {std::clamp(2.0f * t - 0.5f, 0.0f, 1.0f), 1.0f - std::abs(2.0f * t - 1.0f), std::clamp(1.5f - 2.0f * t, 0.0f, 1.0f)};
+  return {colour::thicknessRed(t), colour::thicknessGreen(t), colour::thicknessBlue(t)};
 }
 
 void writePng(const std::filesystem::path& path, int width, int height, const std::vector<uint8_t>& rgb) {

@@ -6,6 +6,7 @@
 
 #include <memory>
 
+#include "device_film.h"
 #include "stepper.h"
 
 namespace gb {
@@ -27,6 +28,8 @@ class VulkanStepper final : public Stepper {
   void updateContacts(const Film& film) override;
 
   [[nodiscard]] const VulkanContext& context() const;
+  // The film's buffers as the last batch left them, for a renderer on the same device to read in place.
+  [[nodiscard]] DeviceFilm deviceFilm();
 
  private:
   struct Impl;

@@ -1,0 +1,27 @@
+#version 450
+#extension GL_GOOGLE_include_directive : require
+// Resolves the transparent film over the opaque scene (weighted blended OIT) and encodes for display:
+// exposure, a soft shoulder so bright reflections do not clip hard, then the sRGB transfer curve.
+#include "render_shared.h"
+layout(std430, set = 0, binding = GB_RENDER_UNIFORMS) readonly buffer UniformsBuffer { RenderUniforms u; };
+layout(set = 1, binding = GB_COMPOSITE_OPAQUE) uniform sampler2D opaqueImage;
+layout(set = 1, binding = GB_COMPOSITE_ACCUM) uniform sampler2D accumImage;
+layout(set = 1, binding = GB_COMPOSITE_REVEAL) uniform sampler2D revealImage;
+layout(location = 0) in vec2 uv;
+layout(location = 0) out vec4 colour;
+
+vec3 encodeSrgb(vec3 c) {
+  c = clamp(c, 0.0, 1.0);
+  return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
+}
+
+void main() {
+  const ivec2 p = ivec2(gl_FragCoord.xy);
+  const vec3 behind = texelFetch(opaqueImage, p, 0).rgb;
+  const vec4 a = texelFetch(accumImage, p, 0);
+  const float through = exp(-texelFetch(revealImage, p, 0).r);  // product of (1 - alpha) over the sheets
+  const vec3 film = a.rgb / max(a.a, 1e-5);               // weighted mean of the sheets' colour / alpha
+  const vec3 radiance = u.exposure * (film * (1.0 - through) + behind * through);
+  const vec3 shoulder = radiance / (1.0 + max(radiance - 0.8, 0.0));  // identity below 0.8
+  colour = vec4(encodeSrgb(shoulder), 1.0);
+}

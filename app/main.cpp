@@ -76,6 +76,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
   runCmd->add_option("--device", run.device,
                      "Vulkan device: index or part of its name (default: $GIANTBUBBLE_VULKAN_DEVICE, else the best)");
+  gb::addRenderOptions(*runCmd, run.render);
 
   gb::BenchOptions bench;
   CLI::App* benchCmd = app.add_subcommand("bench", "measure step throughput on each backend for several film sizes");

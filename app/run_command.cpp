@@ -86,6 +86,11 @@ int runSimulation(const RunOptions& o) {
   stats.write(0, first, sim.substepsPerFrame(), 0.0, "film_created");
   if (o.plyEvery > 0) writePly(o.outDir / meshName(0), sim.film());
   if (o.imageEvery > 0) writeThicknessImage(o.outDir / imageName(0), sim.film(), sim.aerosol(), ImageView{});
+  std::unique_ptr<RunRenderer> renderer;
+  if (o.render.enabled) {
+    renderer = std::make_unique<RunRenderer>(o.render, o.outDir, sim, o.device);
+    renderer->frame(0, sim, start);
+  }
 
   ProgressBar bar(frames);
   FrameStats last = first;
@@ -105,6 +110,7 @@ int runSimulation(const RunOptions& o) {
       std::fprintf(stderr, "error: %s\nstopped at frame %ld of %ld; outputs up to frame %ld are in %s\n", e.what(),
                    frame, frames, frame - 1, o.outDir.string().c_str());
       if (o.plyEvery > 0) writePly(o.outDir / ("unstable_" + meshName(frame)), sim.film());
+      if (renderer) renderer->finish();
       return 3;
     }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
@@ -116,6 +122,7 @@ int runSimulation(const RunOptions& o) {
     stats.write(frame, last, sim.substepsPerFrame(), ms, events);
     if (o.imageEvery > 0 && frame % o.imageEvery == 0)
       writeThicknessImage(o.outDir / imageName(frame), sim.film(), sim.aerosol(), ImageView{});
+    if (renderer) renderer->frame(frame, sim, gestureAt(o.gesture, o.gestureOptions, t));
     if (o.plyEvery > 0 && frame % o.plyEvery == 0) {
       writePly(o.outDir / meshName(frame), sim.film());
       if (sim.aerosol().size() > 0) writeAerosolPly(o.outDir / ("aerosol" + meshName(frame).substr(4)), sim.aerosol());
@@ -124,6 +131,7 @@ int runSimulation(const RunOptions& o) {
     if (o.progress) bar.update(frame, sim.time(), static_cast<double>(frame) * sim.substepsPerFrame() / wall);
   }
   bar.finish();
+  if (renderer) renderer->finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
   printSummary(first, last, frames, sim.substepsPerFrame(), wall, o.outDir);
   return 0;

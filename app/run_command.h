@@ -6,6 +6,7 @@
 
 #include "backend.h"
 #include "params.h"
+#include "render_output.h"
 #include "scripted_gestures.h"
 #include "wire_frame.h"
 
@@ -24,6 +25,7 @@ struct RunOptions {
   bool progress = true;
   Backend backend = Backend::Auto;
   std::string device;                     // Vulkan device index or name part (empty: best available)
+  RenderOutputOptions render;             // --render: rendered frames and video (app/render_output.h)
 };
 
 // Runs the simulation and writes its outputs; prints progress and a summary. Returns the process exit code:

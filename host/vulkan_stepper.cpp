@@ -420,6 +420,8 @@ void VulkanStepper::store(Film& film) {
   readVector(m.buffer(GB_BINDING_DRAIN_WEIGHT), s.drainWeight);
 }
 
+std::shared_ptr<const VulkanContext> VulkanStepper::sharedContext() const { return impl_->ctx; }
+
 DeviceFilm VulkanStepper::deviceFilm() {
   Impl& m = *impl_;
   return {m.buffer(GB_BINDING_POSITION).handle(), m.buffer(GB_BINDING_NORMAL).handle(),

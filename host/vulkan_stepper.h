@@ -30,6 +30,8 @@ class VulkanStepper final : public Stepper {
   [[nodiscard]] const VulkanContext& context() const;
   // The film's buffers as the last batch left them, for a renderer on the same device to read in place.
   [[nodiscard]] DeviceFilm deviceFilm();
+  // The device, for a renderer that reads deviceFilm() in place.
+  [[nodiscard]] std::shared_ptr<const VulkanContext> sharedContext() const;
 
  private:
   struct Impl;

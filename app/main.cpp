@@ -6,6 +6,7 @@
 
 #include "bench_command.h"
 #include "run_command.h"
+#include "view_command.h"
 
 namespace {
 
@@ -86,6 +87,9 @@ int main(int argc, char** argv) {
   benchCmd->add_option("--json", bench.json, "where to write the results");
   benchCmd->add_option("--device", bench.device, "Vulkan device: index or part of its name");
 
+  gb::ViewOptions view;
+  CLI::App* viewCmd = gb::addViewCommand(app, view);
+
   try {
     app.parse(argc, argv);
     for (const std::string& a : assignments) applyParameter(run.params, a);
@@ -98,6 +102,7 @@ int main(int argc, char** argv) {
     return 0;
   }
   if (benchCmd->parsed()) return gb::runBenchmark(bench);
+  if (viewCmd->parsed()) return gb::runView(view);
   try {
     run.tool.kind = tool == "ring" ? gb::ToolKind::Ring : gb::ToolKind::TwoWands;
     run.gesture = gb::gestureFromName(gesture);

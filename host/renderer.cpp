@@ -263,9 +263,10 @@ struct Renderer::Impl {
     ctx->device.updateDescriptorSets(writes, {});
   }
 
-  // A buffer holding at least `bytes`, grown (by half again) when it is too small.
+  // A buffer holding at least `bytes`, grown (by half again) when it is too small; never none, since a
+  // descriptor must name a buffer even when there is nothing in it (no droplets, a burst film).
   void reserve(DeviceBuffer& buffer, size_t bytes) {
-    if (buffer.size() < bytes) buffer = DeviceBuffer(*ctx, bytes + bytes / 2);
+    if (buffer.size() < std::max<size_t>(bytes, 16)) buffer = DeviceBuffer(*ctx, bytes + bytes / 2);
   }
 
   // The film's buffers for this frame: the stepper's own, or a copy of the host state.

@@ -1,0 +1,90 @@
+#include "view_command.h"
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+
+#include "cpu_stepper.h"
+#include "scripted_gestures.h"
+#include "vulkan_stepper.h"
+#include "window.h"
+
+namespace gb {
+
+CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
+  CLI::App* cmd = app.add_subcommand("view", "play a scripted performance live in a window (mouse: orbit, zoom; "
+                                             "keys: R reset, D dip, B burst, Space pause, C colouring, Esc quit)");
+  cmd->add_option("--tool", o.tool, "bubble tool")->check(CLI::IsMember({"two-wands", "ring"}));
+  cmd->add_option("--gesture", o.gesture, "scripted wand gesture")->check(CLI::IsMember(gestureNames()));
+  cmd->add_option("--particles", o.run.params.particlesAtFullSolution, "particles of a film at full solution")
+      ->check(CLI::Range(16, 50000000));
+  cmd->add_option("--solution", o.run.params.solution, "remaining soap solution (0, 1]")->check(CLI::Range(0.01, 1.0));
+  cmd->add_option("--backend", o.backend, "cpu, vulkan (on the window's device), or auto (Vulkan on a GPU)")
+      ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
+  cmd->add_option("--device", o.run.device, "Vulkan device: index or part of its name");
+  cmd->add_option("--frames", o.frames, "quit after this many frames (0: when the window closes)")->check(CLI::Range(0L, 100000000L));
+  addRenderOptions(*cmd, o.run.render);
+  return cmd;
+}
+
+namespace {
+
+// The stepper for the view: the Vulkan stepper shares the window's device, so the renderer reads its buffers.
+std::unique_ptr<Stepper> viewStepper(const std::string& backend, const std::shared_ptr<const VulkanContext>& context) {
+  const bool gpu = context->info().type != "CPU";
+  if (backend == "vulkan" || (backend == "auto" && gpu)) return std::make_unique<VulkanStepper>(context);
+  return std::make_unique<CpuStepper>();
+}
+
+}  // namespace
+
+int runView(ViewOptions o) try {
+  RunOptions& run = o.run;
+  run.tool.kind = o.tool == "ring" ? ToolKind::Ring : ToolKind::TwoWands;
+  run.gesture = gestureFromName(o.gesture);
+  const RenderOptions& image = run.render.image;
+  Window window("giantbubble", image.width, image.height, run.device);
+  window.camera() = run.render.camera;
+  std::unique_ptr<Stepper> stepper = viewStepper(o.backend, window.context());
+  const bool readInPlace = dynamic_cast<VulkanStepper*>(stepper.get()) != nullptr;
+  std::printf("view: %s on %s (validation layer %s), simulation on %s\n", colouringName(image.colouring),
+              window.context()->info().name.c_str(), window.context()->validationEnabled() ? "on" : "off",
+              stepper->name().c_str());
+  double t = 0;
+  Simulation sim(run.params, run.tool, gestureAt(run.gesture, run.gestureOptions, t), std::move(stepper));
+  Renderer renderer(window.context(), image, loadEnvironment(run.render.environment));
+
+  bool paused = false;
+  long shown = 0;
+  const auto start = std::chrono::steady_clock::now();
+  for (;;) {
+    const WindowKeys keys = window.poll();
+    if (keys.quit) break;
+    if (keys.pause) paused = !paused;
+    if (keys.reset) t = 0;
+    const WandState wands = gestureAt(run.gesture, run.gestureOptions, t);
+    if (keys.reset || keys.dip) sim.dip(wands);
+    if (keys.burst) sim.startBurst(sim.topParticle());
+    if (keys.nextColouring)
+      renderer.setColouring(static_cast<Colouring>((static_cast<int>(renderer.options().colouring) + 1) % 3));
+    if (!paused) {
+      t += run.params.frameTime;
+      sim.advanceFrame(gestureAt(run.gesture, run.gestureOptions, t));
+    }
+    const Vec3 gravity(run.params.gravityX, run.params.gravityY, run.params.gravityZ);
+    const WireFrame wire = makeWireFrame(sim.film().tool, gestureAt(run.gesture, run.gestureOptions, t), sim.film().stringLength, gravity);
+    DeviceFilm deviceFilm;
+    window.present(renderer, renderFrameOf(sim, wands, wire, window.camera(), readInPlace, deviceFilm));
+    if (++shown == o.frames) break;
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const size_t errors = window.context()->validationErrors();
+  std::printf("view: presented %ld frames in %.2f s (%.1f frames/s), %zu validation errors\n", shown, seconds,
+              static_cast<double>(shown) / std::max(seconds, 1e-9), errors);
+  return errors == 0 ? 0 : 4;
+} catch (const std::exception& e) {
+  std::fprintf(stderr, "error: %s\n", e.what());
+  return 1;
+}
+
+}  // namespace gb

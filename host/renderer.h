@@ -31,7 +31,7 @@ struct RenderOptions {
   int height = 720;
   Colouring colouring = Colouring::Interference;
   float thickColour = 7e-6f;                  // thickness drawn red by the thickness colouring (m), as app/ images
-  float airFlowColour = 0.02f;                // air flow strength drawn yellow by the air flow colouring (m^3/s)
+  float airFlowColour = 0.1f;                 // air flow strength drawn yellow (m^3/s): the default stroke peaks at 0.08
   float exposure = 1.0f;                      // radiance scale before display encoding
   float dropletRadius = 0.004f;               // drawn size of an aerosol droplet (m)
 };

@@ -37,7 +37,7 @@ void addTube(std::vector<float>& mesh, const std::vector<Vec3>& path, float radi
 void addFloor(std::vector<float>& mesh) {
   constexpr float half = 12.0f;
   const Vec3 corners[4] = {{-half, 0, -half}, {half, 0, -half}, {half, 0, half}, {-half, 0, half}};
-  for (int corner : {0, 2, 1, 0, 3, 2}) addVertex(mesh, corners[corner], Vec3::UnitY(), Vec3(0.55f, 0.55f, 0.58f), GB_MATERIAL_FLOOR);
+  for (int corner : {0, 2, 1, 0, 3, 2}) addVertex(mesh, corners[corner], Vec3::UnitY(), Vec3(0.36f, 0.36f, 0.38f), GB_MATERIAL_FLOOR);
 }
 
 // A wand: a stick from the tip down and outwards, where a hand holds it.
@@ -101,6 +101,22 @@ std::vector<float> packDroplets(const Aerosol& aerosol, float lifetime) {
     out.insert(out.end(), {aerosol.position.x[i], aerosol.position.y[i], aerosol.position.z[i], std::clamp(3.0f * left, 0.0f, 1.0f)});
   }
   return out;
+}
+
+std::array<Vec3, 2> hemisphereMeans(const EnvironmentImage& env) {
+  std::array<Eigen::Vector3d, 2> sum{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  std::array<double, 2> weight{0, 0};
+  for (int row = 0; row < env.height; ++row) {
+    const double polar = std::numbers::pi * (row + 0.5) / env.height;
+    const size_t half = polar < 0.5 * std::numbers::pi ? 0 : 1;
+    const double w = std::sin(polar);  // solid angle of a texel of this row
+    for (int col = 0; col < env.width; ++col) {
+      const float* c = &env.rgb[3 * (static_cast<size_t>(row) * env.width + col)];
+      sum[half] += w * Eigen::Vector3d(c[0], c[1], c[2]);
+      weight[half] += w;
+    }
+  }
+  return {(sum[0] / std::max(weight[0], 1e-12)).cast<float>(), (sum[1] / std::max(weight[1], 1e-12)).cast<float>()};
 }
 
 EnvironmentImage studioEnvironment(int width) {

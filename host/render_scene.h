@@ -4,6 +4,7 @@
 // Pure C++ and Eigen; host/renderer.cpp uploads it.
 
 #include <Eigen/Dense>
+#include <array>
 #include <vector>
 
 #include "bursting.h"
@@ -40,6 +41,9 @@ struct EnvironmentImage {
   int height = 0;
   std::vector<float> rgb;
 };
+
+// Mean radiance of the environment over the upper (y > 0) and lower hemisphere, solid-angle weighted.
+std::array<Vec3, 2> hemisphereMeans(const EnvironmentImage& environment);
 
 // The built-in studio: a grey-blue room, bright above, dark floor below the horizon, two large softboxes and
 // a strip light that the film reflects as coloured highlights.

@@ -17,8 +17,9 @@ using gpu::RenderUniforms;
 using kernels::RenderShader;
 static_assert(offsetof(RenderUniforms, inverseViewProjection) == 64);
 static_assert(offsetof(RenderUniforms, cameraPosition) == 128);
-static_assert(offsetof(RenderUniforms, particles) == 160);
-static_assert(sizeof(RenderUniforms) == 192);
+static_assert(offsetof(RenderUniforms, skyIrradiance) == 160);
+static_assert(offsetof(RenderUniforms, particles) == 192);
+static_assert(sizeof(RenderUniforms) == 224);
 
 Colouring colouringFromName(const std::string& name) {
   if (name == "interference") return Colouring::Interference;
@@ -106,13 +107,14 @@ struct Renderer::Impl {
   vk::raii::DescriptorSetLayout sceneLayout{nullptr}, compositeLayout{nullptr};
   vk::raii::PipelineLayout pipelineLayout{nullptr};
   std::vector<vk::raii::ShaderModule> modules;  // indexed by RenderShader
-  vk::raii::Pipeline background{nullptr}, props{nullptr}, droplets{nullptr}, film{nullptr}, composite{nullptr};
+  vk::raii::Pipeline props{nullptr}, droplets{nullptr}, film{nullptr}, composite{nullptr};
   vk::raii::DescriptorPool pool{nullptr};
   vk::raii::DescriptorSet sceneSet{nullptr}, compositeSet{nullptr};
   vk::raii::CommandBuffer commands{nullptr};
 
   DeviceBuffer uniforms, position, normal, thickness, airFlow, triangles, propsMesh, dropletBuffer, readback;
   uint32_t propsVertices = 0, dropletCount = 0;
+  std::array<Vec3, 2> ambient;  // mean environment radiance above and below the horizon
 
   Impl(std::shared_ptr<const VulkanContext> context, const RenderOptions& o, const EnvironmentImage& env)
       : ctx(std::move(context)), options(o) {
@@ -122,6 +124,7 @@ struct Renderer::Impl {
     extent = vk::Extent2D(static_cast<uint32_t>(o.width), static_cast<uint32_t>(o.height));
     makeTargets();
     makeSamplersAndTextures(env);
+    ambient = hemisphereMeans(env);
     makeLayouts();
     makePipelines();
     makeDescriptors();
@@ -234,7 +237,6 @@ struct Renderer::Impl {
       modules.emplace_back(ctx->device, vk::ShaderModuleCreateInfo({}, code.size_bytes(), code.data()));
     }
     using R = RenderShader;
-    background = makePipeline({R::FullscreenVert, R::BackgroundFrag, vk::PrimitiveTopology::eTriangleList, false, false, {opaqueBlend()}}, opaquePass);
     props = makePipeline({R::PropsVert, R::PropsFrag, vk::PrimitiveTopology::eTriangleList, true, true, {opaqueBlend()}}, opaquePass);
     droplets = makePipeline({R::DropletsVert, R::DropletsFrag, vk::PrimitiveTopology::ePointList, true, true, {opaqueBlend()}}, opaquePass);
     film = makePipeline({R::FilmVert, R::FilmFrag, vk::PrimitiveTopology::eTriangleList, true, false, transparencyBlends()}, filmPass);
@@ -316,6 +318,8 @@ struct Renderer::Impl {
     u.cameraPosition = {eye.x(), eye.y(), eye.z(), 1.0f};
     const Vec3 key = Vec3(-0.6f, 0.5f, 0.62f).normalized();  // the studio's main softbox (render_scene.cpp)
     u.keyLight = {key.x(), key.y(), key.z(), 0.0f};
+    u.skyIrradiance = {ambient[0].x(), ambient[0].y(), ambient[0].z(), 0.0f};
+    u.groundIrradiance = {ambient[1].x(), ambient[1].y(), ambient[1].z(), 0.0f};
     u.particles = particles;
     u.colouring = static_cast<uint32_t>(options.colouring);
     u.thickColour = options.thickColour;
@@ -347,11 +351,10 @@ struct Renderer::Impl {
     const std::array<vk::DescriptorSet, 2> sets{*sceneSet, *compositeSet};
     cb.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipelineLayout, 0, sets, {});
 
-    const std::array<vk::ClearValue, 2> opaqueClear{vk::ClearColorValue(std::array<float, 4>{0, 0, 0, 1}),
+    // Alpha 0: no prop here, the resolve shows the environment.
+    const std::array<vk::ClearValue, 2> opaqueClear{vk::ClearColorValue(std::array<float, 4>{0, 0, 0, 0}),
                                                     vk::ClearDepthStencilValue(1.0f, 0)};
     cb.beginRenderPass(vk::RenderPassBeginInfo(*opaquePass, *opaqueTarget, area, opaqueClear), vk::SubpassContents::eInline);
-    cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *background);
-    cb.draw(3, 1, 0, 0);
     cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *props);
     cb.draw(propsVertices, 1, 0, 0);
     if (dropletCount > 0) {

@@ -4,9 +4,10 @@
 // over the floor, the wands and their string and the aerosol droplets; or coloured by a diagnostic
 // (thickness, air flow). Three passes into offscreen images, then the caller reads the pixels (PNG, video) or
 // copies the image to a window (host/window.h):
-//   1. opaque:   environment background, props, droplets             -> colour (RGBA16F) + depth
+//   1. opaque:   floor, wands, string, droplets                    -> colour (RGBA16F) + depth
 //   2. film:     weighted blended order-independent transparency    -> accum (RGBA16F) + reveal (R16F)
-//   3. resolve:  film over opaque, exposure, sRGB encoding          -> output (RGBA8)
+//   3. resolve:  film over opaque (or the environment where nothing opaque is), exposure, sRGB encoding
+//                                                                    -> output (RGBA8)
 // docs/rendering.md has the optics and the choices.
 
 #include <functional>

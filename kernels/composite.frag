@@ -1,9 +1,10 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Resolves the transparent film over the opaque scene (weighted blended OIT) and encodes for display:
-// exposure, a soft shoulder so bright reflections do not clip hard, then the sRGB transfer curve.
-#include "render_shared.h"
-layout(std430, set = 0, binding = GB_RENDER_UNIFORMS) readonly buffer UniformsBuffer { RenderUniforms u; };
+// exposure, a soft shoulder so bright reflections do not clip hard, then the sRGB transfer curve. Where no
+// prop was drawn (alpha 0) the environment is seen: looked up here rather than drawn in a pass of its own,
+// which saves lavapipe a full-screen pass.
+#include "render_common.glsl"
 layout(set = 1, binding = GB_COMPOSITE_OPAQUE) uniform sampler2D opaqueImage;
 layout(set = 1, binding = GB_COMPOSITE_ACCUM) uniform sampler2D accumImage;
 layout(set = 1, binding = GB_COMPOSITE_REVEAL) uniform sampler2D revealImage;
@@ -17,7 +18,12 @@ vec3 encodeSrgb(vec3 c) {
 
 void main() {
   const ivec2 p = ivec2(gl_FragCoord.xy);
-  const vec3 behind = texelFetch(opaqueImage, p, 0).rgb;
+  const vec4 opaque = texelFetch(opaqueImage, p, 0);
+  vec3 behind = opaque.rgb;
+  if (opaque.a == 0.0) {
+    const vec4 far = u.inverseViewProjection * vec4(uv * 2.0 - 1.0, 1.0, 1.0);
+    behind = environment(normalize(far.xyz / far.w - u.cameraPosition.xyz));
+  }
   const vec4 a = texelFetch(accumImage, p, 0);
   const float through = exp(-texelFetch(revealImage, p, 0).r);  // product of (1 - alpha) over the sheets
   const vec3 film = a.rgb / max(a.a, 1e-5);               // weighted mean of the sheets' colour / alpha

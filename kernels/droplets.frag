@@ -8,6 +8,5 @@ void main() {
   const vec2 p = gl_PointCoord * 2.0 - 1.0;
   const float r2 = dot(p, p);
   if (r2 > 1.0 || opacity <= 0.0) discard;
-  const vec3 sky = environment(vec3(0.0, 1.0, 0.0));
-  colour = vec4(opacity * (0.4 + 0.6 * r2) * (sky + vec3(0.3)), 1.0);
+  colour = vec4(opacity * (0.4 + 0.6 * r2) * (u.skyIrradiance.rgb + vec3(0.3)), 1.0);
 }

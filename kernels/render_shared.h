@@ -20,6 +20,8 @@ struct RenderUniforms {
   mat4 inverseViewProjection;  // clip -> world, for the background's view rays
   vec4 cameraPosition;         // world (m)
   vec4 keyLight;               // unit direction towards the studio's key light (w unused)
+  vec4 skyIrradiance;          // mean environment radiance over the upper hemisphere (props' ambient light)
+  vec4 groundIrradiance;       // and over the lower hemisphere
   uint particles;              // stride of the x, y, z blocks of the film's vector buffers
   uint colouring;              // GB_COLOURING_*
   float thickColour;           // thickness drawn red by the thickness colouring (m)

@@ -1,6 +1,5 @@
 #include "render_spirv.h"
 
-#include "spirv/background_frag.h"
 #include "spirv/composite_frag.h"
 #include "spirv/droplets_frag.h"
 #include "spirv/droplets_vert.h"
@@ -15,7 +14,6 @@ namespace gb::kernels {
 std::span<const uint32_t> renderSpirv(RenderShader shader) {
   switch (shader) {
     case RenderShader::FullscreenVert: return fullscreen_vert_spv;
-    case RenderShader::BackgroundFrag: return background_frag_spv;
     case RenderShader::PropsVert: return props_vert_spv;
     case RenderShader::PropsFrag: return props_frag_spv;
     case RenderShader::DropletsVert: return droplets_vert_spv;

@@ -8,14 +8,13 @@ namespace gb::kernels {
 
 enum class RenderShader {
   FullscreenVert,   // one screen-covering triangle
-  BackgroundFrag,   // the environment behind everything
   PropsVert,        // floor, wands, string
   PropsFrag,
   DropletsVert,     // aerosol point sprites
   DropletsFrag,
   FilmVert,         // the film from the simulation's buffers
   FilmFrag,         // thin-film interference or a diagnostic colouring, into the transparency targets
-  CompositeFrag     // transparency resolve and display encoding
+  CompositeFrag     // transparency resolve, the environment behind everything, display encoding
 };
 
 std::span<const uint32_t> renderSpirv(RenderShader shader);

@@ -42,7 +42,9 @@ namespace {
 constexpr vk::Format kHdrFormat = vk::Format::eR16G16B16A16Sfloat;
 constexpr vk::Format kRevealFormat = vk::Format::eR16Sfloat;
 constexpr vk::Format kDepthFormat = vk::Format::eD32Sfloat;
-constexpr vk::Format kOutputFormat = vk::Format::eR8G8B8A8Unorm;
+// The resolve writes linear radiance; the format's sRGB encoding on store is cheaper on lavapipe than the curve in
+// the shader (three pow per pixel), and the bytes read back are sRGB as PNG and video expect.
+constexpr vk::Format kOutputFormat = vk::Format::eR8G8B8A8Srgb;
 
 using Stage = vk::PipelineStageFlagBits;
 using Access = vk::AccessFlagBits;

@@ -91,12 +91,13 @@ struct Window::Impl {
                  ? caps.currentExtent
                  : vk::Extent2D(std::clamp(static_cast<uint32_t>(w), caps.minImageExtent.width, caps.maxImageExtent.width),
                                 std::clamp(static_cast<uint32_t>(h), caps.minImageExtent.height, caps.maxImageExtent.height));
-    // The renderer encodes sRGB itself: take a UNORM format so that the blit copies values unchanged.
+    // The renderer's output is an sRGB image: an sRGB swapchain makes the blit decode and re-encode it
+    // unchanged. A UNORM one would show the linear values (too dark): refuse it rather than show wrong colours.
     const auto formats = ctx->physical.getSurfaceFormatsKHR(*surface);
     auto format = std::find_if(formats.begin(), formats.end(), [](const auto& f) {
-      return f.format == vk::Format::eB8G8R8A8Unorm || f.format == vk::Format::eR8G8B8A8Unorm;
+      return f.format == vk::Format::eB8G8R8A8Srgb || f.format == vk::Format::eR8G8B8A8Srgb;
     });
-    if (format == formats.end()) throw std::runtime_error("the window offers no 8-bit UNORM colour format");
+    if (format == formats.end()) throw std::runtime_error("the window offers no 8-bit sRGB colour format");
     if (!(caps.supportedUsageFlags & vk::ImageUsageFlagBits::eTransferDst))
       throw std::runtime_error("the window's images cannot be copied to");
     // Immediate when offered: the loop measures its own frame rate; FIFO (always offered) otherwise.

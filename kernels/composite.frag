@@ -1,7 +1,7 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Resolves the transparent film over the opaque scene (weighted blended OIT) and encodes for display:
-// exposure, a soft shoulder so bright reflections do not clip hard, then the sRGB transfer curve. Where no
+// exposure and a soft shoulder so bright reflections do not clip hard, into an sRGB target. Where no
 // prop was drawn (alpha 0) the environment is seen: looked up here rather than drawn in a pass of its own,
 // which saves lavapipe a full-screen pass.
 #include "render_common.glsl"
@@ -10,11 +10,6 @@ layout(set = 1, binding = GB_COMPOSITE_ACCUM) uniform sampler2D accumImage;
 layout(set = 1, binding = GB_COMPOSITE_REVEAL) uniform sampler2D revealImage;
 layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 colour;
-
-vec3 encodeSrgb(vec3 c) {
-  c = clamp(c, 0.0, 1.0);
-  return mix(12.92 * c, 1.055 * pow(c, vec3(1.0 / 2.4)) - 0.055, step(vec3(0.0031308), c));
-}
 
 void main() {
   const ivec2 p = ivec2(gl_FragCoord.xy);
@@ -29,5 +24,5 @@ void main() {
   const vec3 film = a.rgb / max(a.a, 1e-5);               // weighted mean of the sheets' colour / alpha
   const vec3 radiance = u.exposure * (film * (1.0 - through) + behind * through);
   const vec3 shoulder = radiance / (1.0 + max(radiance - 0.8, 0.0));  // identity below 0.8
-  colour = vec4(encodeSrgb(shoulder), 1.0);
+  colour = vec4(clamp(shoulder, 0.0, 1.0), 1.0);  // the sRGB target encodes on store
 }

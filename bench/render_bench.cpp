@@ -19,6 +19,7 @@
 #include "renderer.h"
 #include "scripted_gestures.h"
 #include "simulation.h"
+#include "bench_device.h"
 #include "vulkan_context.h"
 #include "vulkan_stepper.h"
 
@@ -27,17 +28,7 @@ namespace {
 
 constexpr int kParticles = 25650;  // Table 1's largest film
 
-std::shared_ptr<const VulkanContext> vulkanDevice() {
-  static std::shared_ptr<const VulkanContext> device = [] {
-    try {
-      return std::make_shared<const VulkanContext>();
-    } catch (const VulkanUnavailable& e) {
-      std::fprintf(stderr, "*** render benchmarks skipped: %s ***\n", e.what());
-      return std::shared_ptr<const VulkanContext>();
-    }
-  }();
-  return device;
-}
+using bench::vulkanDevice;
 
 std::unique_ptr<Simulation> largestScene(std::unique_ptr<Stepper> stepper, float frameTime = 0.02f) {
   Params params;

@@ -2,21 +2,13 @@
 # with one video frame per simulation frame. BACKEND vulkan also checks that the renderer reads the stepper's
 # buffers in place.
 file(REMOVE_RECURSE ${OUT})
-execute_process(COMMAND ${EXE} run --duration 0.1 --particles 400 --ply-every 0 --images-every 0 --out ${OUT}
-                        --no-progress --backend ${BACKEND} --render --width 160 --height 90 --render-every 2
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 0 AND err MATCHES "no Vulkan device|Vulkan could not start|needs a Vulkan device" AND NOT "$ENV{CI}" STREQUAL "true")
-  message(WARNING "*** SKIPPING the render run: ${err} ***")
+include(${CMAKE_CURRENT_LIST_DIR}/cli_run_giantbubble.cmake)
+run_giantbubble(run --duration 0.1 --particles 400 --ply-every 0 --images-every 0 --out ${OUT} --no-progress
+                --backend ${BACKEND} --render --width 160 --height 90 --render-every 2)
+if(skipped)
   return()
 endif()
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "giantbubble run --render failed (${rc}):\n${out}\n${err}")
-endif()
-foreach(f stats.csv render_00000.png render_00002.png render_00004.png)
-  if(NOT EXISTS ${OUT}/${f})
-    message(FATAL_ERROR "giantbubble run --render did not write ${f}:\n${out}")
-  endif()
-endforeach()
+expect_files(${OUT} stats.csv render_00000.png render_00002.png render_00004.png)
 if(EXISTS ${OUT}/render_00001.png)
   message(FATAL_ERROR "--render-every 2 wrote frame 1")
 endif()

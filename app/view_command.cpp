@@ -23,6 +23,15 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
       ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
   cmd->add_option("--device", o.run.device, "Vulkan device: index or part of its name");
   cmd->add_option("--frames", o.frames, "quit after this many frames (0: when the window closes)")->check(CLI::Range(0L, 100000000L));
+  cmd->add_option("--keys", o.keys, "scripted key presses FRAME:KEY, e.g. 50:b 80:c (keys r d b p c; for tests and demos)")
+      ->check([](const std::string& s) {
+        const auto colon = s.find(':');
+        return colon != std::string::npos && colon > 0 && s.size() == colon + 2 &&
+                       std::string("rdbpc").find(s.back()) != std::string::npos &&
+                       s.find_first_not_of("0123456789") == colon
+                   ? std::string()
+                   : "expected FRAME:KEY with KEY one of r d b p c, got '" + s + "'";
+      });
   addRenderOptions(*cmd, o.run.render);
   return cmd;
 }
@@ -34,6 +43,21 @@ std::unique_ptr<Stepper> viewStepper(const std::string& backend, const std::shar
   const bool gpu = context->info().type != "CPU";
   if (backend == "vulkan" || (backend == "auto" && gpu)) return std::make_unique<VulkanStepper>(context);
   return std::make_unique<CpuStepper>();
+}
+
+// Adds the scripted key presses of frame `frame` to what the window reported.
+void addScriptedKeys(const std::vector<std::string>& script, long frame, WindowKeys& keys) {
+  for (const std::string& entry : script) {
+    if (std::stol(entry.substr(0, entry.find(':'))) != frame) continue;
+    switch (entry.back()) {
+      case 'r': keys.reset = true; break;
+      case 'd': keys.dip = true; break;
+      case 'b': keys.burst = true; break;
+      case 'p': keys.pause = true; break;
+      case 'c': keys.nextColouring = true; break;
+      default: break;
+    }
+  }
 }
 
 }  // namespace
@@ -58,15 +82,28 @@ int runView(ViewOptions o) try {
   long shown = 0;
   const auto start = std::chrono::steady_clock::now();
   for (;;) {
-    const WindowKeys keys = window.poll();
+    WindowKeys keys = window.poll();
+    addScriptedKeys(o.keys, shown, keys);
     if (keys.quit) break;
-    if (keys.pause) paused = !paused;
+    auto say = [&](const char* what) { std::printf("view: frame %ld: %s\n", shown, what); };
+    if (keys.pause) {
+      paused = !paused;
+      say(paused ? "paused" : "resumed");
+    }
     if (keys.reset) t = 0;
     const WandState wands = gestureAt(run.gesture, run.gestureOptions, t);
-    if (keys.reset || keys.dip) sim.dip(wands);
-    if (keys.burst) sim.startBurst(sim.topParticle());
-    if (keys.nextColouring)
+    if (keys.reset || keys.dip) {
+      sim.dip(wands);
+      say(keys.reset ? "reset: new film, performance from its start" : "dip: new film");
+    }
+    if (keys.burst) {
+      sim.startBurst(sim.topParticle());
+      say("burst");
+    }
+    if (keys.nextColouring) {
       renderer.setColouring(static_cast<Colouring>((static_cast<int>(renderer.options().colouring) + 1) % 3));
+      say(colouringName(renderer.options().colouring));
+    }
     if (!paused) {
       t += run.params.frameTime;
       sim.advanceFrame(gestureAt(run.gesture, run.gestureOptions, t));

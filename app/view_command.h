@@ -4,6 +4,7 @@
 // C next colouring (interference, thickness, air flow), Home camera back, Esc/Q quit.
 
 #include <string>
+#include <vector>
 
 #include "render_output.h"
 #include "run_command.h"
@@ -20,6 +21,7 @@ struct ViewOptions {
   std::string gesture = "straight";
   std::string backend = "auto";
   long frames = 0;                 // quit after this many presented frames (0: when the window closes)
+  std::vector<std::string> keys;   // scripted key presses FRAME:KEY (keys r d b p c), as if typed at that frame
 };
 
 // Adds the `view` subcommand and its options to the application.

@@ -11,6 +11,7 @@
 #include <filesystem>
 
 #include "png_image.h"
+#include "render_output.h"
 #include "render_scene_films.h"
 #include "renderer.h"
 #include "vulkan_stepper.h"
@@ -142,6 +143,26 @@ TEST(Renderer, RejectsAbsurdImageSizes) {
   o.width = 0;
   EXPECT_THROW(Renderer(device, o, studioEnvironment(64)), std::invalid_argument);
   EXPECT_THROW(colouringFromName("rainbow"), std::invalid_argument);
+}
+
+TEST(RenderOutput, EnvironmentPngIsDecodedToLinearRadiance) {
+  // sRGB 128 is linear 0.2159 (IEC 61966-2-1); 255 is 1. Tolerance 1e-4: float rounding only.
+  std::vector<uint8_t> rgb(64 * 32 * 3, 128);
+  rgb[0] = 255;
+  writePng("environment_test.png", 64, 32, rgb);
+  const EnvironmentImage env = loadEnvironment("environment_test.png");
+  ASSERT_EQ(env.width, 64);
+  ASSERT_EQ(env.height, 32);
+  EXPECT_NEAR(env.rgb[0], 1.0f, 1e-4f);
+  EXPECT_NEAR(env.rgb[1], 0.2159f, 1e-4f);
+  // An image that is not 2:1 cannot be an equirectangular panorama: refused with its size named.
+  writePng("environment_square.png", 32, 32, std::vector<uint8_t>(32 * 32 * 3, 0));
+  try {
+    loadEnvironment("environment_square.png");
+    ADD_FAILURE() << "a square environment was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("32x32"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

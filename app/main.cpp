@@ -8,6 +8,7 @@
 #include "record_command.h"
 #include "run_command.h"
 #include "scene_file.h"
+#include "view_command.h"
 
 namespace {
 
@@ -97,6 +98,7 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
   runCmd->add_option("--device", run.device,
                      "Vulkan device: index or part of its name (default: $GIANTBUBBLE_VULKAN_DEVICE, else the best)");
+  gb::addRenderOptions(*runCmd, run.render);
 
   gb::BenchOptions bench;
   CLI::App* benchCmd = app.add_subcommand("bench", "measure step throughput on each backend for several film sizes");
@@ -110,11 +112,17 @@ int main(int argc, char** argv) {
 
   gb::RecordOptions record;
   CLI::App* recordCmd = gb::addRecordCommand(app, record);
+  gb::ViewOptions view;
+  view.run = run;  // the scene, if any
+  view.tool = tool;
+  CLI::App* viewCmd = gb::addViewCommand(app, view);
 
   try {
     app.parse(argc, argv);
     for (const std::string& a : assignments) applyParameter(run.params, a);
-    if (const auto errors = gb::validate(run.params); !errors.empty()) throw CLI::ValidationError("--param", errors.front());
+    for (const std::string& a : view.assignments) applyParameter(view.run.params, a);
+    for (const gb::Params* p : {&run.params, &view.run.params})
+      if (const auto errors = gb::validate(*p); !errors.empty()) throw CLI::ValidationError("--param", errors.front());
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
@@ -124,6 +132,7 @@ int main(int argc, char** argv) {
   }
   if (benchCmd->parsed()) return gb::runBenchmark(bench);
   if (scenesCmd->parsed()) return listScenes();
+  if (viewCmd->parsed()) return gb::runView(view);
   try {
     if (recordCmd->parsed()) return gb::runRecord(record);
     run.tool.kind = tool == "ring" ? gb::ToolKind::Ring : gb::ToolKind::TwoWands;

@@ -2,6 +2,8 @@
 
 #include <lo/lo.h>
 
+#include <cstdio>
+#include <sstream>
 #include <stdexcept>
 
 namespace gb {
@@ -38,6 +40,23 @@ bool OscSender::bubble(double time, const Vec3& centre, double area, double volu
     return true;
   lastError_ = lo_address_errstr(address_->handle);
   return false;
+}
+
+ShowControl::ShowControl(const std::string& target) {
+  if (!target.empty()) sender_ = std::make_unique<OscSender>(target);
+}
+
+void ShowControl::frame(const Simulation& sim, const FrameStats& stats, const std::string& events) {
+  if (!sender_) return;
+  std::istringstream words(events);
+  bool ok = true;
+  for (std::string event; words >> event;) ok = sender_->event(event, stats.time) && ok;
+  ok = sender_->bubble(stats.time, centroid(sim.film().state), stats.area, stats.volume, stats.solution) && ok;
+  if (!ok && !warned_) {
+    std::fprintf(stderr, "warning: OSC messages are not getting through (%s); the show goes on\n",
+                 sender_->lastError().c_str());
+    warned_ = true;
+  }
 }
 
 }  // namespace gb

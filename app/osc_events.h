@@ -11,6 +11,7 @@
 #include <memory>
 #include <string>
 
+#include "simulation.h"
 #include "state.h"
 
 namespace gb {
@@ -33,6 +34,18 @@ class OscSender {
   struct Address;
   std::unique_ptr<Address> address_;
   std::string lastError_;
+};
+
+// What a run or the live window sends each frame when OSC is on (target non-empty): the frame's events and the
+// bubble's state. A failed send is reported once on stderr and the show goes on.
+class ShowControl {
+ public:
+  explicit ShowControl(const std::string& target);
+  void frame(const Simulation& sim, const FrameStats& stats, const std::string& events);
+
+ private:
+  std::unique_ptr<OscSender> sender_;
+  bool warned_ = false;
 };
 
 }  // namespace gb

@@ -70,31 +70,6 @@ void printSummary(const FrameStats& first, const FrameStats& last, long frames, 
   std::printf("%-28s %s\n", "outputs", outDir.string().c_str());
 }
 
-// Sends a frame's events and the bubble's state when OSC is on; a failed send is reported once and the run
-// goes on.
-class ShowControl {
- public:
-  explicit ShowControl(const std::string& target) {
-    if (!target.empty()) sender_ = std::make_unique<OscSender>(target);
-  }
-  void frame(const Simulation& sim, const FrameStats& stats, const std::string& events) {
-    if (!sender_) return;
-    std::istringstream words(events);
-    bool ok = true;
-    for (std::string event; words >> event;) ok = sender_->event(event, stats.time) && ok;
-    ok = sender_->bubble(stats.time, centroid(sim.film().state), stats.area, stats.volume, stats.solution) && ok;
-    if (!ok && !warned_) {
-      std::fprintf(stderr, "warning: OSC messages are not getting through (%s); the run goes on\n",
-                   sender_->lastError().c_str());
-      warned_ = true;
-    }
-  }
-
- private:
-  std::unique_ptr<OscSender> sender_;
-  bool warned_ = false;
-};
-
 }  // namespace
 
 int runSimulation(const RunOptions& o) {
@@ -129,6 +104,11 @@ int runSimulation(const RunOptions& o) {
   show.frame(sim, first, "film_created");
   if (o.plyEvery > 0) writePly(o.outDir / meshName(0), sim.film());
   if (o.imageEvery > 0) writeThicknessImage(o.outDir / imageName(0), sim.film(), sim.aerosol(), ImageView{});
+  std::unique_ptr<RunRenderer> renderer;
+  if (o.render.enabled) {
+    renderer = std::make_unique<RunRenderer>(o.render, o.outDir, sim, o.device);
+    renderer->frame(0, sim, start);
+  }
 
   ProgressBar bar(frames);
   FrameStats last = first;
@@ -151,22 +131,21 @@ int runSimulation(const RunOptions& o) {
       std::fprintf(stderr, "error: %s\nstopped at frame %ld of %ld; outputs up to frame %ld are in %s\n", e.what(),
                    frame, frames, frame - 1, o.outDir.string().c_str());
       if (o.plyEvery > 0) writePly(o.outDir / ("unstable_" + meshName(frame)), sim.film());
+      if (renderer) renderer->finish();
       wandLog.writePlot(o.outDir / "wands.svg", "giantbubble run (unstable): " + input->describe());
       record.writeJson(o.outDir / "stats.json", o.scene, "unstable at frame " + std::to_string(frame) + ": " + e.what());
       return 3;
     }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
     last = sim.stats();
-    if (sim.lastEvents().started) events += "burst_started ";
-    if (sim.lastEvents().finished) events += "burst_finished ";
-    if (sim.lastEvents().pinchedOff) events += "pinched_off ";
-    if (sim.lastEvents().particlesAdded > 0) events += "film_grown ";
-    if (!events.empty()) events.pop_back();
+    events += describeEvents(sim.lastEvents());
+    if (!events.empty() && events.back() == ' ') events.pop_back();
     stats.write(frame, last, sim.substepsPerFrame(), ms, events);
     record.addFrame(last, sim.substepsPerFrame(), ms, events);
     show.frame(sim, last, events);
     if (o.imageEvery > 0 && frame % o.imageEvery == 0)
       writeThicknessImage(o.outDir / imageName(frame), sim.film(), sim.aerosol(), ImageView{});
+    if (renderer) renderer->frame(frame, sim, wands.wands);
     if (o.plyEvery > 0 && frame % o.plyEvery == 0) {
       writePly(o.outDir / meshName(frame), sim.film());
       if (sim.aerosol().size() > 0) writeAerosolPly(o.outDir / ("aerosol" + meshName(frame).substr(4)), sim.aerosol());
@@ -175,6 +154,7 @@ int runSimulation(const RunOptions& o) {
     if (o.progress) bar.update(frame, sim.time(), static_cast<double>(frame) * sim.substepsPerFrame() / wall);
   }
   bar.finish();
+  if (renderer) renderer->finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
   wandLog.writePlot(o.outDir / "wands.svg", "giantbubble run: " + input->describe());
   record.writeJson(o.outDir / "stats.json", o.scene, "finished");

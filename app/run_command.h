@@ -8,6 +8,7 @@
 #include "backend.h"
 #include "input_options.h"
 #include "params.h"
+#include "render_output.h"
 #include "scripted_gestures.h"
 #include "wire_frame.h"
 
@@ -29,6 +30,7 @@ struct RunOptions {
   Backend backend = Backend::Auto;
   std::string device;                     // Vulkan device index or name part (empty: best available)
   std::string osc;                        // HOST:PORT to send events and the bubble's state to (empty: off)
+  RenderOutputOptions render;             // --render: rendered frames and video (app/render_output.h)
 };
 
 // Runs the simulation and writes its outputs; prints progress and a summary. Returns the process exit code:

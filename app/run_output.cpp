@@ -140,4 +140,18 @@ void RunRecord::printTable1(const std::string& scene) const {
               msPerFrame > 0 ? 1e3 / msPerFrame : 0.0);
 }
 
+std::string describeEvents(const TopologyEvents& e) {
+  std::string words;
+  auto add = [&](bool happened, const char* word) {
+    if (!happened) return;
+    if (!words.empty()) words += ' ';
+    words += word;
+  };
+  add(e.started, "burst_started");
+  add(e.finished, "burst_finished");
+  add(e.pinchedOff, "pinched_off");
+  add(e.particlesAdded > 0, "film_grown");
+  return words;
+}
+
 }  // namespace gb

@@ -39,6 +39,10 @@ class RunRecord {
   std::vector<std::pair<double, std::string>> events_;
 };
 
+// A frame's topology events as the words of stats.csv and OSC (burst_started burst_finished pinched_off
+// film_grown), space-separated; empty when nothing happened.
+std::string describeEvents(const TopologyEvents& events);
+
 // stats.csv: one row per frame.
 class StatsWriter {
  public:

@@ -1,7 +1,5 @@
 #include "thickness_image.h"
 
-#include <png.h>
-
 #include <algorithm>
 #include <array>
 #include <cstdio>
@@ -9,36 +7,19 @@
 #include <stdexcept>
 #include <vector>
 
+#include "colour_maps.h"
+#include "png_image.h"
+
 namespace gb {
 
 namespace {
 
 using Rgb = std::array<float, 3>;
 
-// Blue (thin) through green to red (thick).
+// Blue (thin) through green to red (thick): the colour map of kernels/colour_maps.h, shared with the renderer.
 Rgb thicknessColour(float e, const ImageView& v) {
   const float t = std::clamp((e - v.thinColour) / (v.thickColour - v.thinColour), 0.0f, 1.0f);
-  return {std::clamp(2.0f * t - 0.5f, 0.0f, 1.0f), 1.0f - std::abs(2.0f * t - 1.0f), std::clamp(1.5f - 2.0f * t, 0.0f, 1.0f)};
-}
-
-void writePng(const std::filesystem::path& path, int width, int height, const std::vector<uint8_t>& rgb) {
-  FILE* file = std::fopen(path.c_str(), "wb");
-  if (!file) throw std::runtime_error("cannot write " + path.string());
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png ? png_create_info_struct(png) : nullptr;
-  if (!png || !info || setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
-    std::fclose(file);
-    throw std::runtime_error("libpng failed writing " + path.string());
-  }
-  png_init_io(png, file);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8, PNG_COLOR_TYPE_RGB,
-               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_write_info(png, info);
-  for (int y = 0; y < height; ++y) png_write_row(png, &rgb[static_cast<size_t>(y) * width * 3]);
-  png_write_end(png, nullptr);
-  png_destroy_write_struct(&png, &info);
-  if (std::fclose(file) != 0) throw std::runtime_error("failed writing " + path.string());
+  return {colour::thicknessRed(t), colour::thicknessGreen(t), colour::thicknessBlue(t)};
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "cpu_stepper.h"
 #include "scripted_gestures.h"
 #include "simulation.h"
+#include "bench_device.h"
 #include "vulkan_context.h"
 #include "vulkan_stepper.h"
 
@@ -21,17 +22,7 @@ namespace {
 
 enum class BackendKind { Cpu = 0, Vulkan = 1 };
 
-std::shared_ptr<const VulkanContext> vulkanDevice() {
-  static std::shared_ptr<const VulkanContext> device = [] {
-    try {
-      return std::make_shared<const VulkanContext>();
-    } catch (const VulkanUnavailable& e) {
-      std::fprintf(stderr, "*** Vulkan benchmarks skipped: %s ***\n", e.what());
-      return std::shared_ptr<const VulkanContext>();
-    }
-  }();
-  return device;
-}
+using bench::vulkanDevice;
 
 // One film per (backend, size), built once: generation takes seconds at large sizes. It is advanced a few
 // frames with moving wands so that air flow and stretch are not trivially zero.

@@ -57,9 +57,10 @@ bool layerAvailable(const vk::raii::Context& context, const char* name) {
 }
 
 // The instance alone, for listing and choosing devices.
-vk::raii::Instance makeInstance(const vk::raii::Context& context, bool validation) {
+vk::raii::Instance makeInstance(const vk::raii::Context& context, bool validation,
+                                std::vector<const char*> extensions = {}) {
   const vk::ApplicationInfo app("giantbubble", 1, "giantbubble", 1, VK_API_VERSION_1_1);
-  std::vector<const char*> layers, extensions;
+  std::vector<const char*> layers;
   if (validation) {
     layers.push_back("VK_LAYER_KHRONOS_validation");
     extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
@@ -85,12 +86,12 @@ std::vector<VulkanDeviceInfo> listVulkanDevices() {
   return out;
 }
 
-VulkanContext::VulkanContext(const std::string& requestArg) try {
+VulkanContext::VulkanContext(const std::string& requestArg, const VulkanExtensions& extensions) try {
   std::string request = requestArg;
   if (request.empty())
     if (const char* env = std::getenv("GIANTBUBBLE_VULKAN_DEVICE")) request = env;
   validation_ = envFlag("GIANTBUBBLE_VULKAN_VALIDATION") && layerAvailable(context, "VK_LAYER_KHRONOS_validation");
-  instance = makeInstance(context, validation_);
+  instance = makeInstance(context, validation_, extensions.instance);
   if (validation_) {
     using Severity = vk::DebugUtilsMessageSeverityFlagBitsEXT;
     using Type = vk::DebugUtilsMessageTypeFlagBitsEXT;
@@ -122,15 +123,23 @@ VulkanContext::VulkanContext(const std::string& requestArg) try {
   info_ = {static_cast<uint32_t>(chosen), std::string(props.deviceName.data()), typeName(props.deviceType)};
 
   const auto families = physical.getQueueFamilyProperties();
-  const auto compute = std::find_if(families.begin(), families.end(),
-                                    [](const auto& f) { return bool(f.queueFlags & vk::QueueFlagBits::eCompute); });
+  using Q = vk::QueueFlagBits;
+  auto compute = std::find_if(families.begin(), families.end(),
+                              [](const auto& f) { return (f.queueFlags & (Q::eCompute | Q::eGraphics)) == (Q::eCompute | Q::eGraphics); });
+  if (compute == families.end())
+    compute = std::find_if(families.begin(), families.end(), [](const auto& f) { return bool(f.queueFlags & Q::eCompute); });
   if (compute == families.end()) throw VulkanUnavailable("device " + info_.name + " has no compute queue");
   queueFamily_ = static_cast<uint32_t>(compute - families.begin());
   if (compute->timestampValidBits > 0) timestampPeriodNs_ = props.limits.timestampPeriod;
 
   const float priority = 1.0f;
   const vk::DeviceQueueCreateInfo queueInfo({}, queueFamily_, 1, &priority);
-  device = vk::raii::Device(physical, vk::DeviceCreateInfo({}, queueInfo));
+  for (const char* wanted : extensions.device) {
+    const auto available = physical.enumerateDeviceExtensionProperties();
+    if (std::none_of(available.begin(), available.end(), [&](const auto& e) { return std::string(e.extensionName.data()) == wanted; }))
+      throw VulkanUnavailable("device " + info_.name + " lacks the extension " + wanted);
+  }
+  device = vk::raii::Device(physical, vk::DeviceCreateInfo({}, queueInfo, {}, extensions.device));
   queue = vk::raii::Queue(device, queueFamily_, 0);
   commandPool = vk::raii::CommandPool(device, {vk::CommandPoolCreateFlagBits::eResetCommandBuffer, queueFamily_});
   fence_ = vk::raii::Fence(device, vk::FenceCreateInfo());

@@ -24,13 +24,22 @@ struct VulkanDeviceInfo {
 // Every Vulkan device the loader reports; empty (never throws) when there is no loader or driver.
 std::vector<VulkanDeviceInfo> listVulkanDevices();
 
+// Extensions beyond the compute set, e.g. for a window: the surface extensions GLFW asks for on the
+// instance, VK_KHR_swapchain on the device.
+struct VulkanExtensions {
+  std::vector<const char*> instance;
+  std::vector<const char*> device;
+};
+
 class VulkanContext {
  public:
   // Picks a device: `request` (or, when it is empty, the environment variable GIANTBUBBLE_VULKAN_DEVICE)
   // is a device index or a case-insensitive part of its name; without one, the first discrete GPU, then
   // integrated, virtual, CPU (lavapipe). GIANTBUBBLE_VULKAN_VALIDATION=1 enables the Khronos validation
-  // layer when it is installed; its errors are printed and counted. Throws VulkanUnavailable.
-  explicit VulkanContext(const std::string& request = "");
+  // layer when it is installed; its errors are printed and counted. The queue is the first family that does
+  // graphics and compute (the renderer and the stepper share it), else the first that does compute.
+  // Throws VulkanUnavailable, naming a missing extension.
+  explicit VulkanContext(const std::string& request = "", const VulkanExtensions& extensions = {});
 
   // Submits a recorded command buffer and blocks until it has finished.
   void submitAndWait(const vk::raii::CommandBuffer& commands) const;
@@ -43,6 +52,7 @@ class VulkanContext {
   [[nodiscard]] size_t validationErrors() const { return *validationErrors_; }
   [[nodiscard]] double timestampPeriodNs() const { return timestampPeriodNs_; }
   [[nodiscard]] uint32_t preferredWorkgroupSize() const;
+  [[nodiscard]] uint32_t queueFamily() const { return queueFamily_; }
 
   vk::raii::Context context;
   vk::raii::Instance instance{nullptr};

@@ -459,4 +459,13 @@ void VulkanStepper::store(Film& film) {
   readVector(m.buffer(GB_BINDING_DRAIN_WEIGHT), s.drainWeight);
 }
 
+std::shared_ptr<const VulkanContext> VulkanStepper::sharedContext() const { return impl_->ctx; }
+
+DeviceFilm VulkanStepper::deviceFilm() {
+  Impl& m = *impl_;
+  return {m.buffer(GB_BINDING_POSITION).handle(), m.buffer(GB_BINDING_NORMAL).handle(),
+          m.buffer(GB_BINDING_THICKNESS).handle(), m.airFront().handle(), m.buffer(GB_BINDING_TRIANGLES).handle(),
+          m.particles, m.triangles};
+}
+
 }  // namespace gb

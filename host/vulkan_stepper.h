@@ -6,6 +6,7 @@
 
 #include <memory>
 
+#include "device_film.h"
 #include "stepper.h"
 
 namespace gb {
@@ -29,6 +30,10 @@ class VulkanStepper final : public Stepper {
   void updateTopology(const Params& params, Film& film) override;
 
   [[nodiscard]] const VulkanContext& context() const;
+  // The film's buffers as the last batch left them, for a renderer on the same device to read in place.
+  [[nodiscard]] DeviceFilm deviceFilm();
+  // The device, for a renderer that reads deviceFilm() in place.
+  [[nodiscard]] std::shared_ptr<const VulkanContext> sharedContext() const;
 
  private:
   struct Impl;

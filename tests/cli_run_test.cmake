@@ -1,20 +1,11 @@
 # Runs a short simulation and checks that it exits 0 and leaves stats, a mesh, and the summary.
 file(REMOVE_RECURSE ${OUT})
-execute_process(COMMAND ${EXE} run --duration 0.1 --particles 400 --ply-every 5 --out ${OUT} --no-progress
-                        --backend ${BACKEND}
-                RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
-if(NOT rc EQUAL 0 AND err MATCHES "no Vulkan device|Vulkan could not start" AND NOT "$ENV{CI}" STREQUAL "true")
-  message(WARNING "*** SKIPPING the Vulkan run: ${err} ***")
+include(${CMAKE_CURRENT_LIST_DIR}/cli_run_giantbubble.cmake)
+run_giantbubble(run --duration 0.1 --particles 400 --ply-every 5 --out ${OUT} --no-progress --backend ${BACKEND})
+if(skipped)
   return()
 endif()
-if(NOT rc EQUAL 0)
-  message(FATAL_ERROR "giantbubble run failed (${rc}):\n${out}\n${err}")
-endif()
-foreach(f stats.csv mesh_00000.ply mesh_00005.ply thickness_00000.png)
-  if(NOT EXISTS ${OUT}/${f})
-    message(FATAL_ERROR "giantbubble run did not write ${f}")
-  endif()
-endforeach()
+expect_files(${OUT} stats.csv mesh_00000.ply mesh_00005.ply thickness_00000.png)
 file(STRINGS ${OUT}/stats.csv rows)
 list(LENGTH rows n)
 if(NOT n EQUAL 7)  # header + frame 0 + 5 frames

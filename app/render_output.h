@@ -1,0 +1,79 @@
+#pragma once
+// Rendered pictures of a run (`giantbubble run --render`): PNG frames beside the meshes and stats, and an MP4
+// through an ffmpeg pipe when ffmpeg is installed. The renderer (host/renderer.h) shares the Vulkan stepper's
+// device and reads its buffers in place; with the CPU backend it takes a Vulkan device of its own (lavapipe
+// without a GPU) and uploads the film each frame.
+
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <string>
+
+#include "renderer.h"
+#include "simulation.h"
+
+namespace CLI {
+class App;
+}
+
+namespace gb {
+
+struct RenderOutputOptions {
+  bool enabled = false;               // --render
+  RenderOptions image;                // size and colouring (host/renderer.h)
+  int pngEvery = 1;                   // write render_NNNNN.png every N frames (0: none)
+  std::string video = "render.mp4";   // in the output folder, all frames; empty: none. Needs ffmpeg
+  std::filesystem::path environment;  // equirectangular PNG the film reflects; empty: the built-in studio
+  OrbitCamera camera;
+};
+
+// Adds --render, --width, --height, --colouring, --render-every, --video, --environment to a command.
+void addRenderOptions(CLI::App& command, RenderOutputOptions& options);
+
+// The environment to reflect: the built-in studio, or an equirectangular PNG (sRGB, 2:1) converted to linear
+// radiance. Throws naming the file when it cannot be read or is not 2:1.
+EnvironmentImage loadEnvironment(const std::filesystem::path& path);
+
+// Whether an `ffmpeg` executable is on PATH.
+bool ffmpegAvailable();
+
+// Raw RGB frames piped into ffmpeg, which encodes H.264 MP4: no temporary file per frame.
+class VideoWriter {
+ public:
+  VideoWriter(const std::filesystem::path& path, int width, int height, double framesPerSecond);
+  ~VideoWriter();
+  VideoWriter(const VideoWriter&) = delete;  // owns the pipe
+  VideoWriter& operator=(const VideoWriter&) = delete;
+  void write(const std::vector<uint8_t>& rgb);
+  // Closes the pipe and waits for ffmpeg; throws if it failed.
+  void close();
+
+ private:
+  std::filesystem::path path_;
+  size_t frameBytes_;
+  FILE* pipe_ = nullptr;
+};
+
+// The renderer of a run and what it writes.
+class RunRenderer {
+ public:
+  RunRenderer(const RenderOutputOptions& options, const std::filesystem::path& outDir, Simulation& sim,
+              const std::string& device);
+  void frame(long index, Simulation& sim, const WandState& wands);
+  void finish();  // closes the video; says what was written
+
+ private:
+  RenderOutputOptions options_;
+  std::filesystem::path outDir_;
+  std::unique_ptr<Renderer> renderer_;
+  std::unique_ptr<VideoWriter> video_;
+  bool readInPlace_ = false;
+  long written_ = 0;
+};
+
+// The frame a renderer draws of a simulation: its film, droplets and wands, in place on the device when the
+// stepper is the Vulkan stepper on `renderer`'s device. `deviceFilm` is storage for that case.
+RenderFrame renderFrameOf(Simulation& sim, const WandState& wands, const WireFrame& wireFrame, const OrbitCamera& camera,
+                          bool readInPlace, DeviceFilm& deviceFilm);
+
+}  // namespace gb

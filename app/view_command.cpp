@@ -1,0 +1,151 @@
+#include "view_command.h"
+
+#include <CLI/CLI.hpp>
+#include <chrono>
+#include <cstdio>
+
+#include "cpu_stepper.h"
+#include "osc_events.h"
+#include "run_output.h"
+#include "scripted_gestures.h"
+#include "vulkan_stepper.h"
+#include "window.h"
+
+namespace gb {
+
+CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
+  CLI::App* cmd = app.add_subcommand("live", "perform live in a window: the wands follow --input (mouse: orbit, zoom; "
+                                             "keys: R reset, D dip, B burst, Space pause, C colouring, Esc quit)");
+  cmd->alias("view");
+  cmd->add_option("--scene", o.run.scene, "a built-in scene or a scene file (.toml); the other options change it");
+  cmd->add_option("--tool", o.tool, "bubble tool")->check(CLI::IsMember({"two-wands", "ring"}));
+  addInputOptions(cmd, o.run.input);  // --input kinect|fakenect:DIR|trajectory:FILE|script:NAME, --gesture, ...
+  cmd->add_option("--param", o.assignments, "set a model parameter, NAME=VALUE (repeatable)");
+  cmd->add_option("--osc", o.run.osc, "send events and the bubble's size and position as OSC to HOST:PORT (UDP)");
+  cmd->add_option("--auto-dip", o.autoDip, "seconds without a film before the wands dip again (negative: never)");
+  cmd->add_option("--particles", o.run.params.particlesAtFullSolution, "particles of a film at full solution")
+      ->check(CLI::Range(16, 50000000));
+  cmd->add_option("--solution", o.run.params.solution, "remaining soap solution (0, 1]")->check(CLI::Range(0.01, 1.0));
+  cmd->add_option("--backend", o.backend, "cpu, vulkan (on the window's device), or auto (Vulkan on a GPU)")
+      ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
+  cmd->add_option("--device", o.run.device, "Vulkan device: index or part of its name");
+  cmd->add_option("--frames", o.frames, "quit after this many frames (0: when the window closes)")->check(CLI::Range(0L, 100000000L));
+  cmd->add_option("--keys", o.keys, "scripted key presses FRAME:KEY, e.g. 50:b 80:c (keys r d b p c; for tests and demos)")
+      ->check([](const std::string& s) {
+        const auto colon = s.find(':');
+        return colon != std::string::npos && colon > 0 && s.size() == colon + 2 &&
+                       std::string("rdbpc").find(s.back()) != std::string::npos &&
+                       s.find_first_not_of("0123456789") == colon
+                   ? std::string()
+                   : "expected FRAME:KEY with KEY one of r d b p c, got '" + s + "'";
+      });
+  addRenderOptions(*cmd, o.run.render);
+  return cmd;
+}
+
+namespace {
+
+// The stepper for the view: the Vulkan stepper shares the window's device, so the renderer reads its buffers.
+std::unique_ptr<Stepper> viewStepper(const std::string& backend, const std::shared_ptr<const VulkanContext>& context) {
+  const bool gpu = context->info().type != "CPU";
+  if (backend == "vulkan" || (backend == "auto" && gpu)) return std::make_unique<VulkanStepper>(context);
+  return std::make_unique<CpuStepper>();
+}
+
+// Adds the scripted key presses of frame `frame` to what the window reported.
+void addScriptedKeys(const std::vector<std::string>& script, long frame, WindowKeys& keys) {
+  for (const std::string& entry : script) {
+    if (std::stol(entry.substr(0, entry.find(':'))) != frame) continue;
+    switch (entry.back()) {
+      case 'r': keys.reset = true; break;
+      case 'd': keys.dip = true; break;
+      case 'b': keys.burst = true; break;
+      case 'p': keys.pause = true; break;
+      case 'c': keys.nextColouring = true; break;
+      default: break;
+    }
+  }
+}
+
+}  // namespace
+
+int runView(ViewOptions o) try {
+  RunOptions& run = o.run;
+  run.tool.kind = o.tool == "ring" ? ToolKind::Ring : ToolKind::TwoWands;
+  std::unique_ptr<WandInput> input = makeWandInput(run.input, run.gestureOptions);
+  std::printf("live: input %s\n", input->describe().c_str());
+  ShowControl show(run.osc);
+  const RenderOptions& image = run.render.image;
+  Window window("giantbubble", image.width, image.height, run.device);
+  window.camera() = run.render.camera;
+  std::unique_ptr<Stepper> stepper = viewStepper(o.backend, window.context());
+  const bool readInPlace = dynamic_cast<VulkanStepper*>(stepper.get()) != nullptr;
+  std::printf("live: %s on %s (validation layer %s), simulation on %s\n", colouringName(image.colouring),
+              window.context()->info().name.c_str(), window.context()->validationEnabled() ? "on" : "off",
+              stepper->name().c_str());
+  double t = 0;
+  WandState wands = input->at(t).wands;
+  Simulation sim(run.params, run.tool, wands, std::move(stepper));
+  Renderer renderer(window.context(), image, loadEnvironment(run.render.environment));
+  show.frame(sim, sim.stats(), "film_created");
+
+  bool paused = false;
+  long shown = 0, dips = 0;
+  double filmGoneSince = -1;  // time the last film disappeared, -1 while there is one
+  const auto start = std::chrono::steady_clock::now();
+  for (;;) {
+    WindowKeys keys = window.poll();
+    addScriptedKeys(o.keys, shown, keys);
+    if (keys.quit) break;
+    auto say = [&](const char* what) { std::printf("live: frame %ld: %s\n", shown, what); };
+    if (keys.pause) {
+      paused = !paused;
+      say(paused ? "paused" : "resumed");
+    }
+    if (keys.reset) {  // the input from its start: a new source, since time only moves forward in one
+      t = 0;
+      input = makeWandInput(run.input, run.gestureOptions);
+      wands = input->at(t).wands;
+    }
+    const bool autoDip = o.autoDip >= 0 && filmGoneSince >= 0 && t - filmGoneSince >= o.autoDip;
+    if (keys.reset || keys.dip || autoDip) {
+      sim.dip(wands);
+      filmGoneSince = -1;
+      ++dips;
+      say(keys.reset ? "reset: new film, performance from its start" : (autoDip ? "auto dip: new film" : "dip: new film"));
+      show.frame(sim, sim.stats(), "film_created");
+    }
+    if (keys.burst) {
+      sim.startBurst(sim.topParticle());
+      say("burst");
+    }
+    if (keys.nextColouring) {
+      renderer.setColouring(static_cast<Colouring>((static_cast<int>(renderer.options().colouring) + 1) % 3));
+      say(colouringName(renderer.options().colouring));
+    }
+    if (!paused) {
+      t += run.params.frameTime;
+      wands = input->at(t).wands;  // a live camera may wait here for its next frame
+      for (const std::string& m : input->takeMessages()) std::fprintf(stderr, "%s\n", m.c_str());
+      sim.advanceFrame(wands);
+      const FrameStats stats = sim.stats();
+      show.frame(sim, stats, describeEvents(sim.lastEvents()));
+      if (stats.particles == 0 && filmGoneSince < 0) filmGoneSince = t;
+    }
+    const Vec3 gravity(run.params.gravityX, run.params.gravityY, run.params.gravityZ);
+    const WireFrame wire = makeWireFrame(sim.film().tool, wands, sim.film().stringLength, gravity);
+    DeviceFilm deviceFilm;
+    window.present(renderer, renderFrameOf(sim, wands, wire, window.camera(), readInPlace, deviceFilm));
+    if (++shown == o.frames) break;
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const size_t errors = window.context()->validationErrors();
+  std::printf("live: presented %ld frames in %.2f s (%.1f frames/s), %ld dips, %zu validation errors\n", shown,
+              seconds, static_cast<double>(shown) / std::max(seconds, 1e-9), dips, errors);
+  return errors == 0 ? 0 : 4;
+} catch (const std::exception& e) {
+  std::fprintf(stderr, "error: %s\n", e.what());
+  return 1;
+}
+
+}  // namespace gb

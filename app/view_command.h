@@ -1,0 +1,38 @@
+#pragma once
+// `giantbubble live` (also `view`): the live performance. The wands follow the chosen input (a Kinect, a fakenect
+// recording, a trajectory file or a script) and the film is rendered in a window; the mouse orbits (drag) and
+// zooms (wheel); keys: R reset, D dip the wands (new film), B burst, Space/P pause, C next colouring
+// (interference, thickness, air flow), Home camera back, Esc/Q quit. When the film is gone (burst, or a free
+// bubble burst), the wands dip again after --auto-dip seconds, so a show can run for hours; events and the
+// bubble's state go out as OSC with --osc.
+
+#include <string>
+#include <vector>
+
+#include "render_output.h"
+#include "run_command.h"
+
+namespace CLI {
+class App;
+}
+
+namespace gb {
+
+struct ViewOptions {
+  RunOptions run;                  // tool, input, parameters, OSC, backend (run.render.image: size and colouring)
+  std::string tool = "two-wands";
+  std::string backend = "auto";
+  std::vector<std::string> assignments;  // --param NAME=VALUE
+  double autoDip = 2.0;            // seconds without a film before the wands dip again (negative: never)
+  long frames = 0;                 // quit after this many presented frames (0: when the window closes)
+  std::vector<std::string> keys;   // scripted key presses FRAME:KEY (keys r d b p c), as if typed at that frame
+};
+
+// Adds the `view` subcommand and its options to the application.
+CLI::App* addViewCommand(CLI::App& app, ViewOptions& options);
+
+// Runs the window until it is closed (or options.frames are shown). Returns the exit code: 0, 1 on an error (the
+// message printed), 4 when the Vulkan validation layer reported errors.
+int runView(ViewOptions options);
+
+}  // namespace gb

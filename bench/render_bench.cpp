@@ -1,0 +1,142 @@
+// The renderer's speed on the paper's largest scene (Table 1: 25,650 particles) at 1280x720 and 1920x1080.
+// Run: ./build/bench/gb_render_bench   (counter fps = frames per second; docs/performance.md has the figures)
+//
+// BM_Render/upload:   one frame rendered from the CPU state (uploaded every frame, the CPU backend's path).
+// BM_Render/inplace:  one frame rendered from the Vulkan stepper's own buffers (no copy).
+// BM_FrameCpuSimulationAndRender: a whole frame as `giantbubble run --render` does it, minus the file output:
+//                     the CPU simulation's frame (all its stable substeps), then the render with the pixels read
+//                     back. BM_FrameOneSubstepAndRender: the same with one substep per frame, the paper's
+//                     scheme (its 18.1 fps counts one step per frame).
+#include <benchmark/benchmark.h>
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+
+#include "render_scene.h"
+#include "renderer.h"
+#include "scripted_gestures.h"
+#include "simulation.h"
+#include "bench_device.h"
+#include "vulkan_context.h"
+#include "vulkan_stepper.h"
+
+namespace gb {
+namespace {
+
+constexpr int kParticles = 25650;  // Table 1's largest film
+
+using bench::vulkanDevice;
+
+std::unique_ptr<Simulation> largestScene(std::unique_ptr<Stepper> stepper, float frameTime = 0.02f) {
+  Params params;
+  params.particlesAtFullSolution = kParticles;
+  params.maxSubsteps = 1000000;
+  params.frameTime = frameTime;
+  GestureOptions g;
+  g.start = 0.0f;
+  auto sim = std::make_unique<Simulation>(params, WandTool{}, gestureAt(Gesture::Straight, g, 0.0), std::move(stepper));
+  sim->advanceFrame(gestureAt(Gesture::Straight, g, frameTime));  // air flow and curvature are not all zero
+  return sim;
+}
+
+RenderOptions sized(const benchmark::State& state) {
+  RenderOptions o;
+  o.width = static_cast<int>(state.range(0));
+  o.height = static_cast<int>(state.range(1));
+  return o;
+}
+
+// CPU seconds used by the whole process so far, every thread (lavapipe's rasteriser threads included). On a
+// shared machine wall time depends on the neighbours' load; CPU time per frame does much less, and
+// cores / (CPU time per frame) is what the frame rate would be with the cores to ourselves.
+double processCpuSeconds() {
+  rusage r{};
+  getrusage(RUSAGE_SELF, &r);
+  return static_cast<double>(r.ru_utime.tv_sec + r.ru_stime.tv_sec) + 1e-6 * static_cast<double>(r.ru_utime.tv_usec + r.ru_stime.tv_usec);
+}
+
+void report(benchmark::State& state, const Simulation& sim, double cpuAtStart) {
+  const double frames = static_cast<double>(state.iterations());
+  state.counters["fps"] = benchmark::Counter(frames, benchmark::Counter::kIsRate);
+  state.counters["cpu_ms_per_frame"] = 1e3 * (processCpuSeconds() - cpuAtStart) / std::max(frames, 1.0);
+  state.counters["particles"] = static_cast<double>(sim.film().state.size());
+  state.counters["triangles"] = static_cast<double>(sim.film().topology.triangleCount());
+}
+
+RenderFrame frameOf(Simulation& sim, const WireFrame& wire) {
+  RenderFrame f;
+  f.film = &sim.film();
+  f.aerosol = &sim.aerosol();
+  f.wireFrame = &wire;
+  return f;
+}
+
+WireFrame wireOf(const Simulation& sim) {
+  GestureOptions g;
+  g.start = 0.0f;
+  return makeWireFrame(sim.film().tool, gestureAt(Gesture::Straight, g, sim.time()), sim.film().stringLength,
+                       Vec3(0.0f, -9.81f, 0.0f));
+}
+
+void BM_Render(benchmark::State& state, bool inPlace) {
+  const auto device = vulkanDevice();
+  if (!device) return state.SkipWithError("no Vulkan device");
+  std::unique_ptr<Stepper> stepper;
+  if (inPlace) stepper = std::make_unique<VulkanStepper>(device);
+  auto sim = largestScene(std::move(stepper));
+  Renderer renderer(device, sized(state), studioEnvironment());
+  const WireFrame wire = wireOf(*sim);
+  RenderFrame frame = frameOf(*sim, wire);
+  DeviceFilm onDevice;
+  if (inPlace) {
+    onDevice = dynamic_cast<VulkanStepper&>(sim->stepper()).deviceFilm();
+    frame.deviceFilm = &onDevice;
+  }
+  const double cpu = processCpuSeconds();
+  for (auto _ : state) renderer.render(frame, false);
+  report(state, *sim, cpu);
+}
+BENCHMARK_CAPTURE(BM_Render, upload, false)->Args({1280, 720})->Args({1920, 1080})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_Render, inplace, true)->Args({1280, 720})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// frameTime decides the substeps: 0.02 s takes the stability bound's count; a frame of one substep is the
+// largest stable step (the paper's real-time scheme, at reduced simulated speed).
+void simulateAndRender(benchmark::State& state, float frameTime) {
+  const auto device = vulkanDevice();
+  if (!device) return state.SkipWithError("no Vulkan device");
+  auto sim = largestScene(nullptr, frameTime);
+  Renderer renderer(device, sized(state), studioEnvironment());
+  GestureOptions g;
+  g.start = 0.0f;
+  const double cpu = processCpuSeconds();
+  for (auto _ : state) {
+    sim->advanceFrame(gestureAt(Gesture::Straight, g, sim->time() + frameTime));
+    const WireFrame wire = wireOf(*sim);
+    renderer.render(frameOf(*sim, wire), true);
+    benchmark::DoNotOptimize(renderer.readPixels());
+  }
+  report(state, *sim, cpu);
+  state.counters["substeps"] = sim->substepsPerFrame();
+}
+
+void BM_FrameCpuSimulationAndRender(benchmark::State& state) { simulateAndRender(state, 0.02f); }
+BENCHMARK(BM_FrameCpuSimulationAndRender)->Args({1280, 720})->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(5);
+
+void BM_FrameOneSubstepAndRender(benchmark::State& state) {
+  // The stability bound's substep for this film, found from a normal frame.
+  float substep = 0.0f;
+  {
+    auto probe = largestScene(nullptr);
+    substep = 0.02f / static_cast<float>(probe->substepsPerFrame());
+  }
+  simulateAndRender(state, substep);
+}
+BENCHMARK(BM_FrameOneSubstepAndRender)->Args({1280, 720})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+}  // namespace gb
+
+BENCHMARK_MAIN();

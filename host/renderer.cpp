@@ -1,0 +1,425 @@
+#include "renderer.h"
+
+#include <cstddef>
+#include <cstring>
+#include <stdexcept>
+
+#include "device_buffer.h"
+#include "device_image.h"
+#include "render_shared.h"
+#include "render_spirv.h"
+#include "thin_film.h"
+#include "thin_film_lut.h"
+
+namespace gb {
+
+using gpu::RenderUniforms;
+using kernels::RenderShader;
+static_assert(offsetof(RenderUniforms, inverseViewProjection) == 64);
+static_assert(offsetof(RenderUniforms, cameraPosition) == 128);
+static_assert(offsetof(RenderUniforms, skyIrradiance) == 160);
+static_assert(offsetof(RenderUniforms, particles) == 192);
+static_assert(sizeof(RenderUniforms) == 224);
+
+Colouring colouringFromName(const std::string& name) {
+  if (name == "interference") return Colouring::Interference;
+  if (name == "thickness") return Colouring::Thickness;
+  if (name == "airflow") return Colouring::AirFlow;
+  throw std::invalid_argument("unknown colouring '" + name + "' (interference, thickness, airflow)");
+}
+
+const char* colouringName(Colouring colouring) {
+  switch (colouring) {
+    case Colouring::Interference: return "interference";
+    case Colouring::Thickness: return "thickness";
+    case Colouring::AirFlow: return "airflow";
+  }
+  return "?";
+}
+
+namespace {
+
+constexpr vk::Format kHdrFormat = vk::Format::eR16G16B16A16Sfloat;
+constexpr vk::Format kRevealFormat = vk::Format::eR16Sfloat;
+constexpr vk::Format kDepthFormat = vk::Format::eD32Sfloat;
+// The resolve writes linear radiance; the format's sRGB encoding on store is cheaper on lavapipe than the curve in
+// the shader (three pow per pixel), and the bytes read back are sRGB as PNG and video expect.
+constexpr vk::Format kOutputFormat = vk::Format::eR8G8B8A8Srgb;
+
+using Stage = vk::PipelineStageFlagBits;
+using Access = vk::AccessFlagBits;
+using Layout = vk::ImageLayout;
+
+vk::AttachmentDescription attachment(vk::Format format, vk::AttachmentLoadOp load, vk::AttachmentStoreOp store,
+                                     Layout initial, Layout final) {
+  return vk::AttachmentDescription({}, format, vk::SampleCountFlagBits::e1, load, store, vk::AttachmentLoadOp::eDontCare,
+                                   vk::AttachmentStoreOp::eDontCare, initial, final);
+}
+
+// A one-subpass render pass; `before` and `after` are its dependencies on the commands outside it.
+vk::raii::RenderPass makeRenderPass(const vk::raii::Device& device, const std::vector<vk::AttachmentDescription>& attachments,
+                                    uint32_t colourCount, bool hasDepth, const vk::SubpassDependency& before,
+                                    const vk::SubpassDependency& after) {
+  std::vector<vk::AttachmentReference> colours;
+  for (uint32_t i = 0; i < colourCount; ++i) colours.emplace_back(i, Layout::eColorAttachmentOptimal);
+  const vk::AttachmentReference depth(colourCount, Layout::eDepthStencilAttachmentOptimal);
+  const vk::SubpassDescription subpass({}, vk::PipelineBindPoint::eGraphics, {}, colours, {}, hasDepth ? &depth : nullptr);
+  const std::array<vk::SubpassDependency, 2> dependencies{before, after};
+  return vk::raii::RenderPass(device, vk::RenderPassCreateInfo({}, attachments, subpass, dependencies));
+}
+
+struct PipelineDesc {
+  RenderShader vertex, fragment;
+  vk::PrimitiveTopology topology = vk::PrimitiveTopology::eTriangleList;
+  bool depthTest = true, depthWrite = true;
+  std::vector<vk::PipelineColorBlendAttachmentState> blends;
+};
+
+vk::PipelineColorBlendAttachmentState opaqueBlend() {
+  using C = vk::ColorComponentFlagBits;
+  vk::PipelineColorBlendAttachmentState s;
+  s.colorWriteMask = C::eR | C::eG | C::eB | C::eA;
+  return s;
+}
+
+// Weighted blended OIT. Both targets add (one, one): accum sums the weighted colours, reveal sums -log(1 - alpha),
+// whose exponential in the resolve is the product of the sheets' transmittances. The usual multiplicative reveal
+// blend would need a different blend per attachment (the independentBlend feature); a sum needs none.
+std::vector<vk::PipelineColorBlendAttachmentState> transparencyBlends() {
+  using C = vk::ColorComponentFlagBits;
+  using F = vk::BlendFactor;
+  const vk::PipelineColorBlendAttachmentState add(true, F::eOne, F::eOne, vk::BlendOp::eAdd, F::eOne, F::eOne,
+                                                  vk::BlendOp::eAdd, C::eR | C::eG | C::eB | C::eA);
+  return {add, add};
+}
+
+}  // namespace
+
+struct Renderer::Impl {
+  std::shared_ptr<const VulkanContext> ctx;
+  RenderOptions options;
+  vk::Extent2D extent;
+
+  DeviceImage opaque, depth, accum, reveal, output;
+  vk::raii::RenderPass opaquePass{nullptr}, filmPass{nullptr}, compositePass{nullptr};
+  vk::raii::Framebuffer opaqueTarget{nullptr}, filmTarget{nullptr}, compositeTarget{nullptr};
+  vk::raii::Sampler linearSampler{nullptr}, nearestSampler{nullptr};
+  DeviceImage lut, environment;
+
+  vk::raii::DescriptorSetLayout sceneLayout{nullptr}, compositeLayout{nullptr};
+  vk::raii::PipelineLayout pipelineLayout{nullptr};
+  std::vector<vk::raii::ShaderModule> modules;  // indexed by RenderShader
+  vk::raii::Pipeline props{nullptr}, droplets{nullptr}, film{nullptr}, composite{nullptr};
+  vk::raii::DescriptorPool pool{nullptr};
+  vk::raii::DescriptorSet sceneSet{nullptr}, compositeSet{nullptr};
+  vk::raii::CommandBuffer commands{nullptr};
+
+  DeviceBuffer uniforms, position, normal, thickness, airFlow, triangles, propsMesh, dropletBuffer, readback;
+  uint32_t propsVertices = 0, dropletCount = 0;
+  std::array<Vec3, 2> ambient;  // mean environment radiance above and below the horizon
+
+  Impl(std::shared_ptr<const VulkanContext> context, const RenderOptions& o, const EnvironmentImage& env)
+      : ctx(std::move(context)), options(o) {
+    if (o.width < 16 || o.height < 16 || o.width > 16384 || o.height > 16384)
+      throw std::invalid_argument("render size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
+                                  " is outside 16..16384 pixels");
+    extent = vk::Extent2D(static_cast<uint32_t>(o.width), static_cast<uint32_t>(o.height));
+    makeTargets();
+    makeSamplersAndTextures(env);
+    ambient = hemisphereMeans(env);
+    makeLayouts();
+    makePipelines();
+    makeDescriptors();
+    uniforms = DeviceBuffer(*ctx, sizeof(RenderUniforms));
+    readback = DeviceBuffer(*ctx, 4ull * extent.width * extent.height, DeviceBuffer::Placement::Host);
+    commands = ctx->newCommandBuffer();
+  }
+
+  void makeTargets() {
+    using U = vk::ImageUsageFlagBits;
+    const vk::raii::Device& device = ctx->device;
+    opaque = DeviceImage(*ctx, extent, kHdrFormat, U::eColorAttachment | U::eSampled);
+    depth = DeviceImage(*ctx, extent, kDepthFormat, U::eDepthStencilAttachment, vk::ImageAspectFlagBits::eDepth);
+    accum = DeviceImage(*ctx, extent, kHdrFormat, U::eColorAttachment | U::eSampled);
+    reveal = DeviceImage(*ctx, extent, kRevealFormat, U::eColorAttachment | U::eSampled);
+    output = DeviceImage(*ctx, extent, kOutputFormat, U::eColorAttachment | U::eTransferSrc);
+    using Load = vk::AttachmentLoadOp;
+    using Store = vk::AttachmentStoreOp;
+    const vk::PipelineStageFlags draw = Stage::eColorAttachmentOutput | Stage::eEarlyFragmentTests | Stage::eLateFragmentTests;
+    const vk::AccessFlags drawWrites = Access::eColorAttachmentWrite | Access::eDepthStencilAttachmentWrite;
+    // Opaque pass: waits for last frame's resolve to have read its colour; its colour is sampled and its depth
+    // tested by the passes after it.
+    opaquePass = makeRenderPass(
+        device,
+        {attachment(kHdrFormat, Load::eClear, Store::eStore, Layout::eUndefined, Layout::eShaderReadOnlyOptimal),
+         attachment(kDepthFormat, Load::eClear, Store::eStore, Layout::eUndefined, Layout::eDepthStencilAttachmentOptimal)},
+        1, true, {VK_SUBPASS_EXTERNAL, 0, Stage::eFragmentShader | draw, draw, {}, drawWrites},
+        {0, VK_SUBPASS_EXTERNAL, draw, Stage::eFragmentShader | draw, drawWrites,
+         Access::eShaderRead | Access::eDepthStencilAttachmentRead});
+    // Film pass: tests against the opaque depth without writing it; accum and reveal go to the resolve.
+    filmPass = makeRenderPass(
+        device,
+        {attachment(kHdrFormat, Load::eClear, Store::eStore, Layout::eUndefined, Layout::eShaderReadOnlyOptimal),
+         attachment(kRevealFormat, Load::eClear, Store::eStore, Layout::eUndefined, Layout::eShaderReadOnlyOptimal),
+         attachment(kDepthFormat, Load::eLoad, Store::eDontCare, Layout::eDepthStencilAttachmentOptimal,
+                    Layout::eDepthStencilAttachmentOptimal)},
+        2, true, {VK_SUBPASS_EXTERNAL, 0, Stage::eFragmentShader | draw, draw, drawWrites,
+                  Access::eColorAttachmentWrite | Access::eDepthStencilAttachmentRead},
+        {0, VK_SUBPASS_EXTERNAL, draw, Stage::eFragmentShader | draw, Access::eColorAttachmentWrite, Access::eShaderRead});
+    // Resolve: its output is then copied out (readback, window blit).
+    compositePass = makeRenderPass(
+        device, {attachment(kOutputFormat, Load::eDontCare, Store::eStore, Layout::eUndefined, Layout::eTransferSrcOptimal)},
+        1, false,
+        {VK_SUBPASS_EXTERNAL, 0, Stage::eTransfer | Stage::eColorAttachmentOutput, Stage::eColorAttachmentOutput, {},
+         Access::eColorAttachmentWrite},
+        {0, VK_SUBPASS_EXTERNAL, Stage::eColorAttachmentOutput, Stage::eTransfer, Access::eColorAttachmentWrite,
+         Access::eTransferRead});
+    const std::array<vk::ImageView, 2> opaqueViews{opaque.view(), depth.view()};
+    const std::array<vk::ImageView, 3> filmViews{accum.view(), reveal.view(), depth.view()};
+    const vk::ImageView outputView = output.view();
+    opaqueTarget = vk::raii::Framebuffer(device, vk::FramebufferCreateInfo({}, *opaquePass, opaqueViews, extent.width, extent.height, 1));
+    filmTarget = vk::raii::Framebuffer(device, vk::FramebufferCreateInfo({}, *filmPass, filmViews, extent.width, extent.height, 1));
+    compositeTarget = vk::raii::Framebuffer(device, vk::FramebufferCreateInfo({}, *compositePass, outputView, extent.width, extent.height, 1));
+  }
+
+  void makeSamplersAndTextures(const EnvironmentImage& env) {
+    using F = vk::Filter;
+    using A = vk::SamplerAddressMode;
+    linearSampler = vk::raii::Sampler(ctx->device, vk::SamplerCreateInfo({}, F::eLinear, F::eLinear, vk::SamplerMipmapMode::eNearest,
+                                                                          A::eClampToEdge, A::eRepeat, A::eClampToEdge));
+    nearestSampler = vk::raii::Sampler(ctx->device, vk::SamplerCreateInfo({}, F::eNearest, F::eNearest, vk::SamplerMipmapMode::eNearest,
+                                                                           A::eClampToEdge, A::eClampToEdge, A::eClampToEdge));
+    const ThinFilmLut table = buildThinFilmLut(GB_FILM_INDEX);
+    lut = uploadTexture(*ctx, table.width, table.height, table.rgba);
+    std::vector<float> rgba(static_cast<size_t>(env.width) * env.height * 4, 1.0f);
+    for (size_t i = 0; i < static_cast<size_t>(env.width) * env.height; ++i)
+      for (size_t c = 0; c < 3; ++c) rgba[4 * i + c] = env.rgb[3 * i + c];
+    environment = uploadTexture(*ctx, env.width, env.height, rgba);
+  }
+
+  void makeLayouts() {
+    using D = vk::DescriptorType;
+    const auto all = vk::ShaderStageFlagBits::eVertex | vk::ShaderStageFlagBits::eFragment;
+    std::vector<vk::DescriptorSetLayoutBinding> scene;
+    for (uint32_t b = 0; b < GB_RENDER_SCENE_BINDINGS; ++b)
+      scene.emplace_back(b, b == GB_RENDER_LUT || b == GB_RENDER_ENVIRONMENT ? D::eCombinedImageSampler : D::eStorageBuffer, 1, all);
+    std::vector<vk::DescriptorSetLayoutBinding> resolve;
+    for (uint32_t b : {GB_COMPOSITE_OPAQUE, GB_COMPOSITE_ACCUM, GB_COMPOSITE_REVEAL})
+      resolve.emplace_back(b, D::eCombinedImageSampler, 1, vk::ShaderStageFlagBits::eFragment);
+    sceneLayout = vk::raii::DescriptorSetLayout(ctx->device, vk::DescriptorSetLayoutCreateInfo({}, scene));
+    compositeLayout = vk::raii::DescriptorSetLayout(ctx->device, vk::DescriptorSetLayoutCreateInfo({}, resolve));
+    const std::array<vk::DescriptorSetLayout, 2> layouts{*sceneLayout, *compositeLayout};
+    pipelineLayout = vk::raii::PipelineLayout(ctx->device, vk::PipelineLayoutCreateInfo({}, layouts));
+  }
+
+  vk::raii::Pipeline makePipeline(const PipelineDesc& d, const vk::raii::RenderPass& pass) {
+    const vk::PipelineShaderStageCreateInfo stages[] = {
+        {{}, vk::ShaderStageFlagBits::eVertex, *modules[static_cast<size_t>(d.vertex)], "main"},
+        {{}, vk::ShaderStageFlagBits::eFragment, *modules[static_cast<size_t>(d.fragment)], "main"}};
+    const vk::PipelineVertexInputStateCreateInfo vertexInput;  // vertices are pulled from storage buffers
+    const vk::PipelineInputAssemblyStateCreateInfo assembly({}, d.topology);
+    const vk::Viewport viewport(0, 0, static_cast<float>(extent.width), static_cast<float>(extent.height), 0, 1);
+    const vk::Rect2D scissor({0, 0}, extent);
+    const vk::PipelineViewportStateCreateInfo viewportState({}, viewport, scissor);
+    vk::PipelineRasterizationStateCreateInfo raster;
+    raster.cullMode = vk::CullModeFlagBits::eNone;  // the film has two sides; props are cheap
+    raster.lineWidth = 1.0f;
+    const vk::PipelineMultisampleStateCreateInfo multisample;
+    const vk::PipelineDepthStencilStateCreateInfo depthState({}, d.depthTest, d.depthWrite, vk::CompareOp::eLessOrEqual);
+    const vk::PipelineColorBlendStateCreateInfo blend({}, false, vk::LogicOp::eCopy, d.blends);
+    return vk::raii::Pipeline(ctx->device, nullptr,
+                              vk::GraphicsPipelineCreateInfo({}, stages, &vertexInput, &assembly, nullptr, &viewportState,
+                                                             &raster, &multisample, &depthState, &blend, nullptr,
+                                                             *pipelineLayout, *pass, 0));
+  }
+
+  void makePipelines() {
+    for (int s = 0; s <= static_cast<int>(RenderShader::CompositeFrag); ++s) {
+      const auto code = kernels::renderSpirv(static_cast<RenderShader>(s));
+      modules.emplace_back(ctx->device, vk::ShaderModuleCreateInfo({}, code.size_bytes(), code.data()));
+    }
+    using R = RenderShader;
+    props = makePipeline({R::PropsVert, R::PropsFrag, vk::PrimitiveTopology::eTriangleList, true, true, {opaqueBlend()}}, opaquePass);
+    droplets = makePipeline({R::DropletsVert, R::DropletsFrag, vk::PrimitiveTopology::ePointList, true, true, {opaqueBlend()}}, opaquePass);
+    film = makePipeline({R::FilmVert, R::FilmFrag, vk::PrimitiveTopology::eTriangleList, true, false, transparencyBlends()}, filmPass);
+    composite = makePipeline({R::FullscreenVert, R::CompositeFrag, vk::PrimitiveTopology::eTriangleList, false, false, {opaqueBlend()}}, compositePass);
+  }
+
+  void makeDescriptors() {
+    const std::array<vk::DescriptorPoolSize, 2> sizes{vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 8),
+                                                      vk::DescriptorPoolSize(vk::DescriptorType::eCombinedImageSampler, 5)};
+    pool = vk::raii::DescriptorPool(ctx->device, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 2, sizes));
+    const std::array<vk::DescriptorSetLayout, 2> layouts{*sceneLayout, *compositeLayout};
+    vk::raii::DescriptorSets sets(ctx->device, vk::DescriptorSetAllocateInfo(*pool, layouts));
+    sceneSet = std::move(sets[0]);
+    compositeSet = std::move(sets[1]);
+    const vk::DescriptorImageInfo images[] = {{*linearSampler, lut.view(), Layout::eShaderReadOnlyOptimal},
+                                              {*linearSampler, environment.view(), Layout::eShaderReadOnlyOptimal},
+                                              {*nearestSampler, opaque.view(), Layout::eShaderReadOnlyOptimal},
+                                              {*nearestSampler, accum.view(), Layout::eShaderReadOnlyOptimal},
+                                              {*nearestSampler, reveal.view(), Layout::eShaderReadOnlyOptimal}};
+    using D = vk::DescriptorType;
+    const vk::WriteDescriptorSet writes[] = {{*sceneSet, GB_RENDER_LUT, 0, D::eCombinedImageSampler, images[0]},
+                                             {*sceneSet, GB_RENDER_ENVIRONMENT, 0, D::eCombinedImageSampler, images[1]},
+                                             {*compositeSet, GB_COMPOSITE_OPAQUE, 0, D::eCombinedImageSampler, images[2]},
+                                             {*compositeSet, GB_COMPOSITE_ACCUM, 0, D::eCombinedImageSampler, images[3]},
+                                             {*compositeSet, GB_COMPOSITE_REVEAL, 0, D::eCombinedImageSampler, images[4]}};
+    ctx->device.updateDescriptorSets(writes, {});
+  }
+
+  // A buffer holding at least `bytes`, grown (by half again) when it is too small; never none, since a
+  // descriptor must name a buffer even when there is nothing in it (no droplets, a burst film).
+  void reserve(DeviceBuffer& buffer, size_t bytes) {
+    if (buffer.size() < std::max<size_t>(bytes, 16)) buffer = DeviceBuffer(*ctx, bytes + bytes / 2);
+  }
+
+  // The film's buffers for this frame: the stepper's own, or a copy of the host state.
+  DeviceFilm filmBuffers(const RenderFrame& frame) {
+    if (frame.deviceFilm) return *frame.deviceFilm;
+    const State& s = frame.film->state;
+    const std::vector<uint32_t>& tris = frame.film->topology.triangles;
+    const size_t n = s.size(), bytes = n * sizeof(float);
+    reserve(position, 3 * bytes);
+    reserve(normal, 3 * bytes);
+    reserve(airFlow, 3 * bytes);
+    reserve(thickness, bytes);
+    reserve(triangles, tris.size() * sizeof(uint32_t));
+    auto writeVec3 = [&](DeviceBuffer& b, const Vec3Array& a) {
+      b.write(a.x.data(), bytes, 0);
+      b.write(a.y.data(), bytes, bytes);
+      b.write(a.z.data(), bytes, 2 * bytes);
+    };
+    writeVec3(position, s.position);
+    writeVec3(normal, s.normal);
+    writeVec3(airFlow, s.airFlow);
+    thickness.write(s.thickness.data(), bytes);
+    triangles.write(tris.data(), tris.size() * sizeof(uint32_t));
+    return {position.handle(), normal.handle(), thickness.handle(), airFlow.handle(), triangles.handle(),
+            static_cast<uint32_t>(n), static_cast<uint32_t>(frame.film->topology.triangleCount())};
+  }
+
+  void uploadPropsAndDroplets(const RenderFrame& frame) {
+    const std::vector<float> mesh = buildProps(frame.wireFrame);
+    reserve(propsMesh, mesh.size() * sizeof(float));
+    propsMesh.write(mesh.data(), mesh.size() * sizeof(float));
+    propsVertices = static_cast<uint32_t>(mesh.size() / kPropsVertexFloats);
+    const std::vector<float> drops = frame.aerosol ? packDroplets(*frame.aerosol, frame.aerosolLifetime) : std::vector<float>();
+    reserve(dropletBuffer, drops.size() * sizeof(float));
+    dropletBuffer.write(drops.data(), drops.size() * sizeof(float));
+    dropletCount = static_cast<uint32_t>(drops.size() / 4);
+  }
+
+  void uploadUniforms(const RenderFrame& frame, uint32_t particles) {
+    RenderUniforms u{};
+    const float aspect = static_cast<float>(extent.width) / static_cast<float>(extent.height);
+    const Eigen::Matrix4f viewProjection = frame.camera.viewProjection(aspect);
+    const Eigen::Matrix4f inverse = viewProjection.inverse();
+    std::memcpy(u.viewProjection.m, viewProjection.data(), sizeof u.viewProjection.m);
+    std::memcpy(u.inverseViewProjection.m, inverse.data(), sizeof u.inverseViewProjection.m);
+    const Vec3 eye = frame.camera.position();
+    u.cameraPosition = {eye.x(), eye.y(), eye.z(), 1.0f};
+    const Vec3 key = Vec3(-0.6f, 0.5f, 0.62f).normalized();  // the studio's main softbox (render_scene.cpp)
+    u.keyLight = {key.x(), key.y(), key.z(), 0.0f};
+    u.skyIrradiance = {ambient[0].x(), ambient[0].y(), ambient[0].z(), 0.0f};
+    u.groundIrradiance = {ambient[1].x(), ambient[1].y(), ambient[1].z(), 0.0f};
+    u.particles = particles;
+    u.colouring = static_cast<uint32_t>(options.colouring);
+    u.thickColour = options.thickColour;
+    u.airFlowColour = options.airFlowColour;
+    u.exposure = options.exposure;
+    u.pointScale = 0.5f * static_cast<float>(extent.height) / std::tan(0.5f * frame.camera.fovY);
+    u.dropletRadius = options.dropletRadius;
+    uniforms.write(&u, sizeof u);
+  }
+
+  void bindSceneBuffers(const DeviceFilm& f) {
+    auto info = [](vk::Buffer b) { return vk::DescriptorBufferInfo(b, 0, VK_WHOLE_SIZE); };
+    const std::pair<uint32_t, vk::DescriptorBufferInfo> buffers[] = {
+        {GB_RENDER_UNIFORMS, info(uniforms.handle())}, {GB_RENDER_POSITION, info(f.position)},
+        {GB_RENDER_NORMAL, info(f.normal)},            {GB_RENDER_THICKNESS, info(f.thickness)},
+        {GB_RENDER_AIR_FLOW, info(f.airFlow)},         {GB_RENDER_TRIANGLES, info(f.triangles)},
+        {GB_RENDER_MESH, info(propsMesh.handle())},     {GB_RENDER_DROPLETS, info(dropletBuffer.handle())}};
+    std::vector<vk::WriteDescriptorSet> writes;
+    for (const auto& [binding, buffer] : buffers)
+      writes.emplace_back(*sceneSet, binding, 0, vk::DescriptorType::eStorageBuffer, nullptr, buffer);
+    ctx->device.updateDescriptorSets(writes, {});
+  }
+
+  void record(const DeviceFilm& f, bool readPixels, const AfterRender& after) {
+    const vk::raii::CommandBuffer& cb = commands;
+    cb.reset();
+    cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    const vk::Rect2D area({0, 0}, extent);
+    const std::array<vk::DescriptorSet, 2> sets{*sceneSet, *compositeSet};
+    cb.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipelineLayout, 0, sets, {});
+
+    // Alpha 0: no prop here, the resolve shows the environment.
+    const std::array<vk::ClearValue, 2> opaqueClear{vk::ClearColorValue(std::array<float, 4>{0, 0, 0, 0}),
+                                                    vk::ClearDepthStencilValue(1.0f, 0)};
+    cb.beginRenderPass(vk::RenderPassBeginInfo(*opaquePass, *opaqueTarget, area, opaqueClear), vk::SubpassContents::eInline);
+    cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *props);
+    cb.draw(propsVertices, 1, 0, 0);
+    if (dropletCount > 0) {
+      cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *droplets);
+      cb.draw(dropletCount, 1, 0, 0);
+    }
+    cb.endRenderPass();
+
+    const std::array<vk::ClearValue, 3> filmClear{vk::ClearColorValue(std::array<float, 4>{0, 0, 0, 0}),
+                                                  vk::ClearColorValue(std::array<float, 4>{0, 0, 0, 0}), vk::ClearValue()};
+    cb.beginRenderPass(vk::RenderPassBeginInfo(*filmPass, *filmTarget, area, filmClear), vk::SubpassContents::eInline);
+    if (f.triangleCount > 0) {
+      cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *film);
+      cb.draw(3 * f.triangleCount, 1, 0, 0);
+    }
+    cb.endRenderPass();
+
+    cb.beginRenderPass(vk::RenderPassBeginInfo(*compositePass, *compositeTarget, area, {}), vk::SubpassContents::eInline);
+    cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *composite);
+    cb.draw(3, 1, 0, 0);
+    cb.endRenderPass();
+
+    if (readPixels) {
+      cb.copyImageToBuffer(output.handle(), Layout::eTransferSrcOptimal, readback.handle(),
+                           vk::BufferImageCopy(0, 0, 0, {vk::ImageAspectFlagBits::eColor, 0, 0, 1}, {0, 0, 0},
+                                               vk::Extent3D(extent.width, extent.height, 1)));
+      const vk::MemoryBarrier toHost(Access::eTransferWrite, Access::eHostRead);
+      cb.pipelineBarrier(Stage::eTransfer, Stage::eHost, {}, toHost, {}, {});
+    }
+    if (after) after(cb, output.handle());
+    cb.end();
+  }
+};
+
+Renderer::Renderer(std::shared_ptr<const VulkanContext> context, const RenderOptions& options,
+                   const EnvironmentImage& environment)
+    : impl_(std::make_unique<Impl>(std::move(context), options, environment)) {}
+
+Renderer::~Renderer() = default;
+
+void Renderer::render(const RenderFrame& frame, bool readback, const AfterRender& after) {
+  Impl& m = *impl_;
+  if (!frame.film) throw std::invalid_argument("Renderer::render: no film");
+  const DeviceFilm film = m.filmBuffers(frame);
+  m.uploadPropsAndDroplets(frame);
+  m.uploadUniforms(frame, film.particleCount);
+  m.bindSceneBuffers(film);
+  m.record(film, readback, after);
+  m.ctx->submitAndWait(m.commands);
+}
+
+std::vector<uint8_t> Renderer::readPixels() const {
+  const Impl& m = *impl_;
+  const size_t pixels = static_cast<size_t>(m.extent.width) * m.extent.height;
+  std::vector<uint8_t> rgba(4 * pixels), rgb(3 * pixels);
+  m.readback.read(rgba.data(), rgba.size());
+  for (size_t i = 0; i < pixels; ++i)
+    for (size_t c = 0; c < 3; ++c) rgb[3 * i + c] = rgba[4 * i + c];
+  return rgb;
+}
+
+void Renderer::setColouring(Colouring colouring) { impl_->options.colouring = colouring; }
+const RenderOptions& Renderer::options() const { return impl_->options; }
+const VulkanContext& Renderer::context() const { return *impl_->ctx; }
+
+}  // namespace gb

@@ -1,0 +1,49 @@
+#pragma once
+// The live window (GLFW on X11): a Vulkan swapchain that shows the renderer's output, an orbiting camera on the
+// mouse (drag to turn, wheel to zoom) and the keys of `giantbubble view` (app/view_command.cpp). It runs under
+// Xvfb with lavapipe, which is how CI tests it.
+
+#include <memory>
+#include <string>
+
+#include "render_scene.h"
+#include "renderer.h"
+#include "vulkan_context.h"
+
+struct GLFWwindow;
+
+namespace gb {
+
+// Keys pressed since the last poll.
+struct WindowKeys {
+  bool quit = false;        // Escape, Q, or the window closed
+  bool reset = false;       // R: new film and the performance from its start
+  bool dip = false;         // D: dip the wands again (new film where the wands are)
+  bool burst = false;       // B: poke the film
+  bool pause = false;       // Space or P: pause / resume the simulation
+  bool nextColouring = false;  // C: interference -> thickness -> air flow
+  bool resetCamera = false;    // Home
+};
+
+class Window {
+ public:
+  // Opens a window and a Vulkan device that can present to it (`device` as for VulkanContext). Throws with the
+  // reason when there is no display or no such device.
+  Window(const std::string& title, int width, int height, const std::string& device);
+  ~Window();
+  Window(const Window&) = delete;  // owns the window and the swapchain
+  Window& operator=(const Window&) = delete;
+
+  [[nodiscard]] std::shared_ptr<const VulkanContext> context() const;
+  // Handles window events: returns the keys pressed and moves the camera with the mouse.
+  WindowKeys poll();
+  [[nodiscard]] OrbitCamera& camera();
+  // Renders `frame` and shows it (the renderer's image scaled to the window). Waits until it is presented.
+  void present(Renderer& renderer, RenderFrame frame);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace gb

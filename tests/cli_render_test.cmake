@@ -1,0 +1,28 @@
+# `giantbubble run --render` headless: writes rendered PNG frames next to the stats and, ffmpeg installed, an MP4
+# with one video frame per simulation frame. BACKEND vulkan also checks that the renderer reads the stepper's
+# buffers in place.
+file(REMOVE_RECURSE ${OUT})
+include(${CMAKE_CURRENT_LIST_DIR}/cli_run_giantbubble.cmake)
+run_giantbubble(run --duration 0.1 --particles 400 --ply-every 0 --images-every 0 --out ${OUT} --no-progress
+                --backend ${BACKEND} --render --width 160 --height 90 --render-every 2)
+if(skipped)
+  return()
+endif()
+expect_files(${OUT} stats.csv render_00000.png render_00002.png render_00004.png)
+if(EXISTS ${OUT}/render_00001.png)
+  message(FATAL_ERROR "--render-every 2 wrote frame 1")
+endif()
+if(BACKEND STREQUAL "vulkan" AND NOT out MATCHES "in place from the Vulkan stepper")
+  message(FATAL_ERROR "the renderer did not read the Vulkan stepper's buffers in place:\n${out}")
+endif()
+find_program(FFPROBE ffprobe)
+if(FFPROBE)
+  execute_process(COMMAND ${FFPROBE} -v error -count_frames -show_entries stream=width,height,nb_read_frames -of csv=p=0
+                          ${OUT}/render.mp4 OUTPUT_VARIABLE probe RESULT_VARIABLE prc)
+  string(STRIP "${probe}" probe)
+  if(NOT prc EQUAL 0 OR NOT probe STREQUAL "160,90,6")  # frame 0 + 5 frames
+    message(FATAL_ERROR "render.mp4 is not 6 frames of 160x90: '${probe}'\n${out}")
+  endif()
+else()
+  message(WARNING "*** ffprobe not installed: the MP4 was not checked ***")
+endif()

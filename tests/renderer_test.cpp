@@ -1,0 +1,241 @@
+// The renderer on lavapipe: a known scene against a stored reference image, the Vulkan stepper's buffers read in
+// place against the same film uploaded from the host, and the diagnostic colourings. The validation layer is on
+// (tests/vulkan_test_device.h) and must report no error.
+//
+// The reference image is tests/data/render_reference.png. Regenerate it only deliberately, after a change that
+// is meant to change the picture, and look at it before committing:
+//   GIANTBUBBLE_REGENERATE_REFERENCE=1 ./build/tests/gb_tests --gtest_filter=Renderer.KnownSceneMatchesReference
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+
+#include "png_image.h"
+#include "test_films.h"
+#include "thin_film.h"
+#include "thin_film_lut.h"
+#include "render_output.h"
+#include "render_scene_films.h"
+#include "renderer.h"
+#include "vulkan_stepper.h"
+#include "vulkan_test_device.h"
+
+namespace gb {
+namespace {
+
+constexpr int kWidth = 240, kHeight = 160;
+
+RenderOptions smallImage(Colouring colouring = Colouring::Interference) {
+  RenderOptions o;
+  o.width = kWidth;
+  o.height = kHeight;
+  o.colouring = colouring;
+  return o;
+}
+
+struct PixelError {
+  double mean = 0;          // mean absolute difference per channel (8-bit levels)
+  int max = 0;              // largest difference of any channel
+  double fractionOver8 = 0;  // fraction of pixels with a channel more than 8 levels off
+};
+
+PixelError compare(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b) {
+  PixelError e;
+  size_t over = 0;
+  for (size_t p = 0; p < a.size() / 3; ++p) {
+    int worst = 0;
+    for (size_t c = 0; c < 3; ++c) {
+      const int d = std::abs(int(a[3 * p + c]) - int(b[3 * p + c]));
+      e.mean += d;
+      worst = std::max(worst, d);
+    }
+    e.max = std::max(e.max, worst);
+    over += worst > 8 ? 1 : 0;
+  }
+  e.mean /= static_cast<double>(a.size());
+  e.fractionOver8 = static_cast<double>(over) / static_cast<double>(a.size() / 3);
+  return e;
+}
+
+TEST(Renderer, KnownSceneMatchesReference) {
+  GB_REQUIRE_VULKAN(device);
+  const test::KnownScene scene = test::makeKnownScene();
+  Renderer renderer(device, smallImage(), studioEnvironment(256));
+  renderer.render(test::frameOf(scene));
+  const std::vector<uint8_t> pixels = renderer.readPixels();
+  writePng("render_actual.png", kWidth, kHeight, pixels);  // beside the test binary, to look at on failure
+  const std::filesystem::path reference = std::filesystem::path(GB_TEST_DATA_DIR) / "render_reference.png";
+  if (const char* regenerate = std::getenv("GIANTBUBBLE_REGENERATE_REFERENCE"); regenerate && std::string(regenerate) == "1") {
+    writePng(reference, kWidth, kHeight, pixels);
+    GTEST_SKIP() << "*** reference image REGENERATED at " << reference << ": look at it before committing ***";
+  }
+  const RgbImage expected = readPng(reference);
+  ASSERT_EQ(expected.width, kWidth);
+  ASSERT_EQ(expected.height, kHeight);
+  const PixelError e = compare(pixels, expected.rgb);
+  std::printf("against the reference: mean %.3f levels, max %d, %.4f%% of pixels over 8 levels\n", e.mean, e.max,
+              100 * e.fractionOver8);
+  // Tolerances: the same driver gives the same picture bit for bit; another LLVM or Mesa version may round the
+  // half-float targets and the transcendental functions differently (a level or two) and move a few triangle-edge
+  // or droplet pixels. A mean over 1 level, or more than 0.5% of pixels off by over 8 levels, is a changed picture;
+  // the max is bounded at 96 levels so that a moved edge passes but a wrong colour where the film is does not
+  // hide among the few.
+  EXPECT_LT(e.mean, 1.0);
+  EXPECT_LT(e.fractionOver8, 0.005);
+  EXPECT_LE(e.max, 96);
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
+TEST(Renderer, ReadsTheVulkanSteppersBuffersInPlace) {
+  GB_REQUIRE_VULKAN(device);
+  test::KnownScene scene = test::makeKnownScene();
+  Params params;
+  VulkanStepper stepper(device);
+  stepper.load(params, scene.film);
+  const DeviceFilm onDevice = stepper.deviceFilm();
+  Renderer renderer(device, smallImage(), studioEnvironment(256));
+  RenderFrame frame = test::frameOf(scene);
+  renderer.render(frame);
+  const std::vector<uint8_t> uploaded = renderer.readPixels();
+  frame.deviceFilm = &onDevice;
+  renderer.render(frame);
+  const std::vector<uint8_t> inPlace = renderer.readPixels();
+  // Same floats through the same shaders: identical to the bit.
+  const PixelError e = compare(uploaded, inPlace);
+  EXPECT_EQ(e.max, 0);
+  // And the film is there at all: the picture differs from one without the film.
+  test::KnownScene empty = test::makeKnownScene();
+  empty.film.topology.triangles.clear();
+  frame = test::frameOf(empty);
+  renderer.render(frame);
+  EXPECT_GT(compare(uploaded, renderer.readPixels()).mean, 1.0);
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
+// Mean colour of a small window of the image around (x, y).
+std::array<double, 3> meanColour(const std::vector<uint8_t>& rgb, int x, int y) {
+  std::array<double, 3> sum{};
+  int n = 0;
+  for (int j = y - 2; j <= y + 2; ++j)
+    for (int i = x - 2; i <= x + 2; ++i, ++n)
+      for (size_t c = 0; c < 3; ++c) sum[c] += rgb[3 * (static_cast<size_t>(j) * kWidth + i) + c];
+  for (double& s : sum) s /= n;
+  return sum;
+}
+
+TEST(Renderer, ThicknessColouringIsBlueWhereThinAndRedWhereThick) {
+  GB_REQUIRE_VULKAN(device);
+  test::KnownScene scene = test::makeKnownScene();
+  RenderOptions options = smallImage(Colouring::Thickness);
+  options.thickColour = 1.2e-6f;  // the scene's thickest film shows red
+  Renderer renderer(device, options, studioEnvironment(256));
+  renderer.render(test::frameOf(scene));
+  const std::vector<uint8_t> rgb = renderer.readPixels();
+  writePng("render_thickness.png", kWidth, kHeight, rgb);
+  // The bubble (radius 0.5 m seen from 2.6 m in a 0.75 rad field of view) spans rows 80 -+ 41: sample near
+  // its top and bottom on the centre column, inside the outline.
+  const auto top = meanColour(rgb, kWidth / 2, 48), bottom = meanColour(rgb, kWidth / 2, 112);
+  EXPECT_GT(top[0], top[2] + 60) << "top: thick, red";
+  EXPECT_GT(bottom[2], bottom[0] + 60) << "bottom: thin, blue";
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
+TEST(Renderer, OverlappingSheetsDoNotDependOnDrawingOrder) {
+  // The bubble's two walls overlap everywhere inside its outline. Drawing its triangles in the reverse order
+  // changes only the order of the float additions in the blender: at most 1 level anywhere (half-float sums
+  // rounded differently), against the several levels a wrong order-dependent blend would show.
+  GB_REQUIRE_VULKAN(device);
+  test::KnownScene scene = test::makeKnownScene();
+  Renderer renderer(device, smallImage(), studioEnvironment(256));
+  renderer.render(test::frameOf(scene));
+  const std::vector<uint8_t> forward = renderer.readPixels();
+  std::vector<uint32_t>& tris = scene.film.topology.triangles;
+  std::vector<uint32_t> reversed;
+  for (size_t t = tris.size() / 3; t-- > 0;) reversed.insert(reversed.end(), {tris[3 * t], tris[3 * t + 1], tris[3 * t + 2]});
+  tris = reversed;
+  renderer.render(test::frameOf(scene));
+  const PixelError e = compare(forward, renderer.readPixels());
+  EXPECT_LE(e.max, 1);
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
+// sRGB encoding of a linear value in [0, 1], as the output image's format does it (IEC 61966-2-1).
+double encodeSrgb(double c) { return c <= 0.0031308 ? 12.92 * c : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055; }
+
+TEST(Renderer, FilmShowsItsInterferenceColourEndToEnd) {
+  // A flat film of uniform thickness seen straight on, in an environment that is white (radiance 1) behind the
+  // camera and black behind the film: it reflects R(e) of the white and transmits 1 - Y of the black, so the
+  // film pixel in the middle is R per channel, then the resolve's shoulder (identity below 0.8) and the sRGB
+  // curve. This checks the table's upload (half floats), its texture coordinates and the transparency resolve
+  // against the CPU's numbers. Tolerance 3 levels of 255: half-float storage of the table and of the
+  // transparency targets (11 significant bits).
+  GB_REQUIRE_VULKAN(device);
+  const Params params;
+  const float thickness = 200e-9f;  // first-order magenta
+  std::vector<Vec3> corners = {{-2.0f, -0.8f, 0.0f}, {2.0f, -0.8f, 0.0f}, {2.0f, 3.2f, 0.0f}, {-2.0f, 3.2f, 0.0f}};
+  Film film = test::makeFilm(params, corners, {0, 1, 2, 0, 2, 3});
+  for (size_t i = 0; i < film.state.size(); ++i) {
+    film.state.thickness[i] = thickness;
+    film.state.normal.set(i, Vec3::UnitZ());
+  }
+  EnvironmentImage lit;  // columns 16..47 look along -z (behind the film): black; the rest, +z: white
+  lit.width = 64;
+  lit.height = 32;
+  lit.rgb.assign(64 * 32 * 3, 1.0f);
+  for (int row = 0; row < 32; ++row)
+    for (int col = 16; col < 48; ++col)
+      for (int c = 0; c < 3; ++c) lit.rgb[3 * (static_cast<size_t>(row) * 64 + col) + c] = 0.0f;
+  Renderer renderer(device, smallImage(), lit);
+  RenderFrame frame;
+  frame.film = &film;
+  frame.camera.target = Vec3(0.0f, 1.2f, 0.0f);
+  frame.camera.pitch = 0.0f;
+  renderer.render(frame);
+  const std::vector<uint8_t> rgb = renderer.readPixels();
+  writePng("render_flat_film.png", kWidth, kHeight, rgb);
+
+  const auto r = sampleThinFilmLut(buildThinFilmLut(GB_FILM_INDEX), thickness, 1.0f);
+  const auto centre = meanColour(rgb, kWidth / 2, kHeight / 2);
+  std::printf("200 nm film, middle of the image: %.1f %.1f %.1f (8-bit sRGB)\n", centre[0], centre[1], centre[2]);
+  for (size_t c = 0; c < 3; ++c) {
+    const double radiance = r[c];
+    const double shoulder = radiance / (1.0 + std::max(radiance - 0.8, 0.0));
+    EXPECT_NEAR(centre[c], 255.0 * encodeSrgb(shoulder), 3.0) << "channel " << c;
+  }
+  // And it is magenta: green is the band the film cancels.
+  EXPECT_LT(centre[1] + 20, centre[0]);
+  EXPECT_LT(centre[1] + 20, centre[2]);
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
+TEST(Renderer, RejectsAbsurdImageSizes) {
+  GB_REQUIRE_VULKAN(device);
+  RenderOptions o = smallImage();
+  o.width = 0;
+  EXPECT_THROW(Renderer(device, o, studioEnvironment(64)), std::invalid_argument);
+  EXPECT_THROW(colouringFromName("rainbow"), std::invalid_argument);
+}
+
+TEST(RenderOutput, EnvironmentPngIsDecodedToLinearRadiance) {
+  // sRGB 128 is linear 0.2159 (IEC 61966-2-1); 255 is 1. Tolerance 1e-4: float rounding only.
+  std::vector<uint8_t> rgb(64 * 32 * 3, 128);
+  rgb[0] = 255;
+  writePng("environment_test.png", 64, 32, rgb);
+  const EnvironmentImage env = loadEnvironment("environment_test.png");
+  ASSERT_EQ(env.width, 64);
+  ASSERT_EQ(env.height, 32);
+  EXPECT_NEAR(env.rgb[0], 1.0f, 1e-4f);
+  EXPECT_NEAR(env.rgb[1], 0.2159f, 1e-4f);
+  // An image that is not 2:1 cannot be an equirectangular panorama: refused with its size named.
+  writePng("environment_square.png", 32, 32, std::vector<uint8_t>(32 * 32 * 3, 0));
+  try {
+    loadEnvironment("environment_square.png");
+    ADD_FAILURE() << "a square environment was accepted";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("32x32"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace gb

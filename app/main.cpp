@@ -138,6 +138,12 @@ int main(int argc, char** argv) {
     run.tool.kind = tool == "ring" ? gb::ToolKind::Ring : gb::ToolKind::TwoWands;
     run.durationFromInput = runCmd->count("--duration") == 0 && !sceneSetsDuration;
     run.backend = gb::backendFromName(backend);
+    if (argc == 2) {  // `giantbubble run` alone, the README's main job: also the video a newcomer wants to see
+      run.render.enabled = run.renderIfPossible = true;
+      run.render.image.width = 960;
+      run.render.image.height = 540;
+      run.render.pngEvery = 25;
+    }
     return gb::runSimulation(run);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

@@ -106,8 +106,14 @@ int runSimulation(const RunOptions& o) {
   if (o.imageEvery > 0) writeThicknessImage(o.outDir / imageName(0), sim.film(), sim.aerosol(), ImageView{});
   std::unique_ptr<RunRenderer> renderer;
   if (o.render.enabled) {
-    renderer = std::make_unique<RunRenderer>(o.render, o.outDir, sim, o.device);
-    renderer->frame(0, sim, start);
+    try {
+      renderer = std::make_unique<RunRenderer>(o.render, o.outDir, sim, o.device);
+      renderer->frame(0, sim, start);
+    } catch (const std::exception& e) {
+      if (!o.renderIfPossible) throw;
+      std::fprintf(stderr, "note: no rendered frames (%s); the thickness images are still written\n", e.what());
+      renderer.reset();
+    }
   }
 
   ProgressBar bar(frames);

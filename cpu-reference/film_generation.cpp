@@ -300,4 +300,45 @@ Film generateSphere(const Params& params, const Vec3& center, float radius, int 
   return film;
 }
 
+Film generateTube(const Params& params, const Vec3& center, float radius, float separation, int around) {
+  if (const auto errors = validate(params); !errors.empty()) throw std::invalid_argument(errors.front());
+  if (around < 6 || !(radius > 0) || !(separation > 0)) throw std::invalid_argument("tube: needs radius, separation > 0 and 6 or more particles around");
+  const float spacing = 2.0f * std::numbers::pi_v<float> * radius / static_cast<float>(around);
+  const int rows = std::max(2, static_cast<int>(std::lround(separation / (0.866f * spacing))));
+  Film film;
+  film.tool.kind = ToolKind::Ring;  // no wand loop to pinch
+  film.state.resize(static_cast<size_t>(around) * static_cast<size_t>(rows + 1));
+  auto index = [&](int row, int k) { return static_cast<uint32_t>(row * around + (k % around)); };
+  for (int row = 0; row <= rows; ++row)
+    for (int k = 0; k < around; ++k) {
+      // Alternate rows are turned half a step, so the triangles come out nearly equilateral.
+      const float phi = 2.0f * std::numbers::pi_v<float> * (static_cast<float>(k) + 0.5f * static_cast<float>(row % 2)) / static_cast<float>(around);
+      const float z = -0.5f * separation + separation * static_cast<float>(row) / static_cast<float>(rows);
+      film.state.position.set(index(row, k), center + Vec3(radius * std::cos(phi), radius * std::sin(phi), z));
+    }
+  std::vector<uint32_t> triangles;
+  for (int row = 0; row < rows; ++row)
+    for (int k = 0; k < around; ++k) {
+      const bool shifted = row % 2 == 1;  // this row's point k sits between the next row's k and k + 1
+      const uint32_t a = index(row, k), b = index(row, k + 1);
+      const uint32_t c = index(row + 1, k), d = index(row + 1, k + 1);
+      if (shifted) triangles.insert(triangles.end(), {a, b, d, a, d, c});
+      else triangles.insert(triangles.end(), {a, b, c, b, d, c});
+    }
+  film.topology = buildTopology(film.state.size(), std::move(triangles), film.state.position);
+  for (size_t i = 0; i < film.state.size(); ++i)
+    if (film.topology.boundary[i]) film.state.frameParam[i] = -1.0f;
+  initialiseFilmMaterial(params, film);
+  // Outward: the first triangle's normal points away from the axis, or all are turned.
+  computeGeometry(film.topology, film.state);
+  const Vec3 p0 = film.state.position.get(film.topology.triangles[0]) - center;
+  if (film.state.triangleNormal.get(0).dot(Vec3(p0.x(), p0.y(), 0.0f)) < 0) {
+    for (size_t t = 0; t < film.topology.triangleCount(); ++t)
+      std::swap(film.topology.triangles[3 * t + 1], film.topology.triangles[3 * t + 2]);
+    buildAdjacency(film.topology);
+    computeGeometry(film.topology, film.state);
+  }
+  return film;
+}
+
 }  // namespace gb

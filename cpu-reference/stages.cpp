@@ -207,6 +207,10 @@ void integrateParticle(const StepUniforms& u, const Topology& topo, State& s, si
   if (!s.alive[i]) return;
   const Vec3 x = s.position.get(i);
   if (topo.boundary[i]) {
+    if (s.frameParam[i] < 0.0f) {  // pinned where it is (the fixed rings of the validation scenes)
+      s.velocity.set(i, Vec3::Zero());
+      return;
+    }
     const Vec3 xNext = framePoint(u.frameNext, s.frameParam[i]);
     s.velocity.set(i, (xNext - x) / u.dt);
     s.position.set(i, xNext);

@@ -46,7 +46,8 @@ struct State {
   std::vector<float> lifetime;     // time since the particle was created (s)
   std::vector<float> drainOutflow;  // liquid particle i sends downhill this step (m^3), drainage pass 1
   std::vector<float> drainWeight;   // sum of d_dir of Eq. (14) over i's neighbours, drainage pass 1
-  std::vector<float> frameParam;   // wire-frame coordinate of a boundary particle (see wire_frame.h)
+  std::vector<float> frameParam;   // wire-frame coordinate of a boundary particle (see wire_frame.h); negative:
+                                   // the particle is pinned where it is (fixed rings, film_shapes.h)
   std::vector<uint32_t> alive;     // 1 while the particle exists (uint32: the GPU reads it as a uint)
   // Per triangle, written by the geometry stage's first pass and gathered by its second:
   Vec3Array triangleNormal;        // (x1 - x0) x (x2 - x0): twice the area times the unit normal

@@ -11,6 +11,10 @@ void main() {
   const StepUniformsBlock u = steps[pc.stepIndex];
   const vec3 x = LOAD3(position, i);
   if (boundary[i] != 0u) {
+    if (frameParam[i] < 0.0) {  // pinned where it is (the fixed rings of the validation scenes)
+      STORE3(velocity, i, vec3(0.0));
+      return;
+    }
     const vec3 xNext = framePoint(u, frameParam[i]);
     STORE3(velocity, i, (xNext - x) / u.dt);
     STORE3(position, i, xNext);

@@ -343,3 +343,34 @@ TEST(VulkanEquivalence, RestLengthsPaidOutAtTheWireMatch) {
 
 }  // namespace
 }  // namespace gb
+
+namespace gb {
+namespace {
+
+// The physical tension model (area-gradient force, film tension from the thickness, pinned rings) on both
+// backends: a tube relaxing towards a catenoid.
+TEST(VulkanEquivalence, PhysicalTensionCatenoidMatches) {
+  GB_REQUIRE_VULKAN(device);
+  Params p;
+  p.tensionModel = 1;
+  p.gravityY = 0.0f;
+  const Film tube = generateTube(p, Vec3(0, 1.5f, 0), 0.3f, 0.3f, 48);
+  Simulation cpu(p, tube, WandState{}, std::make_unique<CpuStepper>());
+  Simulation gpu(p, tube, WandState{}, std::make_unique<VulkanStepper>(device));
+  for (int f = 0; f < 10; ++f) {
+    cpu.advanceFrame(WandState{});
+    gpu.advanceFrame(WandState{});
+  }
+  const double moved = (cpu.film().state.position.get(tube.state.size() / 2) - tube.state.position.get(tube.state.size() / 2)).norm();
+  ASSERT_GT(moved, 1e-3) << "the tube should be shrinking towards the catenoid";
+  // Float rounding over 10 frames of a smooth, damped relaxation: measured 7e-7 m; 1e-5 m still fails a force
+  // 10% off (1e-3 m). The tension follows the thickness: within 1e-5 relative.
+  const double worst = worstParticleDistance(cpu.film(), gpu.film());
+  std::printf("physical catenoid: worst particle distance %.2e m\n", worst);
+  EXPECT_LT(worst, 1e-5);
+  EXPECT_LT(worstRelativeError(cpu.film().state.elasticity, gpu.film().state.elasticity, 1e-3), 1e-5);
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
+}  // namespace
+}  // namespace gb

@@ -10,6 +10,6 @@ struct BuiltinScene {
   const char* text;  // the TOML
 };
 
-std::span<const BuiltinScene> builtinScenes();  // sorted by name: the order of the paper's figures
+std::span<const BuiltinScene> builtinScenes();  // sorted by name: the experiments, then the paper's figures in order
 
 }  // namespace gb

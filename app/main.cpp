@@ -48,7 +48,7 @@ std::string sceneArgument(int argc, char** argv) {
 
 int listScenes() {
   for (const std::string& name : gb::builtinSceneNames())
-    std::printf("%-8s %s\n", name.c_str(), gb::builtinScene(name).description.c_str());
+    std::printf("%-18s %s\n", name.c_str(), gb::builtinScene(name).description.c_str());
   return 0;
 }
 

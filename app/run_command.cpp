@@ -3,10 +3,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <nlohmann/json.hpp>
 #include <iostream>
 #include <sstream>
 #include <unistd.h>
 
+#include "experiments.h"
 #include "osc_events.h"
 #include "run_output.h"
 #include "thickness_image.h"
@@ -70,10 +73,29 @@ void printSummary(const FrameStats& first, const FrameStats& last, long frames, 
   std::printf("%-28s %s\n", "outputs", outDir.string().c_str());
 }
 
+// A physics experiment of the physical tension model: its measurement next to the analytic value, printed and
+// written to experiment.json.
+int runPhysicsExperiment(const RunOptions& o) {
+  const Measurement m = runExperiment(o.experiment, o.params, [](const std::string& line) {
+    std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
+  });
+  std::printf("\n%-28s %s\n%-28s %.6g %s\n%-28s %.6g %s (%s)\n", "measured", m.quantity.c_str(), "", m.measured,
+              m.unit.c_str(), "analytic", m.analytic, m.unit.c_str(), m.law.c_str());
+  if (m.analytic != 0) std::printf("%-28s %+.2f%%\n", "difference", 100.0 * m.relativeError());
+  const nlohmann::json j = {{"experiment", m.experiment}, {"quantity", m.quantity}, {"unit", m.unit},
+                            {"measured", m.measured},     {"analytic", m.analytic}, {"law", m.law},
+                            {"relative_error", m.relativeError()}};
+  std::ofstream(o.outDir / "experiment.json") << j.dump(2) << '\n';
+  std::printf("%-28s %s\n", "written to", (o.outDir / "experiment.json").string().c_str());
+  return 0;
+}
+
 }  // namespace
 
 int runSimulation(const RunOptions& o) {
   std::filesystem::create_directories(o.outDir);
+  if (!o.experiment.empty()) return runPhysicsExperiment(o);
   std::unique_ptr<WandInput> input = makeWandInput(o.input, o.gestureOptions);
   std::printf("input: %s\n", input->describe().c_str());
   auto report = [&](bool midBar) {

@@ -31,6 +31,7 @@ struct RunOptions {
   std::string device;                     // Vulkan device index or name part (empty: best available)
   std::string osc;                        // HOST:PORT to send events and the bubble's state to (empty: off)
   bool renderIfPossible = false;          // the main job renders when it can and says so when it cannot
+  std::string experiment;                 // a physics experiment instead of a performance (experiments.h)
   RenderOutputOptions render;             // --render: rendered frames and video (app/render_output.h)
 };
 

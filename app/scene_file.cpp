@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "builtin_scenes.h"
+#include "experiments.h"
 
 namespace gb {
 namespace {
@@ -157,6 +158,7 @@ Scene parseScene(std::string_view text, const std::string& source, const std::fi
   top.on("description", [&](const toml::node& n) { scene.description = top.text(n, "description"); });
   top.on("duration", [&](const toml::node& n) { run.duration = top.number(n, "duration", 0.001, 3600.0); });
   top.on("burst_at", [&](const toml::node& n) { run.burstAt = top.number(n, "burst_at", -1.0, 3600.0); });
+  top.on("experiment", [&](const toml::node& n) { run.experiment = top.text(n, "experiment", experimentNames()); });
 
   TableReader tool(source, "tool");
   tool.on("kind", [&](const toml::node& n) {

@@ -1,0 +1,38 @@
+#pragma once
+// Soap-film physics experiments for the physical tension model (docs/validation.md): each builds its film,
+// runs it on the CPU reference and measures one number that physics predicts. The tests hold the
+// measurements to their bounds; `giantbubble run --scene catenoid` (and the others) shows them to a class.
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "simulation.h"
+
+namespace gb {
+
+struct Measurement {
+  std::string experiment;  // catenoid, catenoid-critical, young-laplace, waves, minimal-surface, flat-disc, bubble-burst
+  std::string quantity;    // what was measured, in words
+  std::string unit;
+  double measured = 0;
+  double analytic = 0;
+  std::string law;         // the formula the analytic value comes from
+  [[nodiscard]] double relativeError() const { return analytic != 0 ? (measured - analytic) / analytic : 0; }
+};
+
+// The experiments by name, in the order of docs/validation.md.
+std::vector<std::string> experimentNames();
+
+// Runs one experiment with the given parameters (tensionModel is set to 1 and gravity to 0; the rest is
+// the caller's). `progress` is called with a line now and then (may be empty). Throws std::invalid_argument
+// naming the choices for an unknown name.
+Measurement runExperiment(const std::string& name, Params params,
+                          const std::function<void(const std::string&)>& progress = {});
+
+// The analytic pieces, for the tests as well.
+double catenoidNeck(double ringRadius, double separation);  // stable branch of R = a cosh(d / 2a)
+double neckRadius(const Film& film, const Vec3& center);     // smallest distance of a particle from the z axis
+double meanCurvatureTimes(const Film& film, float length);   // mean |H| x length over the free particles
+
+}  // namespace gb

@@ -68,6 +68,7 @@ StabilizerOptions stabilizerOptionsOf(const InputOptions& o) {
 
 std::unique_ptr<WandInput> makeWandInput(const InputOptions& o, const GestureOptions& gesture) {
   const std::string spec = o.spec();
+  if (spec == "mouse") throw HandSourceError("the mouse moves the wands in the live window only: giantbubble live --input mouse");
   if (o.scripted()) {
     try {
       return std::make_unique<ScriptedWands>(gestureFromName(spec.substr(7)), gesture);

@@ -110,8 +110,8 @@ std::string resolveInput(const std::string& source, const toml::node& node, cons
     if (!std::filesystem::exists(path)) fail(source, node.source(), "input file '" + path.string() + "' does not exist");
     return prefix + path.string();
   }
-  if (spec != "kinect" && spec.rfind("script:", 0) != 0)
-    fail(source, node.source(), "input = '" + spec + "' is not kinect, fakenect:DIR, trajectory:FILE or script:NAME");
+  if (spec != "kinect" && spec != "mouse" && spec.rfind("script:", 0) != 0)
+    fail(source, node.source(), "input = '" + spec + "' is not kinect, mouse, fakenect:DIR, trajectory:FILE or script:NAME");
   if (spec.rfind("script:", 0) == 0) {
     try {
       (void)gestureFromName(spec.substr(7));

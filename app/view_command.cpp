@@ -17,6 +17,7 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
   CLI::App* cmd = app.add_subcommand("live", "perform live in a window: the wands follow --input (mouse: orbit, zoom; "
                                              "keys: R reset, D dip, B burst, Space pause, C colouring, Esc quit)");
   cmd->alias("view");
+  // --input also takes "mouse" here: the left and right buttons drag the hands, the wheel pushes them.
   cmd->add_option("--scene", o.run.scene, "a built-in scene or a scene file (.toml); the other options change it");
   cmd->add_option("--tool", o.tool, "bubble tool")->check(CLI::IsMember({"two-wands", "ring"}));
   addInputOptions(cmd, o.run.input);  // --input kinect|fakenect:DIR|trajectory:FILE|script:NAME, --gesture, ...
@@ -52,6 +53,20 @@ std::unique_ptr<Stepper> viewStepper(const std::string& backend, const std::shar
   return std::make_unique<CpuStepper>();
 }
 
+// The wands' input: the mouse (the window's pointer moves a PointerHandSource, read through the stabilizer
+// like a camera) or any input makeWandInput opens. A new mouse input takes the window's pointer from the old.
+std::unique_ptr<WandInput> makeLiveInput(const RunOptions& run, Window& window) {
+  if (run.input.spec() != "mouse") return makeWandInput(run.input, run.gestureOptions);
+  const Calibration calibration = calibrationOf(run.input);
+  auto pointer = std::make_unique<PointerHandSource>(calibration);
+  PointerHandSource* hands = pointer.get();
+  constexpr double metresPerNotch = 0.05;  // the wheel pushes the held hands 5 cm per notch
+  window.setPointerListener({[hands](double x, double y) { hands->setPointer(x, y); },
+                             [hands](int hand, bool down) { hands->setButton(hand == 0 ? Hand::Left : Hand::Right, down); },
+                             [hands](double notches) { hands->pushHands(metresPerNotch * notches); }});
+  return std::make_unique<StabilizedWands>(std::move(pointer), stabilizerOptionsOf(run.input), calibration);
+}
+
 // Adds the scripted key presses of frame `frame` to what the window reported.
 void addScriptedKeys(const std::vector<std::string>& script, long frame, WindowKeys& keys) {
   for (const std::string& entry : script) {
@@ -72,11 +87,11 @@ void addScriptedKeys(const std::vector<std::string>& script, long frame, WindowK
 int runView(ViewOptions o) try {
   RunOptions& run = o.run;
   run.tool.kind = o.tool == "ring" ? ToolKind::Ring : ToolKind::TwoWands;
-  std::unique_ptr<WandInput> input = makeWandInput(run.input, run.gestureOptions);
-  std::printf("live: input %s\n", input->describe().c_str());
   ShowControl show(run.osc);
   const RenderOptions& image = run.render.image;
   Window window("giantbubble", image.width, image.height, run.device);
+  std::unique_ptr<WandInput> input = makeLiveInput(run, window);
+  std::printf("live: input %s\n", input->describe().c_str());
   window.camera() = run.render.camera;
   std::unique_ptr<Stepper> stepper = viewStepper(o.backend, window.context());
   const bool readInPlace = dynamic_cast<VulkanStepper*>(stepper.get()) != nullptr;
@@ -104,7 +119,7 @@ int runView(ViewOptions o) try {
     }
     if (keys.reset) {  // the input from its start: a new source, since time only moves forward in one
       t = 0;
-      input = makeWandInput(run.input, run.gestureOptions);
+      input = makeLiveInput(run, window);
       wands = input->at(t).wands;
     }
     const bool autoDip = o.autoDip >= 0 && filmGoneSince >= 0 && t - filmGoneSince >= o.autoDip;

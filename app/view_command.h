@@ -1,6 +1,7 @@
 #pragma once
 // `giantbubble live` (also `view`): the live performance. The wands follow the chosen input (a Kinect, a fakenect
-// recording, a trajectory file or a script) and the film is rendered in a window; the mouse orbits (drag) and
+// recording, a trajectory file, a script, or the mouse: left and right buttons drag the hands, the wheel with a
+// button held pushes them, the middle button orbits) and the film is rendered in a window; the mouse orbits (drag) and
 // zooms (wheel); keys: R reset, D dip the wands (new film), B burst, Space/P pause, C next colouring
 // (interference, thickness, air flow), Home camera back, Esc/Q quit. When the film is gone (burst, or a free
 // bubble burst), the wands dip again after --auto-dip seconds, so a show can run for hours; events and the

@@ -38,6 +38,7 @@ VulkanExtensions windowExtensions() {
 // Mouse state for the orbiting camera.
 struct Mouse {
   bool dragging = false;
+  bool handHeld[2] = {false, false};
   double x = 0, y = 0;
 };
 
@@ -55,6 +56,7 @@ struct Window::Impl {
   OrbitCamera camera, initialCamera;
   Mouse mouse;
   WindowKeys keys;
+  PointerListener pointer;  // empty: the mouse only moves the camera
 
   Impl(const std::string& title, int width, int height, const std::string& device)
       : ctx(std::make_shared<const VulkanContext>(device, windowExtensions())) {
@@ -130,10 +132,25 @@ struct Window::Impl {
     }
   }
   static void onButton(GLFWwindow* w, int button, int action, int) {
-    if (button == GLFW_MOUSE_BUTTON_LEFT) of(w).mouse.dragging = action == GLFW_PRESS;
+    Impl& m = of(w);
+    const bool down = action == GLFW_PRESS;
+    if (!m.pointer.button) {
+      if (button == GLFW_MOUSE_BUTTON_LEFT) m.mouse.dragging = down;
+      return;
+    }
+    if (button == GLFW_MOUSE_BUTTON_MIDDLE) m.mouse.dragging = down;
+    const int hand = button == GLFW_MOUSE_BUTTON_LEFT ? 0 : (button == GLFW_MOUSE_BUTTON_RIGHT ? 1 : -1);
+    if (hand < 0) return;
+    m.mouse.handHeld[hand] = down;
+    m.pointer.button(hand, down);
   }
   static void onCursor(GLFWwindow* w, double x, double y) {
     Impl& m = of(w);
+    if (m.pointer.moved) {
+      int width = 1, height = 1;
+      glfwGetWindowSize(w, &width, &height);
+      m.pointer.moved(x / std::max(width, 1), y / std::max(height, 1));
+    }
     if (m.mouse.dragging) {
       m.camera.yaw -= 0.005f * static_cast<float>(x - m.mouse.x);
       m.camera.pitch = std::clamp(m.camera.pitch + 0.005f * static_cast<float>(y - m.mouse.y), -1.4f, 1.4f);
@@ -142,7 +159,12 @@ struct Window::Impl {
     m.mouse.y = y;
   }
   static void onScroll(GLFWwindow* w, double, double dy) {
-    OrbitCamera& c = of(w).camera;
+    Impl& m = of(w);
+    if (m.pointer.push && (m.mouse.handHeld[0] || m.mouse.handHeld[1])) {
+      m.pointer.push(dy);
+      return;
+    }
+    OrbitCamera& c = m.camera;
     c.distance = std::clamp(c.distance * std::pow(0.9f, static_cast<float>(dy)), 0.3f, 30.0f);
   }
 
@@ -185,6 +207,8 @@ Window::~Window() = default;
 
 std::shared_ptr<const VulkanContext> Window::context() const { return impl_->ctx; }
 OrbitCamera& Window::camera() { return impl_->camera; }
+
+void Window::setPointerListener(PointerListener listener) { impl_->pointer = std::move(listener); }
 
 WindowKeys Window::poll() {
   Impl& m = *impl_;

@@ -3,6 +3,7 @@
 // mouse (drag to turn, wheel to zoom) and the keys of `giantbubble view` (app/view_command.cpp). It runs under
 // Xvfb with lavapipe, which is how CI tests it.
 
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -25,6 +26,15 @@ struct WindowKeys {
   bool resetCamera = false;    // Home
 };
 
+// Where the mouse's hand input goes when the wands follow the mouse (`giantbubble live --input mouse`): the
+// left and right buttons drag the left and right hands, the wheel with a button held pushes them forward or
+// back; the camera then orbits with the middle button, and the wheel alone still zooms.
+struct PointerListener {
+  std::function<void(double x, double y)> moved;      // pointer in window coordinates 0..1, origin top left
+  std::function<void(int hand, bool down)> button;    // hand 0 left, 1 right
+  std::function<void(double notches)> push;           // wheel notches while a hand is held
+};
+
 class Window {
  public:
   // Opens a window and a Vulkan device that can present to it (`device` as for VulkanContext). Throws with the
@@ -38,6 +48,8 @@ class Window {
   // Handles window events: returns the keys pressed and moves the camera with the mouse.
   WindowKeys poll();
   [[nodiscard]] OrbitCamera& camera();
+  // Hands the left and right buttons and the wheel (with a button held) to `listener` (see PointerListener).
+  void setPointerListener(PointerListener listener);
   // Renders `frame` and shows it (the renderer's image scaled to the window). Waits until it is presented.
   void present(Renderer& renderer, RenderFrame frame);
 

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "experiment_plot.h"
 #include "experiments.h"
 #include "osc_events.h"
 #include "run_output.h"
@@ -88,6 +89,10 @@ int runPhysicsExperiment(const RunOptions& o) {
                             {"relative_error", m.relativeError()}};
   std::ofstream(o.outDir / "experiment.json") << j.dump(2) << '\n';
   std::printf("%-28s %s\n", "written to", (o.outDir / "experiment.json").string().c_str());
+  if (!m.measuredPoints.empty()) {
+    writeExperimentPlot(o.outDir / "experiment.svg", m);
+    std::printf("%-28s %s\n", "plot", (o.outDir / "experiment.svg").string().c_str());
+  }
   return 0;
 }
 

@@ -80,8 +80,19 @@ Measurement catenoid(const Params& p) {
   const Vec3 c(0, 1.5f, 0);
   Simulation sim(p, generateTube(p, c, R, d, 64), WandState{});
   run(sim, WandState{}, 100);  // 2 s
-  return {"catenoid", "neck radius between rings of R = 0.3 m, d = R", "m", neckRadius(sim.film(), c),
-          catenoidNeck(R, d), "r(z) = a cosh(z / a) through the rings: R = a cosh(d / 2a)"};
+  Measurement m{"catenoid", "neck radius between rings of R = 0.3 m, d = R", "m", neckRadius(sim.film(), c),
+                catenoidNeck(R, d), "r(z) = a cosh(z / a) through the rings: R = a cosh(d / 2a)"};
+  m.xLabel = "z (m)";
+  m.yLabel = "distance from the axis r (m)";
+  for (size_t i = 0; i < sim.film().state.size(); ++i) {
+    const Vec3 q = sim.film().state.position.get(i) - c;
+    m.measuredPoints.emplace_back(q.z(), std::hypot(q.x(), q.y()));
+  }
+  for (int k = 0; k <= 100; ++k) {
+    const double z = -0.5 * d + d * static_cast<double>(k) / 100.0;
+    m.analyticCurve.emplace_back(z, m.analytic * std::cosh(z / m.analytic));
+  }
+  return m;
 }
 
 // The neck after `seconds` of relaxing, 0 once it has pinched to a tenth of R.
@@ -150,18 +161,29 @@ Measurement waves(Params p) {
   }
   sim.stepper().load(p, sim.film());
   std::vector<double> crossings;  // times the middle passes z = 0 going down
+  std::vector<std::pair<double, double>> trace = {{0.0, sim.film().state.position.z[middle]}};
   float previous = sim.film().state.position.z[middle];
   for (int f = 1; f <= 400 && crossings.size() < 4; ++f) {
     sim.advanceFrame(ring.wands);
     const float z = sim.film().state.position.z[middle];
+    trace.emplace_back(static_cast<double>(p.frameTime) * f, z);
     if (previous > 0 && z <= 0) crossings.push_back(p.frameTime * (static_cast<double>(f - 1) + previous / (previous - z)));
     previous = z;
   }
   if (crossings.size() < 3) throw std::runtime_error("waves: the film did not oscillate");
   const double period = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
-  return {"waves", "transverse wave speed on a 3.5 um film (fundamental mode of a 0.35 m ring)", "m/s",
-          (2.0 * kPi / period) * a / 2.405,
-          std::sqrt(2.0 * p.surfaceTension / (p.liquidDensity * initialThickness(p))), "c = sqrt(2 gamma / (rho h))"};
+  Measurement m{"waves", "transverse wave speed on a 3.5 um film (fundamental mode of a 0.35 m ring)", "m/s",
+                (2.0 * kPi / period) * a / 2.405,
+                std::sqrt(2.0 * p.surfaceTension / (p.liquidDensity * initialThickness(p))), "c = sqrt(2 gamma / (rho h))"};
+  m.xLabel = "time (s)";
+  m.yLabel = "displacement of the middle (m)";
+  m.measuredPoints = std::move(trace);
+  const double omega = 2.405 * m.analytic / a, amplitude = m.measuredPoints.front().second;
+  for (int k = 0; k <= 200; ++k) {
+    const double t = m.measuredPoints.back().first * k / 200.0;
+    m.analyticCurve.emplace_back(t, amplitude * std::cos(omega * t));
+  }
+  return m;
 }
 
 Measurement bubbleBurst(Params p) {

@@ -5,6 +5,7 @@
 
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "simulation.h"
@@ -12,12 +13,19 @@
 namespace gb {
 
 struct Measurement {
+  Measurement(std::string experiment_, std::string quantity_, std::string unit_, double measured_, double analytic_,
+              std::string law_)
+      : experiment(std::move(experiment_)), quantity(std::move(quantity_)), unit(std::move(unit_)),
+        measured(measured_), analytic(analytic_), law(std::move(law_)) {}
   std::string experiment;  // catenoid, catenoid-critical, young-laplace, waves, minimal-surface, flat-disc, bubble-burst
   std::string quantity;    // what was measured, in words
   std::string unit;
   double measured = 0;
   double analytic = 0;
   std::string law;         // the formula the analytic value comes from
+  // What a plot of the experiment shows, when it has one: the film's points against the analytic curve.
+  std::string xLabel, yLabel;
+  std::vector<std::pair<double, double>> measuredPoints, analyticCurve;
   [[nodiscard]] double relativeError() const { return analytic != 0 ? (measured - analytic) / analytic : 0; }
 };
 

@@ -4,6 +4,9 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <optional>
 #include <fstream>
 #include <functional>
 #include <map>
@@ -93,6 +96,14 @@ class TableReader {
   std::string table_;
   std::map<std::string, std::function<void(const toml::node&)>> handlers_;
 };
+
+// The orbit camera that sees its target from `eye` (OrbitCamera::position inverted).
+void lookFrom(const Vec3& eye, OrbitCamera& camera) {
+  const Vec3 back = eye - camera.target;
+  camera.distance = std::max(back.norm(), 0.3f);
+  camera.pitch = std::asin(std::clamp(back.y() / camera.distance, -1.0f, 1.0f));
+  camera.yaw = std::atan2(back.x(), back.z());
+}
 
 const toml::table& subTable(const std::string& source, const toml::node& node, const std::string& name) {
   const toml::table* table = node.as_table();
@@ -186,15 +197,25 @@ Scene parseScene(std::string_view text, const std::string& source, const std::fi
   top.on("output", [&](const toml::node& n) { output.read(subTable(source, n, "output")); });
 
   TableReader view(source, "render");
-  view.on("width", [&](const toml::node& n) { scene.view.width = view.integer(n, "width", 16, 16384); });
-  view.on("height", [&](const toml::node& n) { scene.view.height = view.integer(n, "height", 16, 16384); });
-  view.on("colouring", [&](const toml::node& n) { scene.view.colouring = view.text(n, "colouring", {"interference", "thickness", "air"}); });
-  view.on("video", [&](const toml::node& n) { scene.view.video = view.boolean(n, "video"); });
-  view.on("camera", [&](const toml::node& n) { scene.view.camera = view.point(n, "camera"); });
-  view.on("target", [&](const toml::node& n) { scene.view.target = view.point(n, "target"); });
+  RenderOutputOptions& render = run.render;
+  std::optional<std::array<float, 3>> eye;
+  view.on("enabled", [&](const toml::node& n) { render.enabled = view.boolean(n, "enabled"); });
+  view.on("width", [&](const toml::node& n) { render.image.width = view.integer(n, "width", 16, 16384); });
+  view.on("height", [&](const toml::node& n) { render.image.height = view.integer(n, "height", 16, 16384); });
+  view.on("colouring", [&](const toml::node& n) {
+    render.image.colouring = colouringFromName(view.text(n, "colouring", {"interference", "thickness", "airflow"}));
+  });
+  view.on("every", [&](const toml::node& n) { render.pngEvery = view.integer(n, "every", 0, 1000000); });
+  view.on("video", [&](const toml::node& n) { render.video = view.boolean(n, "video") ? "render.mp4" : ""; });
+  view.on("camera", [&](const toml::node& n) { eye = view.point(n, "camera"); });
+  view.on("target", [&](const toml::node& n) {
+    const auto t = view.point(n, "target");
+    render.camera.target = Vec3(t[0], t[1], t[2]);
+  });
   top.on("render", [&](const toml::node& n) { view.read(subTable(source, n, "render")); });
 
   top.read(root);
+  if (eye) lookFrom(Vec3((*eye)[0], (*eye)[1], (*eye)[2]), render.camera);
   if (scene.name.empty()) throw SceneError(source + ": the scene has no name (name = \"...\")");
   return scene;
 }

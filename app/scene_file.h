@@ -3,7 +3,6 @@
 // and render settings and the duration of a run. The paper's figures are built-in scenes (scenes/*.toml,
 // embedded at build time), listed by `giantbubble scenes` and run by `giantbubble run --scene NAME`.
 
-#include <array>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -20,21 +19,10 @@ class SceneError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// How a scene wants to be looked at; used by the renderer.
-struct SceneView {
-  int width = 1280;
-  int height = 720;
-  std::string colouring = "interference";  // interference, thickness or air
-  bool video = false;                      // write an MP4 of the rendered frames
-  std::array<float, 3> camera = {0.0f, 1.5f, 3.5f};  // eye position (m, world)
-  std::array<float, 3> target = {0.0f, 1.2f, 0.0f};  // point looked at
-};
-
 struct Scene {
   std::string name;
   std::string description;  // one line, for `giantbubble scenes`
-  RunOptions run;           // everything a run needs, from the defaults the scene did not change
-  SceneView view;
+  RunOptions run;           // everything a run needs (render settings in run.render), from the defaults
 };
 
 // Parses a scene. `source` names it in messages; relative input paths resolve against `baseDir`. Unknown

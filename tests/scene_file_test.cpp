@@ -90,7 +90,8 @@ TEST(SceneFile, MalformedTomlIsNamedWithItsLine) {
 TEST(SceneFile, AnAcceptedSceneSetsWhatItSays) {
   const Scene s = parseScene("name = \"mine\"\nduration = 2.5\nburst_at = 1.0\n[tool]\nkind = \"ring\"\n"
                              "[input]\nsource = \"script:circles\"\nspeed = 1.5\n[params]\nsticky = 28.0\n"
-                             "[render]\nwidth = 640\nheight = 360\ncolouring = \"thickness\"\n",
+                             "[render]\nwidth = 640\nheight = 360\ncolouring = \"thickness\"\n"
+                             "camera = [0.0, 1.2, 3.0]\ntarget = [0.0, 1.2, 0.0]\nvideo = false\n",
                              "test.toml", std::filesystem::current_path());
   EXPECT_EQ(s.run.duration, 2.5);
   EXPECT_EQ(s.run.burstAt, 1.0);
@@ -98,8 +99,11 @@ TEST(SceneFile, AnAcceptedSceneSetsWhatItSays) {
   EXPECT_EQ(s.run.input.spec(), "script:circles");
   EXPECT_EQ(s.run.gestureOptions.speed, 1.5f);
   EXPECT_EQ(s.run.params.sticky, 28.0f);
-  EXPECT_EQ(s.view.width, 640);
-  EXPECT_EQ(s.view.colouring, "thickness");
+  EXPECT_EQ(s.run.render.image.width, 640);
+  EXPECT_EQ(s.run.render.image.colouring, Colouring::Thickness);
+  EXPECT_TRUE(s.run.render.video.empty());
+  // The camera looks at the target from 3 m in front of it: the same eye position back (float rounding).
+  EXPECT_LT((s.run.render.camera.position() - Vec3(0.0f, 1.2f, 3.0f)).norm(), 1e-5f);
 }
 
 }  // namespace

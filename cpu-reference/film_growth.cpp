@@ -89,17 +89,6 @@ std::vector<uint32_t> triangulateStrip(const WireUnrolling& wire, const std::vec
   return triangles;
 }
 
-// Flips the strip's triangles if they run the old ring's edge loop[0] -> loop[1] the way the film does:
-// the two must traverse every shared edge in opposite directions.
-void orientLike(const std::vector<uint32_t>& loop, std::vector<uint32_t>& strip) {
-  bool sameWay = false;
-  for (size_t t = 0; t < strip.size(); t += 3)
-    for (int k = 0; k < 3; ++k)
-      if (strip[t + k] == loop[0] && strip[t + (k + 1) % 3] == loop[1]) sameWay = true;
-  if (sameWay)
-    for (size_t t = 0; t < strip.size(); t += 3) std::swap(strip[t + 1], strip[t + 2]);
-}
-
 // The released ring's springs to the film were stretched past growthStretch and are now half as long: the
 // film there has been drawn out of the wire, so they rest as a new film's springs do, prestrained at their
 // current length (the wire's payout of new film relaxes the tension it had).
@@ -171,19 +160,22 @@ float wireRungStretch(const Film& film) {
 }
 
 size_t payOutFilmAtWire(const Params& params, Film& film) {
-  if (film.wireLiquid <= 0.0f || intactWireLoop(film).empty()) return 0;
+  if (film.wireLiquid <= 0.0f) return 0;
   Topology& topo = film.topology;
   const State& s = film.state;
-  size_t lengthened = 0;
+  std::vector<std::pair<size_t, float>> stretched;  // rung, its length
   for (size_t k = 0; k < topo.springCount(); ++k) {
     const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
     if (!isRung(topo, a, b) && !isRung(topo, b, a)) continue;
     const float length = (s.position.get(a) - s.position.get(b)).norm();
-    if (length <= params.growthStretch * topo.restLength[k]) continue;
-    topo.restLength[k] = length * (1.0f - params.springPrestrain);  // as taut as a new film, no more
-    ++lengthened;
+    if (length > params.growthStretch * topo.restLength[k]) stretched.emplace_back(k, length);
   }
-  return lengthened;
+  // The loop test walks every triangle's edges: only when there is something to pay out (every frame the wands
+  // move, otherwise).
+  if (stretched.empty() || intactWireLoop(film).empty()) return 0;
+  for (const auto& [k, length] : stretched)
+    topo.restLength[k] = length * (1.0f - params.springPrestrain);  // as taut as a new film, no more
+  return stretched.size();
 }
 
 float wireBandWidth(const Film& film) {
@@ -238,7 +230,7 @@ GrowthEvent growFilmAtWire(const Params& params, const WireFrame& frame, float w
   }
 
   std::vector<uint32_t> strip = triangulateStrip(WireUnrolling(frame), loop, oldU, newRing, newU, spacing);
-  orientLike(loop, strip);
+  orientAgainstLoop(loop, strip);
   event.trianglesAdded = strip.size() / 3;
   std::vector<uint32_t> triangles = grown.topology.triangles;
   triangles.insert(triangles.end(), strip.begin(), strip.end());

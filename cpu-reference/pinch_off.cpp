@@ -138,8 +138,8 @@ std::vector<uint32_t> ringCap(const State& s, const std::vector<uint32_t>& loop,
   return capTriangles;
 }
 
-// Flips the seam's triangles if they run the loop's edge loop[0] -> loop[1] the way the film does: the two
-// must traverse every shared edge in opposite directions.
+}  // namespace
+
 void orientAgainstLoop(const std::vector<uint32_t>& loop, std::vector<uint32_t>& seam) {
   bool sameWay = false;
   for (size_t t = 0; t < seam.size(); t += 3)
@@ -148,8 +148,6 @@ void orientAgainstLoop(const std::vector<uint32_t>& loop, std::vector<uint32_t>&
   if (sameWay)
     for (size_t t = 0; t < seam.size(); t += 3) std::swap(seam[t + 1], seam[t + 2]);
 }
-
-}  // namespace
 
 bool pinchOff(const Params& params, Film& film) {
   State& s = film.state;

@@ -12,6 +12,11 @@ namespace gb {
 // for a closed film. Throws std::runtime_error if the boundary is not a single loop (a torn film).
 std::vector<uint32_t> boundaryLoop(const Topology& topology);
 
+// Turns the triangles sewn onto a film's boundary loop (a pinch-off seam, a strip of new film at the wire) so
+// that they cross each loop edge the other way round from the film: flips them all if they run
+// loop[0] -> loop[1] as the film does.
+void orientAgainstLoop(const std::vector<uint32_t>& loop, std::vector<uint32_t>& seam);
+
 // Caps the loop with rings shrunk towards its centroid (about one ring per loop spacing, each with fewer
 // particles) and a particle at the centroid; new springs rest prestrained at their length, new particles get
 // the film's material. Sets the reference volume and origin of Eq. (11) and clears the wire flags. Returns

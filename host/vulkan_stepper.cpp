@@ -146,6 +146,21 @@ struct VulkanStepper::Impl {
     writeDescriptorSets();
   }
 
+  // The mesh: alive flags, wire flags, triangles, rest lengths, the CSR one-ring and the contacts. A load
+  // writes it with the state; a burst (updateTopology) writes only it.
+  void writeMesh(const std::vector<uint32_t>& alive, const Topology& t) {
+    writeVector(buffer(GB_BINDING_ALIVE), alive);
+    writeVector(buffer(GB_BINDING_BOUNDARY), t.boundary);
+    writeVector(buffer(GB_BINDING_TRIANGLES), t.triangles);
+    writeVector(buffer(GB_BINDING_REST_LENGTH), t.restLength);
+    writeVector(buffer(GB_BINDING_SPRING_OFFSET), t.springOffset);
+    writeVector(buffer(GB_BINDING_SPRING_INDEX), t.springIndex);
+    writeVector(buffer(GB_BINDING_SPRING_NEIGHBOUR), t.springNeighbour);
+    writeVector(buffer(GB_BINDING_TRIANGLE_OFFSET), t.triangleOffset);
+    writeVector(buffer(GB_BINDING_TRIANGLE_INDEX), t.triangleIndex);
+    writeVector(buffer(GB_BINDING_CONTACTS), t.contacts);
+  }
+
   void writeDescriptorSets() {
     std::vector<vk::DescriptorBufferInfo> infos;
     infos.reserve(2 * GB_BINDING_COUNT);
@@ -307,16 +322,7 @@ void VulkanStepper::load(const Params& params, Film& film) {
   writeVector(m.buffer(GB_BINDING_DRAIN_OUTFLOW), s.drainOutflow);
   writeVector(m.buffer(GB_BINDING_DRAIN_WEIGHT), s.drainWeight);
   writeVector(m.buffer(GB_BINDING_FRAME_PARAM), s.frameParam);
-  writeVector(m.buffer(GB_BINDING_ALIVE), s.alive);
-  writeVector(m.buffer(GB_BINDING_BOUNDARY), t.boundary);
-  writeVector(m.buffer(GB_BINDING_TRIANGLES), t.triangles);
-  writeVector(m.buffer(GB_BINDING_REST_LENGTH), t.restLength);
-  writeVector(m.buffer(GB_BINDING_SPRING_OFFSET), t.springOffset);
-  writeVector(m.buffer(GB_BINDING_SPRING_INDEX), t.springIndex);
-  writeVector(m.buffer(GB_BINDING_SPRING_NEIGHBOUR), t.springNeighbour);
-  writeVector(m.buffer(GB_BINDING_TRIANGLE_OFFSET), t.triangleOffset);
-  writeVector(m.buffer(GB_BINDING_TRIANGLE_INDEX), t.triangleIndex);
-  writeVector(m.buffer(GB_BINDING_CONTACTS), t.contacts);
+  m.writeMesh(s.alive, t);
 
   m.sets.clear();
   const vk::DescriptorPoolSize poolSize(vk::DescriptorType::eStorageBuffer, 2 * GB_BINDING_COUNT);
@@ -421,16 +427,7 @@ void VulkanStepper::updateTopology(const Params& params, Film& film) {
   }
   // A burst only shrinks the mesh: the buffers keep their size, the counts say how much of them is used.
   m.triangles = static_cast<uint32_t>(t.triangleCount());
-  writeVector(m.buffer(GB_BINDING_ALIVE), film.state.alive);
-  writeVector(m.buffer(GB_BINDING_BOUNDARY), t.boundary);
-  writeVector(m.buffer(GB_BINDING_TRIANGLES), t.triangles);
-  writeVector(m.buffer(GB_BINDING_REST_LENGTH), t.restLength);
-  writeVector(m.buffer(GB_BINDING_SPRING_OFFSET), t.springOffset);
-  writeVector(m.buffer(GB_BINDING_SPRING_INDEX), t.springIndex);
-  writeVector(m.buffer(GB_BINDING_SPRING_NEIGHBOUR), t.springNeighbour);
-  writeVector(m.buffer(GB_BINDING_TRIANGLE_OFFSET), t.triangleOffset);
-  writeVector(m.buffer(GB_BINDING_TRIANGLE_INDEX), t.triangleIndex);
-  writeVector(m.buffer(GB_BINDING_CONTACTS), t.contacts);
+  m.writeMesh(film.state.alive, t);
 }
 
 void VulkanStepper::updateRestLengths(const Film& film) {

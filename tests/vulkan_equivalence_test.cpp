@@ -36,6 +36,14 @@ double worstParticleDistance(const Film& a, const Film& b) {
   return worst;
 }
 
+// Advances both simulations `frames` frames with the same wands.
+void advanceBoth(Simulation& cpu, Simulation& gpu, const WandState& wands, int frames) {
+  for (int f = 0; f < frames; ++f) {
+    cpu.advanceFrame(wands);
+    gpu.advanceFrame(wands);
+  }
+}
+
 std::vector<float> flatten(const Vec3Array& a) {
   std::vector<float> v = a.x;
   v.insert(v.end(), a.y.begin(), a.y.end());
@@ -241,11 +249,6 @@ INSTANTIATE_TEST_SUITE_P(Scenes, VulkanScene,
                          ::testing::Values(SceneCase{"two_wand_stroke", false}, SceneCase{"wobbling_bubble", true}),
                          [](const auto& test) { return std::string(test.param.name); });
 
-}  // namespace
-}  // namespace gb
-
-namespace gb {
-namespace {
 
 // A topology event (a burst in the paper's ring-per-frame mode, whose front depends on the mesh only)
 // leaves both backends with identical particle and triangle arrays, and they keep stepping alike after it.
@@ -257,10 +260,7 @@ TEST(VulkanEquivalence, ATopologyEventLeavesIdenticalArrays) {
   const WandState wands = gestureAt(Gesture::Straight, GestureOptions{}, 0.0);
   Simulation cpu(p, WandTool{}, wands, std::make_unique<CpuStepper>());
   Simulation gpu(p, WandTool{}, wands, std::make_unique<VulkanStepper>(device));
-  for (int f = 0; f < 5; ++f) {
-    cpu.advanceFrame(wands);
-    gpu.advanceFrame(wands);
-  }
+  advanceBoth(cpu, gpu, wands, 5);
   cpu.startBurst(cpu.topParticle());
   gpu.startBurst(gpu.topParticle());
   for (int f = 0; f < 8; ++f) {
@@ -278,11 +278,6 @@ TEST(VulkanEquivalence, ATopologyEventLeavesIdenticalArrays) {
   EXPECT_EQ(device->validationErrors(), 0u);
 }
 
-}  // namespace
-}  // namespace gb
-
-namespace gb {
-namespace {
 
 // Self-collision contacts act the same on both backends: two sheets colliding.
 TEST(VulkanEquivalence, CollidingSheetsMatch) {
@@ -296,10 +291,7 @@ TEST(VulkanEquivalence, CollidingSheetsMatch) {
   // Bouncing sheets switch contacts on and off, which amplifies the backends' ulp differences about 3x per
   // frame (measured: 1e-7 m after one frame, 3e-5 m after five, 8e-3 m after ten): compare over the first
   // five frames of contact, where a wrong contact force would already show as millimetres.
-  for (int f = 0; f < 5; ++f) {
-    cpu.advanceFrame(WandState{});
-    gpu.advanceFrame(WandState{});
-  }
+  advanceBoth(cpu, gpu, WandState{}, 5);
   EXPECT_GT(cpu.film().topology.contacts.back(), 0u) << "the sheets must be in contact";
   const double worst = worstParticleDistance(cpu.film(), gpu.film());
   std::printf("colliding sheets: worst particle distance %.2e m\n", worst);
@@ -307,11 +299,6 @@ TEST(VulkanEquivalence, CollidingSheetsMatch) {
   EXPECT_EQ(device->validationErrors(), 0u);
 }
 
-}  // namespace
-}  // namespace gb
-
-namespace gb {
-namespace {
 
 // Film paid out at the wire between frames reaches the device as new rest lengths (Stepper::updateRestLengths):
 // a film whose rungs rest at 60% of their length pays out once the wands move, on both backends alike.
@@ -341,11 +328,6 @@ TEST(VulkanEquivalence, RestLengthsPaidOutAtTheWireMatch) {
   EXPECT_EQ(device->validationErrors(), 0u);
 }
 
-}  // namespace
-}  // namespace gb
-
-namespace gb {
-namespace {
 
 // The physical tension model (area-gradient force, film tension from the thickness, pinned rings) on both
 // backends: a tube relaxing towards a catenoid.
@@ -357,10 +339,7 @@ TEST(VulkanEquivalence, PhysicalTensionCatenoidMatches) {
   const Film tube = generateTube(p, Vec3(0, 1.5f, 0), 0.3f, 0.3f, 48);
   Simulation cpu(p, tube, WandState{}, std::make_unique<CpuStepper>());
   Simulation gpu(p, tube, WandState{}, std::make_unique<VulkanStepper>(device));
-  for (int f = 0; f < 10; ++f) {
-    cpu.advanceFrame(WandState{});
-    gpu.advanceFrame(WandState{});
-  }
+  advanceBoth(cpu, gpu, WandState{}, 10);
   const double moved = (cpu.film().state.position.get(tube.state.size() / 2) - tube.state.position.get(tube.state.size() / 2)).norm();
   ASSERT_GT(moved, 1e-3) << "the tube should be shrinking towards the catenoid";
   // Float rounding over 10 frames of a smooth, damped relaxation: measured 7e-7 m; 1e-5 m still fails a force

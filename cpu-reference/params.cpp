@@ -18,20 +18,48 @@ void requireRange(std::vector<std::string>& errors, const char* name, T value, T
   errors.push_back(msg.str());
 }
 
-#define GB_REAL(field) ParamField{#field, &Params::field, nullptr}
-#define GB_INTEGER(field) ParamField{#field, nullptr, &Params::field}
-// In the order of shared_params.h.
+#define GB_REAL(field, lo, hi, unit) ParamField{#field, &Params::field, nullptr, lo, hi, unit}
+#define GB_INTEGER(field, lo, hi) ParamField{#field, nullptr, &Params::field, lo, hi, ""}
+// In the order of shared_params.h, each with its valid range.
 constexpr std::array kFields = {
-    GB_REAL(frameTime), GB_REAL(stabilitySafety), GB_INTEGER(maxSubsteps), GB_REAL(elasticityWeight),
-    GB_REAL(elasticityThickness), GB_REAL(areaWeight), GB_REAL(marangoniLifetime), GB_REAL(springPrestrain),
-    GB_REAL(springDamping), GB_REAL(filmInertia), GB_REAL(airDrag), GB_REAL(gravityX), GB_REAL(gravityY),
-    GB_REAL(gravityZ), GB_REAL(airDirectionThreshold), GB_REAL(airInflowDistance), GB_REAL(airPressureGain),
-    GB_REAL(pressureCoefficient), GB_REAL(thicknessThreshold), GB_REAL(sticky), GB_REAL(drainageRate),
-    GB_REAL(surfaceTension), GB_REAL(liquidDensity), GB_INTEGER(holeOpening), GB_REAL(aerosolLifetime),
-    GB_REAL(aerosolDrag), GB_REAL(collisionThreshold), GB_REAL(collisionDistance), GB_REAL(collisionStiffness),
-    GB_REAL(collisionDamping), GB_REAL(pinchDistance), GB_REAL(solution), GB_INTEGER(particlesAtFullSolution),
-    GB_REAL(solutionReserve), GB_REAL(growthStretch), GB_INTEGER(airTransfer),
-    GB_INTEGER(tensionModel), GB_REAL(gibbsElasticity)};
+    GB_REAL(frameTime, 1e-5, 0.1, " s"),
+    GB_REAL(stabilitySafety, 0.01, 1.0, ""),
+    GB_INTEGER(maxSubsteps, 1, 1000000),
+    GB_REAL(elasticityWeight, 1e-4, 1e4, " N/m"),
+    GB_REAL(elasticityThickness, 1e-9, 1e-3, " m"),
+    GB_REAL(areaWeight, 1e-4, 10.0, ""),
+    GB_REAL(marangoniLifetime, 0.0, 1e6, " s"),
+    GB_REAL(springPrestrain, 0.0, 0.5, ""),
+    GB_REAL(springDamping, 0.0, 10.0, " N s/m"),
+    GB_REAL(filmInertia, 1e-6, 100.0, " kg/m^2"),
+    GB_REAL(airDrag, 0.0, 100.0, " Pa s/m"),
+    GB_REAL(gravityX, -100.0, 100.0, " m/s^2"),
+    GB_REAL(gravityY, -100.0, 100.0, " m/s^2"),
+    GB_REAL(gravityZ, -100.0, 100.0, " m/s^2"),
+    GB_REAL(airDirectionThreshold, 0.0, 1.0, ""),
+    GB_REAL(airInflowDistance, 1e-3, 100.0, " m"),
+    GB_REAL(airPressureGain, 0.0, 1e4, " Pa s/m^3"),
+    GB_REAL(pressureCoefficient, 1.0, 1e7, " Pa"),
+    GB_REAL(thicknessThreshold, 0.0, 1e-3, " m"),
+    GB_REAL(sticky, 1e-3, 1e6, ""),
+    GB_REAL(drainageRate, 0.0, 1e3, " 1/s"),
+    GB_REAL(surfaceTension, 1e-4, 1.0, " N/m"),
+    GB_REAL(liquidDensity, 1.0, 1e5, " kg/m^3"),
+    GB_INTEGER(holeOpening, 0, 1),
+    GB_REAL(aerosolLifetime, 0.0, 1e3, " s"),
+    GB_REAL(aerosolDrag, 0.0, 1e3, " 1/s"),
+    GB_REAL(collisionThreshold, 0.0, 1e3, ""),
+    GB_REAL(collisionDistance, 0.0, 1.0, " m"),
+    GB_REAL(collisionStiffness, 0.0, 1e4, " N/m"),
+    GB_REAL(collisionDamping, 0.0, 10.0, " N s/m"),
+    GB_REAL(pinchDistance, 0.0, 10.0, " m"),
+    GB_REAL(solution, 0.01, 1.0, ""),
+    GB_INTEGER(particlesAtFullSolution, 16, 50000000),
+    GB_REAL(solutionReserve, 0.0, 100.0, ""),
+    GB_REAL(growthStretch, 1.05, 100.0, ""),
+    GB_INTEGER(airTransfer, 0, 1),
+    GB_INTEGER(tensionModel, 0, 1),
+    GB_REAL(gibbsElasticity, 0.0, 1.0, " N/m")};
 #undef GB_REAL
 #undef GB_INTEGER
 
@@ -61,44 +89,12 @@ void setParameter(Params& params, const std::string& name, double value) {
 
 std::vector<std::string> validate(const Params& p) {
   std::vector<std::string> e;
-  requireRange(e, "frameTime", p.frameTime, 1e-5f, 0.1f, " s");
-  requireRange(e, "stabilitySafety", p.stabilitySafety, 0.01f, 1.0f, "");
-  requireRange(e, "maxSubsteps", p.maxSubsteps, 1, 1000000, "");
-  requireRange(e, "elasticityWeight", p.elasticityWeight, 1e-4f, 1e4f, " N/m");
-  requireRange(e, "elasticityThickness", p.elasticityThickness, 1e-9f, 1e-3f, " m");
-  requireRange(e, "areaWeight", p.areaWeight, 1e-4f, 10.0f, "");
-  requireRange(e, "marangoniLifetime", p.marangoniLifetime, 0.0f, 1e6f, " s");
-  requireRange(e, "springPrestrain", p.springPrestrain, 0.0f, 0.5f, "");
-  requireRange(e, "springDamping", p.springDamping, 0.0f, 10.0f, " N s/m");
-  requireRange(e, "filmInertia", p.filmInertia, 1e-6f, 100.0f, " kg/m^2");
-  requireRange(e, "airDrag", p.airDrag, 0.0f, 100.0f, " Pa s/m");
-  requireRange(e, "gravityX", p.gravityX, -100.0f, 100.0f, " m/s^2");
-  requireRange(e, "gravityY", p.gravityY, -100.0f, 100.0f, " m/s^2");
-  requireRange(e, "gravityZ", p.gravityZ, -100.0f, 100.0f, " m/s^2");
-  requireRange(e, "airDirectionThreshold", p.airDirectionThreshold, 0.0f, 1.0f, "");
-  requireRange(e, "airInflowDistance", p.airInflowDistance, 1e-3f, 100.0f, " m");
-  requireRange(e, "airPressureGain", p.airPressureGain, 0.0f, 1e4f, " Pa s/m^3");
-  requireRange(e, "pressureCoefficient", p.pressureCoefficient, 1.0f, 1e7f, " Pa");
-  requireRange(e, "thicknessThreshold", p.thicknessThreshold, 0.0f, 1e-3f, " m");
-  requireRange(e, "sticky", p.sticky, 1e-3f, 1e6f, "");
-  requireRange(e, "collisionDistance", p.collisionDistance, 0.0f, 1.0f, " m");
-  requireRange(e, "collisionStiffness", p.collisionStiffness, 0.0f, 1e4f, " N/m");
-  requireRange(e, "collisionDamping", p.collisionDamping, 0.0f, 10.0f, " N s/m");
-  requireRange(e, "drainageRate", p.drainageRate, 0.0f, 1e3f, " 1/s");
-  requireRange(e, "surfaceTension", p.surfaceTension, 1e-4f, 1.0f, " N/m");
-  requireRange(e, "liquidDensity", p.liquidDensity, 1.0f, 1e5f, " kg/m^3");
-  requireRange(e, "holeOpening", p.holeOpening, 0, 1, "");
-  requireRange(e, "aerosolLifetime", p.aerosolLifetime, 0.0f, 1e3f, " s");
-  requireRange(e, "aerosolDrag", p.aerosolDrag, 0.0f, 1e3f, " 1/s");
-  requireRange(e, "collisionThreshold", p.collisionThreshold, 0.0f, 1e3f, "");
-  requireRange(e, "pinchDistance", p.pinchDistance, 0.0f, 10.0f, " m");
-  requireRange(e, "solution", p.solution, 0.01f, 1.0f, "");
-  requireRange(e, "solutionReserve", p.solutionReserve, 0.0f, 100.0f, "");
-  requireRange(e, "growthStretch", p.growthStretch, 1.05f, 100.0f, "");
-  requireRange(e, "airTransfer", p.airTransfer, 0, 1, "");
-  requireRange(e, "tensionModel", p.tensionModel, 0, 1, "");
-  requireRange(e, "gibbsElasticity", p.gibbsElasticity, 0.0f, 1.0f, " N/m");
-  requireRange(e, "particlesAtFullSolution", p.particlesAtFullSolution, 16, 50000000, "");
+  for (const ParamField& f : kFields) {
+    if (f.real)
+      requireRange(e, f.name, p.*f.real, static_cast<float>(f.lo), static_cast<float>(f.hi), f.unit);
+    else
+      requireRange(e, f.name, p.*f.integer, static_cast<int>(f.lo), static_cast<int>(f.hi), f.unit);
+  }
   return e;
 }
 

@@ -13,12 +13,15 @@ namespace gb {
 // Initial film thickness e0 (m): the paper's area weight w_e read as liquid per rest area, w_e x 100 um.
 inline float initialThickness(const Params& p) { return p.areaWeight * 100e-6f; }
 
-// The parameters by name, for the command line (--param NAME=VALUE) and scene files: each field of Params
-// once, as a member pointer of its type (a test checks that they cover the whole block).
+// The parameters by name, for the command line (--param NAME=VALUE), scene files and validate(): each field
+// of Params once, as a member pointer of its type, with its valid range (a test checks that they cover the
+// whole block).
 struct ParamField {
   const char* name;
   float Params::*real = nullptr;   // set for float parameters
   int Params::*integer = nullptr;  // set for int parameters
+  double lo = 0, hi = 0;           // valid range, inclusive
+  const char* unit = "";           // for messages, with its leading space
 };
 std::span<const ParamField> paramFields();
 

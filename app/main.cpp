@@ -74,8 +74,9 @@ int main(int argc, char** argv) {
   std::string tool = run.tool.kind == gb::ToolKind::Ring ? "ring" : "two-wands";
   std::vector<std::string> assignments;
   CLI::App* runCmd = app.add_subcommand("run", "simulate a performance headless and write its outputs");
-  runCmd->add_option("--scene", sceneName, "a built-in scene (giantbubble scenes lists them) or a scene file (.toml); "
-                                           "the other options change it");
+  runCmd->add_option("--scene", sceneName,
+                     "a built-in scene (giantbubble scenes lists them) or a scene file (.toml); "
+                     "the other options change it");
   runCmd->add_option("--duration", run.duration, "simulated seconds")->check(CLI::Range(0.001, 3600.0));
   runCmd->add_option("--out", run.outDir, "output folder (created if missing)");
   runCmd->add_option("--ply-every", run.plyEvery, "write a PLY mesh every N frames, 0 for none")
@@ -85,13 +86,14 @@ int main(int argc, char** argv) {
   runCmd->add_option("--tool", tool, "bubble tool")->check(CLI::IsMember({"two-wands", "ring"}));
   gb::addInputOptions(runCmd, run.input);  // --input, --gesture and the capture options
   runCmd->add_option("--speed", run.gestureOptions.speed, "peak wand speed (m/s)")->check(CLI::Range(0.0, 20.0));
-  runCmd->add_option("--solution", run.params.solution, "remaining soap solution (0, 1]")
-      ->check(CLI::Range(0.01, 1.0));
+  runCmd->add_option("--solution", run.params.solution, "remaining soap solution (0, 1]")->check(CLI::Range(0.01, 1.0));
   runCmd->add_option("--particles", run.params.particlesAtFullSolution, "particles of a film at full solution")
       ->check(CLI::Range(16, 50000000));
   runCmd->add_option("--param", assignments, "set a model parameter, NAME=VALUE (repeatable)");
   runCmd->add_option("--burst-at", run.burstAt, "poke the top of the film at this time (s); negative: never");
   runCmd->add_flag("!--no-progress", run.progress, "do not show the progress bar");
+  runCmd->add_flag("--realtime", run.realtime,
+                   "keep the wall clock: wait when ahead of it, take fewer solver sweeps when behind (a show's pace)");
   runCmd->add_option("--osc", run.osc, "send events and the bubble's size and position as OSC to HOST:PORT (UDP)");
   std::string backend = "auto";
   runCmd->add_option("--backend", backend, "cpu, vulkan, or auto (Vulkan on a GPU, else the CPU)")

@@ -1,20 +1,23 @@
 #include "run_command.h"
 
+#include <unistd.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <iostream>
+#include <nlohmann/json.hpp>
 #include <sstream>
-#include <unistd.h>
+#include <thread>
 
 #include "experiment_plot.h"
 #include "experiments.h"
 #include "osc_events.h"
+#include "realtime_pacer.h"
 #include "run_output.h"
-#include "thickness_image.h"
 #include "simulation.h"
+#include "thickness_image.h"
 #include "wand_log.h"
 
 namespace gb {
@@ -66,6 +69,7 @@ void printSummary(const FrameStats& first, const FrameStats& last, long frames, 
   std::printf("%-28s %zu\n", "triangles", last.triangles);
   std::printf("%-28s %.2f s (%ld frames x %d substeps)\n", "simulated", last.time, frames, substeps);
   std::printf("%-28s %.2f s (%.1f frames/s, %.0f substeps/s)\n", "wall time", wallSeconds, fps, fps * substeps);
+  std::printf("%-28s %.2f (simulated s per wall s)\n", "real-time factor", last.time / std::max(wallSeconds, 1e-9));
   std::printf("%-28s %.4f -> %.4f m^2\n", "film area", first.area, last.area);
   std::printf("%-28s %.4f -> %.4f m^3\n", "swept volume", first.volume, last.volume);
   std::printf("%-28s %.3f -> %.3f um\n", "mean thickness", first.meanThickness * 1e6, last.meanThickness * 1e6);
@@ -84,8 +88,12 @@ int runPhysicsExperiment(const RunOptions& o) {
   std::printf("\n%-28s %s\n%-28s %.6g %s\n%-28s %.6g %s (%s)\n", "measured", m.quantity.c_str(), "", m.measured,
               m.unit.c_str(), "analytic", m.analytic, m.unit.c_str(), m.law.c_str());
   if (m.analytic != 0) std::printf("%-28s %+.2f%%\n", "difference", 100.0 * m.relativeError());
-  const nlohmann::json j = {{"experiment", m.experiment}, {"quantity", m.quantity}, {"unit", m.unit},
-                            {"measured", m.measured},     {"analytic", m.analytic}, {"law", m.law},
+  const nlohmann::json j = {{"experiment", m.experiment},
+                            {"quantity", m.quantity},
+                            {"unit", m.unit},
+                            {"measured", m.measured},
+                            {"analytic", m.analytic},
+                            {"law", m.law},
                             {"relative_error", m.relativeError()}};
   std::ofstream(o.outDir / "experiment.json") << j.dump(2) << '\n';
   std::printf("%-28s %s\n", "written to", (o.outDir / "experiment.json").string().c_str());
@@ -146,8 +154,14 @@ int runSimulation(const RunOptions& o) {
   ProgressBar bar(frames);
   FrameStats last = first;
   const auto runStart = std::chrono::steady_clock::now();
+  RealTimePacer pacer({o.params.frameTime, sim.solverIterations(), 3, 1}, runStart);
   for (long frame = 1; frame <= frames; ++frame) {
     const double t = static_cast<double>(frame) * o.params.frameTime;
+    if (o.realtime) {  // the frame is shown when the wall clock reaches it: wait when ahead
+      std::this_thread::sleep_until(runStart + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                   std::chrono::duration<double>(t - o.params.frameTime)));
+      sim.setSolverIterations(pacer.sweeps());
+    }
     const WandFrame wands = input->at(t);  // a live camera may wait here for its next frame
     report(o.progress);
     wandLog.add(t, wands);
@@ -166,10 +180,12 @@ int runSimulation(const RunOptions& o) {
       if (o.plyEvery > 0) writePly(o.outDir / ("unstable_" + meshName(frame)), sim.film());
       if (renderer) renderer->finish();
       wandLog.writePlot(o.outDir / "wands.svg", "giantbubble run (unstable): " + input->describe());
-      record.writeJson(o.outDir / "stats.json", o.scene, "unstable at frame " + std::to_string(frame) + ": " + e.what());
+      record.writeJson(o.outDir / "stats.json", o.scene,
+                       "unstable at frame " + std::to_string(frame) + ": " + e.what());
       return 3;
     }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
+    pacer.record(1, ms, 0.0);
     last = sim.stats();
     events += describeEvents(sim.lastEvents());
     if (!events.empty() && events.back() == ' ') events.pop_back();
@@ -190,6 +206,7 @@ int runSimulation(const RunOptions& o) {
   if (renderer) renderer->finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
   wandLog.writePlot(o.outDir / "wands.svg", "giantbubble run: " + input->describe());
+  record.setRealTimeFactor(last.time / std::max(wall, 1e-9));
   record.writeJson(o.outDir / "stats.json", o.scene, "finished");
   printSummary(first, last, frames, sim.substepsPerFrame(), wall, o.outDir);
   record.printTable1(o.scene);

@@ -64,15 +64,16 @@ void writeAerosolPly(const std::filesystem::path& path, const Aerosol& aerosol) 
 
 StatsWriter::StatsWriter(const std::filesystem::path& path) : out_(openForWriting(path)) {
   out_ << "frame,time_s,particles,triangles,area_m2,volume_m3,kinetic_J,elastic_J,potential_J,liquid_m3,"
-          "mean_thickness_m,max_speed_mps,mean_air_flow_m3ps,solution,droplets,droplet_mass_kg,substeps,frame_ms,events\n";
+          "mean_thickness_m,max_speed_mps,mean_air_flow_m3ps,solution,droplets,droplet_mass_kg,substeps,frame_ms,"
+          "events\n";
   out_.flush();
 }
 
 void StatsWriter::write(long frame, const FrameStats& st, int substeps, double frameMilliseconds,
                         const std::string& events) {
-  out_ << frame << ',' << st.time << ',' << st.particles << ',' << st.triangles << ',' << st.area << ','
-       << st.volume << ',' << st.kineticEnergy << ',' << st.elasticEnergy << ',' << st.potentialEnergy << ','
-       << st.liquid << ',' << st.meanThickness << ',' << st.maxSpeed << ',' << st.meanAirFlow << ',' << st.solution << ',' << st.droplets
+  out_ << frame << ',' << st.time << ',' << st.particles << ',' << st.triangles << ',' << st.area << ',' << st.volume
+       << ',' << st.kineticEnergy << ',' << st.elasticEnergy << ',' << st.potentialEnergy << ',' << st.liquid << ','
+       << st.meanThickness << ',' << st.maxSpeed << ',' << st.meanAirFlow << ',' << st.solution << ',' << st.droplets
        << ',' << st.dropletMass << ',' << substeps << ',' << frameMilliseconds << ',' << events << '\n';
   out_.flush();
 }
@@ -96,15 +97,22 @@ void RunRecord::addFrame(const FrameStats& stats, int substeps, double frameMill
 namespace {
 
 nlohmann::json frameJson(const FrameStats& s) {
-  return {{"time_s", s.time},           {"particles", s.particles},   {"triangles", s.triangles},
-          {"area_m2", s.area},          {"volume_m3", s.volume},      {"liquid_m3", s.liquid},
-          {"solution", s.solution},     {"droplets", s.droplets},     {"kinetic_J", s.kineticEnergy},
+  return {{"time_s", s.time},
+          {"particles", s.particles},
+          {"triangles", s.triangles},
+          {"area_m2", s.area},
+          {"volume_m3", s.volume},
+          {"liquid_m3", s.liquid},
+          {"solution", s.solution},
+          {"droplets", s.droplets},
+          {"kinetic_J", s.kineticEnergy},
           {"mean_thickness_m", s.meanThickness}};
 }
 
 }  // namespace
 
-void RunRecord::writeJson(const std::filesystem::path& path, const std::string& scene, const std::string& status) const {
+void RunRecord::writeJson(const std::filesystem::path& path, const std::string& scene,
+                          const std::string& status) const {
   const double n = static_cast<double>(std::max(frames_, 1L));
   const double msPerFrame = millisecondSum_ / n;
   nlohmann::json j;
@@ -117,6 +125,7 @@ void RunRecord::writeJson(const std::filesystem::path& path, const std::string& 
                   {"frames_per_second", msPerFrame > 0 ? 1e3 / msPerFrame : 0.0},
                   {"substeps_per_frame", substepSum_ / n},
                   {"step_ms", substepSum_ > 0 ? millisecondSum_ / substepSum_ : 0.0}};
+  j["real_time_factor"] = realTimeFactor_;
   j["first_frame"] = frameJson(first_);
   j["last_frame"] = frameJson(last_);
   nlohmann::json events = nlohmann::json::array();

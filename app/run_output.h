@@ -29,6 +29,8 @@ class RunRecord {
   // paper, the first and last frame's figures and every event with its time. Written whole, atomically
   // (a temporary file renamed), so a reader never sees half of it.
   void writeJson(const std::filesystem::path& path, const std::string& scene, const std::string& status) const;
+  // Simulated seconds per wall second of the run (1: real time), for stats.json.
+  void setRealTimeFactor(double factor) { realTimeFactor_ = factor; }
   // The paper's Table 1 row for this run: example, average particles, average triangles, average frames/s.
   void printTable1(const std::string& scene) const;
 
@@ -36,6 +38,7 @@ class RunRecord {
   long frames_ = 0;
   double particleSum_ = 0, triangleSum_ = 0, millisecondSum_ = 0, substepSum_ = 0;
   FrameStats first_, last_;
+  double realTimeFactor_ = 0;
   std::vector<std::pair<double, std::string>> events_;
 };
 

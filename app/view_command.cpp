@@ -6,6 +6,7 @@
 
 #include "cpu_stepper.h"
 #include "osc_events.h"
+#include "realtime_pacer.h"
 #include "run_output.h"
 #include "scripted_gestures.h"
 #include "vulkan_stepper.h"
@@ -14,8 +15,9 @@
 namespace gb {
 
 CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
-  CLI::App* cmd = app.add_subcommand("live", "perform live in a window: the wands follow --input (mouse: orbit, zoom; "
-                                             "keys: R reset, D dip, B burst, Space pause, C colouring, Esc quit)");
+  CLI::App* cmd = app.add_subcommand("live",
+                                     "perform live in a window: the wands follow --input (mouse: orbit, zoom; "
+                                     "keys: R reset, D dip, B burst, Space pause, C colouring, Esc quit)");
   cmd->alias("view");
   // --input also takes "mouse" here: the left and right buttons drag the hands, the wheel pushes them.
   cmd->add_option("--scene", o.run.scene, "a built-in scene or a scene file (.toml); the other options change it");
@@ -30,8 +32,10 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
   cmd->add_option("--backend", o.backend, "cpu, vulkan (on the window's device), or auto (Vulkan on a GPU)")
       ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
   cmd->add_option("--device", o.run.device, "Vulkan device: index or part of its name");
-  cmd->add_option("--frames", o.frames, "quit after this many frames (0: when the window closes)")->check(CLI::Range(0L, 100000000L));
-  cmd->add_option("--keys", o.keys, "scripted key presses FRAME:KEY, e.g. 50:b 80:c (keys r d b p c; for tests and demos)")
+  cmd->add_option("--frames", o.frames, "quit after this many frames (0: when the window closes)")
+      ->check(CLI::Range(0L, 100000000L));
+  cmd->add_option("--keys", o.keys,
+                  "scripted key presses FRAME:KEY, e.g. 50:b 80:c (keys r d b p c; for tests and demos)")
       ->check([](const std::string& s) {
         const auto colon = s.find(':');
         return colon != std::string::npos && colon > 0 && s.size() == colon + 2 &&
@@ -40,6 +44,11 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
                    ? std::string()
                    : "expected FRAME:KEY with KEY one of r d b p c, got '" + s + "'";
       });
+  cmd->add_flag("--fixed-step", o.fixedStep,
+                "advance one 0.02 s frame per presented frame instead of keeping the wall clock (slow motion on a slow "
+                "machine)");
+  cmd->add_option("--min-sweeps", o.minSweeps, "fewest solver sweeps per frame when the machine cannot keep up")
+      ->check(CLI::Range(1, 1000));
   addRenderOptions(*cmd, o.run.render);
   return cmd;
 }
@@ -61,9 +70,10 @@ std::unique_ptr<WandInput> makeLiveInput(const RunOptions& run, Window& window) 
   auto pointer = std::make_unique<PointerHandSource>(calibration);
   PointerHandSource* hands = pointer.get();
   constexpr double metresPerNotch = 0.05;  // the wheel pushes the held hands 5 cm per notch
-  window.setPointerListener({[hands](double x, double y) { hands->setPointer(x, y); },
-                             [hands](int hand, bool down) { hands->setButton(hand == 0 ? Hand::Left : Hand::Right, down); },
-                             [hands](double notches) { hands->pushHands(metresPerNotch * notches); }});
+  window.setPointerListener(
+      {[hands](double x, double y) { hands->setPointer(x, y); },
+       [hands](int hand, bool down) { hands->setButton(hand == 0 ? Hand::Left : Hand::Right, down); },
+       [hands](double notches) { hands->pushHands(metresPerNotch * notches); }});
   return std::make_unique<StabilizedWands>(std::move(pointer), stabilizerOptionsOf(run.input), calibration);
 }
 
@@ -72,14 +82,36 @@ void addScriptedKeys(const std::vector<std::string>& script, long frame, WindowK
   for (const std::string& entry : script) {
     if (std::stol(entry.substr(0, entry.find(':'))) != frame) continue;
     switch (entry.back()) {
-      case 'r': keys.reset = true; break;
-      case 'd': keys.dip = true; break;
-      case 'b': keys.burst = true; break;
-      case 'p': keys.pause = true; break;
-      case 'c': keys.nextColouring = true; break;
-      default: break;
+      case 'r':
+        keys.reset = true;
+        break;
+      case 'd':
+        keys.dip = true;
+        break;
+      case 'b':
+        keys.burst = true;
+        break;
+      case 'p':
+        keys.pause = true;
+        break;
+      case 'c':
+        keys.nextColouring = true;
+        break;
+      default:
+        break;
     }
   }
+}
+
+// The live figures: presented frames per second, real-time factor, simulation and render ms, solver sweeps.
+std::string liveFigures(const RealTimePacer& pacer, long shown, std::chrono::steady_clock::time_point start,
+                        std::chrono::steady_clock::time_point now) {
+  const double seconds = std::max(std::chrono::duration<double>(now - start).count(), 1e-9);
+  char text[160];
+  std::snprintf(text, sizeof text, "giantbubble  %.1f fps  real time x%.2f  sim %.1f ms  render %.1f ms  %d sweeps%s",
+                static_cast<double>(shown) / seconds, pacer.realTimeFactor(now), pacer.simMs(), pacer.renderMs(),
+                pacer.sweeps(), pacer.atFloor() ? " (floor)" : "");
+  return text;
 }
 
 }  // namespace
@@ -108,6 +140,8 @@ int runView(ViewOptions o) try {
   long shown = 0, dips = 0;
   double filmGoneSince = -1;  // time the last film disappeared, -1 while there is one
   const auto start = std::chrono::steady_clock::now();
+  RealTimePacer pacer({run.params.frameTime, sim.solverIterations(), o.minSweeps, 4}, start);
+  auto lastTitle = start;
   for (;;) {
     WindowKeys keys = window.poll();
     addScriptedKeys(o.keys, shown, keys);
@@ -127,7 +161,8 @@ int runView(ViewOptions o) try {
       sim.dip(wands);
       filmGoneSince = -1;
       ++dips;
-      say(keys.reset ? "reset: new film, performance from its start" : (autoDip ? "auto dip: new film" : "dip: new film"));
+      say(keys.reset ? "reset: new film, performance from its start"
+                     : (autoDip ? "auto dip: new film" : "dip: new film"));
       show.frame(sim, sim.stats(), "film_created");
     }
     if (keys.burst) {
@@ -138,25 +173,49 @@ int runView(ViewOptions o) try {
       renderer.setColouring(static_cast<Colouring>((static_cast<int>(renderer.options().colouring) + 1) % 3));
       say(colouringName(renderer.options().colouring));
     }
-    if (!paused) {
-      t += run.params.frameTime;
-      wands = input->at(t).wands;  // a live camera may wait here for its next frame
-      for (const std::string& m : input->takeMessages()) std::fprintf(stderr, "%s\n", m.c_str());
-      sim.advanceFrame(wands);
-      const FrameStats stats = sim.stats();
-      show.frame(sim, stats, describeEvents(sim.lastEvents()));
-      if (stats.particles == 0 && filmGoneSince < 0) filmGoneSince = t;
+    int due = 0;
+    double simMs = 0;
+    if (paused) {
+      pacer.resync();
+    } else {
+      due = o.fixedStep ? 1 : pacer.framesDue();
+      if (due == 0) {  // ahead of the wall clock: wait for the next frame rather than draw the same one twice
+        pacer.sleepUntilDue();
+        due = pacer.framesDue();
+      }
+      sim.setSolverIterations(o.fixedStep ? 0 : pacer.sweeps());
+      const auto simStart = std::chrono::steady_clock::now();
+      for (int k = 0; k < due; ++k) {
+        t += run.params.frameTime;
+        wands = input->at(t).wands;  // a live camera may wait here for its next frame
+        for (const std::string& m : input->takeMessages()) std::fprintf(stderr, "%s\n", m.c_str());
+        sim.advanceFrame(wands);
+        const FrameStats stats = sim.stats();
+        show.frame(sim, stats, describeEvents(sim.lastEvents()));
+        if (stats.particles == 0 && filmGoneSince < 0) filmGoneSince = t;
+      }
+      simMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - simStart).count();
     }
+    const auto renderStart = std::chrono::steady_clock::now();
     const Vec3 gravity(run.params.gravityX, run.params.gravityY, run.params.gravityZ);
     const WireFrame wire = makeWireFrame(sim.film().tool, wands, sim.film().stringLength, gravity);
     DeviceFilm deviceFilm;
     window.present(renderer, renderFrameOf(sim, wands, wire, window.camera(), readInPlace, deviceFilm));
+    const auto now = std::chrono::steady_clock::now();
+    pacer.record(due, simMs, std::chrono::duration<double, std::milli>(now - renderStart).count());
+    if (now - lastTitle > std::chrono::seconds(1)) {  // the show's figures in the title bar, once a second
+      window.setTitle(liveFigures(pacer, shown, start, now));
+      lastTitle = now;
+    }
     if (++shown == o.frames) break;
   }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const auto end = std::chrono::steady_clock::now();
+  const double seconds = std::chrono::duration<double>(end - start).count();
   const size_t errors = window.context()->validationErrors();
-  std::printf("live: presented %ld frames in %.2f s (%.1f frames/s), %ld dips, %zu validation errors\n", shown,
-              seconds, static_cast<double>(shown) / std::max(seconds, 1e-9), dips, errors);
+  std::printf("live: %s, %ld frames simulated, %ld dropped\n", liveFigures(pacer, shown, start, end).c_str(),
+              pacer.simulatedFrames(), pacer.droppedFrames());
+  std::printf("live: presented %ld frames in %.2f s (%.1f frames/s), %ld dips, %zu validation errors\n", shown, seconds,
+              static_cast<double>(shown) / std::max(seconds, 1e-9), dips, errors);
   return errors == 0 ? 0 : 4;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "error: %s\n", e.what());

@@ -20,13 +20,15 @@ class App;
 namespace gb {
 
 struct ViewOptions {
-  RunOptions run;                  // tool, input, parameters, OSC, backend (run.render.image: size and colouring)
+  RunOptions run;  // tool, input, parameters, OSC, backend (run.render.image: size and colouring)
   std::string tool = "two-wands";
   std::string backend = "auto";
   std::vector<std::string> assignments;  // --param NAME=VALUE
-  double autoDip = 2.0;            // seconds without a film before the wands dip again (negative: never)
-  long frames = 0;                 // quit after this many presented frames (0: when the window closes)
-  std::vector<std::string> keys;   // scripted key presses FRAME:KEY (keys r d b p c), as if typed at that frame
+  double autoDip = 2.0;                  // seconds without a film before the wands dip again (negative: never)
+  long frames = 0;                       // quit after this many presented frames (0: when the window closes)
+  std::vector<std::string> keys;         // scripted key presses FRAME:KEY (keys r d b p c), as if typed at that frame
+  bool fixedStep = false;  // one simulation frame per presented frame (slow motion when the machine is slow)
+  int minSweeps = 3;       // the fewest solver sweeps the wall clock may leave the film (realtime_pacer.h)
 };
 
 // Adds the `view` subcommand and its options to the application.

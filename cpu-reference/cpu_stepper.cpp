@@ -4,13 +4,10 @@
 #include <stdexcept>
 #include <utility>
 
-namespace gb {
+#include "colouring.h"
+#include "implicit_euler.h"
 
-const char* stageName(Stage stage) {
-  static constexpr const char* names[] = {"geometry", "volume", "film_state", "air_inflow",
-                                          "air_transfer", "forces", "integrate", "drainage"};
-  return names[static_cast<int>(stage)];
-}
+namespace gb {
 
 namespace {
 
@@ -37,6 +34,7 @@ void CpuStepper::timed(Stage stage, Body&& body) {
 void CpuStepper::load(const Params& params, Film& film) {
   params_ = params;
   film_ = &film;
+  if (film.topology.colourOffset.empty()) colourParticles(film.state.alive, film.topology);
 }
 
 float CpuStepper::volume(const Film& film, const Vec3& origin) {
@@ -69,40 +67,68 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
         forEach(topo.triangleCount(), [&](size_t t) { computeTriangleGeometry(topo, s, t); });
         forEach(n, [&](size_t i) { computeVertexGeometry(topo, s, i); });
         break;
-      case Stage::Volume: result = volume(*film_, u.volumeOrigin); break;
-      case Stage::FilmState: forEach(n, [&](size_t i) { updateFilmState(params_, u.dt, s, i); }); break;
-      case Stage::AirInflow: forEach(n, [&](size_t i) { computeAirInflow(params_, u, s, i); }); break;
+      case Stage::Volume:
+        result = volume(*film_, u.volumeOrigin);
+        break;
+      case Stage::FilmState:
+        forEach(n, [&](size_t i) { updateFilmState(params_, u.dt, s, i); });
+        break;
+      case Stage::AirInflow:
+        forEach(n, [&](size_t i) { computeAirInflow(params_, u, s, i); });
+        break;
       case Stage::AirTransfer:
         forEach(n, [&](size_t i) { transferAirFlow(params_, topo, s, i); });
         std::swap(s.airFlow, s.airFlowNext);  // Jacobi: the new air becomes the front buffer
         break;
-      case Stage::Forces: {
-        const float pressure = u.closed ? boylePressure(params_, u.referenceVolume, lastVolume_) : params_.pressureCoefficient;
-        forEach(n, [&](size_t i) { computeForces(params_, u, pressure, topo, s, i); });
+      case Stage::Forces:
+        forEach(n, [&](size_t i) { computeForces(params_, u, currentPressure(u), topo, s, i); });
         break;
-      }
-      case Stage::Integrate: forEach(n, [&](size_t i) { integrateParticle(u, topo, s, i); }); break;
+      case Stage::Integrate:
+        forEach(n, [&](size_t i) { integrateParticle(u, topo, s, i); });
+        break;
+      case Stage::ExternalForces:
+        forEach(n, [&](size_t i) { computeExternalForces(params_, u, currentPressure(u), s, i); });
+        break;
+      case Stage::ImplicitPredict:
+        forEach(n, [&](size_t i) { predictImplicitStep(u, topo, s, i); });
+        break;
+      case Stage::VertexBlockDescent:  // colours in order; a colour's particles are independent of each other
+        for (int sweep = 0; sweep < solverSweeps(params_, u); ++sweep) {
+          Bubble bubble;
+          if (u.closed) {  // Boyle's pressure at this iterate's volume
+            bubble.volume = lastVolume_ = volume(*film_, u.volumeOrigin);
+            bubble.pressure = currentPressure(u);
+          }
+          for (size_t c = 0; c + 1 < topo.colourOffset.size(); ++c) {
+            const uint32_t first = topo.colourOffset[c];
+            forEach(topo.colourOffset[c + 1] - first,
+                    [&](size_t k) { solveVertexBlock(params_, u, bubble, topo, s, topo.colourOrder[first + k]); });
+          }
+        }
+        break;
+      case Stage::ImplicitVelocity:
+        forEach(n, [&](size_t i) { finishImplicitStep(u, s, i); });
+        break;
       case Stage::Drainage:  // two Jacobi passes: every outflow is known before anyone gathers
         forEach(n, [&](size_t i) { computeDrainageOutflow(params_, u.drainageDt, topo, s, i); });
         forEach(n, [&](size_t i) { gatherDrainage(params_, topo, s, i); });
         break;
-      case Stage::Count: break;
+      case Stage::Count:
+        break;
     }
   });
   if (stage == Stage::Volume) lastVolume_ = result;
   return result;
 }
 
-float CpuStepper::step(const StepUniforms& u) {
-  runStage(Stage::Geometry, u);
-  if (u.closed) runStage(Stage::Volume, u);
-  runStage(Stage::FilmState, u);
-  runStage(Stage::AirInflow, u);
-  runStage(Stage::AirTransfer, u);
-  runStage(Stage::Forces, u);
-  runStage(Stage::Integrate, u);
-  if (u.drainageDt > 0) runStage(Stage::Drainage, u);
+float CpuStepper::currentPressure(const StepUniforms& u) const {
   return u.closed ? boylePressure(params_, u.referenceVolume, lastVolume_) : params_.pressureCoefficient;
+}
+
+float CpuStepper::step(const StepUniforms& u) {
+  for (const StageSpec& spec : stepStages())
+    if (spec.runs(params_, u)) runStage(spec.stage, u);
+  return currentPressure(u);
 }
 
 float CpuStepper::run(std::span<const StepUniforms> substeps) {

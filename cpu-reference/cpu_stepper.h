@@ -1,6 +1,6 @@
 #pragma once
-// The CPU backend: one step is the list of stages of ARCHITECTURE.md, each run over all elements in
-// parallel (OpenMP), on the host film in place. The Vulkan stepper records the same list as dispatches.
+// The CPU backend: one step walks stepStages() (stepper.h), each stage run over all elements in parallel
+// (OpenMP), on the host film in place. The Vulkan stepper records the same table as dispatches.
 
 #include <vector>
 
@@ -23,6 +23,8 @@ class CpuStepper final : public Stepper {
 
  private:
   float step(const StepUniforms& u);
+  // Boyle's pressure of a closed film at the last volume (Eq. 11), P_0 for an open film.
+  [[nodiscard]] float currentPressure(const StepUniforms& u) const;
   template <class Body>
   void timed(Stage stage, Body&& body);
 

@@ -1,11 +1,12 @@
 #include "simulation.h"
 
-#include "collision.h"
-#include "film_growth.h"
-
 #include <cmath>
 #include <limits>
 #include <sstream>
+
+#include "collision.h"
+#include "colouring.h"
+#include "film_growth.h"
 
 namespace gb {
 
@@ -43,6 +44,10 @@ Simulation::Simulation(const Params& params, Film film, const WandState& wands, 
 }
 
 void Simulation::chooseSubsteps() {
+  if (params_.integrator != 0) {  // implicit: stable at any step, so the frame is split only when asked
+    substeps_ = params_.implicitSubsteps;
+    return;
+  }
   const float volume = film_.topology.isClosed() ? film_.referenceVolume : 0.0f;
   const float dtStable = stableTimeStep(params_, film_.topology, film_.state, params_.pressureCoefficient, volume);
   const double needed = std::ceil(params_.frameTime / dtStable);
@@ -63,7 +68,8 @@ StepUniforms Simulation::uniformsFor(const WandState& a, const WandState& b, flo
   u.leftInflowWeight = ring ? 0.0f : 1.0f;
   u.wandAlignment = ring ? 1.0f : wandAlignment(a);
   const WireFrame frameNow = makeWireFrame(film_.tool, a, film_.stringLength, gravityOf(params_));
-  u.airVolume = frameNow.height() * frameNow.area();  // Eq. (6)
+  u.frameArea = frameNow.area();
+  u.airVolume = frameNow.height() * u.frameArea;  // Eq. (6)
   u.frameNext = makeWireFrame(film_.tool, b, film_.stringLength, gravityOf(params_));
   u.closed = film_.topology.isClosed() ? 1u : 0u;
   u.volumeOrigin = u.closed ? film_.volumeOrigin : frameNow.center;
@@ -74,13 +80,15 @@ StepUniforms Simulation::uniformsFor(const WandState& a, const WandState& b, flo
 void Simulation::advanceFrame(const WandState& next) {
   burstOnHardImpact();  // judged on the contacts found after the last frame, before this one moves them
   const float dt = params_.frameTime / static_cast<float>(substeps_);
-  const float wandSpeed = std::max((next.leftPosition - wands_.leftPosition).norm(),
-                                   (next.rightPosition - wands_.rightPosition).norm()) / params_.frameTime;
+  const float wandSpeed =
+      std::max((next.leftPosition - wands_.leftPosition).norm(), (next.rightPosition - wands_.rightPosition).norm()) /
+      params_.frameTime;
   substepUniforms_.clear();
   for (int k = 0; k < substeps_; ++k) {
     const float t0 = static_cast<float>(k) / static_cast<float>(substeps_);
     const float t1 = static_cast<float>(k + 1) / static_cast<float>(substeps_);
     substepUniforms_.push_back(uniformsFor(interpolate(wands_, next, t0), interpolate(wands_, next, t1), dt));
+    substepUniforms_.back().solverIterations = solverIterations_;
   }
   substepUniforms_.back().drainageDt = params_.frameTime;  // the frame's drainage, after its last substep
   pressure_ = stepper_->run(substepUniforms_);
@@ -93,8 +101,8 @@ void Simulation::advanceFrame(const WandState& next) {
   events_ = advanceBurst(params_, time_, film_, burst_, aerosol_);
   if (events_.particlesRemoved > 0) stepper_->updateTopology(params_, film_);  // the mesh shrank
   if (!burst_.active()) growFilm(next, wandSpeed);
-  const bool tipsTogether = film_.tool.kind == ToolKind::TwoWands &&
-                            (next.rightPosition - next.leftPosition).norm() < params_.pinchDistance;
+  const bool tipsTogether =
+      film_.tool.kind == ToolKind::TwoWands && (next.rightPosition - next.leftPosition).norm() < params_.pinchDistance;
   if (tipsTogether && !film_.topology.isClosed() && !burst_.active()) events_.pinchedOff = pinch();
   updateContacts();
   aerosol_.advance(params_, params_.frameTime);
@@ -141,6 +149,7 @@ void Simulation::updateContacts() {
     if (s.alive[i]) fastest = std::max(fastest, s.velocity.get(i).norm());
   const float margin = std::min(0.05f, 2.0f * fastest * params_.frameTime + 0.005f);
   findContacts(params_, margin, film_);
+  colourParticles(film_.state.alive, film_.topology);  // contacts couple particles in the implicit solve
   stepper_->updateContacts(film_);
 }
 
@@ -227,8 +236,8 @@ FrameStats Simulation::stats() {
     const double stretch = (s.position.get(a) - s.position.get(b)).cast<double>().norm() - topo.restLength[k];
     st.elasticEnergy += 0.25 * (s.elasticity[a] + s.elasticity[b]) * stretch * stretch;
   }
-  const Vec3 origin = topo.isClosed() ? centroid(s)
-                                      : makeWireFrame(film_.tool, wands_, film_.stringLength, gravityOf(params_)).center;
+  const Vec3 origin =
+      topo.isClosed() ? centroid(s) : makeWireFrame(film_.tool, wands_, film_.stringLength, gravityOf(params_)).center;
   st.triangles = topo.triangleCount();
   for (size_t t = 0; t < topo.triangleCount(); ++t) {
     const uint32_t* tri = &topo.triangles[3 * t];

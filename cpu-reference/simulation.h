@@ -1,5 +1,6 @@
 #pragma once
-// A film driven by wand input frame by frame: splits each frame of Params::frameTime into stable substeps,
+// A film driven by wand input frame by frame: one implicit step per frame of Params::frameTime (or the
+// explicit integrator's stable substeps),
 // feeds the stepper interpolated wand states, and stops with a clear error if the film goes unstable.
 
 #include <array>
@@ -7,9 +8,9 @@
 #include <stdexcept>
 
 #include "bursting.h"
-#include "pinch_off.h"
 #include "cpu_stepper.h"
 #include "film.h"
+#include "pinch_off.h"
 #include "stepper.h"
 
 namespace gb {
@@ -25,18 +26,18 @@ struct FrameStats {
   double time = 0;
   size_t particles = 0;
   size_t triangles = 0;
-  double area = 0;            // film area (m^2)
-  double volume = 0;          // enclosed (bubble) or swept (open film, cone to the frame centre) volume (m^3)
-  double kineticEnergy = 0;   // J
-  double elasticEnergy = 0;   // spring energy of Eq. (3), J
-  double potentialEnergy = 0; // gravity, J, relative to y = 0
-  double liquid = 0;          // total liquid volume (m^3)
-  double meanThickness = 0;   // m
-  double maxSpeed = 0;        // m/s
-  double meanAirFlow = 0;     // mean |air| of Eqs. (7)-(8) (m^3/s)
-  double solution = 0;        // soap solution left on the wire, in [0, 1] (Section 7)
-  size_t droplets = 0;        // aerosol droplets in flight
-  double dropletMass = 0;     // kg
+  double area = 0;             // film area (m^2)
+  double volume = 0;           // enclosed (bubble) or swept (open film, cone to the frame centre) volume (m^3)
+  double kineticEnergy = 0;    // J
+  double elasticEnergy = 0;    // spring energy of Eq. (3), J
+  double potentialEnergy = 0;  // gravity, J, relative to y = 0
+  double liquid = 0;           // total liquid volume (m^3)
+  double meanThickness = 0;    // m
+  double maxSpeed = 0;         // m/s
+  double meanAirFlow = 0;      // mean |air| of Eqs. (7)-(8) (m^3/s)
+  double solution = 0;         // soap solution left on the wire, in [0, 1] (Section 7)
+  size_t droplets = 0;         // aerosol droplets in flight
+  double dropletMass = 0;      // kg
 };
 
 class Simulation {
@@ -63,8 +64,8 @@ class Simulation {
   // Closes the film into a free bubble now (pinch_off.h); false if it cannot (already closed, torn, or its
   // loop cannot be capped yet). The wand tips are dry sticks: once pulled clear of the free bubble (farther
   // than pinchDistance from it), a tip that touches it (within collisionDistance, or found inside it by its
-  // winding number: it went through the film during the frame) bursts it at the particle nearest to the tip. Two-wand films also pinch off by themselves when the tips come within
-  // Params::pinchDistance.
+  // winding number: it went through the film during the frame) bursts it at the particle nearest to the tip. Two-wand
+  // films also pinch off by themselves when the tips come within Params::pinchDistance.
   bool pinch();
   // Dips the wands again: a new film on the frame at `wands` (after a burst, or to start over).
   void dip(const WandState& wands);
@@ -78,6 +79,12 @@ class Simulation {
   [[nodiscard]] const Params& params() const { return params_; }
   [[nodiscard]] double time() const { return time_; }
   [[nodiscard]] int substepsPerFrame() const { return substeps_; }
+  // Implicit solver sweeps per step from now on (the live loop lowers them when a frame runs over its
+  // budget); 0 returns to Params::solverIterations.
+  void setSolverIterations(int sweeps) { solverIterations_ = sweeps; }
+  [[nodiscard]] int solverIterations() const {
+    return solverIterations_ > 0 ? solverIterations_ : params_.solverIterations;
+  }
   [[nodiscard]] float lastPressure() const { return pressure_; }
   [[nodiscard]] Stepper& stepper() { return *stepper_; }
   [[nodiscard]] FrameStats stats();
@@ -104,6 +111,7 @@ class Simulation {
   std::array<bool, 2> wandArmed_{true, true};  // a tip bursts a free bubble it touches once armed
   double time_ = 0;
   int substeps_ = 1;
+  int solverIterations_ = 0;  // 0: Params::solverIterations
   float pressure_ = 0;
   long stepCount_ = 0;
 };

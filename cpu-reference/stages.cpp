@@ -83,9 +83,9 @@ float treeSum(std::vector<float> v) {
 // ---- film state ------------------------------------------------------------------------------------------
 
 float elasticity(const Params& p, float thickness, float lifetime) {
-  const float x = thickness / p.elasticityThickness;  // e_i / k
+  const float x = thickness / p.elasticityThickness;                                      // e_i / k
   if (lifetime < p.marangoniLifetime) return p.elasticityWeight * 2.0f * x / (x + 2.0f);  // Marangoni
-  return p.elasticityWeight * 4.0f * x / ((x + 2.0f) * (x + 2.0f));                     // Gibbs
+  return p.elasticityWeight * 4.0f * x / ((x + 2.0f) * (x + 2.0f));                       // Gibbs
 }
 
 float filmTension(const Params& p, float thickness) {
@@ -159,10 +159,9 @@ Vec3 areaTensionForce(const Topology& topo, const State& s, size_t i) {
   return f;
 }
 
-void computeForces(const Params& p, const StepUniforms& u, float pressure, const Topology& topo, State& s,
-                   size_t i) {
-  const Vec3 xi = s.position.get(i), vi = s.velocity.get(i), n = s.normal.get(i);
-  const float ei = s.elasticity[i], area = s.voronoiArea[i];
+Vec3 internalForce(const Params& p, const Topology& topo, const State& s, size_t i) {
+  const Vec3 xi = s.position.get(i), vi = s.velocity.get(i);
+  const float ei = s.elasticity[i];
   const bool physical = p.tensionModel == 1;
   Vec3 f = physical ? areaTensionForce(topo, s, i) : Vec3::Zero();
   for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
@@ -173,7 +172,7 @@ void computeForces(const Params& p, const StepUniforms& u, float pressure, const
     const Vec3 dir = d / len;
     const float stiffness = 0.5f * (ei + s.elasticity[j]);
     if (!physical) f += stiffness * (len - topo.restLength[topo.springIndex[k]]) * dir;  // Eq. (3)
-    f += p.springDamping * (s.velocity.get(j) - vi).dot(dir) * dir;                     // Algorithm 1, line 5
+    f += p.springDamping * (s.velocity.get(j) - vi).dot(dir) * dir;                      // Algorithm 1, line 5
   }
   // Self-collision: contacts closer than the collision distance repel along their separation and damp their
   // approach; the tangential motion is free, so colliding sheets slip (Section 8).
@@ -188,17 +187,41 @@ void computeForces(const Params& p, const StepUniforms& u, float pressure, const
     f += p.collisionStiffness * (p.collisionDistance - len) * away;
     if (approach < 0) f -= p.collisionDamping * approach * away;
   }
-  f += s.mass[i] * Vec3(p.gravityX, p.gravityY, p.gravityZ);                    // external force
-  f -= p.airDrag * area * vi;                                                   // still air resists
+  return f;
+}
+
+Vec3 externalForce(const Params& p, const StepUniforms& u, float pressure, const State& s, size_t i) {
+  const Vec3 n = s.normal.get(i);
+  const float area = s.voronoiArea[i];
+  Vec3 f = s.mass[i] * Vec3(p.gravityX, p.gravityY, p.gravityZ);
   const float flowIn = s.airFlow.get(i).dot(n), directIn = s.airInflow.get(i).dot(n);
   if (u.closed) {
-    // Eq. (10): the bubble's excess pressure over its reference, and the transferred air scaled by P_cur.
-    f += ((pressure - p.pressureCoefficient) + pressure / p.pressureCoefficient * p.airPressureGain * flowIn) *
-         area * n;
+    f += pressure / p.pressureCoefficient * p.airPressureGain * flowIn * area * n;  // Eq. (10), the air's part
   } else {
     f += p.airPressureGain * (flowIn + directIn) * area * n;  // Eq. (9)
   }
+  return f;
+}
+
+float airCoupling(const Params& p, const StepUniforms& u, const State& s, size_t i) {
+  return u.closed ? 0.0f : p.airPressureGain * u.frameArea * s.voronoiArea[i];
+}
+
+Vec3 boyleForce(const Params& p, float pressure, const State& s, size_t i) {
+  return (pressure - p.pressureCoefficient) * s.voronoiArea[i] * s.normal.get(i);
+}
+
+void computeForces(const Params& p, const StepUniforms& u, float pressure, const Topology& topo, State& s, size_t i) {
+  const Vec3 drag = -p.airDrag * s.voronoiArea[i] * s.velocity.get(i);  // still air resists
+  const Vec3 n = s.normal.get(i);
+  const Vec3 coupling = -airCoupling(p, u, s, i) * s.velocity.get(i).dot(n) * n;  // the film moves with the air
+  Vec3 f = internalForce(p, topo, s, i) + externalForce(p, u, pressure, s, i) + drag + coupling;
+  if (u.closed) f += boyleForce(p, pressure, s, i);
   s.force.set(i, f);
+}
+
+void computeExternalForces(const Params& p, const StepUniforms& u, float pressure, State& s, size_t i) {
+  s.force.set(i, externalForce(p, u, pressure, s, i));
 }
 
 // ---- integration ----------------------------------------------------------------------------------------
@@ -217,7 +240,7 @@ void integrateParticle(const StepUniforms& u, const Topology& topo, State& s, si
     return;
   }
   Vec3 v = s.velocity.get(i) + u.dt * s.force.get(i) / s.mass[i];  // Eq. (12)
-  Vec3 xNew = x + u.dt * v;                                          // Eq. (13)
+  Vec3 xNew = x + u.dt * v;                                        // Eq. (13)
   if (xNew.y() < 0.0f) {  // the floor, y = 0: the film lands and slides, it does not pass through
     xNew.y() = 0.0f;
     v.y() = std::max(v.y(), 0.0f);
@@ -248,7 +271,8 @@ void gatherDrainage(const Params& p, const Topology& topo, State& s, size_t j) {
   float received = 0.0f;
   for (uint32_t k = topo.springOffset[j]; k < topo.springOffset[j + 1]; ++k) {
     const uint32_t i = topo.springNeighbour[k];
-    if (s.drainWeight[i] > 0) received += s.drainOutflow[i] * drainageDirection(s.position.get(i), xj, g) / s.drainWeight[i];
+    if (s.drainWeight[i] > 0)
+      received += s.drainOutflow[i] * drainageDirection(s.position.get(i), xj, g) / s.drainWeight[i];
   }
   s.liquid[j] = s.liquid[j] - s.drainOutflow[j] + received;
 }
@@ -289,8 +313,7 @@ float stableTimeStep(const Params& p, const Topology& topo, const State& s, floa
     if (!s.alive[i] || topo.boundary[i] || s.mass[i] <= 0) continue;
     const float springs = static_cast<float>(topo.springOffset[i + 1] - topo.springOffset[i]);
     // Gershgorin: row sum of |K| is at most twice the diagonal; up to 6 collision contacts at a time.
-    const float filmStiffness =
-        p.tensionModel == 1 ? tensionMax * areaHessianDiagonal(topo, s, i) : springs * eMax;
+    const float filmStiffness = p.tensionModel == 1 ? tensionMax * areaHessianDiagonal(topo, s, i) : springs * eMax;
     float stiffness = 2.0f * (filmStiffness + 6.0f * p.collisionStiffness);
     if (closed && volume > 0) stiffness += pressure * s.voronoiArea[i] * s.voronoiArea[i] / volume;
     const float omega = std::sqrt(stiffness / s.mass[i]);

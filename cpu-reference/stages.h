@@ -14,17 +14,20 @@ namespace gb {
 
 // What a step needs besides the state: computed once per step on the host (push constants on the GPU).
 struct StepUniforms {
-  float dt = 0.0f;                  // substep length (s)
-  WandState wands;                  // wand tips at the start of the step, the air sources of Eq. (5)
-  float leftInflowWeight = 1.0f;    // 0 for the single ring wand, whose only source is the right hand
-  float airVolume = 0.0f;           // V_wm = H_wire * Area_wm, Eq. (6) (m^3)
-  float wandAlignment = 0.0f;       // MAX(cos(theta), 0) of Eq. (5)
-  WireFrame frameNext;              // the wire frame at the end of the step, for the boundary particles
+  float dt = 0.0f;                   // substep length (s)
+  WandState wands;                   // wand tips at the start of the step, the air sources of Eq. (5)
+  float leftInflowWeight = 1.0f;     // 0 for the single ring wand, whose only source is the right hand
+  float airVolume = 0.0f;            // V_wm = H_wire * Area_wm, Eq. (6) (m^3)
+  float frameArea = 0.0f;            // Area_wm (m^2): the air flow over it is the air's speed (airCoupling)
+  float wandAlignment = 0.0f;        // MAX(cos(theta), 0) of Eq. (5)
+  WireFrame frameNext;               // the wire frame at the end of the step, for the boundary particles
   Vec3 volumeOrigin = Vec3::Zero();  // apex of the cone decomposition of the (swept) volume
-  uint32_t closed = 0;              // 1 once the film is a closed bubble: Eqs. (10)-(11) replace Eq. (9)
-  float referenceVolume = 0.0f;     // V_0 of Eq. (11), the volume when the bubble closed (m^3)
-  float drainageDt = 0.0f;          // drainage runs in this step over this time, 0: not in this step. Liquid
-                                    // drains over seconds, so once per frame is enough (Simulation)
+  uint32_t closed = 0;               // 1 once the film is a closed bubble: Eqs. (10)-(11) replace Eq. (9)
+  float referenceVolume = 0.0f;      // V_0 of Eq. (11), the volume when the bubble closed (m^3)
+  float drainageDt = 0.0f;           // drainage runs in this step over this time, 0: not in this step. Liquid
+                                     // drains over seconds, so once per frame is enough (Simulation)
+  int solverIterations = 0;          // implicit integrator: vertex block descent sweeps in this step (the live
+                                     // loop lowers it when a frame runs over its budget)
 };
 
 // ---- Stage 1-2: geometry -------------------------------------------------------------------------------
@@ -78,11 +81,30 @@ void computeAirInflow(const Params& p, const StepUniforms& u, State& s, size_t i
 void transferAirFlow(const Params& p, const Topology& topo, State& s, size_t i);
 
 // ---- Stage 6: forces, Eq. (2) --------------------------------------------------------------------------
-// Surface tension Eq. (3) with the spring's stiffness the mean of its two particles' E (so the pair forces
-// cancel exactly), spring-projected damping (Algorithm 1), gravity, linear air drag, and
-// the air force: Eq. (9) on an open film, Eqs. (10)-(11) on a closed bubble at pressure P_cur.
-void computeForces(const Params& p, const StepUniforms& u, float pressure, const Topology& topo, State& s,
-                   size_t i);
+// Internal forces on particle i, the ones the implicit step takes into its energy: surface tension Eq. (3)
+// with the spring's stiffness the mean of its two particles' E (so the pair forces cancel exactly) or the
+// physical area tension, spring-projected damping (Algorithm 1), and the self-collision contacts.
+Vec3 internalForce(const Params& p, const Topology& topo, const State& s, size_t i);
+// External forces on particle i, the ones both integrators keep explicit: gravity, and the air force, Eq. (9)
+// on an open film or the transferred air of Eq. (10) on a closed bubble at pressure P_cur.
+Vec3 externalForce(const Params& p, const StepUniforms& u, float pressure, const State& s, size_t i);
+// Open film: the air force of Eq. (9) acts on the film relative to the air: kappa ((air . n) - Area_wm (v . n))
+// A_Vor n, the air's speed being its flow over the frame's area. externalForce holds the first part; this is
+// the coefficient kappa Area_wm A_Vor (N s/m) of the second, a damping of the film's normal speed towards the
+// air's. Without it Eq. (9) pushes with the same force however fast the film already moves, and a film drawn
+// at real arm speeds runs away (docs/model.md "Air coupling"). The implicit step takes it as a dissipation.
+float airCoupling(const Params& p, const StepUniforms& u, const State& s, size_t i);
+
+// Closed bubble, Eqs. (10)-(11): the excess of Boyle's pressure P_cur = P_0 V_0 / V over P_0 on the particle's
+// area, along its normal. It pushes a compressed bubble out and pulls an expanded one in. The implicit step
+// evaluates it at the volume of its current iterate (implicit_euler.h): at the step's start it is unstable
+// at h = 0.02 s for a bubble of tens of centimetres.
+Vec3 boyleForce(const Params& p, float pressure, const State& s, size_t i);
+// Explicit integrator: the whole of Eq. (2), internal + external + linear air drag + air coupling (open) or
+// Boyle (closed).
+void computeForces(const Params& p, const StepUniforms& u, float pressure, const Topology& topo, State& s, size_t i);
+// Implicit integrator: the external forces only (drag and the internal forces are in the solver).
+void computeExternalForces(const Params& p, const StepUniforms& u, float pressure, State& s, size_t i);
 
 // Eq. (11), Boyle's law: P_cur = P_0 V_0 / V_cur.
 float boylePressure(const Params& p, float referenceVolume, float currentVolume);
@@ -97,8 +119,8 @@ void integrateParticle(const StepUniforms& u, const Topology& topo, State& s, si
 // Eq. (14): how closely the direction from sender x_i to receiver x_j follows gravity g, MAX(cos, 0).
 float drainageDirection(const Vec3& xi, const Vec3& xj, const Vec3& g);
 
-// Pass 1: particle i sends out_i = w_i min(1, dt rate D_i / Sticky) of its liquid (dt: StepUniforms::drainageDt), D_i = sum of d_dir(i->k)
-// over its neighbours; stores out_i and D_i.
+// Pass 1: particle i sends out_i = w_i min(1, dt rate D_i / Sticky) of its liquid (dt: StepUniforms::drainageDt), D_i =
+// sum of d_dir(i->k) over its neighbours; stores out_i and D_i.
 void computeDrainageOutflow(const Params& p, float dt, const Topology& topo, State& s, size_t i);
 
 // Pass 2, Eq. (15) as a gather: particle j keeps what it did not send and receives out_i d_dir(i->j) / D_i

@@ -13,13 +13,14 @@ namespace {
 // them, so that no attribute is forgotten when the state grows.
 template <class Visit>
 void forEachParticleArray(State& s, Visit&& visit) {
-  for (Vec3Array* a : {&s.position, &s.velocity, &s.force, &s.normal, &s.airInflow, &s.airFlow, &s.airFlowNext}) {
+  for (Vec3Array* a :
+       {&s.position, &s.velocity, &s.force, &s.normal, &s.airInflow, &s.airFlow, &s.airFlowNext, &s.previousPosition}) {
     visit(a->x, 0.0f);
     visit(a->y, 0.0f);
     visit(a->z, 0.0f);
   }
   for (std::vector<float>* a : {&s.mass, &s.liquid, &s.voronoiArea, &s.thickness, &s.elasticity, &s.lifetime,
-                                  &s.frameParam, &s.drainOutflow, &s.drainWeight})
+                                &s.frameParam, &s.drainOutflow, &s.drainWeight})
     visit(*a, 0.0f);
   visit(s.alive, 1u);
 }

@@ -31,27 +31,28 @@ struct Vec3Array {
 
 // Per-particle state. Indices are stable: a removed particle is flagged dead, never renumbered implicitly.
 struct State {
-  Vec3Array position;     // x_i (m)
-  Vec3Array velocity;     // v_i (m/s)
-  Vec3Array force;        // total force of Eq. (2) of the last step (N)
-  Vec3Array normal;       // unit vertex normal n_i
-  Vec3Array airInflow;    // direct air inflow of Eq. (5) (m^3/s)
-  Vec3Array airFlow;      // transferred air flow of Eqs. (7)-(8) (m^3/s), Jacobi front buffer
-  Vec3Array airFlowNext;  // Jacobi back buffer of the air transfer
-  std::vector<float> mass;         // m_i (kg), fixed at creation from the film inertia
-  std::vector<float> liquid;       // liquid volume carried by the particle (m^3); w_e of Section 5.1
-  std::vector<float> voronoiArea;  // mixed Voronoi area A_Vor(p_i) (m^2)
-  std::vector<float> thickness;    // e_i = liquid / A_Vor (m)
-  std::vector<float> elasticity;   // E_i of Eq. (4) (N/m)
-  std::vector<float> lifetime;     // time since the particle was created (s)
+  Vec3Array position;               // x_i (m)
+  Vec3Array velocity;               // v_i (m/s)
+  Vec3Array force;                  // total force of Eq. (2) of the last step (N)
+  Vec3Array normal;                 // unit vertex normal n_i
+  Vec3Array airInflow;              // direct air inflow of Eq. (5) (m^3/s)
+  Vec3Array airFlow;                // transferred air flow of Eqs. (7)-(8) (m^3/s), Jacobi front buffer
+  Vec3Array airFlowNext;            // Jacobi back buffer of the air transfer
+  Vec3Array previousPosition;       // x_t, the position at the start of an implicit step (implicit_euler.h)
+  std::vector<float> mass;          // m_i (kg), fixed at creation from the film inertia
+  std::vector<float> liquid;        // liquid volume carried by the particle (m^3); w_e of Section 5.1
+  std::vector<float> voronoiArea;   // mixed Voronoi area A_Vor(p_i) (m^2)
+  std::vector<float> thickness;     // e_i = liquid / A_Vor (m)
+  std::vector<float> elasticity;    // E_i of Eq. (4) (N/m)
+  std::vector<float> lifetime;      // time since the particle was created (s)
   std::vector<float> drainOutflow;  // liquid particle i sends downhill this step (m^3), drainage pass 1
   std::vector<float> drainWeight;   // sum of d_dir of Eq. (14) over i's neighbours, drainage pass 1
-  std::vector<float> frameParam;   // wire-frame coordinate of a boundary particle (see wire_frame.h); negative:
-                                   // the particle is pinned where it is (fixed rings, film_shapes.h)
-  std::vector<uint32_t> alive;     // 1 while the particle exists (uint32: the GPU reads it as a uint)
+  std::vector<float> frameParam;    // wire-frame coordinate of a boundary particle (see wire_frame.h); negative:
+                                    // the particle is pinned where it is (fixed rings, film_shapes.h)
+  std::vector<uint32_t> alive;      // 1 while the particle exists (uint32: the GPU reads it as a uint)
   // Per triangle, written by the geometry stage's first pass and gathered by its second:
-  Vec3Array triangleNormal;        // (x1 - x0) x (x2 - x0): twice the area times the unit normal
-  std::vector<float> cornerArea;   // mixed Voronoi area of each corner, 3 per triangle
+  Vec3Array triangleNormal;       // (x1 - x0) x (x2 - x0): twice the area times the unit normal
+  std::vector<float> cornerArea;  // mixed Voronoi area of each corner, 3 per triangle
 
   [[nodiscard]] size_t size() const { return mass.size(); }
   void resize(size_t n);
@@ -67,9 +68,9 @@ Vec3 centroid(const State& s);
 // for each particle, its springs (with the neighbour at the other end) and its triangles, in a fixed order
 // that both backends use for every sum over a one-ring.
 struct Topology {
-  std::vector<uint32_t> triangles;    // 3 particle indices per triangle, counter-clockwise about the normal
-  std::vector<uint32_t> springEnds;   // 2 particle indices per spring
-  std::vector<float> restLength;      // l_ij (m)
+  std::vector<uint32_t> triangles;   // 3 particle indices per triangle, counter-clockwise about the normal
+  std::vector<uint32_t> springEnds;  // 2 particle indices per spring
+  std::vector<float> restLength;     // l_ij (m)
 
   std::vector<uint32_t> springOffset;     // CSR: springs of particle i are [springOffset[i], springOffset[i+1])
   std::vector<uint32_t> springIndex;      // spring id
@@ -85,8 +86,13 @@ struct Topology {
   // Self-collision candidates of each particle for the current frame, as one packed CSR array:
   // contacts[i] .. contacts[i + 1] index the neighbours stored from contacts[n + 1] on (collision.h).
   std::vector<uint32_t> contacts;
-  bool closed = false;                    // no edge is used by one triangle only: a bubble. Eqs. (10)-(11)
-                                          // apply; a burst tears it open again. Set by buildAdjacency.
+  // Graph colouring of the particles the implicit solver moves (colouring.h): colour c holds
+  // colourOrder[colourOffset[c] .. colourOffset[c + 1]); no two particles joined by a spring or a contact
+  // share a colour, so each colour's particles can be solved in parallel in any order.
+  std::vector<uint32_t> colourOffset;
+  std::vector<uint32_t> colourOrder;
+  bool closed = false;  // no edge is used by one triangle only: a bubble. Eqs. (10)-(11)
+                        // apply; a burst tears it open again. Set by buildAdjacency.
   [[nodiscard]] bool isClosed() const { return closed; }
 };
 

@@ -12,9 +12,35 @@
 
 namespace gb {
 
-// The stages of a step, in order. Volume runs only for a closed film.
-enum class Stage : int { Geometry, Volume, FilmState, AirInflow, AirTransfer, Forces, Integrate, Drainage, Count };
+// The stages a step can run. Their order, when each runs and the barrier after each are stepStages().
+enum class Stage : int {
+  Geometry,
+  Volume,
+  FilmState,
+  AirInflow,
+  AirTransfer,
+  Forces,              // explicit integrator: internal + external forces
+  Integrate,           // explicit integrator: Eqs. (12)-(13)
+  ExternalForces,      // implicit integrator: the forces kept explicit (gravity, air, Boyle pressure)
+  ImplicitPredict,     // implicit integrator: x_t kept, wire placed, first guess
+  VertexBlockDescent,  // implicit integrator: solverIterations sweeps over the colours
+  ImplicitVelocity,    // implicit integrator: v = (x - x_t) / h
+  Drainage,
+  Count
+};
 inline constexpr int kStageCount = static_cast<int>(Stage::Count);
+
+// One row of the step: the stage, its name (the C++ stage, its GLSL kernel(s) and the tests use it), when it
+// runs, and why a barrier follows it (nullptr: the next stage reads nothing it wrote).
+struct StageSpec {
+  Stage stage;
+  const char* name;
+  bool (*runs)(const Params& params, const StepUniforms& uniforms);
+  const char* barrierAfter;
+};
+// The one list of the step's stages, in order: CpuStepper::step, VulkanStepper's recording and both
+// backends' timing walk it (ARCHITECTURE.md "The step").
+std::span<const StageSpec> stepStages();
 const char* stageName(Stage stage);
 
 // Time spent per stage (ms) since the last reset; filled when timing is enabled.

@@ -3,27 +3,28 @@
 #include <array>
 #include <vector>
 
+#include "colouring.h"
 #include "device_buffer.h"
+#include "implicit_euler.h"
 #include "shared_step.h"
 #include "spirv.h"
 #include "vulkan_context.h"
 
 namespace gb {
 
-using kernels::Kernel;
 using gpu::PushBlock;
 using gpu::StepUniformsBlock;
+using kernels::Kernel;
 
 // The shared layouts are what the shaders expect (kernels/shared_step.h): sizes and the offsets std430
 // gives the same declarations.
 static_assert(sizeof(StepUniformsBlock) == 176 && offsetof(StepUniformsBlock, dt) == 128 &&
               offsetof(StepUniformsBlock, frameKind) == 156 && offsetof(StepUniformsBlock, closed) == 160);
-static_assert(sizeof(PushBlock) == 20);
+static_assert(sizeof(PushBlock) == 24);
 static_assert(alignof(Params) == 4 && sizeof(Params) % 4 == 0,
               "Params must stay a block of 4-byte scalars, whose std430 layout is the C layout");
 
 namespace {
-
 
 gpu::vec4 toVec4(const Vec3& v) { return {v.x(), v.y(), v.z(), 0.0f}; }
 
@@ -47,6 +48,7 @@ StepUniformsBlock toBlock(const StepUniforms& u) {
   b.frameKind = static_cast<int>(u.frameNext.kind);
   b.closed = u.closed;
   b.drainageDt = u.drainageDt;
+  b.frameArea = u.frameArea;
   return b;
 }
 
@@ -57,15 +59,14 @@ uint32_t ceilDiv(uint32_t n, uint32_t d) { return (n + d - 1) / d; }
 void computeToComputeBarrier(const vk::raii::CommandBuffer& cb) {
   const vk::MemoryBarrier barrier(vk::AccessFlagBits::eShaderWrite,
                                   vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
-  cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {},
-                     barrier, {}, {});
+  cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, barrier,
+                     {}, {});
 }
 
 // Makes the last dispatches' writes visible to the host reading mapped memory after the fence.
 void computeToHostBarrier(const vk::raii::CommandBuffer& cb) {
   const vk::MemoryBarrier barrier(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eHostRead);
-  cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eHost, {}, barrier, {},
-                     {});
+  cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eHost, {}, barrier, {}, {});
 }
 
 template <class T>
@@ -92,6 +93,19 @@ void readVector(const DeviceBuffer& buffer, std::vector<T>& values) {
   buffer.read(values.data(), values.size() * sizeof(T));
 }
 
+// The drainage buffer holds the two per-particle arrays of the drainage passes one after the other.
+void writeDrainage(DeviceBuffer& buffer, const State& s) {
+  const size_t bytes = s.size() * sizeof(float);
+  buffer.write(s.drainOutflow.data(), bytes, 0);
+  buffer.write(s.drainWeight.data(), bytes, bytes);
+}
+
+void readDrainage(const DeviceBuffer& buffer, State& s) {
+  const size_t bytes = s.size() * sizeof(float);
+  buffer.read(s.drainOutflow.data(), bytes, 0);
+  buffer.read(s.drainWeight.data(), bytes, bytes);
+}
+
 }  // namespace
 
 struct VulkanStepper::Impl {
@@ -107,6 +121,7 @@ struct VulkanStepper::Impl {
   uint32_t particles = 0, triangles = 0;
   std::array<DeviceBuffer, GB_BINDING_COUNT> buffers;  // indexed by binding; AIR_FLOW/NEXT are the two air
                                                        // buffers of descriptor set 0
+  std::vector<uint32_t> colourOffset;                  // the implicit solver's colours (Topology::colourOffset)
   size_t stepsCapacity = 0;
   vk::raii::DescriptorPool pool{nullptr};
   std::vector<vk::raii::DescriptorSet> sets;  // [0]: air A front, B back; [1]: swapped
@@ -158,7 +173,19 @@ struct VulkanStepper::Impl {
     writeVector(buffer(GB_BINDING_SPRING_NEIGHBOUR), t.springNeighbour);
     writeVector(buffer(GB_BINDING_TRIANGLE_OFFSET), t.triangleOffset);
     writeVector(buffer(GB_BINDING_TRIANGLE_INDEX), t.triangleIndex);
+    writeContacts(t);
+  }
+
+  // The contacts and the colouring made with them (colouring.h): they change together, every frame.
+  void writeContacts(const Topology& t) {
+    const size_t bytes = t.contacts.size() * sizeof(uint32_t);
+    if (bytes > buffer(GB_BINDING_CONTACTS).size()) {  // grow geometrically: contacts come and go
+      buffer(GB_BINDING_CONTACTS) = DeviceBuffer(*ctx, 2 * bytes);
+      writeDescriptorSets();
+    }
     writeVector(buffer(GB_BINDING_CONTACTS), t.contacts);
+    writeVector(buffer(GB_BINDING_COLOUR_ORDER), t.colourOrder);
+    colourOffset = t.colourOffset;
   }
 
   void writeDescriptorSets() {
@@ -178,17 +205,17 @@ struct VulkanStepper::Impl {
   }
 
   void dispatch(const vk::raii::CommandBuffer& cb, Kernel kernel, uint32_t count, uint32_t stepIndex,
-                uint32_t flags = 0) {
+                uint32_t flags = 0, uint32_t first = 0) {
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipelines[static_cast<size_t>(kernel)]);
     const vk::DescriptorSet set = *sets[static_cast<size_t>(airParity)];
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipelineLayout, 0, set, {});
-    const PushBlock push{count, particles, stepIndex, flags, triangles};
+    const PushBlock push{count, particles, stepIndex, flags, triangles, first};
     cb.pushConstants<PushBlock>(*pipelineLayout, vk::ShaderStageFlagBits::eCompute, 0, push);
     cb.dispatch(ceilDiv(count, workgroup), 1, 1);
   }
 
-  // Records one stage. Volume records its own barriers between tree levels and ends with one.
-  void recordStage(const vk::raii::CommandBuffer& cb, Stage stage, uint32_t stepIndex) {
+  // Records one stage. Stages of several passes record their own barriers between the passes.
+  void recordStage(const vk::raii::CommandBuffer& cb, Stage stage, const StepUniforms& u, uint32_t stepIndex) {
     switch (stage) {
       case Stage::Geometry:
         dispatch(cb, Kernel::TriangleGeometry, triangles, stepIndex);
@@ -207,44 +234,59 @@ struct VulkanStepper::Impl {
         volumeInA = fromA;
         break;
       }
-      case Stage::FilmState: dispatch(cb, Kernel::FilmState, particles, stepIndex); break;
-      case Stage::AirInflow: dispatch(cb, Kernel::AirInflow, particles, stepIndex); break;
+      case Stage::FilmState:
+        dispatch(cb, Kernel::FilmState, particles, stepIndex);
+        break;
+      case Stage::AirInflow:
+        dispatch(cb, Kernel::AirInflow, particles, stepIndex);
+        break;
       case Stage::AirTransfer:
         dispatch(cb, Kernel::AirTransfer, particles, stepIndex);
         airParity = 1 - airParity;  // later dispatches see the new air as the front buffer
         break;
-      case Stage::Forces: dispatch(cb, Kernel::Forces, particles, stepIndex, volumeInA ? 1u : 0u); break;
-      case Stage::Integrate: dispatch(cb, Kernel::Integrate, particles, stepIndex); break;
+      case Stage::Forces:
+        dispatch(cb, Kernel::Forces, particles, stepIndex, volumeInA ? 1u : 0u);
+        break;
+      case Stage::Integrate:
+        dispatch(cb, Kernel::Integrate, particles, stepIndex);
+        break;
+      case Stage::ExternalForces:
+        dispatch(cb, Kernel::ExternalForces, particles, stepIndex, volumeInA ? 1u : 0u);
+        break;
+      case Stage::ImplicitPredict:
+        dispatch(cb, Kernel::ImplicitPredict, particles, stepIndex);
+        break;
+      case Stage::VertexBlockDescent:
+        for (int sweep = 0; sweep < solverSweeps(params, u); ++sweep) {
+          if (sweep > 0) computeToComputeBarrier(cb);  // the volume and the next colours read the last positions
+          if (u.closed) recordStage(cb, Stage::Volume, u, stepIndex);  // this iterate's volume; ends with a barrier
+          for (size_t c = 0; c + 1 < colourOffset.size(); ++c) {
+            if (c > 0) computeToComputeBarrier(cb);  // the next colour reads this one's positions
+            const uint32_t first = colourOffset[c];
+            dispatch(cb, Kernel::VertexBlockDescent, colourOffset[c + 1] - first, stepIndex, volumeInA ? 1u : 0u,
+                     first);
+          }
+        }
+        break;
+      case Stage::ImplicitVelocity:
+        dispatch(cb, Kernel::ImplicitVelocity, particles, stepIndex);
+        break;
       case Stage::Drainage:
         dispatch(cb, Kernel::DrainageOutflow, particles, stepIndex);
         computeToComputeBarrier(cb);  // every outflow is written before anyone gathers
         dispatch(cb, Kernel::DrainageGather, particles, stepIndex);
         break;
-      case Stage::Count: break;
+      case Stage::Count:
+        break;
     }
   }
 
-  // One substep. Barriers go only where a stage reads what the stages before it wrote: the geometry's
-  // vertex pass, air inflow and the triangle volumes read positions only and run together; film state and air transfer need the
-  // areas and inflow; forces need everything; integration must not move particles that forces still read.
-  void recordStep(const vk::raii::CommandBuffer& cb, uint32_t stepIndex, bool closed, bool drainage) {
-    recordStage(cb, Stage::Geometry, stepIndex);
-    recordStage(cb, Stage::AirInflow, stepIndex);
-    if (closed) {
-      recordStage(cb, Stage::Volume, stepIndex);  // ends with a barrier
-    } else {
-      computeToComputeBarrier(cb);
-    }
-    recordStage(cb, Stage::FilmState, stepIndex);
-    recordStage(cb, Stage::AirTransfer, stepIndex);
-    computeToComputeBarrier(cb);
-    recordStage(cb, Stage::Forces, stepIndex);
-    computeToComputeBarrier(cb);
-    recordStage(cb, Stage::Integrate, stepIndex);
-    computeToComputeBarrier(cb);  // drainage and the next substep read the new positions
-    if (drainage) {
-      recordStage(cb, Stage::Drainage, stepIndex);
-      computeToComputeBarrier(cb);  // the next substep's film state reads the new liquid
+  // One step: the rows of stepStages() that run, each followed by its barrier where the table gives one.
+  void recordStep(const vk::raii::CommandBuffer& cb, const StepUniforms& u, uint32_t stepIndex) {
+    for (const StageSpec& spec : stepStages()) {
+      if (!spec.runs(params, u)) continue;
+      recordStage(cb, spec.stage, u, stepIndex);
+      if (spec.barrierAfter) computeToComputeBarrier(cb);
     }
   }
 
@@ -258,7 +300,7 @@ struct VulkanStepper::Impl {
 
   float readVolume() {
     float volume = 0.0f;
-    buffer(volumeInA ? GB_BINDING_REDUCE_A : GB_BINDING_REDUCE_B).read(&volume, sizeof volume);
+    buffer(GB_BINDING_REDUCE).read(&volume, sizeof volume, volumeInA ? 0 : triangles * sizeof(float));
     return volume;
   }
 };
@@ -275,6 +317,7 @@ std::string VulkanStepper::name() const {
 
 void VulkanStepper::load(const Params& params, Film& film) {
   Impl& m = *impl_;
+  if (film.topology.colourOffset.empty()) colourParticles(film.state.alive, film.topology);
   const State& s = film.state;
   const Topology& t = film.topology;
   m.params = params;
@@ -286,10 +329,13 @@ void VulkanStepper::load(const Params& params, Film& film) {
   for (int b : {GB_BINDING_POSITION, GB_BINDING_VELOCITY, GB_BINDING_FORCE, GB_BINDING_NORMAL, GB_BINDING_AIR_INFLOW,
                 GB_BINDING_AIR_FLOW, GB_BINDING_AIR_FLOW_NEXT})
     make(b, 3 * n * sizeof(float));
-  for (int b : {GB_BINDING_MASS, GB_BINDING_LIQUID, GB_BINDING_VORONOI_AREA, GB_BINDING_THICKNESS,
-                GB_BINDING_ELASTICITY, GB_BINDING_LIFETIME, GB_BINDING_FRAME_PARAM, GB_BINDING_ALIVE,
-                GB_BINDING_BOUNDARY, GB_BINDING_DRAIN_OUTFLOW, GB_BINDING_DRAIN_WEIGHT})
+  for (int b :
+       {GB_BINDING_MASS, GB_BINDING_LIQUID, GB_BINDING_VORONOI_AREA, GB_BINDING_THICKNESS, GB_BINDING_ELASTICITY,
+        GB_BINDING_LIFETIME, GB_BINDING_FRAME_PARAM, GB_BINDING_ALIVE, GB_BINDING_BOUNDARY})
     make(b, n * sizeof(float));
+  make(GB_BINDING_PREVIOUS_POSITION, 3 * n * sizeof(float));
+  make(GB_BINDING_DRAINAGE, 2 * n * sizeof(float));
+  make(GB_BINDING_COLOUR_ORDER, std::max<size_t>(n, 1) * sizeof(uint32_t));
   make(GB_BINDING_TRIANGLES, t.triangles.size() * sizeof(uint32_t));
   make(GB_BINDING_REST_LENGTH, t.restLength.size() * sizeof(float));
   make(GB_BINDING_SPRING_OFFSET, t.springOffset.size() * sizeof(uint32_t));
@@ -300,8 +346,7 @@ void VulkanStepper::load(const Params& params, Film& film) {
   make(GB_BINDING_CONTACTS, t.contacts.size() * sizeof(uint32_t));
   make(GB_BINDING_TRIANGLE_NORMAL, 3 * t.triangleCount() * sizeof(float));
   make(GB_BINDING_CORNER_AREA, 3 * t.triangleCount() * sizeof(float));
-  make(GB_BINDING_REDUCE_A, std::max<size_t>(m.triangles, 1) * sizeof(float));
-  make(GB_BINDING_REDUCE_B, std::max<size_t>(m.triangles, 1) * sizeof(float));
+  make(GB_BINDING_REDUCE, 2 * std::max<size_t>(m.triangles, 1) * sizeof(float));
   m.stepsCapacity = 0;
   make(GB_BINDING_STEPS, sizeof(StepUniformsBlock));
 
@@ -319,8 +364,8 @@ void VulkanStepper::load(const Params& params, Film& film) {
   writeVector(m.buffer(GB_BINDING_THICKNESS), s.thickness);
   writeVector(m.buffer(GB_BINDING_ELASTICITY), s.elasticity);
   writeVector(m.buffer(GB_BINDING_LIFETIME), s.lifetime);
-  writeVector(m.buffer(GB_BINDING_DRAIN_OUTFLOW), s.drainOutflow);
-  writeVector(m.buffer(GB_BINDING_DRAIN_WEIGHT), s.drainWeight);
+  writeVec3(m.buffer(GB_BINDING_PREVIOUS_POSITION), s.previousPosition);
+  writeDrainage(m.buffer(GB_BINDING_DRAINAGE), s);
   writeVector(m.buffer(GB_BINDING_FRAME_PARAM), s.frameParam);
   m.writeMesh(s.alive, t);
 
@@ -348,32 +393,29 @@ float VulkanStepper::run(std::span<const StepUniforms> substeps) {
   if (timing_) {
     // Timing: every stage alone between barriers and timestamps, so each gets its own duration.
     std::vector<Stage> order;
-    const bool closed = substeps.front().closed != 0;
     const uint32_t queries = static_cast<uint32_t>(substeps.size()) * kStageCount + 1;
     vk::raii::QueryPool pool(m.ctx->device, vk::QueryPoolCreateInfo({}, vk::QueryType::eTimestamp, queries));
     cb.resetQueryPool(*pool, 0, queries);
     uint32_t q = 0;
     cb.writeTimestamp(vk::PipelineStageFlagBits::eComputeShader, *pool, q++);
     for (uint32_t k = 0; k < substeps.size(); ++k)
-      for (Stage stage : {Stage::Geometry, Stage::Volume, Stage::FilmState, Stage::AirInflow, Stage::AirTransfer,
-                          Stage::Forces, Stage::Integrate, Stage::Drainage}) {
-        if (stage == Stage::Volume && !closed) continue;
-        if (stage == Stage::Drainage && !(substeps[k].drainageDt > 0)) continue;
-        m.recordStage(cb, stage, k);
+      for (const StageSpec& spec : stepStages()) {
+        if (!spec.runs(m.params, substeps[k])) continue;
+        m.recordStage(cb, spec.stage, substeps[k], k);
         computeToComputeBarrier(cb);
         cb.writeTimestamp(vk::PipelineStageFlagBits::eComputeShader, *pool, q++);
-        order.push_back(stage);
+        order.push_back(spec.stage);
       }
     computeToHostBarrier(cb);
     cb.end();
     m.ctx->submitAndWait(cb);
-    const auto [result, ticks] = pool.getResults<uint64_t>(0, q, q * sizeof(uint64_t), sizeof(uint64_t),
-                                                           vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
+    const auto [result, ticks] = pool.getResults<uint64_t>(
+        0, q, q * sizeof(uint64_t), sizeof(uint64_t), vk::QueryResultFlagBits::e64 | vk::QueryResultFlagBits::eWait);
     for (size_t k = 0; k < order.size(); ++k)
-      times_[static_cast<int>(order[k])] += static_cast<double>(ticks[k + 1] - ticks[k]) * m.ctx->timestampPeriodNs() * 1e-6;
+      times_[static_cast<int>(order[k])] +=
+          static_cast<double>(ticks[k + 1] - ticks[k]) * m.ctx->timestampPeriodNs() * 1e-6;
   } else {
-    for (uint32_t k = 0; k < substeps.size(); ++k)
-      m.recordStep(cb, k, substeps[k].closed != 0, substeps[k].drainageDt > 0);
+    for (uint32_t k = 0; k < substeps.size(); ++k) m.recordStep(cb, substeps[k], k);
     computeToHostBarrier(cb);
     cb.end();
     m.ctx->submitAndWait(cb);
@@ -389,23 +431,14 @@ float VulkanStepper::runStage(Stage stage, const StepUniforms& uniforms) {
   const vk::raii::CommandBuffer& cb = m.commands;
   cb.reset();
   cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
-  m.recordStage(cb, stage, 0);
+  m.recordStage(cb, stage, uniforms, 0);
   computeToHostBarrier(cb);
   cb.end();
   m.ctx->submitAndWait(cb);
   return stage == Stage::Volume ? m.readVolume() : 0.0f;
 }
 
-void VulkanStepper::updateContacts(const Film& film) {
-  Impl& m = *impl_;
-  const std::vector<uint32_t>& contacts = film.topology.contacts;
-  const size_t bytes = contacts.size() * sizeof(uint32_t);
-  if (bytes > m.buffer(GB_BINDING_CONTACTS).size()) {  // grow geometrically: contacts come and go
-    m.buffer(GB_BINDING_CONTACTS) = DeviceBuffer(*m.ctx, 2 * bytes);
-    m.writeDescriptorSets();
-  }
-  writeVector(m.buffer(GB_BINDING_CONTACTS), contacts);
-}
+void VulkanStepper::updateContacts(const Film& film) { impl_->writeContacts(film.topology); }
 
 void VulkanStepper::updateTopology(const Params& params, Film& film) {
   Impl& m = *impl_;
@@ -413,14 +446,13 @@ void VulkanStepper::updateTopology(const Params& params, Film& film) {
   auto fits = [&](int binding, size_t count, size_t elementBytes) {
     return count * elementBytes <= m.buffer(binding).size();
   };
-  const bool fitsBuffers =
-      film.state.size() == m.particles && t.triangleCount() <= m.triangles &&
-      fits(GB_BINDING_TRIANGLES, t.triangles.size(), sizeof(uint32_t)) &&
-      fits(GB_BINDING_REST_LENGTH, t.restLength.size(), sizeof(float)) &&
-      fits(GB_BINDING_SPRING_INDEX, t.springIndex.size(), sizeof(uint32_t)) &&
-      fits(GB_BINDING_SPRING_NEIGHBOUR, t.springNeighbour.size(), sizeof(uint32_t)) &&
-      fits(GB_BINDING_TRIANGLE_INDEX, t.triangleIndex.size(), sizeof(uint32_t)) &&
-      fits(GB_BINDING_CONTACTS, t.contacts.size(), sizeof(uint32_t));
+  const bool fitsBuffers = film.state.size() == m.particles && t.triangleCount() <= m.triangles &&
+                           fits(GB_BINDING_TRIANGLES, t.triangles.size(), sizeof(uint32_t)) &&
+                           fits(GB_BINDING_REST_LENGTH, t.restLength.size(), sizeof(float)) &&
+                           fits(GB_BINDING_SPRING_INDEX, t.springIndex.size(), sizeof(uint32_t)) &&
+                           fits(GB_BINDING_SPRING_NEIGHBOUR, t.springNeighbour.size(), sizeof(uint32_t)) &&
+                           fits(GB_BINDING_TRIANGLE_INDEX, t.triangleIndex.size(), sizeof(uint32_t)) &&
+                           fits(GB_BINDING_CONTACTS, t.contacts.size(), sizeof(uint32_t));
   if (!fitsBuffers) {
     load(params, film);
     return;
@@ -452,17 +484,21 @@ void VulkanStepper::store(Film& film) {
   readVector(m.buffer(GB_BINDING_ELASTICITY), s.elasticity);
   readVector(m.buffer(GB_BINDING_LIFETIME), s.lifetime);
   readVector(m.buffer(GB_BINDING_LIQUID), s.liquid);
-  readVector(m.buffer(GB_BINDING_DRAIN_OUTFLOW), s.drainOutflow);
-  readVector(m.buffer(GB_BINDING_DRAIN_WEIGHT), s.drainWeight);
+  readVec3(m.buffer(GB_BINDING_PREVIOUS_POSITION), s.previousPosition);
+  readDrainage(m.buffer(GB_BINDING_DRAINAGE), s);
 }
 
 std::shared_ptr<const VulkanContext> VulkanStepper::sharedContext() const { return impl_->ctx; }
 
 DeviceFilm VulkanStepper::deviceFilm() {
   Impl& m = *impl_;
-  return {m.buffer(GB_BINDING_POSITION).handle(), m.buffer(GB_BINDING_NORMAL).handle(),
-          m.buffer(GB_BINDING_THICKNESS).handle(), m.airFront().handle(), m.buffer(GB_BINDING_TRIANGLES).handle(),
-          m.particles, m.triangles};
+  return {m.buffer(GB_BINDING_POSITION).handle(),
+          m.buffer(GB_BINDING_NORMAL).handle(),
+          m.buffer(GB_BINDING_THICKNESS).handle(),
+          m.airFront().handle(),
+          m.buffer(GB_BINDING_TRIANGLES).handle(),
+          m.particles,
+          m.triangles};
 }
 
 }  // namespace gb

@@ -62,7 +62,8 @@ struct Window::Impl {
       : ctx(std::make_shared<const VulkanContext>(device, windowExtensions())) {
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
     window = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
-    if (!window) throw std::runtime_error("cannot open a window of " + std::to_string(width) + "x" + std::to_string(height));
+    if (!window)
+      throw std::runtime_error("cannot open a window of " + std::to_string(width) + "x" + std::to_string(height));
     VkSurfaceKHR raw = VK_NULL_HANDLE;
     if (glfwCreateWindowSurface(static_cast<VkInstance>(*ctx->instance), window, nullptr, &raw) != VK_SUCCESS)
       throw std::runtime_error("cannot create a Vulkan surface for the window");
@@ -91,8 +92,9 @@ struct Window::Impl {
     glfwGetFramebufferSize(window, &w, &h);
     extent = caps.currentExtent.width != UINT32_MAX
                  ? caps.currentExtent
-                 : vk::Extent2D(std::clamp(static_cast<uint32_t>(w), caps.minImageExtent.width, caps.maxImageExtent.width),
-                                std::clamp(static_cast<uint32_t>(h), caps.minImageExtent.height, caps.maxImageExtent.height));
+                 : vk::Extent2D(
+                       std::clamp(static_cast<uint32_t>(w), caps.minImageExtent.width, caps.maxImageExtent.width),
+                       std::clamp(static_cast<uint32_t>(h), caps.minImageExtent.height, caps.maxImageExtent.height));
     // The renderer's output is an sRGB image: an sRGB swapchain makes the blit decode and re-encode it
     // unchanged. A UNORM one would show the linear values (too dark): refuse it rather than show wrong colours.
     const auto formats = ctx->physical.getSurfaceFormatsKHR(*surface);
@@ -105,12 +107,12 @@ struct Window::Impl {
     // Immediate when offered: the loop measures its own frame rate; FIFO (always offered) otherwise.
     const auto modes = ctx->physical.getSurfacePresentModesKHR(*surface);
     const bool immediate = std::find(modes.begin(), modes.end(), vk::PresentModeKHR::eImmediate) != modes.end();
-    const uint32_t count = caps.maxImageCount == 0 ? caps.minImageCount + 1 : std::min(caps.minImageCount + 1, caps.maxImageCount);
-    vk::SwapchainCreateInfoKHR info({}, *surface, count, format->format, format->colorSpace, extent, 1,
-                                    vk::ImageUsageFlagBits::eTransferDst, vk::SharingMode::eExclusive, {},
-                                    caps.currentTransform, vk::CompositeAlphaFlagBitsKHR::eOpaque,
-                                    immediate ? vk::PresentModeKHR::eImmediate : vk::PresentModeKHR::eFifo, true,
-                                    *swapchain);
+    const uint32_t count =
+        caps.maxImageCount == 0 ? caps.minImageCount + 1 : std::min(caps.minImageCount + 1, caps.maxImageCount);
+    vk::SwapchainCreateInfoKHR info(
+        {}, *surface, count, format->format, format->colorSpace, extent, 1, vk::ImageUsageFlagBits::eTransferDst,
+        vk::SharingMode::eExclusive, {}, caps.currentTransform, vk::CompositeAlphaFlagBitsKHR::eOpaque,
+        immediate ? vk::PresentModeKHR::eImmediate : vk::PresentModeKHR::eFifo, true, *swapchain);
     swapchain = vk::raii::SwapchainKHR(ctx->device, info);
     images = swapchain.getImages();
   }
@@ -121,14 +123,31 @@ struct Window::Impl {
     if (action != GLFW_PRESS) return;
     WindowKeys& k = of(w).keys;
     switch (key) {
-      case GLFW_KEY_ESCAPE: case GLFW_KEY_Q: k.quit = true; break;
-      case GLFW_KEY_R: k.reset = true; break;
-      case GLFW_KEY_D: k.dip = true; break;
-      case GLFW_KEY_B: k.burst = true; break;
-      case GLFW_KEY_SPACE: case GLFW_KEY_P: k.pause = true; break;
-      case GLFW_KEY_C: k.nextColouring = true; break;
-      case GLFW_KEY_HOME: k.resetCamera = true; break;
-      default: break;
+      case GLFW_KEY_ESCAPE:
+      case GLFW_KEY_Q:
+        k.quit = true;
+        break;
+      case GLFW_KEY_R:
+        k.reset = true;
+        break;
+      case GLFW_KEY_D:
+        k.dip = true;
+        break;
+      case GLFW_KEY_B:
+        k.burst = true;
+        break;
+      case GLFW_KEY_SPACE:
+      case GLFW_KEY_P:
+        k.pause = true;
+        break;
+      case GLFW_KEY_C:
+        k.nextColouring = true;
+        break;
+      case GLFW_KEY_HOME:
+        k.resetCamera = true;
+        break;
+      default:
+        break;
     }
   }
   static void onButton(GLFWwindow* w, int button, int action, int) {
@@ -191,8 +210,10 @@ struct Window::Impl {
     transitionImage(cb, target, vk::ImageLayout::eUndefined, vk::ImageLayout::eTransferDstOptimal, Stage::eTransfer, {},
                     Stage::eTransfer, Access::eTransferWrite);
     const vk::ImageSubresourceLayers colour(vk::ImageAspectFlagBits::eColor, 0, 0, 1);
-    const std::array<vk::Offset3D, 2> src{vk::Offset3D(0, 0, 0), vk::Offset3D(static_cast<int32_t>(from.width), static_cast<int32_t>(from.height), 1)};
-    const std::array<vk::Offset3D, 2> dst{vk::Offset3D(0, 0, 0), vk::Offset3D(static_cast<int32_t>(extent.width), static_cast<int32_t>(extent.height), 1)};
+    const std::array<vk::Offset3D, 2> src{
+        vk::Offset3D(0, 0, 0), vk::Offset3D(static_cast<int32_t>(from.width), static_cast<int32_t>(from.height), 1)};
+    const std::array<vk::Offset3D, 2> dst{vk::Offset3D(0, 0, 0), vk::Offset3D(static_cast<int32_t>(extent.width),
+                                                                              static_cast<int32_t>(extent.height), 1)};
     cb.blitImage(output, vk::ImageLayout::eTransferSrcOptimal, target, vk::ImageLayout::eTransferDstOptimal,
                  vk::ImageBlit(colour, src, colour, dst), vk::Filter::eLinear);
     transitionImage(cb, target, vk::ImageLayout::eTransferDstOptimal, vk::ImageLayout::ePresentSrcKHR, Stage::eTransfer,
@@ -220,12 +241,16 @@ WindowKeys Window::poll() {
   return keys;
 }
 
+void Window::setTitle(const std::string& title) { glfwSetWindowTitle(impl_->window, title.c_str()); }
+
 void Window::present(Renderer& renderer, RenderFrame frame) {
   Impl& m = *impl_;
   const uint32_t index = m.acquire();
   frame.camera = m.camera;
-  const vk::Extent2D from(static_cast<uint32_t>(renderer.options().width), static_cast<uint32_t>(renderer.options().height));
-  renderer.render(frame, false, [&](const vk::raii::CommandBuffer& cb, vk::Image output) { m.recordBlit(cb, output, from, index); });
+  const vk::Extent2D from(static_cast<uint32_t>(renderer.options().width),
+                          static_cast<uint32_t>(renderer.options().height));
+  renderer.render(frame, false,
+                  [&](const vk::raii::CommandBuffer& cb, vk::Image output) { m.recordBlit(cb, output, from, index); });
   try {
     const vk::SwapchainKHR chain = *m.swapchain;
     (void)m.ctx->queue.presentKHR(vk::PresentInfoKHR({}, chain, index));

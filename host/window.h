@@ -17,11 +17,11 @@ namespace gb {
 
 // Keys pressed since the last poll.
 struct WindowKeys {
-  bool quit = false;        // Escape, Q, or the window closed
-  bool reset = false;       // R: new film and the performance from its start
-  bool dip = false;         // D: dip the wands again (new film where the wands are)
-  bool burst = false;       // B: poke the film
-  bool pause = false;       // Space or P: pause / resume the simulation
+  bool quit = false;           // Escape, Q, or the window closed
+  bool reset = false;          // R: new film and the performance from its start
+  bool dip = false;            // D: dip the wands again (new film where the wands are)
+  bool burst = false;          // B: poke the film
+  bool pause = false;          // Space or P: pause / resume the simulation
   bool nextColouring = false;  // C: interference -> thickness -> air flow
   bool resetCamera = false;    // Home
 };
@@ -30,9 +30,9 @@ struct WindowKeys {
 // left and right buttons drag the left and right hands, the wheel with a button held pushes them forward or
 // back; the camera then orbits with the middle button, and the wheel alone still zooms.
 struct PointerListener {
-  std::function<void(double x, double y)> moved;      // pointer in window coordinates 0..1, origin top left
-  std::function<void(int hand, bool down)> button;    // hand 0 left, 1 right
-  std::function<void(double notches)> push;           // wheel notches while a hand is held
+  std::function<void(double x, double y)> moved;    // pointer in window coordinates 0..1, origin top left
+  std::function<void(int hand, bool down)> button;  // hand 0 left, 1 right
+  std::function<void(double notches)> push;         // wheel notches while a hand is held
 };
 
 class Window {
@@ -52,6 +52,8 @@ class Window {
   void setPointerListener(PointerListener listener);
   // Renders `frame` and shows it (the renderer's image scaled to the window). Waits until it is presented.
   void present(Renderer& renderer, RenderFrame frame);
+  // The title bar's text (the live show's figures).
+  void setTitle(const std::string& title);
 
  private:
   struct Impl;

@@ -33,13 +33,19 @@ layout(std430, binding = GB_BINDING_SPRING_NEIGHBOUR) readonly buffer SpringNeig
 layout(std430, binding = GB_BINDING_TRIANGLE_OFFSET) readonly buffer TriangleOffsetBuffer { uint triangleOffset[]; };
 layout(std430, binding = GB_BINDING_TRIANGLE_INDEX) readonly buffer TriangleIndexBuffer { uint triangleIndex[]; };
 layout(std430, binding = GB_BINDING_BOUNDARY) readonly buffer BoundaryBuffer { uint boundary[]; };
-layout(std430, binding = GB_BINDING_REDUCE_A) buffer ReduceABuffer { float reduceA[]; };
-layout(std430, binding = GB_BINDING_REDUCE_B) buffer ReduceBBuffer { float reduceB[]; };
-layout(std430, binding = GB_BINDING_DRAIN_OUTFLOW) buffer DrainOutflowBuffer { float drainOutflow[]; };
-layout(std430, binding = GB_BINDING_DRAIN_WEIGHT) buffer DrainWeightBuffer { float drainWeight[]; };
+layout(std430, binding = GB_BINDING_REDUCE) buffer ReduceBuffer { float reduce[]; };
+layout(std430, binding = GB_BINDING_DRAINAGE) buffer DrainageBuffer { float drainage[]; };
 layout(std430, binding = GB_BINDING_TRIANGLE_NORMAL) buffer TriangleNormalBuffer { float triangleNormal[]; };
 layout(std430, binding = GB_BINDING_CORNER_AREA) buffer CornerAreaBuffer { float cornerArea[]; };
 layout(std430, binding = GB_BINDING_CONTACTS) readonly buffer ContactsBuffer { uint contacts[]; };
+layout(std430, binding = GB_BINDING_PREVIOUS_POSITION) buffer PreviousPositionBuffer { float previousPosition[]; };
+layout(std430, binding = GB_BINDING_COLOUR_ORDER) readonly buffer ColourOrderBuffer { uint colourOrder[]; };
+
+// The two halves of the reduce buffer (tree sum ping-pong) and of the drainage buffer.
+#define REDUCE_A(k) reduce[(k)]
+#define REDUCE_B(k) reduce[pc.triangles + (k)]
+#define DRAIN_OUTFLOW(i) drainage[(i)]
+#define DRAIN_WEIGHT(i) drainage[pc.particles + (i)]
 
 // Vector attribute access: x, y, z blocks of pc.particles floats each.
 #define LOAD3(buf, i) vec3(buf[(i)], buf[pc.particles + (i)], buf[2u * pc.particles + (i)])

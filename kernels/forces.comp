@@ -1,68 +1,19 @@
 #version 450
-// computeForces (cpu-reference/stages.cpp): Eq. (2) with surface tension Eq. (3) or the physical area
-// tension, spring damping
-// (Algorithm 1), gravity, air drag, and Eq. (9) on an open film or Eqs. (10)-(11) on a closed bubble.
+// computeForces (cpu-reference/stages.cpp), the explicit integrator's forces: the whole of Eq. (2),
+// internal + external + linear air drag.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
-
-// areaTensionForce of cpu-reference/stages.cpp: -sum_t T_t grad_i A_t over i's triangles (physical model).
-vec3 areaTensionForce(uint i) {
-  vec3 f = vec3(0.0);
-  for (uint k = triangleOffset[i]; k < triangleOffset[i + 1u]; ++k) {
-    const uint t = triangleIndex[k];
-    const uint c = triangles[3u * t] == i ? 0u : (triangles[3u * t + 1u] == i ? 1u : 2u);
-    const uint j = triangles[3u * t + (c + 1u) % 3u], l = triangles[3u * t + (c + 2u) % 3u];
-    const vec3 twiceAreaNormal =
-        vec3(triangleNormal[t], triangleNormal[pc.triangles + t], triangleNormal[2u * pc.triangles + t]);
-    const float twiceArea = length(twiceAreaNormal);
-    if (twiceArea <= 0.0) continue;
-    const float tension =
-        (elasticity[triangles[3u * t]] + elasticity[triangles[3u * t + 1u]] + elasticity[triangles[3u * t + 2u]]) / 3.0;
-    f -= tension * 0.5 * cross(twiceAreaNormal / twiceArea, LOAD3(position, l) - LOAD3(position, j));
-  }
-  return f;
-}
+#include "forces.glsl"
 
 void main() {
   const uint i = gl_GlobalInvocationID.x;
   if (i >= pc.count) return;
   const StepUniformsBlock u = steps[pc.stepIndex];
-  const vec3 xi = LOAD3(position, i), vi = LOAD3(velocity, i), n = LOAD3(normal, i);
-  const float ei = elasticity[i], area = voronoiArea[i];
-  const bool physical = params.tensionModel == 1;
-  vec3 f = physical ? areaTensionForce(i) : vec3(0.0);
-  for (uint k = springOffset[i]; k < springOffset[i + 1u]; ++k) {
-    const uint j = springNeighbour[k];
-    const vec3 d = LOAD3(position, j) - xi;
-    const float len = length(d);
-    if (len <= 0.0) continue;
-    const vec3 dir = d / len;
-    const float stiffness = 0.5 * (ei + elasticity[j]);
-    if (!physical) f += stiffness * (len - restLength[springIndex[k]]) * dir;  // Eq. (3)
-    f += params.springDamping * dot(LOAD3(velocity, j) - vi, dir) * dir;        // Algorithm 1, line 5
-  }
-  // Self-collision contacts (packed CSR: offsets, then neighbours from pc.particles + 1).
-  const uint base = pc.particles + 1u;
-  for (uint k = contacts[i]; k < contacts[i + 1u]; ++k) {
-    const uint j = contacts[base + k];
-    const vec3 d = xi - LOAD3(position, j);
-    const float len = length(d);
-    if (!(len > 0.0 && len < params.collisionDistance)) continue;
-    const vec3 away = d / len;
-    const float approach = dot(vi - LOAD3(velocity, j), away);
-    f += params.collisionStiffness * (params.collisionDistance - len) * away;
-    if (approach < 0.0) f -= params.collisionDamping * approach * away;
-  }
-  f += mass[i] * vec3(params.gravityX, params.gravityY, params.gravityZ);
-  f -= params.airDrag * area * vi;
-  const float flowIn = dot(LOAD3(airFlow, i), n), directIn = dot(LOAD3(airInflow, i), n);
-  if (u.closed != 0u) {
-    const float volume = (pc.reduceFlags & 1u) != 0u ? reduceA[0] : reduceB[0];
-    const float pressure = boylePressure(u.referenceVolume, volume);
-    f += ((pressure - params.pressureCoefficient) +
-          pressure / params.pressureCoefficient * params.airPressureGain * flowIn) * area * n;  // Eq. (10)
-  } else {
-    f += params.airPressureGain * (flowIn + directIn) * area * n;  // Eq. (9)
-  }
+  const vec3 drag = -params.airDrag * voronoiArea[i] * LOAD3(velocity, i);  // still air resists
+  const float pressure = currentPressure(u);
+  const vec3 n = LOAD3(normal, i);
+  const vec3 coupling = -airCoupling(u, i) * dot(LOAD3(velocity, i), n) * n;  // the film moves with the air
+  vec3 f = internalForce(i) + externalForce(u, pressure, i) + drag + coupling;
+  if (u.closed != 0u) f += boyleForce(pressure, i);
   STORE3(force, i, f);
 }

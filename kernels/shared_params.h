@@ -11,8 +11,12 @@ namespace gb {
 #endif
 
 struct Params {
-  // --- Time integration (Section 5.3) ---
-  float frameTime GB_DEFAULT(0.02f);      // h, Table 2: 0.02 s. One frame of wand input, split into stable substeps
+  // --- Time integration (Section 5.3; docs/model.md "Integrators") ---
+  float frameTime GB_DEFAULT(0.02f);       // h, Table 2: 0.02 s. One frame of wand input
+  int integrator GB_DEFAULT(1);            // 1: implicit Euler solved by vertex block descent (one step per frame);
+                                           // 0: the paper's semi-implicit Euler, Eqs. (12)-(13), in stable substeps
+  int solverIterations GB_DEFAULT(10);     // vertex block descent sweeps per implicit step
+  int implicitSubsteps GB_DEFAULT(1);      // implicit steps per frame (a scene may ask for more; stability never does)
   float stabilitySafety GB_DEFAULT(0.5f);  // fraction of the explicit stability limit taken as the substep (0, 1]
   int maxSubsteps GB_DEFAULT(4000);        // refuse films whose stability limit needs more substeps per frame
 
@@ -30,41 +34,41 @@ struct Params {
   float gravityZ GB_DEFAULT(0.0f);
 
   // --- Air (Section 5.2, Eqs. 5-11) ---
-  float airDirectionThreshold GB_DEFAULT(0.6f);  // lambda_air, Table 2 [0.5, 0.7] (cosine, dimensionless)
-  float airInflowDistance GB_DEFAULT(1.0f);      // the "+ 1" of Eq. (5): distance at which the inflow halves (m)
-  float airPressureGain GB_DEFAULT(10.0f);       // kappa: pressure per unit of normal air flow (Pa s/m^3)
+  float airDirectionThreshold GB_DEFAULT(0.6f);   // lambda_air, Table 2 [0.5, 0.7] (cosine, dimensionless)
+  float airInflowDistance GB_DEFAULT(1.0f);       // the "+ 1" of Eq. (5): distance at which the inflow halves (m)
+  float airPressureGain GB_DEFAULT(10.0f);        // kappa: pressure per unit of normal air flow (Pa s/m^3)
   float pressureCoefficient GB_DEFAULT(1010.0f);  // P0 = 1.01 kPa, Eq. (11) (Pa)
 
   // --- Bursting and drainage (Section 6, Eqs. 14-15; Section 8) ---
   float thicknessThreshold GB_DEFAULT(35e-9f);  // lambda_thi, Table 2 [20, 50], read as nm (m)
   float sticky GB_DEFAULT(25.0f);               // Sticky, Table 2 [20, 30] (dimensionless)
-  float drainageRate GB_DEFAULT(2.0f);          // rate of Eq. (15): liquid fraction sent per second per unit d_dir/Sticky (1/s)
-  float surfaceTension GB_DEFAULT(0.025f);      // gamma of the soap solution, for the Taylor-Culick hole speed (N/m)
-  float liquidDensity GB_DEFAULT(1000.0f);      // rho of the soap solution (kg/m^3)
-  int holeOpening GB_DEFAULT(0);                // 0: hole front at the Taylor-Culick speed; 1: one ring per frame (paper)
-  float aerosolLifetime GB_DEFAULT(1.5f);       // aerosol droplets fade out over this time (s)
-  float aerosolDrag GB_DEFAULT(2.0f);           // linear air drag rate on a droplet (1/s)
-  float collisionThreshold GB_DEFAULT(1.75f);   // lambda_col, Table 2 [1.5, 2.0]: film Weber number of an impact
-                                                // that bursts the film (collision.h); 0 turns it off
-  float collisionDistance GB_DEFAULT(0.02f);    // film particles closer than this repel (self-collision) (m)
-  float collisionStiffness GB_DEFAULT(1.0f);    // stiffness of that repulsion (N/m)
-  float collisionDamping GB_DEFAULT(0.0002f);   // damping of the approach speed in a contact (N s/m)
+  float drainageRate GB_DEFAULT(2.0f);  // rate of Eq. (15): liquid fraction sent per second per unit d_dir/Sticky (1/s)
+  float surfaceTension GB_DEFAULT(0.025f);  // gamma of the soap solution, for the Taylor-Culick hole speed (N/m)
+  float liquidDensity GB_DEFAULT(1000.0f);  // rho of the soap solution (kg/m^3)
+  int holeOpening GB_DEFAULT(0);            // 0: hole front at the Taylor-Culick speed; 1: one ring per frame (paper)
+  float aerosolLifetime GB_DEFAULT(1.5f);   // aerosol droplets fade out over this time (s)
+  float aerosolDrag GB_DEFAULT(2.0f);       // linear air drag rate on a droplet (1/s)
+  float collisionThreshold GB_DEFAULT(1.75f);  // lambda_col, Table 2 [1.5, 2.0]: film Weber number of an impact
+                                               // that bursts the film (collision.h); 0 turns it off
+  float collisionDistance GB_DEFAULT(0.02f);   // film particles closer than this repel (self-collision) (m)
+  float collisionStiffness GB_DEFAULT(1.0f);   // stiffness of that repulsion (N/m)
+  float collisionDamping GB_DEFAULT(0.0002f);  // damping of the approach speed in a contact (N s/m)
 
   // --- Pinch-off ---
   float pinchDistance GB_DEFAULT(0.1f);  // wand tips closer than this close the film into a free bubble (m)
 
   // --- Soap solution control (Section 7) ---
-  float solution GB_DEFAULT(1.0f);              // remaining soap solution, 1 = full dip (0, 1]
+  float solution GB_DEFAULT(1.0f);               // remaining soap solution, 1 = full dip (0, 1]
   int particlesAtFullSolution GB_DEFAULT(9500);  // particles of a film made at solution 1.0 (Table 1: 9-10k)
-  float solutionReserve GB_DEFAULT(1.0f);  // liquid a full dip leaves on the wire for new film, in films' worth
-  float growthStretch GB_DEFAULT(1.15f);    // new film is drawn off the wire when the springs joining the wire
-                                           // to the film are this many times their rest length (mean)
+  float solutionReserve GB_DEFAULT(1.0f);        // liquid a full dip leaves on the wire for new film, in films' worth
+  float growthStretch GB_DEFAULT(1.15f);         // new film is drawn off the wire when the springs joining the wire
+                                                 // to the film are this many times their rest length (mean)
   int airTransfer GB_DEFAULT(1);  // 1: air flow transfer, Eqs. (7)-(8) (the paper); 0: each particle feels only
                                   // the inflow of Eq. (5) where it arrives (Figure 12a's comparison)
 
   // --- Physical surface tension (docs/model.md, "Tension models") ---
-  int tensionModel GB_DEFAULT(0);          // 0: the paper's springs, Eq. (3); 1: physical, 2 gamma times the area
-                                           // gradient (mean curvature), with the film's real mass
+  int tensionModel GB_DEFAULT(0);           // 0: the paper's springs, Eq. (3); 1: physical, 2 gamma times the area
+                                            // gradient (mean curvature), with the film's real mass
   float gibbsElasticity GB_DEFAULT(0.02f);  // E_G = 2 d(gamma)/d(ln A) of the film (N/m), physical model
 };
 

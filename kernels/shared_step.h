@@ -14,15 +14,15 @@ using uint = uint32_t;
 
 // StepUniforms of cpu-reference/stages.h, one per substep of a submitted batch.
 struct StepUniformsBlock {
-  vec4 leftPosition;    // wand tips at the start of the substep (Eq. 5)
+  vec4 leftPosition;  // wand tips at the start of the substep (Eq. 5)
   vec4 leftVelocity;
   vec4 rightPosition;
   vec4 rightVelocity;
-  vec4 frameCenter;     // wire frame at the end of the substep (boundary particles)
+  vec4 frameCenter;  // wire frame at the end of the substep (boundary particles)
   vec4 frameAxis;
   vec4 frameDown;
-  vec4 volumeOrigin;    // apex of the volume's cone decomposition
-  float dt;             // substep (s)
+  vec4 volumeOrigin;  // apex of the volume's cone decomposition
+  float dt;           // substep (s)
   float leftInflowWeight;
   float airVolume;      // V_wm of Eq. (6)
   float wandAlignment;  // MAX(cos theta, 0) of Eq. (5)
@@ -32,17 +32,18 @@ struct StepUniformsBlock {
   int frameKind;          // ToolKind: 0 two wands, 1 ring
   uint closed;            // 1 for a closed bubble
   float drainageDt;       // drainage time of this substep, 0: no drainage
-  uint pad1;
+  float frameArea;        // Area_wm of Eq. (6): turns the air flow into the air's speed (air coupling)
   uint pad2;
 };
 
-// Push constants of every stage (20 bytes of the 128 guaranteed).
+// Push constants of every stage (24 bytes of the 128 guaranteed).
 struct PushBlock {
-  uint count;       // elements of the dispatch: particles, triangles, or reduction inputs
-  uint particles;   // particle count, the stride between the x, y and z blocks of a vector attribute
-  uint stepIndex;   // which StepUniformsBlock of the batch
-  uint reduceFlags;  // tree_sum: 1 reads A writes B, 0 the reverse; forces: 1 if the volume is in A
-  uint triangles;    // triangle count, the stride of the per-triangle vector blocks
+  uint count;        // elements of the dispatch: particles, triangles, reduction inputs, or a colour's particles
+  uint particles;    // particle count, the stride between the x, y and z blocks of a vector attribute
+  uint stepIndex;    // which StepUniformsBlock of the batch
+  uint reduceFlags;  // tree_sum: 1 reads half A writes half B, 0 the reverse; forces: 1 if the volume is in A
+  uint triangles;    // triangle count, the stride of the per-triangle vector blocks and of the reduce halves
+  uint first;        // vertex_block_descent: where the colour's particles start in colourOrder
 };
 
 #ifdef __cplusplus
@@ -76,11 +77,11 @@ struct PushBlock {
 #define GB_BINDING_TRIANGLE_OFFSET 22
 #define GB_BINDING_TRIANGLE_INDEX 23
 #define GB_BINDING_BOUNDARY 24
-#define GB_BINDING_REDUCE_A 25
-#define GB_BINDING_REDUCE_B 26
-#define GB_BINDING_DRAIN_OUTFLOW 27
-#define GB_BINDING_DRAIN_WEIGHT 28
-#define GB_BINDING_TRIANGLE_NORMAL 29
-#define GB_BINDING_CORNER_AREA 30
-#define GB_BINDING_CONTACTS 31
-#define GB_BINDING_COUNT 32
+#define GB_BINDING_REDUCE 25    // two halves of `triangles` floats, A then B: the tree sum's ping-pong
+#define GB_BINDING_DRAINAGE 26  // drainOutflow then drainWeight, `particles` floats each
+#define GB_BINDING_TRIANGLE_NORMAL 27
+#define GB_BINDING_CORNER_AREA 28
+#define GB_BINDING_CONTACTS 29
+#define GB_BINDING_PREVIOUS_POSITION 30  // x_t of the implicit step
+#define GB_BINDING_COLOUR_ORDER 31       // the implicit solver's particles, colour by colour
+#define GB_BINDING_COUNT 32              // lavapipe's limit of storage buffers per stage: pack before adding

@@ -1,5 +1,5 @@
 #pragma once
-// The embedded SPIR-V of every compute shader in this folder, one per stage of the step.
+// The embedded SPIR-V of every compute shader in this folder (kernel_list.h, the one list of them).
 
 #include <cstdint>
 #include <span>
@@ -7,19 +7,15 @@
 namespace gb::kernels {
 
 enum class Kernel {
-  TriangleGeometry,
-  VertexGeometry,
-  TriangleVolume,
-  TreeSum,
-  FilmState,
-  AirInflow,
-  AirTransfer,
-  Forces,
-  Integrate,
-  DrainageOutflow,
-  DrainageGather
+#define GB_KERNEL(name, file) name,
+#include "kernel_list.h"
+#undef GB_KERNEL
 };
-inline constexpr int kKernelCount = 11;
+inline constexpr int kKernelCount = 0
+#define GB_KERNEL(name, file) +1
+#include "kernel_list.h"
+#undef GB_KERNEL
+    ;
 
 std::span<const uint32_t> spirv(Kernel kernel);
 const char* kernelName(Kernel kernel);

@@ -9,8 +9,8 @@ void main() {
   const uint n = pc.count;
   if (k >= (n + 1u) / 2u) return;
   if ((pc.reduceFlags & 1u) != 0u) {
-    reduceB[k] = 2u * k + 1u < n ? reduceA[2u * k] + reduceA[2u * k + 1u] : reduceA[2u * k];
+    REDUCE_B(k) = 2u * k + 1u < n ? REDUCE_A(2u * k) + REDUCE_A(2u * k + 1u) : REDUCE_A(2u * k);
   } else {
-    reduceA[k] = 2u * k + 1u < n ? reduceB[2u * k] + reduceB[2u * k + 1u] : reduceB[2u * k];
+    REDUCE_A(k) = 2u * k + 1u < n ? REDUCE_B(2u * k) + REDUCE_B(2u * k + 1u) : REDUCE_B(2u * k);
   }
 }

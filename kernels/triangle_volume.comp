@@ -1,5 +1,5 @@
 #version 450
-// triangleSignedVolume (cpu-reference/stages.cpp) for every triangle, into reduceA: the leaves of the
+// triangleSignedVolume (cpu-reference/stages.cpp) for every triangle, into the reduce buffer's half A: the leaves of the
 // volume's tree sum.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
@@ -11,5 +11,5 @@ void main() {
   const vec3 a = LOAD3(position, triangles[3u * t]) - origin;
   const vec3 b = LOAD3(position, triangles[3u * t + 1u]) - origin;
   const vec3 c = LOAD3(position, triangles[3u * t + 2u]) - origin;
-  reduceA[t] = dot(a, cross(b, c)) / 6.0;
+  REDUCE_A(t) = dot(a, cross(b, c)) / 6.0;
 }

@@ -42,11 +42,13 @@ std::vector<Member> structLayout(std::span<const uint32_t> words, const std::str
     if (count == 0) break;
     if (op == opName && literal(at + 2, at + count) == typeName) typeId = words[at + 1];
     if (op == opMemberName) names[words[at + 1]][words[at + 2]] = literal(at + 3, at + count);
-    if (op == opMemberDecorate && words[at + 3] == decorationOffset) offsets[words[at + 1]][words[at + 2]] = words[at + 4];
+    if (op == opMemberDecorate && words[at + 3] == decorationOffset)
+      offsets[words[at + 1]][words[at + 2]] = words[at + 4];
     at += count;
   }
   std::vector<Member> out;
-  for (const auto& [index, name] : names[typeId]) out.push_back({name, offsets[typeId].count(index) ? offsets[typeId][index] : ~0u});
+  for (const auto& [index, name] : names[typeId])
+    out.push_back({name, offsets[typeId].count(index) ? offsets[typeId][index] : ~0u});
   return out;
 }
 
@@ -64,27 +66,26 @@ TEST(SharedLayout, ParamsBlockHasTheCppLayoutInEveryShader) {
 
 TEST(SharedLayout, StepUniformsAndPushConstantsMatchTheCppOffsets) {
   using gpu::StepUniformsBlock;
-  const std::map<std::string, size_t> expected = {
-      {"leftPosition", offsetof(StepUniformsBlock, leftPosition)},
-      {"leftVelocity", offsetof(StepUniformsBlock, leftVelocity)},
-      {"rightPosition", offsetof(StepUniformsBlock, rightPosition)},
-      {"rightVelocity", offsetof(StepUniformsBlock, rightVelocity)},
-      {"frameCenter", offsetof(StepUniformsBlock, frameCenter)},
-      {"frameAxis", offsetof(StepUniformsBlock, frameAxis)},
-      {"frameDown", offsetof(StepUniformsBlock, frameDown)},
-      {"volumeOrigin", offsetof(StepUniformsBlock, volumeOrigin)},
-      {"dt", offsetof(StepUniformsBlock, dt)},
-      {"leftInflowWeight", offsetof(StepUniformsBlock, leftInflowWeight)},
-      {"airVolume", offsetof(StepUniformsBlock, airVolume)},
-      {"wandAlignment", offsetof(StepUniformsBlock, wandAlignment)},
-      {"frameHalfWidth", offsetof(StepUniformsBlock, frameHalfWidth)},
-      {"frameDepth", offsetof(StepUniformsBlock, frameDepth)},
-      {"referenceVolume", offsetof(StepUniformsBlock, referenceVolume)},
-      {"frameKind", offsetof(StepUniformsBlock, frameKind)},
-      {"closed", offsetof(StepUniformsBlock, closed)},
-      {"drainageDt", offsetof(StepUniformsBlock, drainageDt)},
-      {"pad1", offsetof(StepUniformsBlock, pad1)},
-      {"pad2", offsetof(StepUniformsBlock, pad2)}};
+  const std::map<std::string, size_t> expected = {{"leftPosition", offsetof(StepUniformsBlock, leftPosition)},
+                                                  {"leftVelocity", offsetof(StepUniformsBlock, leftVelocity)},
+                                                  {"rightPosition", offsetof(StepUniformsBlock, rightPosition)},
+                                                  {"rightVelocity", offsetof(StepUniformsBlock, rightVelocity)},
+                                                  {"frameCenter", offsetof(StepUniformsBlock, frameCenter)},
+                                                  {"frameAxis", offsetof(StepUniformsBlock, frameAxis)},
+                                                  {"frameDown", offsetof(StepUniformsBlock, frameDown)},
+                                                  {"volumeOrigin", offsetof(StepUniformsBlock, volumeOrigin)},
+                                                  {"dt", offsetof(StepUniformsBlock, dt)},
+                                                  {"leftInflowWeight", offsetof(StepUniformsBlock, leftInflowWeight)},
+                                                  {"airVolume", offsetof(StepUniformsBlock, airVolume)},
+                                                  {"wandAlignment", offsetof(StepUniformsBlock, wandAlignment)},
+                                                  {"frameHalfWidth", offsetof(StepUniformsBlock, frameHalfWidth)},
+                                                  {"frameDepth", offsetof(StepUniformsBlock, frameDepth)},
+                                                  {"referenceVolume", offsetof(StepUniformsBlock, referenceVolume)},
+                                                  {"frameKind", offsetof(StepUniformsBlock, frameKind)},
+                                                  {"closed", offsetof(StepUniformsBlock, closed)},
+                                                  {"drainageDt", offsetof(StepUniformsBlock, drainageDt)},
+                                                  {"frameArea", offsetof(StepUniformsBlock, frameArea)},
+                                                  {"pad2", offsetof(StepUniformsBlock, pad2)}};
   const auto members = structLayout(kernels::spirv(kernels::Kernel::Integrate), "StepUniformsBlock");
   ASSERT_EQ(members.size(), expected.size());
   for (const Member& m : members) {

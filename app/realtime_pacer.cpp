@@ -1,0 +1,56 @@
+#include "realtime_pacer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <thread>
+
+namespace gb {
+
+RealTimePacer::RealTimePacer(const PacerOptions& options, Clock::time_point start)
+    : options_(options), start_(start), sweeps_(std::max(options.sweeps, 1)) {
+  options_.minSweeps = std::clamp(options_.minSweeps, 1, sweeps_);
+}
+
+int RealTimePacer::framesDue(Clock::time_point now) {
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const long wanted = static_cast<long>(std::floor(elapsed / options_.frameTime));
+  const long behind = wanted - due_;
+  due_ = std::max(due_, wanted);
+  if (behind <= options_.maxCatchUp) return static_cast<int>(std::max(behind, 0L));
+  dropped_ += behind - options_.maxCatchUp;
+  return options_.maxCatchUp;
+}
+
+void RealTimePacer::resync(Clock::time_point now) {
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  const long wanted = static_cast<long>(std::floor(elapsed / options_.frameTime));
+  // Move the start so that the frames already simulated are exactly the ones due now.
+  start_ +=
+      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options_.frameTime * (wanted - due_)));
+}
+
+void RealTimePacer::sleepUntilDue() {
+  std::this_thread::sleep_until(start_ + std::chrono::duration_cast<Clock::duration>(
+                                             std::chrono::duration<double>(options_.frameTime * (due_ + 1))));
+}
+
+void RealTimePacer::record(int frames, double simMs, double renderMs) {
+  simulated_ += frames;
+  constexpr double smoothing = 0.1;  // about the last ten iterations
+  simMs_ += smoothing * (simMs - simMs_);
+  renderMs_ += smoothing * (renderMs - renderMs_);
+  if (frames == 0) return;
+  const double wallMs = 1000.0 * options_.frameTime * frames;
+  const double spent = simMs + renderMs;
+  if (spent > wallMs && sweeps_ > options_.minSweeps)
+    --sweeps_;
+  else if (spent < 0.7 * wallMs && sweeps_ < options_.sweeps)
+    ++sweeps_;
+}
+
+double RealTimePacer::realTimeFactor(Clock::time_point now) const {
+  const double elapsed = std::chrono::duration<double>(now - start_).count();
+  return elapsed > 0 ? simulated_ * options_.frameTime / elapsed : 1.0;
+}
+
+}  // namespace gb

@@ -1,0 +1,189 @@
+#include "implicit_euler.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace gb {
+
+namespace {
+
+constexpr float kTrustRegion = 0.25f;  // largest move per sweep, in shortest one-ring springs
+
+using Mat3 = Eigen::Matrix3f;
+
+// The gradient and Hessian of the objective with respect to one particle, summed term by term.
+struct Block {
+  Vec3 gradient = Vec3::Zero();
+  Mat3 hessian = Mat3::Zero();
+  float shortestSpring = std::numeric_limits<float>::infinity();  // of the particle's one-ring (m)
+};
+
+// Outer product d d^T.
+Mat3 outer(const Vec3& d) { return d * d.transpose(); }
+
+// Damping along a direction, dissipation c/(2h) ((dx_i - dx_j) . dir)^2 with dx the displacement over the
+// step: the implicit form of the damping force c ((v_j - v_i) . dir) dir. Its Hessian c/h dir dir^T is
+// returned for the caller to add with the other terms along dir.
+float addDampingGradient(float coefficient, float h, const Vec3& dir, const Vec3& relativeDisplacement, Block& b) {
+  b.gradient += coefficient / h * relativeDisplacement.dot(dir) * dir;
+  return coefficient / h;
+}
+
+// Physical model: tension x area of triangle (x, xj, xl), counter-clockwise. grad_x A = 1/2 n x (xl - xj);
+// the Hessian of A in x alone is |xl - xj|^2 / (4 A) n n^T, positive semi-definite.
+void addAreaTension(float tension, const Vec3& x, const Vec3& xj, const Vec3& xl, Block& b) {
+  const Vec3 twiceAreaNormal = (xj - x).cross(xl - x);
+  const float twiceArea = twiceAreaNormal.norm();
+  if (!(twiceArea > 0)) return;
+  const Vec3 n = twiceAreaNormal / twiceArea;
+  const Vec3 edge = xl - xj;
+  b.gradient += tension * 0.5f * n.cross(edge);
+  b.hessian += tension * edge.squaredNorm() / (2.0f * twiceArea) * outer(n);
+}
+
+// The internal energies and dissipations of particle i at its current position x.
+void addInternal(const Params& p, float h, const Topology& topo, const State& s, size_t i, Block& b) {
+  const Vec3 x = s.position.get(i), dx = x - s.previousPosition.get(i);
+  const bool physical = p.tensionModel == 1;
+  float isotropic = 0.0f;  // Hessian terms proportional to the identity, added once at the end
+  for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
+    const uint32_t j = topo.springNeighbour[k];
+    const Vec3 xj = s.position.get(j);
+    const Vec3 d = xj - x;
+    const float len = d.norm();
+    if (!(len > 0)) continue;
+    const Vec3 dir = d / len;
+    b.shortestSpring = std::min(b.shortestSpring, len);
+    float along = addDampingGradient(p.springDamping, h, dir, dx - (xj - s.previousPosition.get(j)), b);
+    if (!physical) {
+      // The spring of Eq. (3), energy k/2 (len - l0)^2; Hessian k dir dir^T + k (1 - l0/len) (I - dir dir^T),
+      // projected onto the positive semi-definite cone by dropping the transverse term of a compressed spring.
+      const float stiffness = 0.5f * (s.elasticity[i] + s.elasticity[j]);
+      const float rest = topo.restLength[topo.springIndex[k]];
+      b.gradient -= stiffness * (len - rest) * dir;
+      const float transverse = stiffness * std::max(0.0f, 1.0f - rest / len);
+      isotropic += transverse;
+      along += stiffness - transverse;
+    }
+    b.hessian += along * outer(dir);
+  }
+  b.hessian.diagonal().array() += isotropic;
+  if (physical) {
+    for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
+      const uint32_t* tri = &topo.triangles[3 * topo.triangleIndex[k]];
+      const uint32_t c = tri[0] == i ? 0u : (tri[1] == i ? 1u : 2u);
+      const float tension = (s.elasticity[tri[0]] + s.elasticity[tri[1]] + s.elasticity[tri[2]]) / 3.0f;
+      addAreaTension(tension, x, s.position.get(tri[(c + 1) % 3]), s.position.get(tri[(c + 2) % 3]), b);
+    }
+  }
+  // Contacts: penalty k_c/2 (d_c - |x - xj|)^2 inside the collision distance (its transverse Hessian term is
+  // negative and dropped), damped while the two approach.
+  const uint32_t base = static_cast<uint32_t>(s.size()) + 1;
+  for (uint32_t k = topo.contacts[i]; k < topo.contacts[i + 1]; ++k) {
+    const uint32_t j = topo.contacts[base + k];
+    const Vec3 xj = s.position.get(j);
+    const Vec3 d = x - xj;
+    const float len = d.norm();
+    if (!(len > 0 && len < p.collisionDistance)) continue;
+    const Vec3 away = d / len;
+    b.gradient -= p.collisionStiffness * (p.collisionDistance - len) * away;
+    b.hessian += p.collisionStiffness * outer(away);
+    const Vec3 relative = dx - (xj - s.previousPosition.get(j));
+    if (relative.dot(away) < 0) b.hessian += addDampingGradient(p.collisionDamping, h, away, relative, b) * outer(away);
+  }
+}
+
+}  // namespace
+
+Vec3 solveLinear3(const Eigen::Matrix3f& a, const Vec3& b) {
+  const float c00 = a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1), c01 = a(0, 2) * a(2, 1) - a(0, 1) * a(2, 2),
+              c02 = a(0, 1) * a(1, 2) - a(0, 2) * a(1, 1);
+  const float c10 = a(1, 2) * a(2, 0) - a(1, 0) * a(2, 2), c11 = a(0, 0) * a(2, 2) - a(0, 2) * a(2, 0),
+              c12 = a(0, 2) * a(1, 0) - a(0, 0) * a(1, 2);
+  const float c20 = a(1, 0) * a(2, 1) - a(1, 1) * a(2, 0), c21 = a(0, 1) * a(2, 0) - a(0, 0) * a(2, 1),
+              c22 = a(0, 0) * a(1, 1) - a(0, 1) * a(1, 0);
+  const float det = a(0, 0) * c00 + a(0, 1) * c10 + a(0, 2) * c20;
+  return Vec3(c00 * b.x() + c01 * b.y() + c02 * b.z(), c10 * b.x() + c11 * b.y() + c12 * b.z(),
+              c20 * b.x() + c21 * b.y() + c22 * b.z()) /
+         det;
+}
+
+float breathingStiffness(const Bubble& bubble, float area) {
+  if (!(bubble.volume > 0)) return 0.0f;
+  constexpr float sphereShape = 36.0f * 3.14159265f;  // A^3 = 36 pi V^2 for a sphere
+  return bubble.pressure * area * std::cbrt(sphereShape / bubble.volume);
+}
+
+int solverSweeps(const Params& p, const StepUniforms& u) {
+  return u.solverIterations > 0 ? u.solverIterations : p.solverIterations;
+}
+
+void predictImplicitStep(const StepUniforms& u, const Topology& topo, State& s, size_t i) {
+  if (!s.alive[i]) return;
+  const Vec3 x = s.position.get(i);
+  s.previousPosition.set(i, x);
+  if (topo.boundary[i]) {
+    if (s.frameParam[i] >= 0.0f) s.position.set(i, framePoint(u.frameNext, s.frameParam[i]));
+    return;
+  }
+  Vec3 guess = x + u.dt * s.velocity.get(i);
+  guess.y() = std::max(guess.y(), 0.0f);  // the floor, y = 0
+  s.position.set(i, guess);
+}
+
+namespace {
+
+// The gradient and Hessian of the step's objective in x_i with every other particle fixed.
+Block objectiveBlock(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, const State& s,
+                     size_t i) {
+  const float h = u.dt, m = s.mass[i];
+  const Vec3 x = s.position.get(i), xt = s.previousPosition.get(i);
+  const Vec3 y = xt + h * s.velocity.get(i) + (h * h / m) * s.force.get(i);
+  const float inertia = m / (h * h), drag = p.airDrag * s.voronoiArea[i] / h;
+  Block b;
+  b.gradient = inertia * (x - y) + drag * (x - xt);
+  b.hessian = (inertia + drag) * Mat3::Identity();
+  addInternal(p, h, topo, s, i, b);
+  const Vec3 n = s.normal.get(i);  // the normal of the step's start
+  b.hessian += addDampingGradient(airCoupling(p, u, s, i), h, n, x - xt, b) * outer(n);  // moving with the air
+  if (u.closed) {  // Boyle's pressure at the iterate's volume, along the normal of the step's start
+    b.gradient -= boyleForce(p, bubble.pressure, s, i);
+    b.hessian += breathingStiffness(bubble, s.voronoiArea[i]) * outer(n);
+  }
+  return b;
+}
+
+}  // namespace
+
+void solveVertexBlock(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, State& s,
+                      size_t i) {
+  const Block b = objectiveBlock(p, u, bubble, topo, s, i);
+  // The Hessian is at least (m / h^2) I, so it is invertible; a non-finite gradient leaves x as it is for the
+  // stability check to report.
+  Vec3 step = solveLinear3(b.hessian, b.gradient);
+  if (!step.allFinite()) return;
+  // Trust region: a sweep moves a particle at most kTrustRegion of its shortest spring. The area energy of the
+  // physical model has no curvature in the film's plane (A is linear in a corner's height), so there the
+  // Newton step is only held by the film's small inertia and would fold triangles over.
+  const float limit = kTrustRegion * b.shortestSpring, length = step.norm();
+  if (length > limit) step *= limit / length;
+  Vec3 next = s.position.get(i) - step;
+  next.y() = std::max(next.y(), 0.0f);
+  s.position.set(i, next);
+}
+
+double implicitResidual(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo,
+                        const State& s) {
+  double sum = 0;
+  for (uint32_t i : topo.colourOrder)
+    sum += objectiveBlock(p, u, bubble, topo, s, i).gradient.cast<double>().squaredNorm();
+  return std::sqrt(sum);
+}
+
+void finishImplicitStep(const StepUniforms& u, State& s, size_t i) {
+  if (!s.alive[i]) return;
+  s.velocity.set(i, (s.position.get(i) - s.previousPosition.get(i)) / u.dt);
+}
+
+}  // namespace gb

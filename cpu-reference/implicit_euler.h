@@ -1,0 +1,61 @@
+#pragma once
+// The implicit step (docs/model.md "Integrators"): implicit Euler written as an optimisation (Martin et al.,
+// "Example-based elastic materials", 2011; Gast et al., "Optimization integrator for large time steps",
+// 2015):
+//
+//   x_{t+h} = argmin_x  1/(2 h^2) |x - y|_M^2 + E(x) + D(x),   y = x_t + h v_t + h^2 M^-1 f_ext,
+//
+// E the internal energies (springs of Eq. 3 with the elasticity of Eq. 4 frozen over the step, or the
+// physical 2 gamma x area, the contact penalty, and for a closed bubble the isothermal gas, whose gradient is
+// Boyle's excess pressure, Eqs. 10-11, at the iterate's volume), D the dissipation of the spring damping (Algorithm 1),
+// the contacts' damping and the air drag, all in the velocity (x - x_t) / h. The wire's particles are
+// prescribed. Solved by Vertex Block Descent (Chen, Liu, Yang, Yuksel, ACM TOG 43(4), 2024): each particle
+// in turn takes one Newton step on the objective with all other particles fixed, a 3x3 solve with the
+// positive semi-definite part of its Hessian; particles of one colour (colouring.h) are independent and
+// are solved in parallel, colours one after the other. Every particle step lowers the objective, so the
+// step is stable at any h; a fixed number of sweeps leaves the stiffest long waves under-resolved, which
+// acts as numerical damping (docs/model.md measures it).
+
+#include "stages.h"
+
+namespace gb {
+
+// Solves a x = b for a 3x3 matrix by its adjugate (the same float operations as the shader's twin).
+Vec3 solveLinear3(const Eigen::Matrix3f& a, const Vec3& b);
+
+// A closed bubble's volume and Boyle pressure at the solver's current iterate (recomputed before each sweep);
+// unused for an open film.
+struct Bubble {
+  float volume = 0.0f;    // m^3
+  float pressure = 0.0f;  // P_cur of Eq. (11), Pa
+};
+
+// The stiffness of the bubble's breathing seen by one particle of area A: P A A_total / V, the pressure change
+// when the whole bubble swells, with A_total = (36 pi V^2)^(1/3) as for a sphere. Added to the particle's
+// Hessian along its normal so that a colour of particles moving out together under a stale volume cannot
+// overshoot; it changes how fast the sweeps converge, not what they converge to.
+float breathingStiffness(const Bubble& bubble, float area);
+
+// Vertex block descent sweeps of a step: the step's own count (the live loop lowers it under load), else
+// Params::solverIterations.
+int solverSweeps(const Params& p, const StepUniforms& u);
+
+// Stage implicit_predict, per particle i: keeps x_t in previousPosition; a wire particle is placed on the
+// wire frame at the end of the step (or stays, pinned), an interior particle starts from x_t + h v_t (above
+// the floor).
+void predictImplicitStep(const StepUniforms& u, const Topology& topo, State& s, size_t i);
+
+// Stage vertex_block_descent, per particle i of the colour being swept: one Newton step on the objective
+// restricted to x_i, then the floor. Reads the external force of the external_forces stage and x_t.
+void solveVertexBlock(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, State& s,
+                      size_t i);
+
+// Diagnostic (CPU, double): the norm of the objective's gradient over the solved particles, in N: zero when
+// the step is solved exactly (docs/model.md's convergence figures, tests).
+double implicitResidual(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo,
+                        const State& s);
+
+// Stage implicit_velocity, per particle i: v = (x - x_t) / h, the implicit Euler velocity.
+void finishImplicitStep(const StepUniforms& u, State& s, size_t i);
+
+}  // namespace gb

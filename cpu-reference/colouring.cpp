@@ -6,13 +6,10 @@ namespace gb {
 
 namespace {
 
-// Calls visit(j) for every particle coupled to i in the solver: its spring neighbours and its contacts.
+// Calls visit(j) for every particle coupled to i in the solver's sweep: its spring neighbours.
 template <class Visit>
 void forEachCoupled(const Topology& topo, size_t i, Visit&& visit) {
   for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) visit(topo.springNeighbour[k]);
-  const size_t base = topo.particleCount() + 1;
-  if (topo.contacts.size() < base) return;
-  for (uint32_t k = topo.contacts[i]; k < topo.contacts[i + 1]; ++k) visit(topo.contacts[base + k]);
 }
 
 bool solved(const std::vector<uint32_t>& alive, const Topology& topo, size_t i) {
@@ -49,6 +46,10 @@ void colourParticles(const std::vector<uint32_t>& alive, Topology& topo) {
   std::vector<uint32_t> next(topo.colourOffset.begin(), topo.colourOffset.end() - 1);
   for (size_t i = 0; i < n; ++i)
     if (colour[i] != kNone) topo.colourOrder[next[colour[i]]++] = static_cast<uint32_t>(i);
+}
+
+void ensureColouring(const std::vector<uint32_t>& alive, Topology& topo) {
+  if (topo.colourOffset.empty()) colourParticles(alive, topo);
 }
 
 bool isValidColouring(const std::vector<uint32_t>& alive, const Topology& topo) {

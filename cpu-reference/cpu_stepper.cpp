@@ -34,7 +34,7 @@ void CpuStepper::timed(Stage stage, Body&& body) {
 void CpuStepper::load(const Params& params, Film& film) {
   params_ = params;
   film_ = &film;
-  if (film.topology.colourOffset.empty()) colourParticles(film.state.alive, film.topology);
+  ensureColouring(film.state.alive, film.topology);
 }
 
 float CpuStepper::volume(const Film& film, const Vec3& origin) {

@@ -51,9 +51,11 @@ Measurement flatDisc(const Params& p) {
   sim.stepper().load(p, sim.film());
   run(sim, ring.wands, 50);  // 1 s
   double worst = 0;
-  for (size_t i = 0; i < s.size(); ++i) worst = std::max(worst, static_cast<double>(std::abs(sim.film().state.position.z[i])));
-  return {"flat-disc", "largest distance from the ring's plane after 1 s (bump 3 cm)", "m", worst, 0.0,
-          "a film on a flat ring is flat"};
+  for (size_t i = 0; i < s.size(); ++i)
+    worst = std::max(worst, static_cast<double>(std::abs(sim.film().state.position.z[i])));
+  return {"flat-disc", "largest distance from the ring's plane after 1 s (bump 3 cm)",
+          "m",         worst,
+          0.0,         "a film on a flat ring is flat"};
 }
 
 Measurement minimalSurface(const Params& p) {
@@ -71,8 +73,12 @@ Measurement minimalSurface(const Params& p) {
   sim.stepper().load(p, film);
   run(sim, ring.wands, 100);  // 2 s
   CpuStepper::refreshGeometry(p, sim.film());
-  return {"minimal-surface", "mean |H| x ring radius on a saddle wire after 2 s", "1",
-          meanCurvatureTimes(sim.film(), a), 0.0, "a soap film is a minimal surface: H = 0"};
+  return {"minimal-surface",
+          "mean |H| x ring radius on a saddle wire after 2 s",
+          "1",
+          meanCurvatureTimes(sim.film(), a),
+          0.0,
+          "a soap film is a minimal surface: H = 0"};
 }
 
 Measurement catenoid(const Params& p) {
@@ -80,8 +86,12 @@ Measurement catenoid(const Params& p) {
   const Vec3 c(0, 1.5f, 0);
   Simulation sim(p, generateTube(p, c, R, d, 64), WandState{});
   run(sim, WandState{}, 100);  // 2 s
-  Measurement m{"catenoid", "neck radius between rings of R = 0.3 m, d = R", "m", neckRadius(sim.film(), c),
-                catenoidNeck(R, d), "r(z) = a cosh(z / a) through the rings: R = a cosh(d / 2a)"};
+  Measurement m{"catenoid",
+                "neck radius between rings of R = 0.3 m, d = R",
+                "m",
+                neckRadius(sim.film(), c),
+                catenoidNeck(R, d),
+                "r(z) = a cosh(z / a) through the rings: R = a cosh(d / 2a)"};
   m.xLabel = "z (m)";
   m.yLabel = "distance from the axis r (m)";
   for (size_t i = 0; i < sim.film().state.size(); ++i) {
@@ -124,8 +134,12 @@ Measurement catenoidCritical(const Params& p, const std::function<void(const std
     const float mid = 0.5f * (stable + collapsing);
     (collapses(mid) ? collapsing : stable) = mid;
   }
-  return {"catenoid-critical", "critical ring separation / R (4 bisection steps in [1, 1.45])", "1",
-          0.5 * (stable + collapsing) / R, 1.3255, "d / 2a = 1.1997 where a cosh(d / 2a) = R has a double root"};
+  return {"catenoid-critical",
+          "critical ring separation / R (4 bisection steps in [1, 1.45])",
+          "1",
+          0.5 * (stable + collapsing) / R,
+          1.3255,
+          "d / 2a = 1.1997 where a cosh(d / 2a) = R has a double root"};
 }
 
 Measurement youngLaplace(const Params& p) {
@@ -141,8 +155,12 @@ Measurement youngLaplace(const Params& p) {
   }
   std::ostringstream law;
   law << "dP = 4 gamma / R, R = " << radius << " m";
-  return {"young-laplace", "excess pressure of a settled bubble", "Pa", sim.lastPressure() - p.pressureCoefficient,
-          2.0 * tension / radius, law.str()};
+  return {"young-laplace",
+          "excess pressure of a settled bubble",
+          "Pa",
+          sim.lastPressure() - p.pressureCoefficient,
+          2.0 * tension / radius,
+          law.str()};
 }
 
 Measurement waves(Params p) {
@@ -157,7 +175,8 @@ Measurement waves(Params p) {
   for (size_t i = 0; i < s.size(); ++i) {  // the fundamental mode J0(2.405 r / a), 2 mm high
     const float r = (s.position.get(i) - ring.wands.rightPosition).norm();
     if (r < (s.position.get(middle) - ring.wands.rightPosition).norm()) middle = i;
-    if (!sim.film().topology.boundary[i]) s.position.z[i] += 0.002f * std::cyl_bessel_j(0.0f, 2.405f * std::min(r / a, 1.0f));
+    if (!sim.film().topology.boundary[i])
+      s.position.z[i] += 0.002f * std::cyl_bessel_j(0.0f, 2.405f * std::min(r / a, 1.0f));
   }
   sim.stepper().load(p, sim.film());
   std::vector<double> crossings;  // times the middle passes z = 0 going down
@@ -167,14 +186,18 @@ Measurement waves(Params p) {
     sim.advanceFrame(ring.wands);
     const float z = sim.film().state.position.z[middle];
     trace.emplace_back(static_cast<double>(p.frameTime) * f, z);
-    if (previous > 0 && z <= 0) crossings.push_back(p.frameTime * (static_cast<double>(f - 1) + previous / (previous - z)));
+    if (previous > 0 && z <= 0)
+      crossings.push_back(p.frameTime * (static_cast<double>(f - 1) + previous / (previous - z)));
     previous = z;
   }
   if (crossings.size() < 3) throw std::runtime_error("waves: the film did not oscillate");
   const double period = (crossings.back() - crossings.front()) / static_cast<double>(crossings.size() - 1);
-  Measurement m{"waves", "transverse wave speed on a 3.5 um film (fundamental mode of a 0.35 m ring)", "m/s",
+  Measurement m{"waves",
+                "transverse wave speed on a 3.5 um film (fundamental mode of a 0.35 m ring)",
+                "m/s",
                 (2.0 * kPi / period) * a / 2.405,
-                std::sqrt(2.0 * p.surfaceTension / (p.liquidDensity * initialThickness(p))), "c = sqrt(2 gamma / (rho h))"};
+                std::sqrt(2.0 * p.surfaceTension / (p.liquidDensity * initialThickness(p))),
+                "c = sqrt(2 gamma / (rho h))"};
   m.xLabel = "time (s)";
   m.yLabel = "displacement of the middle (m)";
   m.measuredPoints = std::move(trace);
@@ -188,6 +211,10 @@ Measurement waves(Params p) {
 
 Measurement bubbleBurst(Params p) {
   p.areaWeight = 0.01f;  // initial thickness 1 um
+  // A burst is the fastest event there is (the rim runs at 6.3 m/s, three edges a frame): it asks for four
+  // implicit steps per frame. At one step the torn film retracts further within each step and the bubble
+  // vanishes in 0.30 s instead of 0.34 s (the explicit reference: 0.36 s).
+  p.implicitSubsteps = 4;
   Simulation sim(p, generateSphere(p, Vec3(0, 2.0f, 0), 1.0f, 4), WandState{});
   sim.startBurst(sim.topParticle());
   const double start = sim.time();
@@ -197,8 +224,12 @@ Measurement bubbleBurst(Params p) {
     if (sim.lastEvents().finished) gone = sim.time() - start;
   }
   if (gone < 0) throw std::runtime_error("bubble-burst: the bubble did not burst completely in 4 s");
-  return {"bubble-burst", "time for a 1 um bubble of R = 1 m to vanish after a poke", "s", gone,
-          kPi * 1.0 / std::sqrt(2.0 * p.surfaceTension / (p.liquidDensity * 1e-6)), "t = pi R / V, V = sqrt(2 gamma / (rho h))"};
+  return {"bubble-burst",
+          "time for a 1 um bubble of R = 1 m to vanish after a poke",
+          "s",
+          gone,
+          kPi * 1.0 / std::sqrt(2.0 * p.surfaceTension / (p.liquidDensity * 1e-6)),
+          "t = pi R / V, V = sqrt(2 gamma / (rho h))"};
 }
 
 }  // namespace

@@ -78,11 +78,13 @@ void addInternal(const Params& p, float h, const Topology& topo, const State& s,
     }
   }
   // Contacts: penalty k_c/2 (d_c - |x - xj|)^2 inside the collision distance (its transverse Hessian term is
-  // negative and dropped), damped while the two approach.
+  // negative and dropped), damped while the two approach. The partner is taken where inertia carries it,
+  // x_t + h v_t, not where the sweep has moved it: contacts then need no colouring of their own, the colouring
+  // changes only with the mesh, and the sweep's result does not depend on which contacts were found.
   const uint32_t base = static_cast<uint32_t>(s.size()) + 1;
   for (uint32_t k = topo.contacts[i]; k < topo.contacts[i + 1]; ++k) {
     const uint32_t j = topo.contacts[base + k];
-    const Vec3 xj = s.position.get(j);
+    const Vec3 xj = s.previousPosition.get(j) + h * s.velocity.get(j);
     const Vec3 d = x - xj;
     const float len = d.norm();
     if (!(len > 0 && len < p.collisionDistance)) continue;
@@ -158,6 +160,7 @@ Block objectiveBlock(const Params& p, const StepUniforms& u, const Bubble& bubbl
 
 void solveVertexBlock(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, State& s,
                       size_t i) {
+  if (!s.alive[i]) return;  // died in a burst since the colouring was made
   const Block b = objectiveBlock(p, u, bubble, topo, s, i);
   // The Hessian is at least (m / h^2) I, so it is invertible; a non-finite gradient leaves x as it is for the
   // stability check to report.

@@ -5,7 +5,6 @@
 #include <sstream>
 
 #include "collision.h"
-#include "colouring.h"
 #include "film_growth.h"
 
 namespace gb {
@@ -149,7 +148,6 @@ void Simulation::updateContacts() {
     if (s.alive[i]) fastest = std::max(fastest, s.velocity.get(i).norm());
   const float margin = std::min(0.05f, 2.0f * fastest * params_.frameTime + 0.005f);
   findContacts(params_, margin, film_);
-  colourParticles(film_.state.alive, film_.topology);  // contacts couple particles in the implicit solve
   stepper_->updateContacts(film_);
 }
 

@@ -204,7 +204,10 @@ Vec3 externalForce(const Params& p, const StepUniforms& u, float pressure, const
 }
 
 float airCoupling(const Params& p, const StepUniforms& u, const State& s, size_t i) {
-  return u.closed ? 0.0f : p.airPressureGain * u.frameArea * s.voronoiArea[i];
+  if (u.closed || !(u.frameArea > 0)) return 0.0f;
+  constexpr float stillAir = 0.05f;  // m/s: below this air speed the coupling fades out (still air: drag only)
+  const float airSpeed = std::abs((s.airFlow.get(i) + s.airInflow.get(i)).dot(s.normal.get(i))) / u.frameArea;
+  return p.airPressureGain * u.frameArea * s.voronoiArea[i] * std::min(1.0f, airSpeed / stillAir);
 }
 
 Vec3 boyleForce(const Params& p, float pressure, const State& s, size_t i) {

@@ -91,8 +91,9 @@ Vec3 externalForce(const Params& p, const StepUniforms& u, float pressure, const
 // Open film: the air force of Eq. (9) acts on the film relative to the air: kappa ((air . n) - Area_wm (v . n))
 // A_Vor n, the air's speed being its flow over the frame's area. externalForce holds the first part; this is
 // the coefficient kappa Area_wm A_Vor (N s/m) of the second, a damping of the film's normal speed towards the
-// air's. Without it Eq. (9) pushes with the same force however fast the film already moves, and a film drawn
-// at real arm speeds runs away (docs/model.md "Air coupling"). The implicit step takes it as a dissipation.
+// air's, faded out below 5 cm/s of air speed (still air holds nothing: only airDrag acts). Without it Eq. (9) pushes
+// with the same force however fast the film already moves, and a film drawn at real arm speeds runs away (docs/model.md
+// "Air coupling"). The implicit step takes it as a dissipation.
 float airCoupling(const Params& p, const StepUniforms& u, const State& s, size_t i);
 
 // Closed bubble, Eqs. (10)-(11): the excess of Boyle's pressure P_cur = P_0 V_0 / V over P_0 on the particle's

@@ -64,6 +64,8 @@ std::map<Edge, int> edgeUseCounts(const std::vector<uint32_t>& triangles) {
 
 void buildAdjacency(Topology& topo) {
   const size_t n = topo.particleCount();
+  topo.colourOffset.clear();  // the springs changed: the solver's colouring is made anew (colouring.h)
+  topo.colourOrder.clear();
   // Spring CSR: counting sort by particle, springs in increasing id within each particle.
   topo.springOffset.assign(n + 1, 0);
   for (size_t s = 0; s < topo.springCount(); ++s) {

@@ -317,7 +317,7 @@ std::string VulkanStepper::name() const {
 
 void VulkanStepper::load(const Params& params, Film& film) {
   Impl& m = *impl_;
-  if (film.topology.colourOffset.empty()) colourParticles(film.state.alive, film.topology);
+  ensureColouring(film.state.alive, film.topology);
   const State& s = film.state;
   const Topology& t = film.topology;
   m.params = params;
@@ -442,6 +442,7 @@ void VulkanStepper::updateContacts(const Film& film) { impl_->writeContacts(film
 
 void VulkanStepper::updateTopology(const Params& params, Film& film) {
   Impl& m = *impl_;
+  ensureColouring(film.state.alive, film.topology);
   const Topology& t = film.topology;
   auto fits = [&](int binding, size_t count, size_t elementBytes) {
     return count * elementBytes <= m.buffer(binding).size();

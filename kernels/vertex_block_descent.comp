@@ -65,9 +65,9 @@ void addInternal(float h, uint i) {
     }
   }
   const uint base = pc.particles + 1u;
-  for (uint k = contacts[i]; k < contacts[i + 1u]; ++k) {
+  for (uint k = contacts[i]; k < contacts[i + 1u]; ++k) {  // the partner where inertia carries it (C++ twin)
     const uint j = contacts[base + k];
-    const vec3 xj = LOAD3(position, j);
+    const vec3 xj = LOAD3(previousPosition, j) + h * LOAD3(velocity, j);
     const vec3 d = x - xj;
     const float len = length(d);
     if (!(len > 0.0 && len < params.collisionDistance)) continue;
@@ -104,6 +104,7 @@ void main() {
   const uint k = gl_GlobalInvocationID.x;
   if (k >= pc.count) return;
   const uint i = colourOrder[pc.first + k];
+  if (alive[i] == 0u) return;  // died in a burst since the colouring was made
   const StepUniformsBlock u = steps[pc.stepIndex];
   const float h = u.dt, m = mass[i];
   const vec3 x = LOAD3(position, i), xt = LOAD3(previousPosition, i);

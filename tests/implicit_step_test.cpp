@@ -18,18 +18,17 @@
 namespace gb {
 namespace {
 
-TEST(ImplicitStep, TheColouringSeparatesEverySpringAndContact) {
+TEST(ImplicitStep, TheColouringSeparatesEverySpring) {
   Params p;
   p.particlesAtFullSolution = 600;
   p.gravityY = 0.0f;
   Film sheets = test::makeTwoSheets(p, 0.01f, 0.0f);  // two sheets 1 cm apart: contacts between them
   Simulation sim(p, sheets, WandState{});
   const Topology& topo = sim.film().topology;
-  ASSERT_GT(topo.contacts.back(), 0u) << "the sheets must be in contact for the test to mean something";
   EXPECT_TRUE(isValidColouring(sim.film().state.alive, topo));
   const size_t colours = topo.colourOffset.size() - 1;
   std::printf("%zu particles in %zu colours\n", sim.film().state.size(), colours);
-  EXPECT_LE(colours, 20u) << "a greedy colouring of a triangle mesh with contacts needs a handful of colours";
+  EXPECT_LE(colours, 12u) << "a greedy colouring of a triangle mesh needs a handful of colours";
 
   Topology broken = topo;  // two particles of one colour joined by a spring: the check must see it
   const uint32_t a = broken.colourOrder[0], b = broken.springNeighbour[broken.springOffset[a]];

@@ -39,8 +39,7 @@ void dropDeadElements(Film& film, BurstFront& front, TopologyEvents& events) {
   topo.triangles = std::move(triangles);
   std::set<std::pair<uint32_t, uint32_t>> edges;
   for (size_t t = 0; t < topo.triangleCount(); ++t)
-    for (int c = 0; c < 3; ++c)
-      edges.insert(std::minmax(topo.triangles[3 * t + c], topo.triangles[3 * t + (c + 1) % 3]));
+    for (int c = 0; c < 3; ++c) edges.insert(std::minmax(topo.triangles[3 * t + c], topo.triangles[3 * t + (c + 1) % 3]));
   std::vector<uint32_t> ends;
   std::vector<float> rest;
   for (size_t k = 0; k < topo.springCount(); ++k) {
@@ -170,7 +169,7 @@ TopologyEvents advanceBurst(const Params& p, double now, Film& film, BurstFront&
   }
   for (uint32_t i : dying) s.alive[i] = 0u;  // Algorithm 3, line 4
   events.particlesRemoved = dying.size();
-  dropDeadElements(film, front, events);  // lines 4-6
+  dropDeadElements(film, front, events);     // lines 4-6
   emitDroplets(film, front, aerosol, events);
   // Finished when the front has nowhere left to go: no living particle is scheduled.
   bool scheduled = false;

@@ -32,12 +32,12 @@ struct Aerosol {
 
 // Bursting bookkeeping of a film, kept by the simulation beside it.
 struct BurstFront {
-  std::vector<float> arrival;    // time the hole reaches each particle (s), +inf when not yet known
-  std::vector<uint32_t> shares;  // triangles each particle had when the burst began: its mass splits
-                                 // evenly into that many droplets
-  std::vector<uint32_t> torn;    // triangles left the physics mesh with a dead corner, 3 indices each
-  double started = -1.0;         // time of the first crack, -1 before
-  double finished = -1.0;        // time the last particle died, -1 before
+  std::vector<float> arrival;        // time the hole reaches each particle (s), +inf when not yet known
+  std::vector<uint32_t> shares;      // triangles each particle had when the burst began: its mass splits
+                                     // evenly into that many droplets
+  std::vector<uint32_t> torn;        // triangles left the physics mesh with a dead corner, 3 indices each
+  double started = -1.0;             // time of the first crack, -1 before
+  double finished = -1.0;            // time the last particle died, -1 before
   [[nodiscard]] bool active() const { return started >= 0 && finished < 0; }
 };
 
@@ -48,7 +48,7 @@ struct TopologyEvents {
   size_t particlesRemoved = 0;
   size_t trianglesRemoved = 0;  // left the physics mesh
   size_t dropletsEmitted = 0;
-  bool pinchedOff = false;    // the film closed into a free bubble this frame (pinch_off.h)
+  bool pinchedOff = false;  // the film closed into a free bubble this frame (pinch_off.h)
   size_t particlesAdded = 0;  // new film drawn off the wire this frame (film_growth.h)
 };
 

@@ -63,8 +63,8 @@ size_t findContacts(const Params& p, float margin, Film& film) {
               const Vec3 d = s.position.get(j) - xi;
               const float len = d.norm();
               if (!(len < reach) || len <= 0) continue;
-              const bool across =
-                  std::abs(ni.dot(d)) > acrossCosine * len || std::abs(s.normal.get(j).dot(d)) > acrossCosine * len;
+              const bool across = std::abs(ni.dot(d)) > acrossCosine * len ||
+                                  std::abs(s.normal.get(j).dot(d)) > acrossCosine * len;
               if (across && !isOneRingNeighbour(topo, i, j)) lists[i].push_back(j);
             }
           }

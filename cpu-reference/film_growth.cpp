@@ -101,8 +101,7 @@ void restLikeNewFilm(const Params& params, const std::vector<uint32_t>& released
     const bool toFilm = (isReleased[a] && !isReleased[b] && !topo.boundary[b]) ||
                         (isReleased[b] && !isReleased[a] && !topo.boundary[a]);
     if (toFilm)
-      topo.restLength[k] =
-          (film.state.position.get(a) - film.state.position.get(b)).norm() * (1.0f - params.springPrestrain);
+      topo.restLength[k] = (film.state.position.get(a) - film.state.position.get(b)).norm() * (1.0f - params.springPrestrain);
   }
 }
 

@@ -42,8 +42,8 @@ struct GrowthEvent {
 };
 
 // Both steps on an open, intact film (one boundary loop) at the wire frame `frame` of now, the payout only
-// while the faster wand tip moves at wandSpeed >= kDrawingSpeed; a closed, torn or dry film is left as it is. New
-// particles are appended (old indices stay); the mesh stays an oriented manifold disc whose boundary is the new ring.
+// while the faster wand tip moves at wandSpeed >= kDrawingSpeed; a closed, torn or dry film is left as it is. New particles are appended (old indices stay); the mesh stays an oriented
+// manifold disc whose boundary is the new ring.
 GrowthEvent growFilmAtWire(const Params& params, const WireFrame& frame, float wandSpeed, Film& film);
 
 }  // namespace gb

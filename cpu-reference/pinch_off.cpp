@@ -37,8 +37,7 @@ namespace {
 
 double signedVolume(const Film& film, const Vec3& origin) {
   double v = 0;
-  for (size_t t = 0; t < film.topology.triangleCount(); ++t)
-    v += triangleSignedVolume(film.topology, film.state, t, origin);
+  for (size_t t = 0; t < film.topology.triangleCount(); ++t) v += triangleSignedVolume(film.topology, film.state, t, origin);
   return v;
 }
 
@@ -46,8 +45,7 @@ double signedVolume(const Film& film, const Vec3& origin) {
 float loopSpacing(const State& s, const std::vector<uint32_t>& loop) {
   float spacing = 0.0f;
   for (size_t k = 0; k < loop.size(); ++k)
-    spacing += (s.position.get(loop[(k + 1) % loop.size()]) - s.position.get(loop[k])).norm() /
-               static_cast<float>(loop.size());
+    spacing += (s.position.get(loop[(k + 1) % loop.size()]) - s.position.get(loop[k])).norm() / static_cast<float>(loop.size());
   return spacing;
 }
 
@@ -96,8 +94,7 @@ std::vector<uint32_t> zipCollapsedLoop(const State& s, const std::vector<uint32_
 // together ring by ring, and a last particle at the centroid. Its triangles touch the loop only along loop
 // edges, so no cap edge can coincide with an edge of the film. New particles are numbered from `first`
 // and their positions appended to `added`.
-std::vector<uint32_t> ringCap(const State& s, const std::vector<uint32_t>& loop, size_t first,
-                              std::vector<Vec3>& added) {
+std::vector<uint32_t> ringCap(const State& s, const std::vector<uint32_t>& loop, size_t first, std::vector<Vec3>& added) {
   Vec3 centre = Vec3::Zero();
   for (uint32_t v : loop) centre += s.position.get(v) / static_cast<float>(loop.size());
   float radius = 0.0f;
@@ -116,9 +113,7 @@ std::vector<uint32_t> ringCap(const State& s, const std::vector<uint32_t>& loop,
   std::vector<uint32_t> outer(loop.begin(), loop.end());
   for (int ring = 1; ring <= rings; ++ring) {
     const float scale = 1.0f - static_cast<float>(ring) / static_cast<float>(rings);
-    const size_t count =
-        ring == rings ? 1
-                      : std::max<size_t>(3, static_cast<size_t>(std::lround(static_cast<double>(loop.size()) * scale)));
+    const size_t count = ring == rings ? 1 : std::max<size_t>(3, static_cast<size_t>(std::lround(static_cast<double>(loop.size()) * scale)));
     std::vector<uint32_t> inner;
     for (size_t k = 0; k < count; ++k) {
       inner.push_back(static_cast<uint32_t>(first + added.size()));

@@ -35,7 +35,7 @@ int runUntilBurst(Simulation& sim, const WandState& wands, int maxFrames = 500) 
 TEST(Bursting, OneCrackRemovesTheWholeFilmOnceAndEveryTriangleBecomesOneDroplet) {
   Params p;
   p.particlesAtFullSolution = 1500;
-  p.gravityY = 0.0f;  // droplets stay in the air: all of them are counted
+  p.gravityY = 0.0f;            // droplets stay in the air: all of them are counted
   p.aerosolLifetime = 100.0f;
   Simulation sim(p, WandTool{}, restingWands());
   const size_t triangles = sim.film().topology.triangleCount();
@@ -147,8 +147,8 @@ TEST(Bursting, TaylorCulickHoleGrowsLinearlyAtTheRightSpeedWhateverStepAndResolu
   const auto [speedCoarse, durationCoarse] = taylorCulickBurst(1500, 0.02f, e);
   const auto [speedFine, durationFine] = taylorCulickBurst(4000, 0.02f, e);
   const auto [speedShortStep, durationShortStep] = taylorCulickBurst(1500, 0.005f, e);
-  std::printf("V_TC %.3f m/s; fitted %.3f (1500), %.3f (4000), %.3f (1500, h/4); bursts %.4f %.4f %.4f s\n", expected,
-              speedCoarse, speedFine, speedShortStep, durationCoarse, durationFine, durationShortStep);
+  std::printf("V_TC %.3f m/s; fitted %.3f (1500), %.3f (4000), %.3f (1500, h/4); bursts %.4f %.4f %.4f s\n",
+              expected, speedCoarse, speedFine, speedShortStep, durationCoarse, durationFine, durationShortStep);
   // The front follows mesh edges, whose paths are up to 2/sqrt(3) longer than straight lines on a
   // triangulated lattice: 15% is the bound and covers that.
   EXPECT_NEAR(speedCoarse, expected, 0.15 * expected);

@@ -1,8 +1,7 @@
 // Self-collision: film sheets pushed together repel and slip instead of passing through each other.
-#include "collision.h"
-
 #include <gtest/gtest.h>
 
+#include "collision.h"
 #include "simulation.h"
 #include "test_films.h"
 

@@ -1,13 +1,13 @@
 // OSC show control: events and the bubble's state reach a loopback receiver, in order.
-#include "osc_events.h"
-
 #include <gtest/gtest.h>
+
 #include <lo/lo.h>
 
 #include <filesystem>
 #include <string>
 #include <vector>
 
+#include "osc_events.h"
 #include "run_command.h"
 
 namespace gb {

@@ -1,8 +1,8 @@
 // Pinch-off: the film closes into a free bubble; and the performance cycle blow / pinch-off / burst / dip.
 #include <gtest/gtest.h>
-#include <unistd.h>
 
 #include <fstream>
+#include <unistd.h>
 
 #include "mesh_checks.h"
 #include "scripted_gestures.h"
@@ -22,6 +22,7 @@ std::unique_ptr<Simulation> bulgedFilm(int particles, int frames) {
   return sim;
 }
 
+
 TEST(PinchOff, TheBubbleIsAClosedOrientedSphereWithOutwardNormalsAndPositiveVolume) {
   auto sim = bulgedFilm(1500, 60);
   ASSERT_TRUE(sim->pinch());
@@ -32,8 +33,7 @@ TEST(PinchOff, TheBubbleIsAClosedOrientedSphereWithOutwardNormalsAndPositiveVolu
   EXPECT_GT(film.referenceVolume, 0.0f);
   const Vec3 c = centroid(film.state);
   size_t outward = 0;
-  for (size_t i = 0; i < film.state.size(); ++i)
-    outward += film.state.normal.get(i).dot(film.state.position.get(i) - c) > 0;
+  for (size_t i = 0; i < film.state.size(); ++i) outward += film.state.normal.get(i).dot(film.state.position.get(i) - c) > 0;
   // A bulged bag is not convex everywhere; nearly all of its normals still point away from its centre.
   EXPECT_GT(outward, 0.9 * static_cast<double>(film.state.size()));
   EXPECT_FALSE(sim->pinch()) << "a closed film cannot pinch off again";

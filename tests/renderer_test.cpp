@@ -5,8 +5,6 @@
 // The reference image is tests/data/render_reference.png. Regenerate it only deliberately, after a change that
 // is meant to change the picture, and look at it before committing:
 //   GIANTBUBBLE_REGENERATE_REFERENCE=1 ./build/tests/gb_tests --gtest_filter=Renderer.KnownSceneMatchesReference
-#include "renderer.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -14,11 +12,12 @@
 #include <filesystem>
 
 #include "png_image.h"
-#include "render_output.h"
-#include "render_scene_films.h"
 #include "test_films.h"
 #include "thin_film.h"
 #include "thin_film_lut.h"
+#include "render_output.h"
+#include "render_scene_films.h"
+#include "renderer.h"
 #include "vulkan_stepper.h"
 #include "vulkan_test_device.h"
 
@@ -36,8 +35,8 @@ RenderOptions smallImage(Colouring colouring = Colouring::Interference) {
 }
 
 struct PixelError {
-  double mean = 0;           // mean absolute difference per channel (8-bit levels)
-  int max = 0;               // largest difference of any channel
+  double mean = 0;          // mean absolute difference per channel (8-bit levels)
+  int max = 0;              // largest difference of any channel
   double fractionOver8 = 0;  // fraction of pixels with a channel more than 8 levels off
 };
 
@@ -67,8 +66,7 @@ TEST(Renderer, KnownSceneMatchesReference) {
   const std::vector<uint8_t> pixels = renderer.readPixels();
   writePng("render_actual.png", kWidth, kHeight, pixels);  // beside the test binary, to look at on failure
   const std::filesystem::path reference = std::filesystem::path(GB_TEST_DATA_DIR) / "render_reference.png";
-  if (const char* regenerate = std::getenv("GIANTBUBBLE_REGENERATE_REFERENCE");
-      regenerate && std::string(regenerate) == "1") {
+  if (const char* regenerate = std::getenv("GIANTBUBBLE_REGENERATE_REFERENCE"); regenerate && std::string(regenerate) == "1") {
     writePng(reference, kWidth, kHeight, pixels);
     GTEST_SKIP() << "*** reference image REGENERATED at " << reference << ": look at it before committing ***";
   }
@@ -154,8 +152,7 @@ TEST(Renderer, OverlappingSheetsDoNotDependOnDrawingOrder) {
   const std::vector<uint8_t> forward = renderer.readPixels();
   std::vector<uint32_t>& tris = scene.film.topology.triangles;
   std::vector<uint32_t> reversed;
-  for (size_t t = tris.size() / 3; t-- > 0;)
-    reversed.insert(reversed.end(), {tris[3 * t], tris[3 * t + 1], tris[3 * t + 2]});
+  for (size_t t = tris.size() / 3; t-- > 0;) reversed.insert(reversed.end(), {tris[3 * t], tris[3 * t + 1], tris[3 * t + 2]});
   tris = reversed;
   renderer.render(test::frameOf(scene));
   const PixelError e = compare(forward, renderer.readPixels());

@@ -1,9 +1,9 @@
 // Scene files: the built-in scenes run; every mistake in a scene file is named with its file, line and key.
-#include "scene_file.h"
-
 #include <gtest/gtest.h>
 
 #include <filesystem>
+
+#include "scene_file.h"
 
 namespace gb {
 namespace {
@@ -88,12 +88,11 @@ TEST(SceneFile, MalformedTomlIsNamedWithItsLine) {
 }
 
 TEST(SceneFile, AnAcceptedSceneSetsWhatItSays) {
-  const Scene s = parseScene(
-      "name = \"mine\"\nduration = 2.5\nburst_at = 1.0\n[tool]\nkind = \"ring\"\n"
-      "[input]\nsource = \"script:circles\"\nspeed = 1.5\n[params]\nsticky = 28.0\n"
-      "[render]\nwidth = 640\nheight = 360\ncolouring = \"thickness\"\n"
-      "camera = [0.0, 1.2, 3.0]\ntarget = [0.0, 1.2, 0.0]\nvideo = false\n",
-      "test.toml", std::filesystem::current_path());
+  const Scene s = parseScene("name = \"mine\"\nduration = 2.5\nburst_at = 1.0\n[tool]\nkind = \"ring\"\n"
+                             "[input]\nsource = \"script:circles\"\nspeed = 1.5\n[params]\nsticky = 28.0\n"
+                             "[render]\nwidth = 640\nheight = 360\ncolouring = \"thickness\"\n"
+                             "camera = [0.0, 1.2, 3.0]\ntarget = [0.0, 1.2, 0.0]\nvideo = false\n",
+                             "test.toml", std::filesystem::current_path());
   EXPECT_EQ(s.run.duration, 2.5);
   EXPECT_EQ(s.run.burstAt, 1.0);
   EXPECT_EQ(s.run.tool.kind, ToolKind::Ring);

@@ -1,10 +1,9 @@
 // Every formula of the step against a value computed by hand.
-#include "stages.h"
-
 #include <gtest/gtest.h>
 
 #include <cmath>
 
+#include "stages.h"
 #include "test_films.h"
 
 namespace gb {

@@ -1,8 +1,8 @@
-#include "wire_frame.h"
-
 #include <gtest/gtest.h>
 
 #include <numbers>
+
+#include "wire_frame.h"
 
 namespace gb {
 namespace {

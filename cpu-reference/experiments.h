@@ -15,19 +15,14 @@ namespace gb {
 struct Measurement {
   Measurement(std::string experiment_, std::string quantity_, std::string unit_, double measured_, double analytic_,
               std::string law_)
-      : experiment(std::move(experiment_)),
-        quantity(std::move(quantity_)),
-        unit(std::move(unit_)),
-        measured(measured_),
-        analytic(analytic_),
-        law(std::move(law_)) {}
-  std::string
-      experiment;        // catenoid, catenoid-critical, young-laplace, waves, minimal-surface, flat-disc, bubble-burst
-  std::string quantity;  // what was measured, in words
+      : experiment(std::move(experiment_)), quantity(std::move(quantity_)), unit(std::move(unit_)),
+        measured(measured_), analytic(analytic_), law(std::move(law_)) {}
+  std::string experiment;  // catenoid, catenoid-critical, young-laplace, waves, minimal-surface, flat-disc, bubble-burst
+  std::string quantity;    // what was measured, in words
   std::string unit;
   double measured = 0;
   double analytic = 0;
-  std::string law;  // the formula the analytic value comes from
+  std::string law;         // the formula the analytic value comes from
   // What a plot of the experiment shows, when it has one: the film's points against the analytic curve.
   std::string xLabel, yLabel;
   std::vector<std::pair<double, double>> measuredPoints, analyticCurve;
@@ -45,7 +40,7 @@ Measurement runExperiment(const std::string& name, Params params,
 
 // The analytic pieces, for the tests as well.
 double catenoidNeck(double ringRadius, double separation);  // stable branch of R = a cosh(d / 2a)
-double neckRadius(const Film& film, const Vec3& center);    // smallest distance of a particle from the z axis
-double meanCurvatureTimes(const Film& film, float length);  // mean |H| x length over the free particles
+double neckRadius(const Film& film, const Vec3& center);     // smallest distance of a particle from the z axis
+double meanCurvatureTimes(const Film& film, float length);   // mean |H| x length over the free particles
 
 }  // namespace gb

@@ -11,14 +11,14 @@ struct Film {
   State state;
   Topology topology;
   WandTool tool;
-  float stringLength = 0.0f;         // two wands: length of the hanging bottom string, fixed while the film lives
-  float referenceVolume = 0.0f;      // V_0 of Eq. (11) once the film is a closed bubble (m^3)
-  Vec3 volumeOrigin = Vec3::Zero();  // closed bubble: apex of the volume's cone decomposition, fixed at
-                                     // closure so that no backend needs to read the state back for it
+  float stringLength = 0.0f;     // two wands: length of the hanging bottom string, fixed while the film lives
+  float referenceVolume = 0.0f;       // V_0 of Eq. (11) once the film is a closed bubble (m^3)
+  Vec3 volumeOrigin = Vec3::Zero();   // closed bubble: apex of the volume's cone decomposition, fixed at
+                                      // closure so that no backend needs to read the state back for it
   // Soap solution control (Section 7): liquid still on the wet wire, from which new film is drawn.
-  float wireLiquid = 0.0f;       // m^3 left
-  float wireLiquidAtDip = 0.0f;  // m^3 the wire held when the film was made
-  float wireSpacing = 0.0f;      // spacing of the wire's particles when the film was made (m)
+  float wireLiquid = 0.0f;        // m^3 left
+  float wireLiquidAtDip = 0.0f;   // m^3 the wire held when the film was made
+  float wireSpacing = 0.0f;       // spacing of the wire's particles when the film was made (m)
   // Remaining soap solution in [0, 1]: Params::solution at the dip, less what growth has used since.
   [[nodiscard]] float solutionLeft(const Params& params) const {
     return wireLiquidAtDip > 0 ? params.solution * wireLiquid / wireLiquidAtDip : 0.0f;

@@ -25,13 +25,13 @@ void RealTimePacer::resync(Clock::time_point now) {
   const double elapsed = std::chrono::duration<double>(now - start_).count();
   const long wanted = static_cast<long>(std::floor(elapsed / options_.frameTime));
   // Move the start so that the frames already simulated are exactly the ones due now.
-  start_ +=
-      std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(options_.frameTime * (wanted - due_)));
+  start_ += std::chrono::duration_cast<Clock::duration>(
+      std::chrono::duration<double>(options_.frameTime * static_cast<double>(wanted - due_)));
 }
 
 void RealTimePacer::sleepUntilDue() {
-  std::this_thread::sleep_until(start_ + std::chrono::duration_cast<Clock::duration>(
-                                             std::chrono::duration<double>(options_.frameTime * (due_ + 1))));
+  std::this_thread::sleep_until(start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
+                                             options_.frameTime * static_cast<double>(due_ + 1))));
 }
 
 void RealTimePacer::record(int frames, double simMs, double renderMs) {
@@ -50,7 +50,7 @@ void RealTimePacer::record(int frames, double simMs, double renderMs) {
 
 double RealTimePacer::realTimeFactor(Clock::time_point now) const {
   const double elapsed = std::chrono::duration<double>(now - start_).count();
-  return elapsed > 0 ? simulated_ * options_.frameTime / elapsed : 1.0;
+  return elapsed > 0 ? static_cast<double>(simulated_) * options_.frameTime / elapsed : 1.0;
 }
 
 }  // namespace gb

@@ -9,18 +9,19 @@
 
 namespace gb {
 
-HandObservation HandHold::update(double t, const std::optional<Vec3d>& measurement) {
+HandObservation HandHold::update(double t, const std::optional<Vec3d>& measurement, double confidence) {
   HandObservation o;
   if (measurement) {
     last_ = *measurement;
     lastTime_ = t;
+    lastConfidence_ = confidence;
     o.position = last_;
-    o.confidence = 1.0;
+    o.confidence = confidence;
     o.measured = true;
     return o;
   }
   o.position = last_;
-  o.confidence = o.seen() ? std::exp(-(t - lastTime_) / holdTime_) : 0.0;
+  o.confidence = o.seen() ? lastConfidence_ * std::exp(-(t - lastTime_) / holdTime_) : 0.0;
   return o;
 }
 

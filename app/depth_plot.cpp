@@ -25,8 +25,8 @@ struct Canvas {
     for (int k = 0; k < 360; ++k)
       for (int w = 0; w < 3; ++w) {
         const double a = k * 3.14159265 / 180.0, rr = radius + w;
-        set(static_cast<int>(std::lround(px.x() + rr * std::cos(a))), static_cast<int>(std::lround(px.y() + rr * std::sin(a))),
-            r, g, b);
+        set(static_cast<int>(std::lround(px.x() + rr * std::cos(a))),
+            static_cast<int>(std::lround(px.y() + rr * std::sin(a))), r, g, b);
       }
   }
   void cross(const Vec3d& camera, int size, uint8_t r, uint8_t g, uint8_t b) {

@@ -12,7 +12,7 @@ constexpr double kBin = 0.03;           // m: height histogram bin
 constexpr double kLowest = -4.0;        // m: lowest floor considered below the camera
 constexpr double kHighest = -0.2;       // m: the floor is at least this far below the camera
 constexpr double kFitTolerance = 0.04;  // m: points this close to the layer take part in the plane fit
-constexpr double kMaxUnder = 0.02;     // fraction of the points allowed under the floor (noise, reflections)
+constexpr double kMaxUnder = 0.02;      // fraction of the points allowed under the floor (noise, reflections)
 constexpr int kBins = static_cast<int>((kHighest - kLowest) / kBin);
 
 struct Layer {
@@ -89,9 +89,14 @@ std::optional<FloorPlane> findFloor(const std::vector<Vec3d>& points, const std:
       }
   }
   if (best.count < minFraction * static_cast<double>(points.size())) return std::nullopt;
-  // Two rounds of fitting: the second with the fitted normal, which the 1-degree search only approximates.
+  // Two rounds of fitting: the second with the fitted normal, which the 1-degree search only approximates. A
+  // measured gravity is kept as the normal: only the height is fitted.
   std::optional<FloorPlane> floor = fitPlane(points, bestUp, best.height);
   if (floor) floor = fitPlane(points, floor->up, floor->offset);
+  if (floor && gravityUp) {
+    floor->up = bestUp;
+    floor->offset = best.height;
+  }
   return floor;
 }
 

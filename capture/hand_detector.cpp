@@ -5,8 +5,6 @@
 #include <cstdint>
 #include <limits>
 #include <queue>
-#include <cstdio>
-#include <cstdlib>
 #include <unordered_map>
 
 namespace gb {
@@ -21,12 +19,12 @@ namespace {
 constexpr int kStep = 2;
 constexpr int kW = kWidth / kStep, kH = kHeight / kStep, kNodes = kW * kH;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
-constexpr double kMinExtremumGain = 0.15;  // m: an accumulative extremum nearer than this to the others is noise
-constexpr double kArmLength = 0.6;         // m from the shoulder to the hand's tip: where the arm leaves the torso
-constexpr double kMinConfidence = 0.1;     // hands less sure than this are not reported
-constexpr double kFootHeight = 0.4;        // m over the floor: extrema below are feet (a hanging hand is ~0.8 m)
-constexpr double kHeadLateral = 0.15;      // m: the head's extremum is within this of the torso's middle
-constexpr double kLowestArmRoot = -0.1;    // m over the centre: an arm leaves the torso above this, a leg below
+constexpr double kMinExtremumGain = 0.15;       // m: an accumulative extremum nearer than this to the others is noise
+constexpr double kArmLength = 0.6;              // m from the shoulder to the hand's tip: where the arm leaves the torso
+constexpr double kMinConfidence = 0.1;          // hands less sure than this are not reported
+constexpr double kFootHeight = 0.4;             // m over the floor: extrema below are feet (a hanging hand is ~0.8 m)
+constexpr double kHeadLateral = 0.15;           // m: the head's extremum is within this of the torso's middle
+constexpr double kLowestArmRoot = -0.1;         // m over the centre: an arm leaves the torso above this, a leg below
 constexpr double kHeadAbove[2] = {0.35, 0.88};  // m over the centre (at the body's median height): the head's top
 
 struct Grid {
@@ -138,9 +136,9 @@ Bodies connectedBodies(const Grid& g, const Vec3d& up, const DetectionOptions& o
 // end-on as a few depth steps): a body nearer than the performer just beside it in the image is bridged to
 // the performer's nearest point within kMaxBridge, in rounds, so that a hand beyond a forearm joins too.
 std::vector<int> attachFragments(Grid& g, const Bodies& b) {
-  constexpr int kReach = 4;          // half-resolution pixels searched around each fragment point
+  constexpr int kReach = 4;           // half-resolution pixels searched around each fragment point
   constexpr double kMaxBridge = 0.6;  // m: a forearm hidden behind its hand leaves the hand up to an arm in front
-  constexpr int kMinFragment = 6;    // nodes: smaller pieces are noise
+  constexpr int kMinFragment = 6;     // nodes: smaller pieces are noise
   std::vector<int> body = b.members[b.performer];
   std::vector<uint8_t> inBody(kNodes, 0), attached(b.members.size(), 0);
   for (const int i : body) inBody[i] = 1;
@@ -241,19 +239,31 @@ DetectedHand handAt(const Grid& g, int tip, const DetectionOptions& o) {
   return hand;
 }
 
-// Where the tip's limb leaves the torso: the point an arm's length back along its shortest path to the centre.
-int armRoot(int tip, const std::vector<double>& fromCentre, const std::vector<int>& pred) {
+struct ArmRoot {
+  int node = -1;         // where the tip's limb leaves the torso
+  bool bridged = false;  // the path there crosses a bridge (attachFragments), not the arm's own surface
+};
+
+// The point an arm's length back along the tip's shortest path to the centre.
+ArmRoot armRoot(int tip, const std::vector<double>& fromCentre, const std::vector<int>& pred) {
   const double shoulder = std::max(0.2, fromCentre[tip] - kArmLength);
-  int i = tip;
-  while (pred[i] >= 0 && fromCentre[i] > shoulder) i = pred[i];
-  return i;
+  ArmRoot root{tip, false};
+  while (pred[root.node] >= 0 && fromCentre[root.node] > shoulder) {
+    const int next = pred[root.node];
+    root.bridged = root.bridged || std::abs(next % kW - root.node % kW) > 1 || std::abs(next / kW - root.node / kW) > 1;
+    root.node = next;
+  }
+  return root;
 }
 
-// Which side of the torso the arm leaves by: its root against the torso's centre.
-void armSide(const Vec3d& root, double centreX, DetectedHand& hand) {
-  const double dx = root.x() - centreX;
+// Which side of the torso the arm leaves by: its root against the torso's centre. Sure when the root is well
+// to one side and a whole arm's length back from the tip along the arm's own surface (a hand bridged to the
+// chest, or a shorter path, ends wherever the bridge landed and says nothing).
+void armSide(const ArmRoot& root, const Vec3d& rootPoint, double centreX, DetectedHand& hand) {
+  const double dx = rootPoint.x() - centreX;
   hand.side = dx > 0.0 ? 1 : -1;
-  hand.sideConfidence = std::min(1.0, std::abs(dx) / 0.1);
+  hand.sideConfidence =
+      root.bridged ? 0.0 : std::min(1.0, std::abs(dx) / 0.1) * std::clamp((hand.geodesic - kArmLength) / 0.2, 0.0, 1.0);
 }
 
 // A hand is in front of the body, or out beside it, above the head or hanging beside the hips; an extremum at
@@ -265,19 +275,20 @@ bool clearOfTorso(const Vec3d& tip, const Vec3d& centre, const Vec3d& up, double
   return beside > kBeside || above > kOverhead || (above < -0.05 && beside > kHanging);
 }
 
-// Two candidates on the same arm (same side of the torso, closer than a forearm and hand): the elbow and the
-// hand of an arm reaching forward, or one hand found twice. The hand is the one in front (nearer the camera),
-// else the one further along the body.
+// Two candidates on the same arm: one hand found twice (closer than kSameHand), or the elbow and the hand of an
+// arm reaching forward (same side of the torso, closer than a forearm and hand, one well in front of the
+// other). The hand is the one in front (nearer the camera), else the more confident.
 void dropElbows(std::vector<DetectedHand>& candidates) {
-  constexpr double kSameArm = 0.45, kInFront = 0.1;  // m
+  constexpr double kSameArm = 0.45, kInFront = 0.1, kSameHand = 0.1;  // m
   std::vector<uint8_t> dropped(candidates.size(), 0);
   for (size_t a = 0; a < candidates.size(); ++a)
     for (size_t b = a + 1; b < candidates.size(); ++b) {
       const DetectedHand &p = candidates[a], &q = candidates[b];
-      const double apart = (p.position - q.position).norm();
-      if (apart > kSameArm || (p.side != q.side && apart > 0.1)) continue;
-      const double dz = p.position.z() - q.position.z();
-      const bool dropP = dz > kInFront || (std::abs(dz) <= kInFront && p.geodesic < q.geodesic);
+      const double apart = (p.position - q.position).norm(), dz = p.position.z() - q.position.z();
+      const bool sameHand = apart < kSameHand;
+      const bool elbowBehind = apart < kSameArm && p.side == q.side && std::abs(dz) > kInFront;
+      if (!sameHand && !elbowBehind) continue;
+      const bool dropP = dz > kInFront || (std::abs(dz) <= kInFront && p.confidence < q.confidence);
       dropped[dropP ? a : b] = 1;
     }
   size_t kept = 0;
@@ -330,16 +341,15 @@ Detection detectHands(const kinect::DepthFrame& frame, const DetectionOptions& o
     geodesicFrom(bodyGrid, far, o, accumulated, nullptr);
   }
 
-  // Feet are low; the head is the highest extremum above the centre by a neck and a head, and central.
-  auto isFoot = [&](const Vec3d& p) {
-    return d.floor ? d.floor->heightOf(p) < kFootHeight : up.dot(p - c) < -0.6;
-  };
+  // Feet are low; the head is the most central extremum above the centre by a neck and a head (hands raised
+  // beside it are as high, hands overhead higher).
+  auto isFoot = [&](const Vec3d& p) { return d.floor ? d.floor->heightOf(p) < kFootHeight : up.dot(p - c) < -0.6; };
   int head = -1;
   for (const int t : tips) {
     const Vec3d& p = bodyGrid.point[t];
     const double above = up.dot(p - c);
     if (above > kHeadAbove[0] && above < kHeadAbove[1] && std::abs(p.x() - c.x()) < kHeadLateral &&
-        (head < 0 || up.dot(p) > up.dot(bodyGrid.point[head])))
+        (head < 0 || std::abs(p.x() - c.x()) < std::abs(bodyGrid.point[head].x() - c.x())))
       head = t;
   }
   if (head >= 0) d.head = bodyGrid.point[head];
@@ -351,21 +361,19 @@ Detection detectHands(const kinect::DepthFrame& frame, const DetectionOptions& o
     if (t == head || isFoot(p) || fromCentre[t] < o.minHandGeodesic) continue;
     // An arm hangs from a shoulder, above the hips; a leg's extremum (a knee, a foot cut off by the floor)
     // goes back down towards the hips.
-    const int root = armRoot(t, fromCentre, pred);
-    if (up.dot(bodyGrid.point[root] - c) < kLowestArmRoot) continue;
+    const ArmRoot root = armRoot(t, fromCentre, pred);
+    if (up.dot(bodyGrid.point[root.node] - c) < kLowestArmRoot) continue;
     if (!clearOfTorso(p, c, up, d.bodyDepth)) continue;
     DetectedHand hand = handAt(bodyGrid, t, o);
     hand.geodesic = fromCentre[t];
-    armSide(bodyGrid.point[root], c.x(), hand);
+    armSide(root, bodyGrid.point[root.node], c.x(), hand);
     // Confidence: an arm's length along the body, standing out from the rest (a shoulder bared by arms
     // crossed in front of it is an extremum too, but barely), a hand's worth of surface, a clear side.
     const double footprint = kStep * p.z() / kinect::kFx;
     const double expected = 0.5 * 3.14159 * 0.05 * 0.05 / (footprint * footprint);
     const double reach = std::clamp((hand.geodesic - o.minHandGeodesic) / 0.25, 0.0, 1.0);
     const double protrusion = std::clamp((gains[k] - kMinExtremumGain) / 0.25, 0.0, 1.0);
-    hand.confidence =
-        reach * protrusion * std::min(1.0, hand.pixels / expected) * (0.6 + 0.4 * hand.sideConfidence);
-    if (std::getenv("GBDBG")) std::fprintf(stderr, "tip %.2f %.2f %.2f geo %.2f gain %.2f root-above %.2f conf %.2f px %d exp %.0f\n", p.x(), p.y(), p.z(), hand.geodesic, gains[k], up.dot(bodyGrid.point[root] - c), hand.confidence, hand.pixels, expected);
+    hand.confidence = reach * protrusion * std::min(1.0, hand.pixels / expected) * (0.6 + 0.4 * hand.sideConfidence);
     if (hand.confidence < kMinConfidence) continue;
     candidates.push_back(hand);
   }
@@ -376,6 +384,11 @@ Detection detectHands(const kinect::DepthFrame& frame, const DetectionOptions& o
   d.hands = candidates;
   return d;
 }
+
+namespace {
+constexpr double kFollowedFor = 0.3;         // s: a hand seen this recently is being followed
+constexpr double kFollowedSideWeight = 0.2;  // of sideCost, for a followed hand
+}  // namespace
 
 HandTracker::HandTracker(const TrackerOptions& options)
     : options_(options), hold_{HandHold(options.holdTime), HandHold(options.holdTime)} {}
@@ -393,8 +406,12 @@ int HandTracker::sideOf(int hand) const {
 }
 
 double HandTracker::cost(int hand, double time, const DetectedHand& d, const Detection& detection) const {
+  // The torso side says which hand it is when a hand is first found or found again; while a hand is followed,
+  // its motion says more (arms crossed in front of the chest confuse the side), so the side only tips the
+  // balance then.
+  const bool followed = last_[hand] && time - lastSeen_[hand] < kFollowedFor;
   double c = 0.0;
-  if (d.side != 0 && d.side != sideOf(hand)) c += options_.sideCost * d.sideConfidence;
+  if (d.side != sideOf(hand)) c += (followed ? kFollowedSideWeight : 1.0) * options_.sideCost * d.sideConfidence;
   if (last_[hand]) {
     const double distance = (d.position - predicted(hand, time)).norm();
     const double reach = options_.maxHandSpeed * (time - lastSeen_[hand]) + options_.jumpMargin;
@@ -402,7 +419,7 @@ double HandTracker::cost(int hand, double time, const DetectedHand& d, const Det
     return c + distance;
   }
   // A first sighting: it must lie on its own side of the body when the detector could not tell the arm's side.
-  if (d.side == 0) {
+  if (d.sideConfidence < 0.5) {
     const double dx = d.position.x() - detection.bodyCentreX;
     if ((dx > 0.0) != (sideOf(hand) > 0)) return kInfinity;
   }

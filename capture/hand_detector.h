@@ -28,17 +28,17 @@
 namespace gb {
 
 struct DetectionOptions {
-  float nearLimit = 0.5f;              // depth band (m): the Kinect sees nothing nearer than ~0.5 m;
-  float farLimit = 4.0f;               //   its depth is too coarse beyond ~4 m
-  int minPerformerPixels = 3000;       // smallest body taken for a person, in full-resolution pixels
-  float depthJump = 0.07f;             // neighbouring half-resolution pixels further apart (m) are not joined
-  double expectedDistance = 0.0;       // m from the camera where the performer stands (0: anywhere in the band)
-  std::optional<Vec3d> gravityUp;      // camera-space up when known; else the frame's accelerometer or a search
-  double floorClearance = 0.07;        // m: points this close over the floor (or under it) are floor
-  double minHandGeodesic = 0.45;       // m along the body from the torso's centre: nearer extrema are not hands
-  double handRadius = 0.10;            // m: surface within this distance of a tip forms the hand
-  double surfaceToCentre = 0.02;       // m: the hand's centre lies this far behind its visible surface
-  int extrema = 10;                    // accumulative geodesic extrema looked at per frame
+  float nearLimit = 0.5f;          // depth band (m): the Kinect sees nothing nearer than ~0.5 m;
+  float farLimit = 4.0f;           //   its depth is too coarse beyond ~4 m
+  int minPerformerPixels = 3000;   // smallest body taken for a person, in full-resolution pixels
+  float depthJump = 0.07f;         // neighbouring half-resolution pixels further apart (m) are not joined
+  double expectedDistance = 0.0;   // m from the camera where the performer stands (0: anywhere in the band)
+  std::optional<Vec3d> gravityUp;  // camera-space up when known; else the frame's accelerometer or a search
+  double floorClearance = 0.07;    // m: points this close over the floor (or under it) are floor
+  double minHandGeodesic = 0.45;   // m along the body from the torso's centre: nearer extrema are not hands
+  double handRadius = 0.10;        // m: surface within this distance of a tip forms the hand
+  double surfaceToCentre = 0.02;   // m: the hand's centre lies this far behind its visible surface
+  int extrema = 10;                // accumulative geodesic extrema looked at per frame
 };
 
 // A found hand. side: +1 when its arm leaves the torso on the camera's +x side, -1 on -x, 0 unknown.

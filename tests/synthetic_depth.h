@@ -1,8 +1,8 @@
 #pragma once
-// Synthetic Kinect v1 depth frames of a performer, for the detection and fakenect tests: a torso box, a
-// head, two arms of spheres from the shoulders to the hands, spherical hands, and a back wall, ray cast
-// through the Kinect depth intrinsics and quantised to raw 11-bit disparity with the inverse of the fit the
-// detector uses.
+// Synthetic Kinect v1 depth frames of a performer, for the detection, fakenect and benchmark code: an
+// articulated body of capsules standing on a floor, ray cast through the Kinect depth intrinsics and quantised
+// to raw 11-bit disparity with the inverse of the fit the detector uses; optionally furniture, a wall, a tilted
+// camera and Kinect noise, shadows and holes (renderScene).
 
 #include <optional>
 #include <string>
@@ -13,12 +13,13 @@
 
 namespace gb::test {
 
+// The simple scene of the fakenect and command-line tests: a level camera 1.3 m over the floor, the performer
+// facing it, a wall behind, no noise. Hands are given in camera space.
 struct SyntheticPerformer {
-  std::optional<Vec3d> leftHand = Vec3d(0.25, 0.05, 1.9);  // hand centres, camera space (m); nullopt: arm down
-  std::optional<Vec3d> rightHand = Vec3d(-0.25, 0.0, 1.85);
-  Vec3d torso = Vec3d(0.0, -0.1, 2.45);  // centre of the torso box (0.4 x 0.7 x 0.2 m)
-  double handRadius = 0.045;
-  double wallDepth = 3.6;  // beyond the detector's default far limit
+  std::optional<Vec3d> leftHand = Vec3d(0.25, 0.05, 2.0);  // hand centres, camera space (m); nullopt: arm down
+  std::optional<Vec3d> rightHand = Vec3d(-0.25, 0.0, 1.95);
+  double bodyDepth = 2.45;  // the torso's axis (m from the camera)
+  double wallDepth = 3.6;
 };
 
 kinect::DepthFrame renderPerformer(const SyntheticPerformer& performer, double time = 0.0, uint32_t timestamp = 0);
@@ -43,23 +44,23 @@ struct BodyPose {
   // and back, out of the body.
   Vec3d leftHand{0.2, -0.1, -0.45};
   Vec3d rightHand{-0.2, -0.1, -0.45};
-  Vec3d leftElbowHint{0.3, -1.0, 0.2};   // direction the left elbow points to (scene space)
+  Vec3d leftElbowHint{0.3, -1.0, 0.2};  // direction the left elbow points to (scene space)
   Vec3d rightElbowHint{-0.3, -1.0, 0.2};
 };
 
 struct SceneOptions {
-  double cameraPitch = 10.0;   // degrees down
-  double cameraHeight = 1.2;   // m
-  bool furniture = true;       // a chair and a table beside the performer
-  double wallDistance = 3.6;   // m from the camera along the floor; 0: no wall
-  bool noise = true;           // Kinect v1 noise, shadows and holes
+  double cameraPitch = 10.0;  // degrees down
+  double cameraHeight = 1.2;  // m
+  bool furniture = true;      // a chair and a table beside the performer
+  double wallDistance = 3.6;  // m from the camera along the floor; 0: no wall
+  bool noise = true;          // Kinect v1 noise, shadows and holes
   unsigned seed = 1;
 };
 
 struct SyntheticScene {
   kinect::DepthFrame frame;
-  Vec3d leftHand, rightHand;  // true hand centres, camera space
-  Vec3d up;                   // unit vector against gravity, camera space (what the accelerometer measures)
+  Vec3d leftHand, rightHand;   // true hand centres, camera space
+  Vec3d up;                    // unit vector against gravity, camera space (what the accelerometer measures)
   double floorDistance = 0.0;  // the camera's height over the floor (m)
 };
 

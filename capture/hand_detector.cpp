@@ -266,11 +266,14 @@ void armSide(const ArmRoot& root, const Vec3d& rootPoint, double centreX, Detect
       root.bridged ? 0.0 : std::min(1.0, std::abs(dx) / 0.1) * std::clamp((hand.geodesic - kArmLength) / 0.2, 0.0, 1.0);
 }
 
-// A hand is in front of the body, or out beside it, above the head or hanging beside the hips; an extremum at
-// the body's depth within its outline is a shoulder or an elbow bared by arms crossed in front of the chest.
-bool clearOfTorso(const Vec3d& tip, const Vec3d& centre, const Vec3d& up, double bodyDepth) {
-  constexpr double kInFront = 0.12, kBeside = 0.3, kOverhead = 0.75, kHanging = 0.2;  // m
+// A hand is in front of the body, or out beside it, above the head or level with it, or hanging beside the
+// hips; an extremum at the body's depth within its outline is a shoulder or an elbow bared by arms crossed in
+// front of the chest.
+bool clearOfTorso(const Vec3d& tip, const Vec3d& centre, const Vec3d& up, double bodyDepth,
+                  const std::optional<Vec3d>& head) {
+  constexpr double kInFront = 0.12, kBeside = 0.3, kOverhead = 0.75, kHanging = 0.2, kHeadLevel = 0.15;  // m
   if (tip.z() < bodyDepth - kInFront) return true;
+  if (head && up.dot(tip - *head) > -kHeadLevel) return true;
   const double beside = std::abs(tip.x() - centre.x()), above = up.dot(tip - centre);
   return beside > kBeside || above > kOverhead || (above < -0.05 && beside > kHanging);
 }
@@ -363,7 +366,7 @@ Detection detectHands(const kinect::DepthFrame& frame, const DetectionOptions& o
     // goes back down towards the hips.
     const ArmRoot root = armRoot(t, fromCentre, pred);
     if (up.dot(bodyGrid.point[root.node] - c) < kLowestArmRoot) continue;
-    if (!clearOfTorso(p, c, up, d.bodyDepth)) continue;
+    if (!clearOfTorso(p, c, up, d.bodyDepth, d.head)) continue;
     DetectedHand hand = handAt(bodyGrid, t, o);
     hand.geodesic = fromCentre[t];
     armSide(root, bodyGrid.point[root.node], c.x(), hand);

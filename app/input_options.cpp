@@ -21,7 +21,7 @@ void addInputOptions(CLI::App* command, InputOptions& o) {
       ->check(CLI::IsMember({"bspline", "one-euro"}));
   command->add_option("--performer", o.performer,
                       "camera-space point X,Y,Z (m) between the performer's resting hands, or auto (the first "
-                      "sample with both hands)");
+                      "sample with both hands, within 3 s); default auto for kinect and fakenect:DIR, else 0,0,2");
   command->add_option("--reach", o.reach, "world metres per metre of hand motion")->check(CLI::Range(0.1, 20.0));
   command->add_option("--camera-pitch", o.cameraPitch, "degrees the camera is tilted up")
       ->check(CLI::Range(-45.0, 45.0));
@@ -35,15 +35,17 @@ Calibration calibrationOf(const InputOptions& o) {
   Calibration c;
   c.reach = o.reach;
   c.cameraPitch = o.cameraPitch;
-  if (o.performer == "auto") {
+  const bool camera = o.spec() == "kinect" || o.spec().rfind("fakenect:", 0) == 0;
+  if (o.performer == "auto" || (o.performer.empty() && camera)) {
     c.autoPerformer = true;
     return c;
   }
-  std::istringstream in(o.performer);
+  const std::string point = o.performer.empty() ? "0,0,2" : o.performer;
+  std::istringstream in(point);
   char comma1 = 0, comma2 = 0;
   double x = 0, y = 0, z = 0;
   if (!(in >> x >> comma1 >> y >> comma2 >> z) || comma1 != ',' || comma2 != ',' || !in.eof() || z <= 0.0)
-    throw std::invalid_argument("--performer: expected X,Y,Z in metres with Z > 0, or auto; got '" + o.performer + "'");
+    throw std::invalid_argument("--performer: expected X,Y,Z in metres with Z > 0, or auto; got '" + point + "'");
   c.performer = Vec3d(x, y, z);
   return c;
 }
@@ -68,7 +70,8 @@ StabilizerOptions stabilizerOptionsOf(const InputOptions& o) {
 
 std::unique_ptr<WandInput> makeWandInput(const InputOptions& o, const GestureOptions& gesture) {
   const std::string spec = o.spec();
-  if (spec == "mouse") throw HandSourceError("the mouse moves the wands in the live window only: giantbubble live --input mouse");
+  if (spec == "mouse")
+    throw HandSourceError("the mouse moves the wands in the live window only: giantbubble live --input mouse");
   if (o.scripted()) {
     try {
       return std::make_unique<ScriptedWands>(gestureFromName(spec.substr(7)), gesture);

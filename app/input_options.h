@@ -17,10 +17,11 @@ struct InputOptions {
   std::string input;                           // kinect, fakenect:DIR, trajectory:FILE or script:NAME
   std::string gesture;                         // --gesture NAME, kept as an alias of --input script:NAME
   std::string stabilizer = "bspline";          // bspline (the paper) or one-euro
-  std::string performer = "0,0,2";             // camera-space point X,Y,Z (m) between the resting hands, or auto
+  std::string performer;                       // X,Y,Z (m) between the resting hands, or auto; empty: auto for
+                                               //   camera inputs (kinect, fakenect:DIR), 0,0,2 for the others
   double reach = 2.0;                          // world metres per metre of hand motion
   double cameraPitch = 0.0;                    // degrees the camera is tilted up
-  std::vector<double> depthBand = {0.5, 3.0};  // metres: the performer stands inside this band
+  std::vector<double> depthBand = {0.5, 4.0};  // metres: the performer stands inside this band
   bool mirrored = false;                       // the depth image is mirrored
 
   [[nodiscard]] std::string spec() const;  // --input, else script:GESTURE, else script:straight

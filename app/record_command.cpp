@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 
+#include "depth_plot.h"
 #include "trajectory_file.h"
 #include "trajectory_metrics.h"
 #include "trajectory_plot.h"
@@ -102,6 +103,10 @@ CLI::App* addRecordCommand(CLI::App& app, RecordOptions& o) {
                   "write the depth frames as a fakenect recording into this new folder "
                   "(input kinect or fakenect:DIR)");
   cmd->add_option("--plot", o.plot, "write the input hands against the stabilized wands as SVG");
+  cmd->add_option("--depth-plot", o.depthPlot,
+                  "write one depth frame with the hands found in it as PNG (input kinect or fakenect:DIR): the "
+                  "view to set the camera up by");
+  cmd->add_option("--depth-plot-frame", o.depthPlotFrame, "the frame --depth-plot draws, from 0 (default: the last)");
   cmd->add_flag("--report", o.report, "print the jitter and lag of both stabilizers on this input");
   cmd->add_option("--duration", o.duration,
                   "seconds to record (default: all of a recorded input, a script's "
@@ -120,8 +125,10 @@ CLI::App* addRecordCommand(CLI::App& app, RecordOptions& o) {
 }
 
 int runRecord(const RecordOptions& o) {
-  if (o.trajectory.empty() && o.fakenect.empty() && o.plot.empty() && !o.report) {
-    std::fprintf(stderr, "error: nothing to record: give --trajectory FILE, --fakenect DIR, --plot FILE or --report\n");
+  if (o.trajectory.empty() && o.fakenect.empty() && o.plot.empty() && o.depthPlot.empty() && !o.report) {
+    std::fprintf(stderr,
+                 "error: nothing to record: give --trajectory FILE, --fakenect DIR, --plot FILE, --depth-plot FILE or "
+                 "--report\n");
     return 1;
   }
   const std::string spec = o.input.spec();
@@ -138,15 +145,21 @@ int runRecord(const RecordOptions& o) {
   std::printf("recording from %s\n", source->describe().c_str());
 
   std::unique_ptr<FakenectWriter> fakenect;
-  if (!o.fakenect.empty()) {
-    if (!depth) {
-      std::fprintf(stderr, "error: --fakenect records depth frames: the input must be kinect or fakenect:DIR\n");
-      return 1;
-    }
-    fakenect = std::make_unique<FakenectWriter>(o.fakenect);
-    const double base = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-    depth->onFrame([&, base](const kinect::DepthFrame& f) { fakenect->write(f, base + f.time); });
+  if ((!o.fakenect.empty() || !o.depthPlot.empty()) && !depth) {
+    std::fprintf(stderr,
+                 "error: --fakenect and --depth-plot need depth frames: the input must be kinect or fakenect:DIR\n");
+    return 1;
   }
+  if (!o.fakenect.empty()) fakenect = std::make_unique<FakenectWriter>(o.fakenect);
+  const double base = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
+  kinect::DepthFrame plotted;
+  int frames = 0;
+  if (depth)
+    depth->onFrame([&, base](const kinect::DepthFrame& f) {
+      if (fakenect) fakenect->write(f, base + f.time);
+      if (o.depthPlotFrame < 0 || frames == o.depthPlotFrame) plotted = f;
+      ++frames;
+    });
   std::unique_ptr<TrajectoryWriter> trajectory;
   if (!o.trajectory.empty()) trajectory = std::make_unique<TrajectoryWriter>(o.trajectory);
 
@@ -169,8 +182,10 @@ int runRecord(const RecordOptions& o) {
       const double elapsed = s->time - samples.front().time;
       if (live && elapsed - lastProgress >= 1.0) {
         lastProgress = elapsed;
-        std::fprintf(stderr, "%.0f s, %zu frames, left hand %s, right hand %s\n", elapsed, samples.size(),
-                     s->left.measured ? "seen" : "not seen", s->right.measured ? "seen" : "not seen");
+        std::fprintf(
+            stderr, "%.0f s, %zu frames, left hand %s, right hand %s%s\n", elapsed, samples.size(),
+            s->left.measured ? "seen" : "not seen", s->right.measured ? "seen" : "not seen",
+            s->left.seen() || s->right.seen() ? "" : " (nobody found yet: stand 2-3 m in front of the camera)");
       }
     }
   } catch (const HandSourceLost& e) {
@@ -196,6 +211,17 @@ int runRecord(const RecordOptions& o) {
     plot.rightWand = s.wand[1];
     writeTrajectoryPlot(o.plot, plot);
     std::printf("plot written to %s\n", o.plot.c_str());
+  }
+  if (!o.depthPlot.empty()) {
+    if (o.depthPlotFrame >= frames) {
+      std::fprintf(stderr, "error: --depth-plot-frame %d: the input had %d depth frames\n", o.depthPlotFrame, frames);
+      return 1;
+    }
+    const Detection detection = detectHands(plotted, sourceOptions.detection);
+    HandTracker tracker(sourceOptions.tracker);  // one frame: identity from the side of the torso alone
+    writeDepthPlot(o.depthPlot, plotted, detection, tracker.update(plotted.time, detection));
+    std::printf("depth plot written to %s (%s, %zu hands)\n", o.depthPlot.c_str(),
+                detection.performerPixels > 0 ? "performer found" : "nobody found", detection.hands.size());
   }
   if (o.report) {
     if (samples.size() < 10) {

@@ -14,12 +14,14 @@ namespace gb {
 struct RecordOptions {
   InputOptions input;
   GestureOptions gesture;
-  std::string trajectory;  // CSV of the hands (camera space)
-  std::string fakenect;    // folder for a fakenect recording of the depth frames (kinect or fakenect input)
-  std::string plot;        // SVG of the input hands against the stabilized wands (world space)
-  bool report = false;     // print jitter and lag of both stabilizers
-  double duration = -1.0;  // seconds; negative: the whole input (a script: its stroke and 0.5 s; kinect: Ctrl-C)
-  SourceNoise noise;       // added to a scripted input, to compare the stabilizers against the truth
+  std::string trajectory;   // CSV of the hands (camera space)
+  std::string fakenect;     // folder for a fakenect recording of the depth frames (kinect or fakenect input)
+  std::string plot;         // SVG of the input hands against the stabilized wands (world space)
+  std::string depthPlot;    // PNG of one depth frame with the hands found in it (kinect or fakenect input)
+  int depthPlotFrame = -1;  // which frame (from 0); negative: the last one
+  bool report = false;      // print jitter and lag of both stabilizers
+  double duration = -1.0;   // seconds; negative: the whole input (a script: its stroke and 0.5 s; kinect: Ctrl-C)
+  SourceNoise noise;        // added to a scripted input, to compare the stabilizers against the truth
 };
 
 CLI::App* addRecordCommand(CLI::App& app, RecordOptions& options);

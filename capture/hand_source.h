@@ -20,7 +20,7 @@ enum class Hand { Left = 0, Right = 1 };  // the performer's own left and right
 // and its confidence decays as exp(-age / holdTime) (HandHold below), so a consumer never sees a jump.
 struct HandObservation {
   Vec3d position = Vec3d::Constant(std::numeric_limits<double>::quiet_NaN());  // camera space (m); NaN never seen
-  double confidence = 0.0;  // 1 when measured in this sample, decaying while held, 0 when never seen
+  double confidence = 0.0;  // the detector's (0..1] when measured, decaying while held, 0 when never seen
   bool measured = false;    // measured in this sample (otherwise held or never seen)
   [[nodiscard]] bool seen() const { return position.allFinite(); }
 };
@@ -60,13 +60,15 @@ class HandSource {
 class HandHold {
  public:
   explicit HandHold(double holdTime = 0.5) : holdTime_(holdTime) {}
-  // Measured: position and confidence 1. Not measured: the held observation at time t.
-  HandObservation update(double t, const std::optional<Vec3d>& measurement);
+  // Measured: its position and confidence (the detector's, 1 for exact inputs). Not measured: the held
+  // observation at time t, its confidence decaying from the last measured one.
+  HandObservation update(double t, const std::optional<Vec3d>& measurement, double confidence = 1.0);
 
  private:
   double holdTime_;
   Vec3d last_ = Vec3d::Constant(std::numeric_limits<double>::quiet_NaN());
   double lastTime_ = 0.0;
+  double lastConfidence_ = 0.0;
 };
 
 }  // namespace gb

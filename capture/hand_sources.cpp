@@ -1,5 +1,6 @@
 #include "hand_sources.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -9,18 +10,19 @@
 
 namespace gb {
 
-HandObservation HandHold::update(double t, const std::optional<Vec3d>& measurement) {
+HandObservation HandHold::update(double t, const std::optional<Vec3d>& measurement, double confidence) {
   HandObservation o;
   if (measurement) {
     last_ = *measurement;
     lastTime_ = t;
+    lastConfidence_ = confidence;
     o.position = last_;
-    o.confidence = 1.0;
+    o.confidence = confidence;
     o.measured = true;
     return o;
   }
   o.position = last_;
-  o.confidence = o.seen() ? std::exp(-(t - lastTime_) / holdTime_) : 0.0;
+  o.confidence = o.seen() ? lastConfidence_ * std::exp(-(t - lastTime_) / holdTime_) : 0.0;
   return o;
 }
 
@@ -30,7 +32,9 @@ DepthHandSource::DepthHandSource(std::unique_ptr<DepthStream> stream, const Dete
 
 std::optional<HandSample> DepthHandSource::next() {
   while (true) {
-    switch (stream_->poll(frame_, kFrameTimeout)) {
+    // A camera slower than 30 Hz (a busy USB bus, a 15 Hz mode) is late by its own measure, not by 30 Hz's.
+    const double timeout = std::max(kFrameTimeout, 2.5 * frameInterval_);
+    switch (stream_->poll(frame_, timeout)) {
       case DepthStream::Poll::End:
         return std::nullopt;
       case DepthStream::Poll::Nothing: {
@@ -44,6 +48,9 @@ std::optional<HandSample> DepthHandSource::next() {
         return tracker_.update(now, Detection{});
       }
       case DepthStream::Poll::Frame:
+        if (lastFrame_ > 0.0 && frame_.time > lastFrame_ && frame_.time - lastFrame_ < 1.0)
+          frameInterval_ = frameInterval_ == 0.0 ? frame_.time - lastFrame_
+                                                 : frameInterval_ + 0.2 * (frame_.time - lastFrame_ - frameInterval_);
         lastFrame_ = frame_.time;
         if (observer_) observer_(frame_);
         return tracker_.update(frame_.time, detectHands(frame_, detectionOptions_));

@@ -30,7 +30,8 @@ class DepthHandSource : public HandSource {
   void onFrame(std::function<void(const kinect::DepthFrame&)> observer) { observer_ = std::move(observer); }
   [[nodiscard]] std::optional<double> length() const override { return stream_->length(); }
 
-  static constexpr double kFrameTimeout = 0.1;  // s without a frame: a sample with both hands held
+  static constexpr double kFrameTimeout = 0.1;  // s without a frame (or 2.5 frame intervals, if longer): a
+                                                //   sample with both hands held
   static constexpr double kLostAfter = 2.0;     // s without a frame: the camera is lost (HandSourceLost)
 
  private:
@@ -39,6 +40,7 @@ class DepthHandSource : public HandSource {
   HandTracker tracker_;
   kinect::DepthFrame frame_;
   double lastFrame_ = 0.0;
+  double frameInterval_ = 0.0;  // s between depth frames, smoothed (0: not known yet)
   std::function<void(const kinect::DepthFrame&)> observer_;
 };
 

@@ -11,6 +11,7 @@
 #include <Eigen/Dense>
 #include <array>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 namespace gb::kinect {
@@ -51,6 +52,8 @@ struct DepthFrame {
   double time = 0.0;       // seconds since the stream started (recording: from the file name)
   uint32_t timestamp = 0;  // the Kinect's own frame counter (fakenect keeps it in the file name)
   std::vector<uint16_t> raw = std::vector<uint16_t>(kPixels, kNoReading);
+  // The direction against gravity in camera space, from the accelerometer, when the input carries it.
+  std::optional<Eigen::Vector3d> gravityUp;
 };
 
 }  // namespace gb::kinect

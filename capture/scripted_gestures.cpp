@@ -2,8 +2,8 @@
 
 #include <cmath>
 #include <numbers>
-#include <utility>
 #include <stdexcept>
+#include <utility>
 
 namespace gb {
 
@@ -37,8 +37,11 @@ HandOffsets extraMotion(Gesture gesture, const GestureOptions& o, double tau) {
   };
   HandOffsets h;
   switch (gesture) {
-    case Gesture::Straight: break;
-    case Gesture::CircleLeft: h.left = circle(2.0, 0.15); break;
+    case Gesture::Straight:
+      break;
+    case Gesture::CircleLeft:
+      h.left = circle(2.0, 0.15);
+      break;
     case Gesture::Circles:  // mirrored: both hands circle outwards
       h.left = circle(2.0, 0.15);
       h.right = -circle(2.0, 0.15);
@@ -84,9 +87,9 @@ WandState gestureAt(Gesture gesture, const GestureOptions& o, double t) {
 }
 
 namespace {
-const std::pair<const char*, Gesture> kGestures[] = {{"straight", Gesture::Straight},   {"circle-left", Gesture::CircleLeft},
-                                                    {"circles", Gesture::Circles},     {"twisted", Gesture::Twisted},
-                                                    {"up-down", Gesture::UpDown},      {"rising", Gesture::Rising}};
+const std::pair<const char*, Gesture> kGestures[] = {
+    {"straight", Gesture::Straight}, {"circle-left", Gesture::CircleLeft}, {"circles", Gesture::Circles},
+    {"twisted", Gesture::Twisted},   {"up-down", Gesture::UpDown},         {"rising", Gesture::Rising}};
 }  // namespace
 
 Gesture gestureFromName(const std::string& name) {

@@ -1,5 +1,6 @@
 #include "stabilizer.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -16,6 +17,8 @@ namespace {
 
 // The uniform cubic B-spline at the knot between its last three control points.
 Vec3d knotValue(const std::deque<Vec3d>& p) { return (p[0] + 4.0 * p[1] + p[2]) / 6.0; }
+
+constexpr double kKnotPeriod = 1.0 / 30.0;  // s: the splines' knots, at most this far apart (the Kinect's rate)
 
 template <typename T>
 void push(std::deque<T>& q, const T& value) {
@@ -71,10 +74,12 @@ WandPoint OneEuroSmoother::add(double t, const Vec3d& controlPoint) {
   return {x_, velocity};
 }
 
-HandStabilizer::HandStabilizer(const StabilizerOptions& options, const Vec3d& rest) : o_(options), rest_(rest) {
+HandStabilizer::HandStabilizer(const StabilizerOptions& options, const Vec3d& rest)
+    : o_(options), knotPeriod_(std::min(options.period, kKnotPeriod)), inputPeriod_(options.period), rest_(rest) {
   if (o_.velocitySpan < 1) throw std::invalid_argument("stabilizer velocitySpan must be at least 1");
+  if (!(o_.period > 0.0)) throw std::invalid_argument("stabilizer period must be positive");
   if (o_.kind == StabilizerKind::BSpline)
-    smoother_ = std::make_unique<BSplineSmoother>(o_.velocitySpan, o_.period);
+    smoother_ = std::make_unique<BSplineSmoother>(o_.velocitySpan, knotPeriod_);
   else
     smoother_ = std::make_unique<OneEuroSmoother>(o_.oneEuro);
 }
@@ -86,19 +91,21 @@ void HandStabilizer::add(double t, const HandObservation& hand) {
     control_ = p;
     reference_ = {p, Vec3d::Zero()};
     wand_ = {p, Vec3d::Zero()};
-    t_ = t;
+    t_ = inputTime_ = t;
+    nextKnot_ = t + knotPeriod_;
     confidence_ = hand.confidence;
     started_ = true;
     return;
   }
-  const double h = t - t_;
-  if (h <= 0.0) return;  // a sample not after the previous one adds nothing
+  const double h = t - inputTime_;
+  if (h <= 0.0) return;                                     // a sample not after the previous one adds nothing
+  inputPeriod_ += 0.2 * (std::min(h, 1.0) - inputPeriod_);  // how often samples come, for the extrapolation
 
   // Gate: the next control point is the measurement, unless it is an outlier (then the prediction) or the
   // hand was not measured (then the last control point again: the hold). The prediction carries the last
   // control point on with the smoothed velocity, which noise and outliers barely move.
   const Vec3d predicted = control_ + h * reference_.velocity;
-  Vec3d control = control_;
+  Vec3d from = control_, control = control_;
   if (hand.measured) {
     if (o_.outlierDistance <= 0.0 || (hand.position - predicted).norm() <= o_.outlierDistance) {
       control = hand.position;
@@ -109,13 +116,25 @@ void HandStabilizer::add(double t, const HandObservation& hand) {
     } else {
       // A run of outliers is the hand really somewhere else (found again, or re-detected): the smoothed
       // trajectory starts over there and the wand glides across, within its limits, by the drift correction.
-      smoother_->reset(t - h, hand.position);
-      control = hand.position;
+      smoother_->reset(t_, hand.position);
+      from = control = hand.position;
       outliers_ = 0;
     }
   }
   control_ = control;
+  // Onto the knots: the splines run at a fixed rate whatever the input's, so that a slow input is not a slow,
+  // late spline. Control points between two samples lie on the straight line between them.
+  while (nextKnot_ <= t + 1e-9) {
+    const double s = std::clamp((nextKnot_ - inputTime_) / h, 0.0, 1.0);
+    advance(nextKnot_, from + s * (control - from));
+    nextKnot_ += knotPeriod_;
+  }
+  inputTime_ = t;
+  confidence_ = hand.confidence;
+}
 
+void HandStabilizer::advance(double t, const Vec3d& control) {
+  const double h = t - t_;
   // Eq. (1) with the smoothed hand velocity, the drift correction, and the limits.
   reference_ = smoother_->add(t, control);
   const Vec3d carried = wand_.position + h * reference_.velocity;
@@ -128,13 +147,15 @@ void HandStabilizer::add(double t, const HandObservation& hand) {
   wand_.position += h * velocity;
   wand_.velocity = velocity;
   t_ = t;
-  confidence_ = hand.confidence;
 }
 
 WandPoint HandStabilizer::at(double t) const {
+  // Carried on by Eq. (1) up to the next sample's knots, however slow the input (no standing still between
+  // samples), and no further than the extrapolation limit past that.
+  const double limit = std::max(o_.extrapolation, 1.5 * inputPeriod_);
   const double ahead = t - t_;
   if (ahead <= 0.0) return wand_;
-  if (ahead > o_.extrapolation) return {wand_.position + o_.extrapolation * wand_.velocity, Vec3d::Zero()};
+  if (ahead > limit) return {wand_.position + limit * wand_.velocity, Vec3d::Zero()};
   return {wand_.position + ahead * wand_.velocity, wand_.velocity};
 }
 

@@ -15,8 +15,11 @@
 //               limit acts: then x_wand is exactly the smoothed trajectory, because the B-spline of the
 //               differences is the difference of the B-spline.
 //
+// Any input rate: the gated control points are interpolated onto knots at most 1/30 s apart (linearly between
+// samples), and the splines and Eq. (1) run on the knots, so a 15 Hz input is no later than a 30 Hz one.
+//
 // On a straight line at constant speed the B-spline wand reproduces the hand exactly, 2 + (velocitySpan - 1)/2
-// samples late (3 samples, 0.1 s at 30 Hz, by default). docs/capture.md gives the jitter and lag of both.
+// knots late (3 knots, 0.1 s, by default). docs/capture.md gives the jitter and lag of both.
 
 #include <array>
 #include <deque>
@@ -43,8 +46,10 @@ struct StabilizerOptions {
   double maxSpeed = 4.0;          // m/s: the wand never moves faster (camera space)
   double maxAcceleration = 40.0;  // m/s^2: nor changes its velocity faster
   double driftTime = 0.3;         // s: return to the smoothed trajectory after a limit acted
-  double extrapolation = 0.1;     // s: how far past the newest sample wandsAt() carries a wand on by Eq. (1)
-  double period = 1.0 / 30.0;     // s: the input's nominal sample period (warm-up of the finite differences)
+  double extrapolation = 0.1;     // s: how far past the newest knot at() carries a wand on by Eq. (1) (at least
+                                  //   1.5 input periods, so that a slow input never stands still between samples)
+  double period = 1.0 / 30.0;     // s: the input's nominal sample period; the knots are this far apart, at most
+                                  //   1/30 s (a slower input is interpolated onto 30 knots per second)
   OneEuroOptions oneEuro;
 };
 
@@ -102,10 +107,16 @@ class HandStabilizer {
   [[nodiscard]] double confidence() const { return confidence_; }
 
  private:
+  void advance(double t, const Vec3d& control);  // one knot: smoother, Eq. (1), limits
   StabilizerOptions o_;
   std::unique_ptr<TrajectorySmoother> smoother_;
   bool started_ = false;
-  double t_ = 0.0, confidence_ = 0.0;
+  double knotPeriod_;       // the splines' knot spacing: the input's period, at most 1/30 s
+  double inputPeriod_;      // how often samples have been coming (s, smoothed)
+  double t_ = 0.0;          // the newest knot, where wand_ is
+  double inputTime_ = 0.0;  // the newest sample
+  double nextKnot_ = 0.0;
+  double confidence_ = 0.0;
   Vec3d rest_;
   Vec3d control_ = Vec3d::Zero();  // the newest control point
   WandPoint reference_;            // the smoothed trajectory at the newest control point

@@ -1,5 +1,6 @@
 #include "wand_input.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -56,7 +57,8 @@ StabilizedWands::StabilizedWands(std::unique_ptr<HandSource> source, const Stabi
     }
   }
   StabilizerOptions options = stabilizer;
-  options.period = source_->period();
+  period_ = source_->period();
+  options.period = period_;
   stabilizer_ =
       std::make_unique<Stabilizer>(options, calibration_.restHand(Hand::Left), calibration_.restHand(Hand::Right));
   lastMeasured_[0] = lastMeasured_[1] = start_;
@@ -83,6 +85,21 @@ bool StabilizedWands::fetch() {
   return false;
 }
 
+void StabilizedWands::observeInterval(double dt) {
+  if (!(dt > 0.0) || dt > 1.0) return;  // a gap, not the rate
+  period_ = intervals_ == 0 ? dt : period_ + 0.1 * (dt - period_);
+  ++intervals_;
+  if (intervals_ >= 10 && !reportedSlow_ && period_ > 1.001 / kSlowRate) {  // 0.1%: timestamps round
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "warning: the input delivers %.1f samples per second, below 25 (a Kinect gives 30): the wands "
+                  "are interpolated between samples and follow less closely",
+                  1.0 / period_);
+    messages_.push_back(text);
+    reportedSlow_ = true;
+  }
+}
+
 void StabilizedWands::feed(const HandSample& sample) {
   stabilizer_->add(sample);
   lastFed_ = sample.time;
@@ -104,7 +121,8 @@ void StabilizedWands::feed(const HandSample& sample) {
 }
 
 WandFrame StabilizedWands::at(double t) {
-  const double T = start_ + t, period = source_->period(), gap = 3.0 * period;
+  // The observed period, not the nominal one: a camera delivering 7.5 frames per second is slow, not absent.
+  const double T = start_ + t, period = std::max(period_, source_->period()), gap = 3.0 * period;
   // A hold: both hands where they were last measured, not measured now.
   auto holdUntil = [&](double until) {
     while (lastFed_ + period <= until) {
@@ -120,6 +138,7 @@ WandFrame StabilizedWands::at(double t) {
   while ((!ahead_.empty() || fetch()) && ahead_.front().time <= T) {
     const HandSample s = ahead_.front();
     ahead_.pop_front();
+    observeInterval(s.time - lastFed_);
     if (s.time - lastFed_ > gap) holdUntil(s.time - period);  // a gap in the input: the wands rest through it
     feed(s);
   }

@@ -67,6 +67,7 @@ class StabilizedWands : public WandInput {
   [[nodiscard]] double confidence(Hand hand) const { return stabilizer_->confidence(hand); }
 
   static constexpr double kLostHandAfter = 0.25;  // s unmeasured before a hand is reported lost
+  static constexpr double kSlowRate = 25.0;       // samples per second below which the input is reported slow
 
  private:
   std::unique_ptr<HandSource> source_;
@@ -76,12 +77,16 @@ class StabilizedWands : public WandInput {
   bool finished_ = false;         // the source ended or was lost: only holds from here on
   double start_ = 0.0;            // source time at run time 0
   double lastFed_ = 0.0;          // source time of the newest sample the stabilizer has
+  double period_ = 1.0 / 30.0;    // s between samples: the source's nominal period, then as observed
+  int intervals_ = 0;             // sample intervals observed
+  bool reportedSlow_ = false;
   double lastMeasured_[2] = {0.0, 0.0};
   bool reportedLost_[2] = {false, false};
   HandSample latest_;
   std::string describe_;
   bool fetch();  // reads one more sample into ahead_; false when there are no more
   void feed(const HandSample& sample);
+  void observeInterval(double dt);  // updates period_ and warns once about a slow input
 };
 
 }  // namespace gb

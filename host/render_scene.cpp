@@ -237,12 +237,13 @@ struct OutdoorSky {
     const float ridge = 0.045f + 0.02f * std::sin(3.0f * azimuth + 1.0f) + 0.012f * std::sin(7.0f * azimuth + 2.0f) +
                         0.006f * std::sin(17.0f * azimuth + 0.5f) + 0.002f * std::sin(83.0f * azimuth + 4.0f) +
                         0.0015f * std::sin(191.0f * azimuth);
-    if (elevation < ridge) {
-      const float depth = elevation / ridge;  // distant hills are hazier at their foot
-      const Vec3 woods = Vec3(0.06f, 0.09f, 0.05f) *
-                         (0.8f + 0.4f * noise::fractal3(30.0f * around + Vec3(0.0f, 0.0f, 400.0f * elevation), 2, 5u));
-      return woods + (haze - woods) * (0.55f - 0.25f * depth);
-    }
+    // The ridge's edge is blended over about a texel (0.35 degrees at 1024 wide): a hard edge would show
+    // the texel rows as stair steps once the environment is magnified in the picture.
+    const float hill = smoothstep(ridge + 0.003f, ridge - 0.003f, elevation);
+    const float depth = std::min(elevation / ridge, 1.0f);  // distant hills are hazier at their foot
+    const Vec3 woods = Vec3(0.06f, 0.09f, 0.05f) *
+                       (0.8f + 0.4f * noise::fractal3(30.0f * around + Vec3(0.0f, 0.0f, 400.0f * elevation), 2, 5u));
+    const Vec3 hills = woods + (haze - woods) * (0.55f - 0.25f * depth);
     const Vec3 sky = haze + (zenith - haze) * std::pow(std::clamp(d.y(), 0.0f, 1.0f), 0.45f);
     // Cumulus on a flat layer above: fractal noise over the layer's plane, thinned near the horizon.
     const Vec3 layer = Vec3(d.x(), 0.0f, d.z()) / std::max(d.y(), 0.04f);
@@ -253,7 +254,7 @@ struct OutdoorSky {
     const float angle = std::acos(std::clamp(cosSun, -1.0f, 1.0f));
     c += Vec3(40.0f, 38.0f, 34.0f) * smoothstep(0.028f, 0.022f, angle);  // the disc
     c += Vec3(1.6f, 1.4f, 1.1f) * std::exp(-angle / 0.06f) + Vec3(0.25f, 0.22f, 0.15f) * std::exp(-angle / 0.5f);
-    return c;
+    return c + (hills - c) * hill;
   }
 };
 

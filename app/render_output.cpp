@@ -1,11 +1,12 @@
 #include "render_output.h"
 
+#include <unistd.h>
+
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
 #include <sstream>
-#include <unistd.h>
 
 #include "png_image.h"
 #include "vulkan_stepper.h"
@@ -16,19 +17,27 @@ void addRenderOptions(CLI::App& command, RenderOutputOptions& o) {
   command.add_flag("--render", o.enabled, "render the film (interference colours, Vulkan) to PNG frames and video");
   command.add_option("--width", o.image.width, "rendered image width (pixels)")->check(CLI::Range(16, 16384));
   command.add_option("--height", o.image.height, "rendered image height (pixels)")->check(CLI::Range(16, 16384));
-  command.add_option_function<std::string>(
-             "--colouring", [&o](const std::string& name) { o.image.colouring = colouringFromName(name); },
-             "film colouring: interference (default), thickness, airflow")
+  command
+      .add_option_function<std::string>(
+          "--colouring", [&o](const std::string& name) { o.image.colouring = colouringFromName(name); },
+          "film colouring: interference (default), thickness, airflow")
       ->check(CLI::IsMember({"interference", "thickness", "airflow"}));
   command.add_option("--render-every", o.pngEvery, "write a rendered PNG every N frames, 0 for none")
       ->check(CLI::Range(0, 1000000));
-  command.add_option("--video", o.video, "MP4 of every rendered frame, in the output folder (needs ffmpeg); '' for none");
-  command.add_option("--environment", o.environment, "equirectangular PNG the film reflects (default: a studio)")
+  command.add_option("--video", o.video,
+                     "MP4 of every rendered frame, in the output folder (needs ffmpeg); '' for none");
+  command.add_option("--environment", o.environment, "equirectangular PNG the film reflects (default: an outdoor sky)")
       ->check(CLI::ExistingFile);
+  command
+      .add_option_function<std::string>(
+          "--camera", [&o](const std::string& mode) { o.followCamera = mode == "follow"; },
+          "follow (default): keep the film framed at half the image height as it grows and drifts; fixed: the "
+          "scene's camera as it is")
+      ->check(CLI::IsMember({"follow", "fixed"}));
 }
 
 EnvironmentImage loadEnvironment(const std::filesystem::path& path) {
-  if (path.empty()) return studioEnvironment();
+  if (path.empty()) return skyEnvironment();
   const RgbImage image = readPng(path);
   if (image.width != 2 * image.height)
     throw std::runtime_error("environment " + path.string() + " is " + std::to_string(image.width) + "x" +
@@ -128,11 +137,15 @@ RunRenderer::RunRenderer(const RenderOutputOptions& options, const std::filesyst
 
 void RunRenderer::frame(long index, Simulation& sim, const WandState& wands) {
   const bool png = options_.pngEvery > 0 && index % options_.pngEvery == 0;
+  // The framing eases every frame, drawn or not, so that it moves at the same pace whatever is written.
+  const OrbitCamera camera = options_.followCamera
+                                 ? framing_.update(options_.camera, sim.film().state, sim.params().frameTime)
+                                 : options_.camera;
   if (!png && !video_) return;
   const Vec3 gravity(sim.params().gravityX, sim.params().gravityY, sim.params().gravityZ);
   const WireFrame wire = makeWireFrame(sim.film().tool, wands, sim.film().stringLength, gravity);
   DeviceFilm deviceFilm;
-  renderer_->render(renderFrameOf(sim, wands, wire, options_.camera, readInPlace_, deviceFilm));
+  renderer_->render(renderFrameOf(sim, wands, wire, camera, readInPlace_, deviceFilm));
   const std::vector<uint8_t> rgb = renderer_->readPixels();
   if (png) {
     char name[40];

@@ -23,14 +23,15 @@ struct RenderOutputOptions {
   RenderOptions image;                // size and colouring (host/renderer.h)
   int pngEvery = 1;                   // write render_NNNNN.png every N frames (0: none)
   std::string video = "render.mp4";   // in the output folder, all frames; empty: none. Needs ffmpeg
-  std::filesystem::path environment;  // equirectangular PNG the film reflects; empty: the built-in studio
-  OrbitCamera camera;
+  std::filesystem::path environment;  // equirectangular PNG the film reflects; empty: the built-in sky
+  OrbitCamera camera;                 // its direction; with followCamera its target and distance frame the film
+  bool followCamera = true;           // --camera follow (default): keep the film framed; fixed: `camera` as is
 };
 
-// Adds --render, --width, --height, --colouring, --render-every, --video, --environment to a command.
+// Adds --render, --width, --height, --colouring, --render-every, --video, --environment, --camera to a command.
 void addRenderOptions(CLI::App& command, RenderOutputOptions& options);
 
-// The environment to reflect: the built-in studio, or an equirectangular PNG (sRGB, 2:1) converted to linear
+// The environment to reflect: the built-in outdoor sky, or an equirectangular PNG (sRGB, 2:1) converted to linear
 // radiance. Throws naming the file when it cannot be read or is not 2:1.
 EnvironmentImage loadEnvironment(const std::filesystem::path& path);
 
@@ -69,11 +70,12 @@ class RunRenderer {
   std::unique_ptr<VideoWriter> video_;
   bool readInPlace_ = false;
   long written_ = 0;
+  FilmFraming framing_;
 };
 
 // The frame a renderer draws of a simulation: its film, droplets and wands, in place on the device when the
 // stepper is the Vulkan stepper on `renderer`'s device. `deviceFilm` is storage for that case.
-RenderFrame renderFrameOf(Simulation& sim, const WandState& wands, const WireFrame& wireFrame, const OrbitCamera& camera,
-                          bool readInPlace, DeviceFilm& deviceFilm);
+RenderFrame renderFrameOf(Simulation& sim, const WandState& wands, const WireFrame& wireFrame,
+                          const OrbitCamera& camera, bool readInPlace, DeviceFilm& deviceFilm);
 
 }  // namespace gb

@@ -1,7 +1,9 @@
 #include "bursting.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <queue>
 #include <set>
 #include <utility>
@@ -39,7 +41,8 @@ void dropDeadElements(Film& film, BurstFront& front, TopologyEvents& events) {
   topo.triangles = std::move(triangles);
   std::set<std::pair<uint32_t, uint32_t>> edges;
   for (size_t t = 0; t < topo.triangleCount(); ++t)
-    for (int c = 0; c < 3; ++c) edges.insert(std::minmax(topo.triangles[3 * t + c], topo.triangles[3 * t + (c + 1) % 3]));
+    for (int c = 0; c < 3; ++c)
+      edges.insert(std::minmax(topo.triangles[3 * t + c], topo.triangles[3 * t + (c + 1) % 3]));
   std::vector<uint32_t> ends;
   std::vector<float> rest;
   for (size_t k = 0; k < topo.springCount(); ++k) {
@@ -53,25 +56,52 @@ void dropDeadElements(Film& film, BurstFront& front, TopologyEvents& events) {
   buildAdjacency(topo);
 }
 
-// Droplets for torn triangles whose corners are now all dead: at the centroid, with the corners' mass
-// shares and their mean velocity (Section 6.1).
-void emitDroplets(Film& film, BurstFront& front, Aerosol& aerosol, TopologyEvents& events) {
+// Droplets for torn triangles whose corners are now all dead. A retracting rim gathers the film's liquid and
+// sheds it as droplets much larger than the film is thick (Lhuissier and Villermaux, "Bursting bubble
+// aerosols", J. Fluid Mech. 696, 2012: rim instabilities, drops of tens to hundreds of microns), so the liquid
+// of the triangles that die in one frame is gathered into one droplet per cell of kDropletCell (a few hundred
+// to a few thousand droplets for a metre-sized film), not one per triangle. A droplet's mass is the liquid its
+// triangles carried (each particle's liquid split evenly among the triangles it had when the burst began),
+// times the liquid's density: the droplets together weigh what the film's liquid weighed. It flies with the
+// mass-weighted velocity of its particles, never faster than the rim's Taylor-Culick speed there, the fastest
+// the retracting film moves its liquid.
+constexpr float kDropletCell = 0.025f;  // m
+
+struct DropletSum {
+  Vec3 momentum = Vec3::Zero();
+  Vec3 moment = Vec3::Zero();  // mass times position
+  float mass = 0.0f;
+  float thickness = 0.0f;  // mass-weighted, for the rim speed
+};
+
+void emitDroplets(const Params& p, Film& film, BurstFront& front, Aerosol& aerosol, TopologyEvents& events) {
   const State& s = film.state;
   std::vector<uint32_t> stillTorn;
+  std::map<std::array<int, 3>, DropletSum> cells;  // ordered: droplets are emitted in a defined order
   for (size_t t = 0; t < front.torn.size(); t += 3) {
     const uint32_t* tri = &front.torn[t];
     if (s.alive[tri[0]] || s.alive[tri[1]] || s.alive[tri[2]]) {
       stillTorn.insert(stillTorn.end(), tri, tri + 3);
       continue;
     }
-    Vec3 x = Vec3::Zero(), v = Vec3::Zero();
-    float m = 0.0f;
+    Vec3 centroid = Vec3::Zero();
+    for (int c = 0; c < 3; ++c) centroid += s.position.get(tri[c]) / 3.0f;
+    const Vec3 cell = (centroid / kDropletCell).array().floor();
+    DropletSum& d = cells[{static_cast<int>(cell.x()), static_cast<int>(cell.y()), static_cast<int>(cell.z())}];
     for (int c = 0; c < 3; ++c) {
-      x += s.position.get(tri[c]) / 3.0f;
-      v += s.velocity.get(tri[c]) / 3.0f;
-      m += s.mass[tri[c]] / static_cast<float>(std::max(1u, front.shares[tri[c]]));
+      const float m = p.liquidDensity * s.liquid[tri[c]] / static_cast<float>(std::max(1u, front.shares[tri[c]]));
+      d.mass += m;
+      d.moment += m * s.position.get(tri[c]);
+      d.momentum += m * s.velocity.get(tri[c]);
+      d.thickness += m * s.thickness[tri[c]];
     }
-    aerosol.add(x, v, m);
+  }
+  for (const auto& [cell, d] : cells) {
+    if (d.mass <= 0.0f) continue;
+    Vec3 v = d.momentum / d.mass;
+    const float rim = taylorCulickSpeed(p, d.thickness / d.mass);
+    if (v.norm() > rim) v *= rim / v.norm();
+    aerosol.add(d.moment / d.mass, v, d.mass);
     ++events.dropletsEmitted;
   }
   front.torn = std::move(stillTorn);
@@ -169,8 +199,8 @@ TopologyEvents advanceBurst(const Params& p, double now, Film& film, BurstFront&
   }
   for (uint32_t i : dying) s.alive[i] = 0u;  // Algorithm 3, line 4
   events.particlesRemoved = dying.size();
-  dropDeadElements(film, front, events);     // lines 4-6
-  emitDroplets(film, front, aerosol, events);
+  dropDeadElements(film, front, events);  // lines 4-6
+  emitDroplets(p, film, front, aerosol, events);
   // Finished when the front has nowhere left to go: no living particle is scheduled.
   bool scheduled = false;
   double last = front.started;

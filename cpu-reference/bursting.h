@@ -7,8 +7,9 @@
 // t_j = t_i + |x_j - x_i| / sqrt(2 gamma / (rho e_j)), a shortest-path (Dijkstra) front measured in metres
 // and seconds, so a burst takes the same time whatever the substep and the mesh resolution; in the paper's
 // mode it advances one ring of neighbours per frame. A particle the front reaches dies (flagged, never
-// renumbered); its springs go, and so does every triangle that touched it. A triangle whose three particles
-// are all dead becomes an aerosol droplet at its centroid.
+// renumbered); its springs go, and so does every triangle that touched it. Triangles whose three particles
+// are all dead become aerosol droplets carrying their liquid, gathered a few centimetres at a time
+// (bursting.cpp, emitDroplets).
 
 #include <limits>
 #include <vector>
@@ -22,7 +23,7 @@ namespace gb {
 struct Aerosol {
   Vec3Array position;
   Vec3Array velocity;
-  std::vector<float> mass;  // kg
+  std::vector<float> mass;  // kg of liquid (the film's liquid volume times its density)
   std::vector<float> age;   // s
 
   [[nodiscard]] size_t size() const { return mass.size(); }
@@ -32,12 +33,12 @@ struct Aerosol {
 
 // Bursting bookkeeping of a film, kept by the simulation beside it.
 struct BurstFront {
-  std::vector<float> arrival;        // time the hole reaches each particle (s), +inf when not yet known
-  std::vector<uint32_t> shares;      // triangles each particle had when the burst began: its mass splits
-                                     // evenly into that many droplets
-  std::vector<uint32_t> torn;        // triangles left the physics mesh with a dead corner, 3 indices each
-  double started = -1.0;             // time of the first crack, -1 before
-  double finished = -1.0;            // time the last particle died, -1 before
+  std::vector<float> arrival;    // time the hole reaches each particle (s), +inf when not yet known
+  std::vector<uint32_t> shares;  // triangles each particle had when the burst began: its mass splits
+                                 // evenly into that many droplets
+  std::vector<uint32_t> torn;    // triangles left the physics mesh with a dead corner, 3 indices each
+  double started = -1.0;         // time of the first crack, -1 before
+  double finished = -1.0;        // time the last particle died, -1 before
   [[nodiscard]] bool active() const { return started >= 0 && finished < 0; }
 };
 
@@ -48,7 +49,7 @@ struct TopologyEvents {
   size_t particlesRemoved = 0;
   size_t trianglesRemoved = 0;  // left the physics mesh
   size_t dropletsEmitted = 0;
-  bool pinchedOff = false;  // the film closed into a free bubble this frame (pinch_off.h)
+  bool pinchedOff = false;    // the film closed into a free bubble this frame (pinch_off.h)
   size_t particlesAdded = 0;  // new film drawn off the wire this frame (film_growth.h)
 };
 

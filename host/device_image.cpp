@@ -9,13 +9,12 @@
 namespace gb {
 
 DeviceImage::DeviceImage(const VulkanContext& context, vk::Extent2D extent, vk::Format format,
-                         vk::ImageUsageFlags usage, vk::ImageAspectFlags aspect)
+                         vk::ImageUsageFlags usage, vk::ImageAspectFlags aspect, vk::SampleCountFlagBits samples)
     : extent_(extent) {
-  image_ = vk::raii::Image(context.device, vk::ImageCreateInfo({}, vk::ImageType::e2D, format,
-                                                               vk::Extent3D(extent.width, extent.height, 1), 1, 1,
-                                                               vk::SampleCountFlagBits::e1, vk::ImageTiling::eOptimal,
-                                                               usage, vk::SharingMode::eExclusive, {},
-                                                               vk::ImageLayout::eUndefined));
+  image_ = vk::raii::Image(
+      context.device, vk::ImageCreateInfo({}, vk::ImageType::e2D, format, vk::Extent3D(extent.width, extent.height, 1),
+                                          1, 1, samples, vk::ImageTiling::eOptimal, usage, vk::SharingMode::eExclusive,
+                                          {}, vk::ImageLayout::eUndefined));
   const auto needs = image_.getMemoryRequirements();
   const int type = context.memoryType(needs.memoryTypeBits, vk::MemoryPropertyFlagBits::eDeviceLocal);
   if (type < 0) throw std::runtime_error("Vulkan: no device memory for an image");
@@ -30,7 +29,7 @@ uint16_t toHalf(float value) {
   const uint32_t sign = (bits >> 16) & 0x8000u;
   const float magnitude = std::fabs(value);
   if (!(magnitude < 65504.0f)) return static_cast<uint16_t>(sign | 0x7bffu);  // saturate (NaN too: never stored)
-  if (magnitude < 6.103515625e-05f) return static_cast<uint16_t>(sign);      // below the smallest normal half
+  if (magnitude < 6.103515625e-05f) return static_cast<uint16_t>(sign);       // below the smallest normal half
   const int exponent = static_cast<int>((bits >> 23) & 0xffu) - 127 + 15;
   uint32_t mantissa = bits & 0x7fffffu;
   uint32_t half = (static_cast<uint32_t>(exponent) << 10) | (mantissa >> 13);

@@ -13,8 +13,10 @@ namespace gb {
 class DeviceImage {
  public:
   DeviceImage() = default;
+  // `samples` > 1: a multisampled render target (resolved into a single-sampled image to be read).
   DeviceImage(const VulkanContext& context, vk::Extent2D extent, vk::Format format, vk::ImageUsageFlags usage,
-              vk::ImageAspectFlags aspect = vk::ImageAspectFlagBits::eColor);
+              vk::ImageAspectFlags aspect = vk::ImageAspectFlagBits::eColor,
+              vk::SampleCountFlagBits samples = vk::SampleCountFlagBits::e1);
 
   [[nodiscard]] vk::Image handle() const { return *image_; }
   [[nodiscard]] vk::ImageView view() const { return *view_; }

@@ -2,8 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <map>
 #include <numbers>
 
+#include "procedural_noise.h"
 #include "render_shared.h"
 
 namespace gb {
@@ -12,13 +15,17 @@ namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
 
-void addVertex(std::vector<float>& mesh, const Vec3& p, const Vec3& n, const Vec3& albedo, int material) {
+// `tubeRadius`: for a vertex of a tube, its radius (the vertex is the axis plus radius times the normal), so
+// that props.vert can widen a tube thinner than a pixel; 0 for flat props.
+void addVertex(std::vector<float>& mesh, const Vec3& p, const Vec3& n, const Vec3& albedo, int material,
+               float tubeRadius = 0.0f) {
   mesh.insert(mesh.end(), {p.x(), p.y(), p.z(), n.x(), n.y(), n.z(), albedo.x(), albedo.y(), albedo.z(),
-                           static_cast<float>(material), 0.0f, 0.0f});
+                           static_cast<float>(material), tubeRadius, 0.0f});
 }
 
 // A tube of `radius` along a polyline, six sides, flat ends left open (they are never seen end-on for long).
-void addTube(std::vector<float>& mesh, const std::vector<Vec3>& path, float radius, const Vec3& albedo) {
+void addTube(std::vector<float>& mesh, const std::vector<Vec3>& path, float radius, const Vec3& albedo,
+             int material = GB_MATERIAL_PLAIN) {
   constexpr int sides = 6;
   for (size_t k = 0; k + 1 < path.size(); ++k) {
     const Vec3 axis = (path[k + 1] - path[k]).normalized();
@@ -27,17 +34,32 @@ void addTube(std::vector<float>& mesh, const std::vector<Vec3>& path, float radi
     for (int s = 0; s < sides; ++s) {
       const float a0 = 2 * kPi * static_cast<float>(s) / sides, a1 = 2 * kPi * static_cast<float>(s + 1) / sides;
       const Vec3 n0 = std::cos(a0) * side + std::sin(a0) * up, n1 = std::cos(a1) * side + std::sin(a1) * up;
-      const Vec3 quad[4][2] = {{path[k] + radius * n0, n0}, {path[k] + radius * n1, n1},
-                               {path[k + 1] + radius * n1, n1}, {path[k + 1] + radius * n0, n0}};
-      for (int corner : {0, 1, 2, 0, 2, 3}) addVertex(mesh, quad[corner][0], quad[corner][1], albedo, GB_MATERIAL_PLAIN);
+      const Vec3 quad[4][2] = {{path[k] + radius * n0, n0},
+                               {path[k] + radius * n1, n1},
+                               {path[k + 1] + radius * n1, n1},
+                               {path[k + 1] + radius * n0, n0}};
+      for (int corner : {0, 1, 2, 0, 2, 3}) addVertex(mesh, quad[corner][0], quad[corner][1], albedo, material, radius);
     }
   }
 }
 
+// The ground: a neutral dark grey (an asphalt square, against which a film's reflections show as they do in
+// photographs of giant bubbles), far enough out (80 m, near the far plane) that its fog has
+// turned it into the horizon's haze before it ends, so no seam shows between ground and environment.
 void addFloor(std::vector<float>& mesh) {
-  constexpr float half = 12.0f;
+  constexpr float half = 80.0f;
   const Vec3 corners[4] = {{-half, 0, -half}, {half, 0, -half}, {half, 0, half}, {-half, 0, half}};
-  for (int corner : {0, 2, 1, 0, 3, 2}) addVertex(mesh, corners[corner], Vec3::UnitY(), Vec3(0.36f, 0.36f, 0.38f), GB_MATERIAL_FLOOR);
+  for (int corner : {0, 2, 1, 0, 3, 2})
+    addVertex(mesh, corners[corner], Vec3::UnitY(), Vec3(0.16f, 0.16f, 0.155f), GB_MATERIAL_FLOOR);
+}
+
+// The rim of a hole: liquid the retracting film has collected (Taylor-Culick), a thread of water a few
+// millimetres thick as drawn, so that the opening hole reads as a bright line racing across the film.
+void addHoleRims(std::vector<float>& mesh, const Film& film) {
+  const std::vector<uint32_t> rim = holeRimEdges(film);
+  for (size_t k = 0; k < rim.size(); k += 2)
+    addTube(mesh, {film.state.position.get(rim[k]), film.state.position.get(rim[k + 1])}, 0.003f,
+            Vec3(0.9f, 0.92f, 0.95f), GB_MATERIAL_RIM);
 }
 
 // A wand: a stick from the tip down and outwards, where a hand holds it.
@@ -73,9 +95,53 @@ Eigen::Matrix4f OrbitCamera::viewProjection(float aspect) const {
   return proj * view;
 }
 
-std::vector<float> buildProps(const WireFrame* frame) {
+OrbitCamera FilmFraming::update(const OrbitCamera& base, const State& s, float dt) {
+  Vec3 lo = Vec3::Constant(std::numeric_limits<float>::max()), hi = -lo;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.alive[i]) {
+      lo = lo.cwiseMin(s.position.get(i));
+      hi = hi.cwiseMax(s.position.get(i));
+    }
+  OrbitCamera camera = base;
+  if (lo.x() > hi.x()) {  // nothing alive: hold the last framing
+    if (started_) {
+      camera.target = target_;
+      camera.distance = distance_;
+    }
+    return camera;
+  }
+  const Vec3 centre = 0.5f * (lo + hi);
+  float radius = 0.0f;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.alive[i]) radius = std::max(radius, (s.position.get(i) - centre).norm());
+  // The sphere's angular radius is heightFraction times half the vertical field of view.
+  const float distance = std::max(options_.minDistance, radius / std::sin(0.5f * options_.heightFraction * base.fovY));
+  const float follow = started_ ? 1.0f - std::exp(-std::max(dt, 0.0f) / options_.easing) : 1.0f;
+  target_ += follow * (centre - target_);
+  distance_ += follow * (distance - distance_);
+  started_ = true;
+  camera.target = target_;
+  camera.distance = distance_;
+  return camera;
+}
+
+std::vector<uint32_t> holeRimEdges(const Film& film) {
+  std::map<std::pair<uint32_t, uint32_t>, int> uses;
+  const std::vector<uint32_t>& tris = film.topology.triangles;
+  for (size_t t = 0; t < tris.size(); t += 3)
+    for (int c = 0; c < 3; ++c) ++uses[std::minmax(tris[t + c], tris[t + (c + 1) % 3])];
+  std::vector<uint32_t> rim;
+  const std::vector<uint32_t>& wire = film.topology.boundary;
+  for (const auto& [edge, count] : uses)
+    if (count == 1 && !(edge.second < wire.size() && wire[edge.first] && wire[edge.second]))
+      rim.insert(rim.end(), {edge.first, edge.second});
+  return rim;
+}
+
+std::vector<float> buildProps(const WireFrame* frame, const Film* film) {
   std::vector<float> mesh;
   addFloor(mesh);
+  if (film) addHoleRims(mesh, *film);
   if (!frame) return mesh;
   std::vector<Vec3> loop;
   constexpr int segments = 96;
@@ -98,7 +164,8 @@ std::vector<float> packDroplets(const Aerosol& aerosol, float lifetime) {
   out.reserve(4 * aerosol.size());
   for (size_t i = 0; i < aerosol.size(); ++i) {
     const float left = 1.0f - aerosol.age[i] / std::max(lifetime, 1e-6f);
-    out.insert(out.end(), {aerosol.position.x[i], aerosol.position.y[i], aerosol.position.z[i], std::clamp(3.0f * left, 0.0f, 1.0f)});
+    out.insert(out.end(), {aerosol.position.x[i], aerosol.position.y[i], aerosol.position.z[i],
+                           std::clamp(3.0f * left, 0.0f, 1.0f)});
   }
   return out;
 }
@@ -119,11 +186,103 @@ std::array<Vec3, 2> hemisphereMeans(const EnvironmentImage& env) {
   return {(sum[0] / std::max(weight[0], 1e-12)).cast<float>(), (sum[1] / std::max(weight[1], 1e-12)).cast<float>()};
 }
 
-EnvironmentImage studioEnvironment(int width) {
+namespace {
+
+// An environment of `width` x width / 2 texels whose radiance in direction d is radiance(d); the texel
+// parameterisation of environment() in kernels/render_common.glsl: u = 0.5 + atan(x, -z) / 2 pi, v = polar / pi.
+template <class Radiance>
+EnvironmentImage tabulateEnvironment(int width, const Radiance& radiance) {
   EnvironmentImage env;
   env.width = width;
   env.height = width / 2;
   env.rgb.resize(static_cast<size_t>(env.width) * env.height * 3);
+#pragma omp parallel for
+  for (int row = 0; row < env.height; ++row) {
+    const float polar = kPi * (static_cast<float>(row) + 0.5f) / static_cast<float>(env.height);
+    for (int col = 0; col < env.width; ++col) {
+      const float azimuth = 2 * kPi * ((static_cast<float>(col) + 0.5f) / static_cast<float>(env.width) - 0.5f);
+      const Vec3 d(std::sin(polar) * std::sin(azimuth), std::cos(polar), -std::sin(polar) * std::cos(azimuth));
+      const Vec3 c = radiance(d);
+      float* out = &env.rgb[3 * (static_cast<size_t>(row) * env.width + col)];
+      out[0] = c.x();
+      out[1] = c.y();
+      out[2] = c.z();
+    }
+  }
+  return env;
+}
+
+float smoothstep(float edge0, float edge1, float x) {
+  const float t = std::clamp((x - edge0) / (edge1 - edge0), 0.0f, 1.0f);
+  return t * t * (3.0f - 2.0f * t);
+}
+
+// The outdoor sky of skyEnvironment(). Radiances are in the renderer's units (exposure 1 shows 0.8 as
+// near-white): the sky 0.3-0.9, clouds about 1, the sun's disc 40 so that its reflection in a film (a few
+// percent) is still a bright glint.
+struct OutdoorSky {
+  Vec3 sun = Vec3(0.2f, 0.55f, 0.8f).normalized();  // behind the default three-quarter camera, over its left shoulder
+  Vec3 zenith = Vec3(0.13f, 0.27f, 0.62f);
+  Vec3 haze = Vec3(0.72f, 0.78f, 0.86f);
+  Vec3 ground = Vec3(0.12f, 0.12f, 0.115f);  // what the floor prop looks like lit, for reflections of the ground
+
+  [[nodiscard]] Vec3 operator()(const Vec3& d) const {
+    const float elevation = std::asin(std::clamp(d.y(), -1.0f, 1.0f));
+    if (elevation < 0.0f) return ground + (haze - ground) * std::exp(elevation / 0.05f);  // ground into haze
+    const float azimuth = std::atan2(d.x(), -d.z());
+    const Vec3 around(std::cos(azimuth), std::sin(azimuth), 0.0f);  // seamless in azimuth, for the woods' colour
+    // Wooded hills: a ridge line of several scales, 1-6 degrees high, with a tree-scale ragged edge.
+    // A sum of sines in azimuth (whole frequencies: seamless), smooth hills with a finer tree line on top;
+    // lattice noise would leave flat plateaus that read as buildings.
+    const float ridge = 0.045f + 0.02f * std::sin(3.0f * azimuth + 1.0f) + 0.012f * std::sin(7.0f * azimuth + 2.0f) +
+                        0.006f * std::sin(17.0f * azimuth + 0.5f) + 0.002f * std::sin(83.0f * azimuth + 4.0f) +
+                        0.0015f * std::sin(191.0f * azimuth);
+    // The ridge's edge is blended over about a texel (0.35 degrees at 1024 wide): a hard edge would show
+    // the texel rows as stair steps once the environment is magnified in the picture.
+    const float hill = smoothstep(ridge + 0.003f, ridge - 0.003f, elevation);
+    const float depth = std::min(elevation / ridge, 1.0f);  // distant hills are hazier at their foot
+    const Vec3 woods = Vec3(0.06f, 0.09f, 0.05f) *
+                       (0.8f + 0.4f * noise::fractal3(30.0f * around + Vec3(0.0f, 0.0f, 400.0f * elevation), 2, 5u));
+    const Vec3 hills = woods + (haze - woods) * (0.55f - 0.25f * depth);
+    const Vec3 sky = haze + (zenith - haze) * std::pow(std::clamp(d.y(), 0.0f, 1.0f), 0.45f);
+    // Cumulus on a flat layer above: fractal noise over the layer's plane, thinned near the horizon.
+    const Vec3 layer = Vec3(d.x(), 0.0f, d.z()) / std::max(d.y(), 0.04f);
+    const float density = smoothstep(0.05f, 0.45f, noise::fractal3(0.9f * layer + Vec3(0, 0.37f, 0), 5u, 3u));
+    const float cosSun = d.dot(sun);
+    const Vec3 cloud = Vec3(1.05f, 1.05f, 1.08f) * (0.75f + 0.35f * std::max(cosSun, 0.0f));
+    Vec3 c = sky + (cloud - sky) * (density * smoothstep(0.02f, 0.2f, d.y()));
+    const float angle = std::acos(std::clamp(cosSun, -1.0f, 1.0f));
+    c += Vec3(40.0f, 38.0f, 34.0f) * smoothstep(0.028f, 0.022f, angle);  // the disc
+    c += Vec3(1.6f, 1.4f, 1.1f) * std::exp(-angle / 0.06f) + Vec3(0.25f, 0.22f, 0.15f) * std::exp(-angle / 0.5f);
+    return c + (hills - c) * hill;
+  }
+};
+
+}  // namespace
+
+Vec3 horizonRadiance(const EnvironmentImage& env) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  int count = 0;
+  for (int row = env.height / 2; row < env.height; ++row) {
+    const double below = std::numbers::pi * (row + 0.5) / env.height - 0.5 * std::numbers::pi;
+    if (below > 3.0 * std::numbers::pi / 180.0) break;
+    for (int col = 0; col < env.width; ++col, ++count) {
+      const float* c = &env.rgb[3 * (static_cast<size_t>(row) * env.width + col)];
+      sum += Eigen::Vector3d(c[0], c[1], c[2]);
+    }
+  }
+  return count > 0 ? Vec3((sum / count).cast<float>()) : Vec3(Vec3::Zero());
+}
+
+EnvironmentImage skyEnvironment(int width) {
+  const OutdoorSky sky;
+  EnvironmentImage env = tabulateEnvironment(width, sky);
+  env.keyLight = sky.sun;
+  env.keyStrength = 1.2f;  // direct sun on a prop: brighter than the sky's mean, as outdoors
+  return env;
+}
+
+EnvironmentImage studioEnvironment(int width) {
   // Softboxes: direction (unit), angular half-size (radians), radiance.
   struct Light {
     Vec3 direction;
@@ -133,26 +292,18 @@ EnvironmentImage studioEnvironment(int width) {
   const Light lights[] = {{Vec3(-0.6f, 0.5f, 0.62f).normalized(), 0.42f, Vec3(7.0f, 6.8f, 6.4f)},
                           {Vec3(0.7f, 0.3f, 0.65f).normalized(), 0.34f, Vec3(5.0f, 5.3f, 6.0f)},
                           {Vec3(0.0f, 0.95f, 0.3f).normalized(), 0.16f, Vec3(10.0f, 10.0f, 10.0f)}};
-  for (int row = 0; row < env.height; ++row) {
-    const float polar = kPi * (static_cast<float>(row) + 0.5f) / static_cast<float>(env.height);
-    for (int col = 0; col < env.width; ++col) {
-      // Same parameterisation as environment() in kernels/render_common.glsl: u = 0.5 + atan(x, -z) / 2 pi.
-      const float azimuth = 2 * kPi * ((static_cast<float>(col) + 0.5f) / static_cast<float>(env.width) - 0.5f);
-      const Vec3 d(std::sin(polar) * std::sin(azimuth), std::cos(polar), -std::sin(polar) * std::cos(azimuth));
-      // A dark backdrop ahead (-z), as photographers shoot bubbles, lighter walls behind the camera, a dim floor.
-      const float behindCamera = std::clamp(0.5f + 0.5f * d.z(), 0.0f, 1.0f);
-      const Vec3 wall = Vec3(0.05f, 0.06f, 0.08f) + behindCamera * Vec3(0.35f, 0.37f, 0.40f);
-      Vec3 c = d.y() > 0 ? wall * (0.8f + 0.4f * d.y()) : Vec3(0.10f, 0.09f, 0.085f) * (1.0f + d.y());
-      for (const Light& l : lights) {
-        const float angle = std::acos(std::clamp(d.dot(l.direction), -1.0f, 1.0f));
-        c += l.radiance * std::clamp((l.halfSize - angle) / (0.15f * l.halfSize), 0.0f, 1.0f);  // soft edge
-      }
-      float* out = &env.rgb[3 * (static_cast<size_t>(row) * env.width + col)];
-      out[0] = c.x();
-      out[1] = c.y();
-      out[2] = c.z();
+  EnvironmentImage env = tabulateEnvironment(width, [&](const Vec3& d) {
+    // A dark backdrop ahead (-z), as photographers shoot bubbles, lighter walls behind the camera, a dim floor.
+    const float behindCamera = std::clamp(0.5f + 0.5f * d.z(), 0.0f, 1.0f);
+    const Vec3 wall = Vec3(0.05f, 0.06f, 0.08f) + behindCamera * Vec3(0.35f, 0.37f, 0.40f);
+    Vec3 c = d.y() > 0 ? Vec3(wall * (0.8f + 0.4f * d.y())) : Vec3(Vec3(0.10f, 0.09f, 0.085f) * (1.0f + d.y()));
+    for (const Light& l : lights) {
+      const float angle = std::acos(std::clamp(d.dot(l.direction), -1.0f, 1.0f));
+      c += l.radiance * std::clamp((l.halfSize - angle) / (0.15f * l.halfSize), 0.0f, 1.0f);  // soft edge
     }
-  }
+    return c;
+  });
+  env.keyLight = lights[0].direction;
   return env;
 }
 

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "bursting.h"
+#include "film.h"
 #include "wire_frame.h"
 
 namespace gb {
@@ -16,7 +17,8 @@ namespace gb {
 struct OrbitCamera {
   Vec3 target = Vec3(0.0f, 1.2f, 0.0f);  // point looked at (m); the default film hangs around here
   float distance = 3.2f;                 // from the target (m)
-  float yaw = 0.0f;                      // about the vertical, radians; 0 looks along -z (the front)
+  float yaw = 0.8f;                      // about the vertical, radians; 0 looks along -z (the front, along the
+                                         // default stroke); 0.8: a three-quarter view that sees the bulge side-on
   float pitch = 0.12f;                   // above the horizontal, radians
   float fovY = 0.75f;                    // vertical field of view, radians
 
@@ -25,25 +27,67 @@ struct OrbitCamera {
   [[nodiscard]] Eigen::Matrix4f viewProjection(float aspect) const;
 };
 
-// Floats per vertex of the props mesh: position, normal, albedo, material, padding (GB_RENDER_MESH).
+// A camera that keeps the film framed as it grows and drifts: it looks from the base camera's direction (yaw,
+// pitch, field of view) at the centre of the living particles' bounding box, from the distance at which their
+// bounding sphere spans `heightFraction` of the image height, both eased towards with time constant
+// `easing` so that the picture does not jump when the film changes shape.
+class FilmFraming {
+ public:
+  struct Options {
+    float heightFraction = 0.5f;  // of the image height the film's bounding sphere spans
+    float easing = 0.5f;          // s, time constant of the camera's approach to the framing
+    float minDistance = 1.0f;     // m: a tiny film (or a closing one) does not pull the camera into it
+  };
+  FilmFraming() = default;
+  explicit FilmFraming(const Options& options) : options_(options) {}
+  // The camera for this frame, `dt` seconds after the last (the first call frames at once). With no living
+  // particle (the film has burst) the camera stays where it was.
+  OrbitCamera update(const OrbitCamera& base, const State& film, float dt);
+
+ private:
+  Options options_;
+  bool started_ = false;
+  Vec3 target_ = Vec3::Zero();
+  float distance_ = 0.0f;
+};
+
+// Floats per vertex of the props mesh: position, normal, albedo, material, tube radius (0: not a tube), padding
+// (GB_RENDER_MESH).
 inline constexpr int kPropsVertexFloats = 12;
 
-// The floor (y = 0), and when `frame` is given the two wands (sticks held below the tips) and the string loop
-// (or the ring and its handle) as tubes, as a triangle soup of kPropsVertexFloats floats per vertex.
-std::vector<float> buildProps(const WireFrame* frame);
+// The ground (y = 0), and when `frame` is given the two wands (sticks held below the tips) and the string loop
+// (or the ring and its handle) as tubes, and when `film` is given the rim of any hole torn in it (a bursting
+// film), as a triangle soup of kPropsVertexFloats floats per vertex.
+std::vector<float> buildProps(const WireFrame* frame, const Film* film = nullptr);
+
+// Edges of the film's hole rims, 2 particle indices each: edges of one triangle only that are not wire edges
+// (both ends held by the wire frame). Empty for an intact film or a closed bubble.
+std::vector<uint32_t> holeRimEdges(const Film& film);
 
 // The droplets as (x, y, z, opacity): opacity fades over the last third of a droplet's life.
 std::vector<float> packDroplets(const Aerosol& aerosol, float lifetime);
 
-// An equirectangular environment: linear RGB radiance, width x height (2:1), row 0 at the zenith.
+// An equirectangular environment: linear RGB radiance, width x height (2:1), row 0 at the zenith, and the
+// direction and strength of its key light (the sun, a softbox) that lights the props.
 struct EnvironmentImage {
   int width = 0;
   int height = 0;
   std::vector<float> rgb;
+  Vec3 keyLight = Vec3(-0.6f, 0.5f, 0.62f).normalized();  // unit, towards the light
+  float keyStrength = 0.8f;                               // irradiance on a prop facing it, in radiance units
 };
 
 // Mean radiance of the environment over the upper (y > 0) and lower hemisphere, solid-angle weighted.
 std::array<Vec3, 2> hemisphereMeans(const EnvironmentImage& environment);
+
+// Mean radiance of the environment in a thin band just below the horizon (0 to 3 degrees down): the colour
+// the far ground fades into.
+Vec3 horizonRadiance(const EnvironmentImage& environment);
+
+// The default environment: an outdoor sky, procedural. A blue sky brightening to a pale haze at the horizon,
+// scattered clouds, a sun (the key light) behind the default camera's left shoulder with its glow, a line of
+// wooded hills on the horizon and a neutral grey ground fading into the haze.
+EnvironmentImage skyEnvironment(int width = 1024);
 
 // The built-in studio: a grey-blue room, bright above, dark floor below the horizon, two large softboxes and
 // a strip light that the film reflects as coloured highlights.

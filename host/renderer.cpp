@@ -6,6 +6,7 @@
 
 #include "device_buffer.h"
 #include "device_image.h"
+#include "film_swirls.h"
 #include "render_shared.h"
 #include "render_spirv.h"
 #include "thin_film.h"
@@ -18,8 +19,9 @@ using kernels::RenderShader;
 static_assert(offsetof(RenderUniforms, inverseViewProjection) == 64);
 static_assert(offsetof(RenderUniforms, cameraPosition) == 128);
 static_assert(offsetof(RenderUniforms, skyIrradiance) == 160);
-static_assert(offsetof(RenderUniforms, particles) == 192);
-static_assert(sizeof(RenderUniforms) == 224);
+static_assert(offsetof(RenderUniforms, horizon) == 192);
+static_assert(offsetof(RenderUniforms, particles) == 208);
+static_assert(sizeof(RenderUniforms) == 256);
 
 Colouring colouringFromName(const std::string& name) {
   if (name == "interference") return Colouring::Interference;
@@ -30,9 +32,12 @@ Colouring colouringFromName(const std::string& name) {
 
 const char* colouringName(Colouring colouring) {
   switch (colouring) {
-    case Colouring::Interference: return "interference";
-    case Colouring::Thickness: return "thickness";
-    case Colouring::AirFlow: return "airflow";
+    case Colouring::Interference:
+      return "interference";
+    case Colouring::Thickness:
+      return "thickness";
+    case Colouring::AirFlow:
+      return "airflow";
   }
   return "?";
 }
@@ -45,25 +50,36 @@ constexpr vk::Format kDepthFormat = vk::Format::eD32Sfloat;
 // The resolve writes linear radiance; the format's sRGB encoding on store is cheaper on lavapipe than the curve in
 // the shader (three pow per pixel), and the bytes read back are sRGB as PNG and video expect.
 constexpr vk::Format kOutputFormat = vk::Format::eR8G8B8A8Srgb;
+// The ground fades into the horizon's haze over this distance (m): aerial perspective, and no visible edge
+// where the floor (80 m out) meets the environment.
+constexpr float kFogDistance = 25.0f;
 
 using Stage = vk::PipelineStageFlagBits;
 using Access = vk::AccessFlagBits;
 using Layout = vk::ImageLayout;
 
 vk::AttachmentDescription attachment(vk::Format format, vk::AttachmentLoadOp load, vk::AttachmentStoreOp store,
-                                     Layout initial, Layout final) {
-  return vk::AttachmentDescription({}, format, vk::SampleCountFlagBits::e1, load, store, vk::AttachmentLoadOp::eDontCare,
+                                     Layout initial, Layout final,
+                                     vk::SampleCountFlagBits samples = vk::SampleCountFlagBits::e1) {
+  return vk::AttachmentDescription({}, format, samples, load, store, vk::AttachmentLoadOp::eDontCare,
                                    vk::AttachmentStoreOp::eDontCare, initial, final);
 }
 
-// A one-subpass render pass; `before` and `after` are its dependencies on the commands outside it.
-vk::raii::RenderPass makeRenderPass(const vk::raii::Device& device, const std::vector<vk::AttachmentDescription>& attachments,
-                                    uint32_t colourCount, bool hasDepth, const vk::SubpassDependency& before,
+// A one-subpass render pass; `before` and `after` are its dependencies on the commands outside it. Attachments
+// are the colours, then the depth (if any), then, when `resolved`, one single-sampled image per colour that
+// the multisampled colour is resolved into at the end of the pass.
+vk::raii::RenderPass makeRenderPass(const vk::raii::Device& device,
+                                    const std::vector<vk::AttachmentDescription>& attachments, uint32_t colourCount,
+                                    bool hasDepth, bool resolved, const vk::SubpassDependency& before,
                                     const vk::SubpassDependency& after) {
-  std::vector<vk::AttachmentReference> colours;
+  std::vector<vk::AttachmentReference> colours, resolves;
   for (uint32_t i = 0; i < colourCount; ++i) colours.emplace_back(i, Layout::eColorAttachmentOptimal);
+  const uint32_t firstResolve = colourCount + (hasDepth ? 1 : 0);
+  for (uint32_t i = 0; resolved && i < colourCount; ++i)
+    resolves.emplace_back(firstResolve + i, Layout::eColorAttachmentOptimal);
   const vk::AttachmentReference depth(colourCount, Layout::eDepthStencilAttachmentOptimal);
-  const vk::SubpassDescription subpass({}, vk::PipelineBindPoint::eGraphics, {}, colours, {}, hasDepth ? &depth : nullptr);
+  const vk::SubpassDescription subpass({}, vk::PipelineBindPoint::eGraphics, {}, colours, resolves,
+                                       hasDepth ? &depth : nullptr);
   const std::array<vk::SubpassDependency, 2> dependencies{before, after};
   return vk::raii::RenderPass(device, vk::RenderPassCreateInfo({}, attachments, subpass, dependencies));
 }
@@ -73,6 +89,7 @@ struct PipelineDesc {
   vk::PrimitiveTopology topology = vk::PrimitiveTopology::eTriangleList;
   bool depthTest = true, depthWrite = true;
   std::vector<vk::PipelineColorBlendAttachmentState> blends;
+  bool multisampled = true;  // drawn into the multisampled targets (all but the resolve)
 };
 
 vk::PipelineColorBlendAttachmentState opaqueBlend() {
@@ -100,7 +117,9 @@ struct Renderer::Impl {
   RenderOptions options;
   vk::Extent2D extent;
 
+  vk::SampleCountFlagBits samples = vk::SampleCountFlagBits::e1;
   DeviceImage opaque, depth, accum, reveal, output;
+  DeviceImage opaqueSamples, accumSamples, revealSamples;  // the multisampled targets, resolved into the above
   vk::raii::RenderPass opaquePass{nullptr}, filmPass{nullptr}, compositePass{nullptr};
   vk::raii::Framebuffer opaqueTarget{nullptr}, filmTarget{nullptr}, compositeTarget{nullptr};
   vk::raii::Sampler linearSampler{nullptr}, nearestSampler{nullptr};
@@ -114,19 +133,27 @@ struct Renderer::Impl {
   vk::raii::DescriptorSet sceneSet{nullptr}, compositeSet{nullptr};
   vk::raii::CommandBuffer commands{nullptr};
 
-  DeviceBuffer uniforms, position, normal, thickness, airFlow, triangles, propsMesh, dropletBuffer, readback;
+  DeviceBuffer uniforms, position, normal, thickness, airFlow, triangles, propsMesh, dropletBuffer, variation, readback;
   uint32_t propsVertices = 0, dropletCount = 0;
   std::array<Vec3, 2> ambient;  // mean environment radiance above and below the horizon
+  Vec3 horizon;                 // just below it
+  Vec3 keyLight;
+  float keyStrength = 0.0f;
+  FilmSwirls swirls;
 
   Impl(std::shared_ptr<const VulkanContext> context, const RenderOptions& o, const EnvironmentImage& env)
-      : ctx(std::move(context)), options(o) {
+      : ctx(std::move(context)), options(o), swirls(o.thicknessVariation) {
     if (o.width < 16 || o.height < 16 || o.width > 16384 || o.height > 16384)
       throw std::invalid_argument("render size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
                                   " is outside 16..16384 pixels");
     extent = vk::Extent2D(static_cast<uint32_t>(o.width), static_cast<uint32_t>(o.height));
+    samples = supportedSamples(o.samples);
     makeTargets();
     makeSamplersAndTextures(env);
     ambient = hemisphereMeans(env);
+    horizon = horizonRadiance(env);
+    keyLight = env.keyLight;
+    keyStrength = env.keyStrength;
     makeLayouts();
     makePipelines();
     makeDescriptors();
@@ -135,60 +162,118 @@ struct Renderer::Impl {
     commands = ctx->newCommandBuffer();
   }
 
+  // The sample count of the targets: what colour and depth targets both support, up to `wanted`.
+  vk::SampleCountFlagBits supportedSamples(int wanted) const {
+    const vk::PhysicalDeviceLimits limits = ctx->physical.getProperties().limits;
+    const vk::SampleCountFlags both = limits.framebufferColorSampleCounts & limits.framebufferDepthSampleCounts;
+    // Not every count need be supported (lavapipe has 1 and 4 only): the largest supported one up to `wanted`.
+    for (uint32_t count = 64; count > 1; count /= 2)
+      if (count <= static_cast<uint32_t>(std::max(wanted, 1)) && (both & static_cast<vk::SampleCountFlagBits>(count)))
+        return static_cast<vk::SampleCountFlagBits>(count);
+    return vk::SampleCountFlagBits::e1;
+  }
+
   void makeTargets() {
     using U = vk::ImageUsageFlagBits;
     const vk::raii::Device& device = ctx->device;
+    const bool msaa = samples != vk::SampleCountFlagBits::e1;
+    const auto colourTarget = [&](vk::Format format) {
+      return DeviceImage(*ctx, extent, format, U::eColorAttachment, vk::ImageAspectFlagBits::eColor, samples);
+    };
     opaque = DeviceImage(*ctx, extent, kHdrFormat, U::eColorAttachment | U::eSampled);
-    depth = DeviceImage(*ctx, extent, kDepthFormat, U::eDepthStencilAttachment, vk::ImageAspectFlagBits::eDepth);
+    depth =
+        DeviceImage(*ctx, extent, kDepthFormat, U::eDepthStencilAttachment, vk::ImageAspectFlagBits::eDepth, samples);
     accum = DeviceImage(*ctx, extent, kHdrFormat, U::eColorAttachment | U::eSampled);
     reveal = DeviceImage(*ctx, extent, kRevealFormat, U::eColorAttachment | U::eSampled);
     output = DeviceImage(*ctx, extent, kOutputFormat, U::eColorAttachment | U::eTransferSrc);
+    if (msaa) {
+      opaqueSamples = colourTarget(kHdrFormat);
+      accumSamples = colourTarget(kHdrFormat);
+      revealSamples = colourTarget(kRevealFormat);
+    }
     using Load = vk::AttachmentLoadOp;
     using Store = vk::AttachmentStoreOp;
-    const vk::PipelineStageFlags draw = Stage::eColorAttachmentOutput | Stage::eEarlyFragmentTests | Stage::eLateFragmentTests;
+    const vk::PipelineStageFlags draw =
+        Stage::eColorAttachmentOutput | Stage::eEarlyFragmentTests | Stage::eLateFragmentTests;
     const vk::AccessFlags drawWrites = Access::eColorAttachmentWrite | Access::eDepthStencilAttachmentWrite;
+    // A colour the pass clears and the resolve samples: drawn straight into it, or drawn multisampled (the
+    // samples are not kept) and resolved into it.
+    const auto sampledColour = [&](vk::Format format) {
+      std::vector<vk::AttachmentDescription> a;
+      if (msaa)
+        a.push_back(attachment(format, Load::eClear, Store::eDontCare, Layout::eUndefined,
+                               Layout::eColorAttachmentOptimal, samples));
+      else
+        a.push_back(
+            attachment(format, Load::eClear, Store::eStore, Layout::eUndefined, Layout::eShaderReadOnlyOptimal));
+      return a;
+    };
+    const auto resolveTo = [&](vk::Format format) {
+      return attachment(format, Load::eDontCare, Store::eStore, Layout::eUndefined, Layout::eShaderReadOnlyOptimal);
+    };
     // Opaque pass: waits for last frame's resolve to have read its colour; its colour is sampled and its depth
     // tested by the passes after it.
-    opaquePass = makeRenderPass(
-        device,
-        {attachment(kHdrFormat, Load::eClear, Store::eStore, Layout::eUndefined, Layout::eShaderReadOnlyOptimal),
-         attachment(kDepthFormat, Load::eClear, Store::eStore, Layout::eUndefined, Layout::eDepthStencilAttachmentOptimal)},
-        1, true, {VK_SUBPASS_EXTERNAL, 0, Stage::eFragmentShader | draw, draw, {}, drawWrites},
-        {0, VK_SUBPASS_EXTERNAL, draw, Stage::eFragmentShader | draw, drawWrites,
-         Access::eShaderRead | Access::eDepthStencilAttachmentRead});
+    std::vector<vk::AttachmentDescription> opaqueAttachments = sampledColour(kHdrFormat);
+    opaqueAttachments.push_back(attachment(kDepthFormat, Load::eClear, Store::eStore, Layout::eUndefined,
+                                           Layout::eDepthStencilAttachmentOptimal, samples));
+    if (msaa) opaqueAttachments.push_back(resolveTo(kHdrFormat));
+    opaquePass = makeRenderPass(device, opaqueAttachments, 1, true, msaa,
+                                {VK_SUBPASS_EXTERNAL, 0, Stage::eFragmentShader | draw, draw, {}, drawWrites},
+                                {0, VK_SUBPASS_EXTERNAL, draw, Stage::eFragmentShader | draw, drawWrites,
+                                 Access::eShaderRead | Access::eDepthStencilAttachmentRead});
     // Film pass: tests against the opaque depth without writing it; accum and reveal go to the resolve.
-    filmPass = makeRenderPass(
-        device,
-        {attachment(kHdrFormat, Load::eClear, Store::eStore, Layout::eUndefined, Layout::eShaderReadOnlyOptimal),
-         attachment(kRevealFormat, Load::eClear, Store::eStore, Layout::eUndefined, Layout::eShaderReadOnlyOptimal),
-         attachment(kDepthFormat, Load::eLoad, Store::eDontCare, Layout::eDepthStencilAttachmentOptimal,
-                    Layout::eDepthStencilAttachmentOptimal)},
-        2, true, {VK_SUBPASS_EXTERNAL, 0, Stage::eFragmentShader | draw, draw, drawWrites,
-                  Access::eColorAttachmentWrite | Access::eDepthStencilAttachmentRead},
-        {0, VK_SUBPASS_EXTERNAL, draw, Stage::eFragmentShader | draw, Access::eColorAttachmentWrite, Access::eShaderRead});
+    std::vector<vk::AttachmentDescription> filmAttachments = sampledColour(kHdrFormat);
+    filmAttachments.push_back(sampledColour(kRevealFormat)[0]);
+    filmAttachments.push_back(attachment(kDepthFormat, Load::eLoad, Store::eDontCare,
+                                         Layout::eDepthStencilAttachmentOptimal, Layout::eDepthStencilAttachmentOptimal,
+                                         samples));
+    if (msaa) {
+      filmAttachments.push_back(resolveTo(kHdrFormat));
+      filmAttachments.push_back(resolveTo(kRevealFormat));
+    }
+    filmPass = makeRenderPass(device, filmAttachments, 2, true, msaa,
+                              {VK_SUBPASS_EXTERNAL, 0, Stage::eFragmentShader | draw, draw, drawWrites,
+                               Access::eColorAttachmentWrite | Access::eDepthStencilAttachmentRead},
+                              {0, VK_SUBPASS_EXTERNAL, draw, Stage::eFragmentShader | draw,
+                               Access::eColorAttachmentWrite, Access::eShaderRead});
     // Resolve: its output is then copied out (readback, window blit).
     compositePass = makeRenderPass(
-        device, {attachment(kOutputFormat, Load::eDontCare, Store::eStore, Layout::eUndefined, Layout::eTransferSrcOptimal)},
-        1, false,
-        {VK_SUBPASS_EXTERNAL, 0, Stage::eTransfer | Stage::eColorAttachmentOutput, Stage::eColorAttachmentOutput, {},
+        device,
+        {attachment(kOutputFormat, Load::eDontCare, Store::eStore, Layout::eUndefined, Layout::eTransferSrcOptimal)}, 1,
+        false, false,
+        {VK_SUBPASS_EXTERNAL,
+         0,
+         Stage::eTransfer | Stage::eColorAttachmentOutput,
+         Stage::eColorAttachmentOutput,
+         {},
          Access::eColorAttachmentWrite},
         {0, VK_SUBPASS_EXTERNAL, Stage::eColorAttachmentOutput, Stage::eTransfer, Access::eColorAttachmentWrite,
          Access::eTransferRead});
-    const std::array<vk::ImageView, 2> opaqueViews{opaque.view(), depth.view()};
-    const std::array<vk::ImageView, 3> filmViews{accum.view(), reveal.view(), depth.view()};
+    std::vector<vk::ImageView> opaqueViews{msaa ? opaqueSamples.view() : opaque.view(), depth.view()};
+    std::vector<vk::ImageView> filmViews{msaa ? accumSamples.view() : accum.view(),
+                                         msaa ? revealSamples.view() : reveal.view(), depth.view()};
+    if (msaa) {
+      opaqueViews.push_back(opaque.view());
+      filmViews.insert(filmViews.end(), {accum.view(), reveal.view()});
+    }
     const vk::ImageView outputView = output.view();
-    opaqueTarget = vk::raii::Framebuffer(device, vk::FramebufferCreateInfo({}, *opaquePass, opaqueViews, extent.width, extent.height, 1));
-    filmTarget = vk::raii::Framebuffer(device, vk::FramebufferCreateInfo({}, *filmPass, filmViews, extent.width, extent.height, 1));
-    compositeTarget = vk::raii::Framebuffer(device, vk::FramebufferCreateInfo({}, *compositePass, outputView, extent.width, extent.height, 1));
+    opaqueTarget = vk::raii::Framebuffer(
+        device, vk::FramebufferCreateInfo({}, *opaquePass, opaqueViews, extent.width, extent.height, 1));
+    filmTarget = vk::raii::Framebuffer(
+        device, vk::FramebufferCreateInfo({}, *filmPass, filmViews, extent.width, extent.height, 1));
+    compositeTarget = vk::raii::Framebuffer(
+        device, vk::FramebufferCreateInfo({}, *compositePass, outputView, extent.width, extent.height, 1));
   }
 
   void makeSamplersAndTextures(const EnvironmentImage& env) {
     using F = vk::Filter;
     using A = vk::SamplerAddressMode;
-    linearSampler = vk::raii::Sampler(ctx->device, vk::SamplerCreateInfo({}, F::eLinear, F::eLinear, vk::SamplerMipmapMode::eNearest,
-                                                                          A::eClampToEdge, A::eRepeat, A::eClampToEdge));
-    nearestSampler = vk::raii::Sampler(ctx->device, vk::SamplerCreateInfo({}, F::eNearest, F::eNearest, vk::SamplerMipmapMode::eNearest,
-                                                                           A::eClampToEdge, A::eClampToEdge, A::eClampToEdge));
+    linearSampler = vk::raii::Sampler(
+        ctx->device, vk::SamplerCreateInfo({}, F::eLinear, F::eLinear, vk::SamplerMipmapMode::eNearest, A::eClampToEdge,
+                                           A::eRepeat, A::eClampToEdge));
+    nearestSampler = vk::raii::Sampler(
+        ctx->device, vk::SamplerCreateInfo({}, F::eNearest, F::eNearest, vk::SamplerMipmapMode::eNearest,
+                                           A::eClampToEdge, A::eClampToEdge, A::eClampToEdge));
     const ThinFilmLut table = buildThinFilmLut(GB_FILM_INDEX);
     lut = uploadTexture(*ctx, table.width, table.height, table.rgba);
     std::vector<float> rgba(static_cast<size_t>(env.width) * env.height * 4, 1.0f);
@@ -202,7 +287,8 @@ struct Renderer::Impl {
     const auto all = vk::ShaderStageFlagBits::eVertex | vk::ShaderStageFlagBits::eFragment;
     std::vector<vk::DescriptorSetLayoutBinding> scene;
     for (uint32_t b = 0; b < GB_RENDER_SCENE_BINDINGS; ++b)
-      scene.emplace_back(b, b == GB_RENDER_LUT || b == GB_RENDER_ENVIRONMENT ? D::eCombinedImageSampler : D::eStorageBuffer, 1, all);
+      scene.emplace_back(
+          b, b == GB_RENDER_LUT || b == GB_RENDER_ENVIRONMENT ? D::eCombinedImageSampler : D::eStorageBuffer, 1, all);
     std::vector<vk::DescriptorSetLayoutBinding> resolve;
     for (uint32_t b : {GB_COMPOSITE_OPAQUE, GB_COMPOSITE_ACCUM, GB_COMPOSITE_REVEAL})
       resolve.emplace_back(b, D::eCombinedImageSampler, 1, vk::ShaderStageFlagBits::eFragment);
@@ -224,13 +310,15 @@ struct Renderer::Impl {
     vk::PipelineRasterizationStateCreateInfo raster;
     raster.cullMode = vk::CullModeFlagBits::eNone;  // the film has two sides; props are cheap
     raster.lineWidth = 1.0f;
-    const vk::PipelineMultisampleStateCreateInfo multisample;
-    const vk::PipelineDepthStencilStateCreateInfo depthState({}, d.depthTest, d.depthWrite, vk::CompareOp::eLessOrEqual);
+    const vk::PipelineMultisampleStateCreateInfo multisample({},
+                                                             d.multisampled ? samples : vk::SampleCountFlagBits::e1);
+    const vk::PipelineDepthStencilStateCreateInfo depthState({}, d.depthTest, d.depthWrite,
+                                                             vk::CompareOp::eLessOrEqual);
     const vk::PipelineColorBlendStateCreateInfo blend({}, false, vk::LogicOp::eCopy, d.blends);
-    return vk::raii::Pipeline(ctx->device, nullptr,
-                              vk::GraphicsPipelineCreateInfo({}, stages, &vertexInput, &assembly, nullptr, &viewportState,
-                                                             &raster, &multisample, &depthState, &blend, nullptr,
-                                                             *pipelineLayout, *pass, 0));
+    return vk::raii::Pipeline(
+        ctx->device, nullptr,
+        vk::GraphicsPipelineCreateInfo({}, stages, &vertexInput, &assembly, nullptr, &viewportState, &raster,
+                                       &multisample, &depthState, &blend, nullptr, *pipelineLayout, *pass, 0));
   }
 
   void makePipelines() {
@@ -239,16 +327,30 @@ struct Renderer::Impl {
       modules.emplace_back(ctx->device, vk::ShaderModuleCreateInfo({}, code.size_bytes(), code.data()));
     }
     using R = RenderShader;
-    props = makePipeline({R::PropsVert, R::PropsFrag, vk::PrimitiveTopology::eTriangleList, true, true, {opaqueBlend()}}, opaquePass);
-    droplets = makePipeline({R::DropletsVert, R::DropletsFrag, vk::PrimitiveTopology::ePointList, true, true, {opaqueBlend()}}, opaquePass);
-    film = makePipeline({R::FilmVert, R::FilmFrag, vk::PrimitiveTopology::eTriangleList, true, false, transparencyBlends()}, filmPass);
-    composite = makePipeline({R::FullscreenVert, R::CompositeFrag, vk::PrimitiveTopology::eTriangleList, false, false, {opaqueBlend()}}, compositePass);
+    props = makePipeline(
+        {R::PropsVert, R::PropsFrag, vk::PrimitiveTopology::eTriangleList, true, true, {opaqueBlend()}}, opaquePass);
+    // Droplets are mostly transparent water: drawn with the film, into the same order-independent targets.
+    droplets = makePipeline(
+        {R::DropletsVert, R::DropletsFrag, vk::PrimitiveTopology::ePointList, true, false, transparencyBlends()},
+        filmPass);
+    film = makePipeline(
+        {R::FilmVert, R::FilmFrag, vk::PrimitiveTopology::eTriangleList, true, false, transparencyBlends()}, filmPass);
+    composite = makePipeline({R::FullscreenVert,
+                              R::CompositeFrag,
+                              vk::PrimitiveTopology::eTriangleList,
+                              false,
+                              false,
+                              {opaqueBlend()},
+                              false},
+                             compositePass);
   }
 
   void makeDescriptors() {
-    const std::array<vk::DescriptorPoolSize, 2> sizes{vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 8),
-                                                      vk::DescriptorPoolSize(vk::DescriptorType::eCombinedImageSampler, 5)};
-    pool = vk::raii::DescriptorPool(ctx->device, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 2, sizes));
+    const std::array<vk::DescriptorPoolSize, 2> sizes{
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 9),
+        vk::DescriptorPoolSize(vk::DescriptorType::eCombinedImageSampler, 5)};
+    pool = vk::raii::DescriptorPool(
+        ctx->device, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 2, sizes));
     const std::array<vk::DescriptorSetLayout, 2> layouts{*sceneLayout, *compositeLayout};
     vk::raii::DescriptorSets sets(ctx->device, vk::DescriptorSetAllocateInfo(*pool, layouts));
     sceneSet = std::move(sets[0]);
@@ -259,11 +361,12 @@ struct Renderer::Impl {
                                               {*nearestSampler, accum.view(), Layout::eShaderReadOnlyOptimal},
                                               {*nearestSampler, reveal.view(), Layout::eShaderReadOnlyOptimal}};
     using D = vk::DescriptorType;
-    const vk::WriteDescriptorSet writes[] = {{*sceneSet, GB_RENDER_LUT, 0, D::eCombinedImageSampler, images[0]},
-                                             {*sceneSet, GB_RENDER_ENVIRONMENT, 0, D::eCombinedImageSampler, images[1]},
-                                             {*compositeSet, GB_COMPOSITE_OPAQUE, 0, D::eCombinedImageSampler, images[2]},
-                                             {*compositeSet, GB_COMPOSITE_ACCUM, 0, D::eCombinedImageSampler, images[3]},
-                                             {*compositeSet, GB_COMPOSITE_REVEAL, 0, D::eCombinedImageSampler, images[4]}};
+    const vk::WriteDescriptorSet writes[] = {
+        {*sceneSet, GB_RENDER_LUT, 0, D::eCombinedImageSampler, images[0]},
+        {*sceneSet, GB_RENDER_ENVIRONMENT, 0, D::eCombinedImageSampler, images[1]},
+        {*compositeSet, GB_COMPOSITE_OPAQUE, 0, D::eCombinedImageSampler, images[2]},
+        {*compositeSet, GB_COMPOSITE_ACCUM, 0, D::eCombinedImageSampler, images[3]},
+        {*compositeSet, GB_COMPOSITE_REVEAL, 0, D::eCombinedImageSampler, images[4]}};
     ctx->device.updateDescriptorSets(writes, {});
   }
 
@@ -294,22 +397,37 @@ struct Renderer::Impl {
     writeVec3(airFlow, s.airFlow);
     thickness.write(s.thickness.data(), bytes);
     triangles.write(tris.data(), tris.size() * sizeof(uint32_t));
-    return {position.handle(), normal.handle(), thickness.handle(), airFlow.handle(), triangles.handle(),
-            static_cast<uint32_t>(n), static_cast<uint32_t>(frame.film->topology.triangleCount())};
+    return {position.handle(),
+            normal.handle(),
+            thickness.handle(),
+            airFlow.handle(),
+            triangles.handle(),
+            static_cast<uint32_t>(n),
+            static_cast<uint32_t>(frame.film->topology.triangleCount())};
   }
 
   void uploadPropsAndDroplets(const RenderFrame& frame) {
-    const std::vector<float> mesh = buildProps(frame.wireFrame);
+    const std::vector<float> mesh = buildProps(frame.wireFrame, frame.film);
     reserve(propsMesh, mesh.size() * sizeof(float));
     propsMesh.write(mesh.data(), mesh.size() * sizeof(float));
     propsVertices = static_cast<uint32_t>(mesh.size() / kPropsVertexFloats);
-    const std::vector<float> drops = frame.aerosol ? packDroplets(*frame.aerosol, frame.aerosolLifetime) : std::vector<float>();
+    const std::vector<float> drops =
+        frame.aerosol ? packDroplets(*frame.aerosol, frame.aerosolLifetime) : std::vector<float>();
     reserve(dropletBuffer, drops.size() * sizeof(float));
     dropletBuffer.write(drops.data(), drops.size() * sizeof(float));
     dropletCount = static_cast<uint32_t>(drops.size() / 4);
   }
 
-  void uploadUniforms(const RenderFrame& frame, uint32_t particles) {
+  // The film's swirls (host/film_swirls.h), for the interference colouring only: the diagnostic colourings show
+  // the simulated thickness as it is.
+  bool uploadVariation(const RenderFrame& frame) {
+    const std::vector<float>& factors = swirls.update(frame.film->state);
+    reserve(variation, factors.size() * sizeof(float));
+    variation.write(factors.data(), factors.size() * sizeof(float));
+    return options.colouring == Colouring::Interference && swirls.sigma() > 0.0f;
+  }
+
+  void uploadUniforms(const RenderFrame& frame, uint32_t particles, bool varied) {
     RenderUniforms u{};
     const float aspect = static_cast<float>(extent.width) / static_cast<float>(extent.height);
     const Eigen::Matrix4f viewProjection = frame.camera.viewProjection(aspect);
@@ -318,8 +436,8 @@ struct Renderer::Impl {
     std::memcpy(u.inverseViewProjection.m, inverse.data(), sizeof u.inverseViewProjection.m);
     const Vec3 eye = frame.camera.position();
     u.cameraPosition = {eye.x(), eye.y(), eye.z(), 1.0f};
-    const Vec3 key = Vec3(-0.6f, 0.5f, 0.62f).normalized();  // the studio's main softbox (render_scene.cpp)
-    u.keyLight = {key.x(), key.y(), key.z(), 0.0f};
+    u.keyLight = {keyLight.x(), keyLight.y(), keyLight.z(), keyStrength};
+    u.horizon = {horizon.x(), horizon.y(), horizon.z(), kFogDistance};
     u.skyIrradiance = {ambient[0].x(), ambient[0].y(), ambient[0].z(), 0.0f};
     u.groundIrradiance = {ambient[1].x(), ambient[1].y(), ambient[1].z(), 0.0f};
     u.particles = particles;
@@ -329,16 +447,22 @@ struct Renderer::Impl {
     u.exposure = options.exposure;
     u.pointScale = 0.5f * static_cast<float>(extent.height) / std::tan(0.5f * frame.camera.fovY);
     u.dropletRadius = options.dropletRadius;
+    u.thicknessVariation = varied ? 1u : 0u;
+    u.minTubePixels = options.minTubePixels;
     uniforms.write(&u, sizeof u);
   }
 
   void bindSceneBuffers(const DeviceFilm& f) {
     auto info = [](vk::Buffer b) { return vk::DescriptorBufferInfo(b, 0, VK_WHOLE_SIZE); };
-    const std::pair<uint32_t, vk::DescriptorBufferInfo> buffers[] = {
-        {GB_RENDER_UNIFORMS, info(uniforms.handle())}, {GB_RENDER_POSITION, info(f.position)},
-        {GB_RENDER_NORMAL, info(f.normal)},            {GB_RENDER_THICKNESS, info(f.thickness)},
-        {GB_RENDER_AIR_FLOW, info(f.airFlow)},         {GB_RENDER_TRIANGLES, info(f.triangles)},
-        {GB_RENDER_MESH, info(propsMesh.handle())},     {GB_RENDER_DROPLETS, info(dropletBuffer.handle())}};
+    const std::pair<uint32_t, vk::DescriptorBufferInfo> buffers[] = {{GB_RENDER_UNIFORMS, info(uniforms.handle())},
+                                                                     {GB_RENDER_POSITION, info(f.position)},
+                                                                     {GB_RENDER_NORMAL, info(f.normal)},
+                                                                     {GB_RENDER_THICKNESS, info(f.thickness)},
+                                                                     {GB_RENDER_AIR_FLOW, info(f.airFlow)},
+                                                                     {GB_RENDER_TRIANGLES, info(f.triangles)},
+                                                                     {GB_RENDER_MESH, info(propsMesh.handle())},
+                                                                     {GB_RENDER_DROPLETS, info(dropletBuffer.handle())},
+                                                                     {GB_RENDER_VARIATION, info(variation.handle())}};
     std::vector<vk::WriteDescriptorSet> writes;
     for (const auto& [binding, buffer] : buffers)
       writes.emplace_back(*sceneSet, binding, 0, vk::DescriptorType::eStorageBuffer, nullptr, buffer);
@@ -354,27 +478,30 @@ struct Renderer::Impl {
     cb.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipelineLayout, 0, sets, {});
 
     // Alpha 0: no prop here, the resolve shows the environment.
-    const std::array<vk::ClearValue, 2> opaqueClear{vk::ClearColorValue(std::array<float, 4>{0, 0, 0, 0}),
-                                                    vk::ClearDepthStencilValue(1.0f, 0)};
-    cb.beginRenderPass(vk::RenderPassBeginInfo(*opaquePass, *opaqueTarget, area, opaqueClear), vk::SubpassContents::eInline);
+    const std::array<vk::ClearValue, 3> opaqueClear{vk::ClearColorValue(std::array<float, 4>{0, 0, 0, 0}),
+                                                    vk::ClearDepthStencilValue(1.0f, 0), vk::ClearValue()};
+    cb.beginRenderPass(vk::RenderPassBeginInfo(*opaquePass, *opaqueTarget, area, opaqueClear),
+                       vk::SubpassContents::eInline);
     cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *props);
     cb.draw(propsVertices, 1, 0, 0);
+    cb.endRenderPass();
+
+    const std::array<vk::ClearValue, 5> filmClear{vk::ClearColorValue(std::array<float, 4>{0, 0, 0, 0}),
+                                                  vk::ClearColorValue(std::array<float, 4>{0, 0, 0, 0}),
+                                                  vk::ClearValue(), vk::ClearValue(), vk::ClearValue()};
+    cb.beginRenderPass(vk::RenderPassBeginInfo(*filmPass, *filmTarget, area, filmClear), vk::SubpassContents::eInline);
+    if (f.triangleCount > 0) {
+      cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *film);
+      cb.draw(3 * f.triangleCount, 1, 0, 0);
+    }
     if (dropletCount > 0) {
       cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *droplets);
       cb.draw(dropletCount, 1, 0, 0);
     }
     cb.endRenderPass();
 
-    const std::array<vk::ClearValue, 3> filmClear{vk::ClearColorValue(std::array<float, 4>{0, 0, 0, 0}),
-                                                  vk::ClearColorValue(std::array<float, 4>{0, 0, 0, 0}), vk::ClearValue()};
-    cb.beginRenderPass(vk::RenderPassBeginInfo(*filmPass, *filmTarget, area, filmClear), vk::SubpassContents::eInline);
-    if (f.triangleCount > 0) {
-      cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *film);
-      cb.draw(3 * f.triangleCount, 1, 0, 0);
-    }
-    cb.endRenderPass();
-
-    cb.beginRenderPass(vk::RenderPassBeginInfo(*compositePass, *compositeTarget, area, {}), vk::SubpassContents::eInline);
+    cb.beginRenderPass(vk::RenderPassBeginInfo(*compositePass, *compositeTarget, area, {}),
+                       vk::SubpassContents::eInline);
     cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *composite);
     cb.draw(3, 1, 0, 0);
     cb.endRenderPass();
@@ -402,7 +529,8 @@ void Renderer::render(const RenderFrame& frame, bool readback, const AfterRender
   if (!frame.film) throw std::invalid_argument("Renderer::render: no film");
   const DeviceFilm film = m.filmBuffers(frame);
   m.uploadPropsAndDroplets(frame);
-  m.uploadUniforms(frame, film.particleCount);
+  const bool varied = m.uploadVariation(frame);
+  m.uploadUniforms(frame, film.particleCount, varied);
   m.bindSceneBuffers(film);
   m.record(film, readback, after);
   m.ctx->submitAndWait(m.commands);

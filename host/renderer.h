@@ -1,11 +1,12 @@
 #pragma once
 // The renderer (Section 8 of the paper): the film as a two-sided transparent sheet coloured by thin-film
 // interference (host/thin_film.h's lookup table) reflecting an environment and dimming what is behind it,
-// over the floor, the wands and their string and the aerosol droplets; or coloured by a diagnostic
-// (thickness, air flow). Three passes into offscreen images, then the caller reads the pixels (PNG, video) or
-// copies the image to a window (host/window.h):
-//   1. opaque:   floor, wands, string, droplets                    -> colour (RGBA16F) + depth
-//   2. film:     weighted blended order-independent transparency    -> accum (RGBA16F) + reveal (R16F)
+// over the ground, the wands and their string, the rim of a bursting hole and the aerosol droplets; or coloured
+// by a diagnostic (thickness, air flow). Three passes into offscreen images, multisampled (MSAA) and resolved,
+// then the caller reads the pixels (PNG, video) or copies the image to a window (host/window.h):
+//   1. opaque:   ground, wands, string, hole rims                   -> colour (RGBA16F) + depth
+//   2. film:     film and droplets, weighted blended order-independent transparency
+//                                                                    -> accum (RGBA16F) + reveal (R16F)
 //   3. resolve:  film over opaque (or the environment where nothing opaque is), exposure, sRGB encoding
 //                                                                    -> output (RGBA8)
 // docs/rendering.md has the optics and the choices.
@@ -28,13 +29,20 @@ Colouring colouringFromName(const std::string& name);  // "interference", "thick
 const char* colouringName(Colouring colouring);
 
 struct RenderOptions {
-  int width = 1280;                           // pixels
+  int width = 1280;  // pixels
   int height = 720;
   Colouring colouring = Colouring::Interference;
-  float thickColour = 7e-6f;                  // thickness drawn red by the thickness colouring (m), as app/ images
-  float airFlowColour = 0.1f;                 // air flow strength drawn yellow (m^3/s): the default stroke peaks at 0.08
-  float exposure = 1.0f;                      // radiance scale before display encoding
-  float dropletRadius = 0.004f;               // drawn size of an aerosol droplet (m)
+  float thickColour = 7e-6f;         // thickness drawn red by the thickness colouring (m), as app/ images
+  float airFlowColour = 0.1f;        // air flow strength drawn yellow (m^3/s): the default stroke peaks at 0.08
+  float exposure = 1.0f;             // radiance scale before display encoding
+  float dropletRadius = 0.003f;      // drawn size of an aerosol droplet (m)
+  float minTubePixels = 0.6f;        // the string, wands and rims are drawn at least this radius (pixels):
+                                     // a 4 mm string far away would otherwise break into dashes that
+                                     // no sample pattern can join
+  int samples = 4;                   // multisample anti-aliasing: samples per pixel (the most the device
+                                     // supports up to this; 1: none)
+  float thicknessVariation = 0.45f;  // sigma of the film's drawn thickness swirls (host/film_swirls.h),
+                                     // interference colouring only; 0: the simulated thickness as it is
 };
 
 // One frame to draw. Everything but the film is optional.
@@ -43,14 +51,15 @@ struct RenderFrame {
   const DeviceFilm* deviceFilm = nullptr;  // the Vulkan stepper's buffers on the renderer's device: read in
                                            // place; null: the film's state is uploaded from the host
   const Aerosol* aerosol = nullptr;
-  float aerosolLifetime = 1.0f;            // s, for the droplets' fade
-  const WireFrame* wireFrame = nullptr;    // the wands and their string (or ring)
+  float aerosolLifetime = 1.0f;          // s, for the droplets' fade
+  const WireFrame* wireFrame = nullptr;  // the wands and their string (or ring)
   OrbitCamera camera;
 };
 
 class Renderer {
  public:
-  // `environment`: what the film reflects and what is seen behind it (studioEnvironment() or a user image).
+  // `environment`: what the film reflects and what is seen behind it (skyEnvironment(), studioEnvironment() or a
+  // user image).
   Renderer(std::shared_ptr<const VulkanContext> context, const RenderOptions& options,
            const EnvironmentImage& environment);
   ~Renderer();

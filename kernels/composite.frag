@@ -2,8 +2,8 @@
 #extension GL_GOOGLE_include_directive : require
 // Resolves the transparent film over the opaque scene (weighted blended OIT) and encodes for display:
 // exposure and a soft shoulder so bright reflections do not clip hard, into an sRGB target. Where no
-// prop was drawn (alpha 0) the environment is seen: looked up here rather than drawn in a pass of its own,
-// which saves lavapipe a full-screen pass.
+// prop covers the pixel (alpha < 1: none, or part of it at an anti-aliased edge) the environment shows through
+// the rest: looked up here rather than drawn in a pass of its own, which saves lavapipe a full-screen pass.
 #include "render_common.glsl"
 layout(set = 1, binding = GB_COMPOSITE_OPAQUE) uniform sampler2D opaqueImage;
 layout(set = 1, binding = GB_COMPOSITE_ACCUM) uniform sampler2D accumImage;
@@ -13,11 +13,11 @@ layout(location = 0) out vec4 colour;
 
 void main() {
   const ivec2 p = ivec2(gl_FragCoord.xy);
-  const vec4 opaque = texelFetch(opaqueImage, p, 0);
+  const vec4 opaque = texelFetch(opaqueImage, p, 0);  // premultiplied: cleared to 0, props write alpha 1
   vec3 behind = opaque.rgb;
-  if (opaque.a == 0.0) {
+  if (opaque.a < 0.999) {
     const vec4 far = u.inverseViewProjection * vec4(uv * 2.0 - 1.0, 1.0, 1.0);
-    behind = environment(normalize(far.xyz / far.w - u.cameraPosition.xyz));
+    behind += (1.0 - opaque.a) * environment(normalize(far.xyz / far.w - u.cameraPosition.xyz));
   }
   const vec4 a = texelFetch(accumImage, p, 0);
   const float through = exp(-texelFetch(revealImage, p, 0).r);  // product of (1 - alpha) over the sheets

@@ -8,6 +8,7 @@ layout(std430, set = 0, binding = GB_RENDER_NORMAL) readonly buffer NormalBuffer
 layout(std430, set = 0, binding = GB_RENDER_THICKNESS) readonly buffer ThicknessBuffer { float thickness[]; };
 layout(std430, set = 0, binding = GB_RENDER_AIR_FLOW) readonly buffer AirFlowBuffer { float airFlow[]; };
 layout(std430, set = 0, binding = GB_RENDER_TRIANGLES) readonly buffer TrianglesBuffer { uint triangles[]; };
+layout(std430, set = 0, binding = GB_RENDER_VARIATION) readonly buffer VariationBuffer { float variation[]; };
 layout(location = 0) out vec3 worldPosition;
 layout(location = 1) out vec3 worldNormal;
 layout(location = 2) out float filmThickness;
@@ -23,7 +24,8 @@ void main() {
   const uint n = u.particles;
   worldPosition = load3(i, n, false);
   worldNormal = load3(i, n, true);
-  filmThickness = thickness[i];
+  // The drawn swirls (host/film_swirls.h) multiply the simulated thickness, which is their mean.
+  filmThickness = thickness[i] * (u.thicknessVariation != 0u ? variation[i] : 1.0);
   airFlowStrength = length(vec3(airFlow[i], airFlow[n + i], airFlow[2 * n + i]));
   gl_Position = u.viewProjection * vec4(worldPosition, 1.0);
 }

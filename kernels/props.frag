@@ -1,8 +1,10 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // Diffuse props lit by the environment (the mean radiance above and below the horizon, blended by the normal)
-// and the key light; the wands and string also reflect the environment faintly. The floor is a checkerboard of
-// 0.5 m tiles with no reflection: it covers half the picture, and a lookup per pixel is what lavapipe pays for.
+// and the key light. The wands and string also reflect the environment faintly; a hole's rim, being water,
+// reflects it strongly (a Fresnel-like rise towards grazing). The ground is plain and has no reflection (it
+// covers half the picture, and a lookup per pixel is what lavapipe pays for); it fades into the horizon's haze
+// with distance, so that it meets the environment without a seam.
 #include "render_common.glsl"
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 worldNormal;
@@ -10,15 +12,18 @@ layout(location = 2) in vec4 albedo;
 layout(location = 0) out vec4 colour;
 void main() {
   const vec3 n = normalize(worldNormal);
-  vec3 base = albedo.rgb;
-  const bool floorTile = int(albedo.w + 0.5) == GB_MATERIAL_FLOOR;
-  if (floorTile) {
-    const ivec2 tile = ivec2(floor(worldPosition.xz / 0.5));
-    base *= ((tile.x + tile.y) & 1) == 0 ? 1.0 : 0.6;
-  }
+  const int material = int(albedo.w + 0.5);
   const vec3 ambient = mix(u.groundIrradiance.rgb, u.skyIrradiance.rgb, 0.5 + 0.5 * n.y);
   const float key = max(dot(n, u.keyLight.xyz), 0.0);
-  vec3 c = base * (ambient + 0.8 * key);
-  if (!floorTile) c += 0.04 * environment(reflect(normalize(worldPosition - u.cameraPosition.xyz), n));
+  vec3 c = albedo.rgb * (ambient + u.keyLight.w * key);
+  const vec3 toPoint = worldPosition - u.cameraPosition.xyz;
+  if (material == GB_MATERIAL_FLOOR) {
+    c = mix(u.horizon.rgb, c, exp(-length(toPoint) / u.horizon.w));
+  } else {
+    const vec3 view = normalize(toPoint);
+    const float grazing = pow(1.0 - abs(dot(view, n)), 3.0);
+    const float shine = material == GB_MATERIAL_RIM ? 0.5 + 0.5 * grazing : 0.04;
+    c = mix(c, environment(reflect(view, n)), shine);
+  }
   colour = vec4(c, 1.0);
 }

@@ -19,9 +19,11 @@ struct RenderUniforms {
   mat4 viewProjection;         // world -> clip (Vulkan: y down, depth 0 near .. 1 far)
   mat4 inverseViewProjection;  // clip -> world, for the background's view rays
   vec4 cameraPosition;         // world (m)
-  vec4 keyLight;               // unit direction towards the studio's key light (w unused)
+  vec4 keyLight;               // unit direction towards the key light (the sun, a softbox); w: its strength on props
   vec4 skyIrradiance;          // mean environment radiance over the upper hemisphere (props' ambient light)
   vec4 groundIrradiance;       // and over the lower hemisphere
+  vec4 horizon;                // environment radiance just below the horizon (the far ground fades into it); w:
+                               // the floor's fog distance (m)
   uint particles;              // stride of the x, y, z blocks of the film's vector buffers
   uint colouring;              // GB_COLOURING_*
   float thickColour;           // thickness drawn red by the thickness colouring (m)
@@ -29,7 +31,10 @@ struct RenderUniforms {
   float exposure;              // scale of radiance before display encoding
   float pointScale;            // droplet sprite size: pixels per metre at distance 1 m
   float dropletRadius;         // drawn radius of a droplet (m)
-  uint pad0;
+  uint thicknessVariation;     // 1: the interference colouring multiplies the thickness by GB_RENDER_VARIATION
+  float minTubePixels;         // tubes (string, wands, rims) are drawn at least this radius in pixels, so that
+                               // a string thinner than a pixel stays a continuous anti-aliased line
+  uint pad0, pad1, pad2;
 };
 
 #ifdef __cplusplus
@@ -38,16 +43,17 @@ struct RenderUniforms {
 
 // Descriptor set 0: the scene.
 #define GB_RENDER_UNIFORMS 0
-#define GB_RENDER_POSITION 1   // film positions, x block then y then z (as the stepper holds them)
-#define GB_RENDER_NORMAL 2     // film vertex normals, same layout
-#define GB_RENDER_THICKNESS 3  // film thickness per particle (m)
-#define GB_RENDER_AIR_FLOW 4   // transferred air flow per particle, vector blocks (m^3/s)
-#define GB_RENDER_TRIANGLES 5  // 3 particle indices per triangle
-#define GB_RENDER_LUT 6        // thin-film reflectance by thickness and angle (kernels/thin_film_lut.h)
+#define GB_RENDER_POSITION 1     // film positions, x block then y then z (as the stepper holds them)
+#define GB_RENDER_NORMAL 2       // film vertex normals, same layout
+#define GB_RENDER_THICKNESS 3    // film thickness per particle (m)
+#define GB_RENDER_AIR_FLOW 4     // transferred air flow per particle, vector blocks (m^3/s)
+#define GB_RENDER_TRIANGLES 5    // 3 particle indices per triangle
+#define GB_RENDER_LUT 6          // thin-film reflectance by thickness and angle (kernels/thin_film_lut.h)
 #define GB_RENDER_ENVIRONMENT 7  // equirectangular environment radiance
-#define GB_RENDER_MESH 8       // opaque props: 12 floats per vertex (position, normal, albedo, material, pad)
-#define GB_RENDER_DROPLETS 9   // aerosol droplets: vec4 (position, opacity)
-#define GB_RENDER_SCENE_BINDINGS 10
+#define GB_RENDER_MESH 8         // opaque props: 12 floats per vertex (position, normal, albedo, material, pad)
+#define GB_RENDER_DROPLETS 9     // aerosol droplets: vec4 (position, opacity)
+#define GB_RENDER_VARIATION 10   // per-particle thickness factor of the film's swirls (host/film_swirls.h)
+#define GB_RENDER_SCENE_BINDINGS 11
 // Descriptor set 1: the composite pass's inputs.
 #define GB_COMPOSITE_OPAQUE 0
 #define GB_COMPOSITE_ACCUM 1
@@ -55,4 +61,5 @@ struct RenderUniforms {
 
 // Materials of the opaque props (the fourth float of a mesh vertex's albedo).
 #define GB_MATERIAL_PLAIN 0
-#define GB_MATERIAL_FLOOR 1
+#define GB_MATERIAL_FLOOR 1  // the ground: fades into the horizon's haze with distance
+#define GB_MATERIAL_RIM 2    // the rim of a bursting film's hole: water, reflecting the environment brightly

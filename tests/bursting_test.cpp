@@ -32,15 +32,16 @@ int runUntilBurst(Simulation& sim, const WandState& wands, int maxFrames = 500) 
   return -1;
 }
 
-TEST(Bursting, OneCrackRemovesTheWholeFilmOnceAndEveryTriangleBecomesOneDroplet) {
+TEST(Bursting, OneCrackRemovesTheWholeFilmOnceIntoDropletsCarryingItsLiquid) {
   Params p;
   p.particlesAtFullSolution = 1500;
-  p.gravityY = 0.0f;            // droplets stay in the air: all of them are counted
+  p.gravityY = 0.0f;  // droplets stay in the air: all of them are counted
   p.aerosolLifetime = 100.0f;
   Simulation sim(p, WandTool{}, restingWands());
   const size_t triangles = sim.film().topology.triangleCount();
-  double filmMass = 0;
-  for (float m : sim.film().state.mass) filmMass += m;
+  const State& s = sim.film().state;
+  const double liquidMass = p.liquidDensity * std::accumulate(s.liquid.begin(), s.liquid.end(), 0.0);
+  const float thinnest = *std::min_element(s.thickness.begin(), s.thickness.end());
   sim.startBurst(sim.topParticle());
   int started = 0, finished = 0;
   size_t droplets = 0;
@@ -54,11 +55,21 @@ TEST(Bursting, OneCrackRemovesTheWholeFilmOnceAndEveryTriangleBecomesOneDroplet)
   EXPECT_EQ(sim.film().topology.triangleCount(), 0u);
   EXPECT_EQ(started, 1);
   EXPECT_EQ(finished, 1);
-  EXPECT_EQ(droplets, triangles) << "each triangle must become exactly one droplet";
-  EXPECT_EQ(sim.aerosol().size(), triangles);
-  // Every particle's mass is split over its triangles: the aerosol carries exactly the film's mass.
+  // The issue's "a few hundred to a few thousand" droplets, gathered a few centimetres at a time: far fewer
+  // than the film's triangles.
+  EXPECT_EQ(sim.aerosol().size(), droplets);
+  EXPECT_GE(droplets, 200u);
+  EXPECT_LE(droplets, 5000u);
+  EXPECT_LT(droplets, triangles / 2);
+  // Every particle's liquid is split over its triangles: the aerosol carries the film's liquid. The issue asks
+  // for 1%; the bookkeeping is exact but for float rounding in the sums, so 1e-5 is asked.
   const double aerosolMass = std::accumulate(sim.aerosol().mass.begin(), sim.aerosol().mass.end(), 0.0);
-  EXPECT_NEAR(aerosolMass, filmMass, 1e-5 * filmMass);
+  EXPECT_NEAR(aerosolMass, liquidMass, 1e-5 * liquidMass);
+  // None flies faster than the rim can carry liquid: the Taylor-Culick speed of the thinnest film (drag, with
+  // gravity off, only slows them).
+  const float rim = taylorCulickSpeed(p, thinnest);
+  for (size_t i = 0; i < sim.aerosol().size(); ++i)
+    EXPECT_LE(sim.aerosol().velocity.get(i).norm(), rim * (1.0f + 1e-5f)) << "droplet " << i;
 }
 
 TEST(Bursting, MeshStaysManifoldAndTheOneRingMatchesAfterEveryEvent) {
@@ -147,8 +158,8 @@ TEST(Bursting, TaylorCulickHoleGrowsLinearlyAtTheRightSpeedWhateverStepAndResolu
   const auto [speedCoarse, durationCoarse] = taylorCulickBurst(1500, 0.02f, e);
   const auto [speedFine, durationFine] = taylorCulickBurst(4000, 0.02f, e);
   const auto [speedShortStep, durationShortStep] = taylorCulickBurst(1500, 0.005f, e);
-  std::printf("V_TC %.3f m/s; fitted %.3f (1500), %.3f (4000), %.3f (1500, h/4); bursts %.4f %.4f %.4f s\n",
-              expected, speedCoarse, speedFine, speedShortStep, durationCoarse, durationFine, durationShortStep);
+  std::printf("V_TC %.3f m/s; fitted %.3f (1500), %.3f (4000), %.3f (1500, h/4); bursts %.4f %.4f %.4f s\n", expected,
+              speedCoarse, speedFine, speedShortStep, durationCoarse, durationFine, durationShortStep);
   // The front follows mesh edges, whose paths are up to 2/sqrt(3) longer than straight lines on a
   // triangulated lattice: 15% is the issue's bound and covers that.
   EXPECT_NEAR(speedCoarse, expected, 0.15 * expected);

@@ -42,6 +42,7 @@ inline KnownScene makeKnownScene() {
   }
   s.camera.target = Vec3(0.0f, 1.2f, 0.0f);
   s.camera.distance = 2.6f;
+  s.camera.yaw = 0.0f;  // from the front
   return s;
 }
 

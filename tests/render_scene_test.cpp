@@ -1,0 +1,130 @@
+// What the renderer draws, built on the CPU (host/render_scene.h, host/film_swirls.h): the camera that keeps the
+// film framed, the film's drawn thickness swirls, the hole rims and the outdoor sky. No Vulkan.
+#include "render_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numeric>
+
+#include "film_swirls.h"
+
+namespace gb {
+namespace {
+
+// Fraction of the image height spanned by the living particles seen through `camera`.
+float heightFractionOnScreen(const OrbitCamera& camera, const State& s) {
+  const Eigen::Matrix4f vp = camera.viewProjection(16.0f / 9.0f);
+  float lo = 1e9f, hi = -1e9f;
+  for (size_t i = 0; i < s.size(); ++i) {
+    const Eigen::Vector4f clip = vp * Eigen::Vector4f(s.position.x[i], s.position.y[i], s.position.z[i], 1.0f);
+    lo = std::min(lo, clip.y() / clip.w());
+    hi = std::max(hi, clip.y() / clip.w());
+  }
+  return 0.5f * (hi - lo);  // clip y spans 2 over the image
+}
+
+TEST(FilmFraming, KeepsASphereAtHalfTheImageHeightAndFollowsItSmoothly) {
+  const Params params;
+  Film film = generateSphere(params, Vec3(0.0f, 1.2f, 0.0f), 0.5f, 3);
+  FilmFraming framing;
+  const OrbitCamera base;
+  OrbitCamera camera = framing.update(base, film.state, 0.02f);
+  // The bounding sphere spans half the height; a sphere's outline seen from a finite distance spans a little
+  // more than its silhouette's chord: 0.45-0.55.
+  EXPECT_NEAR(heightFractionOnScreen(camera, film.state), 0.5f, 0.05f);
+  EXPECT_FLOAT_EQ(camera.yaw, base.yaw) << "the framing keeps the camera's direction";
+  EXPECT_NEAR((camera.target - Vec3(0.0f, 1.2f, 0.0f)).norm(), 0.0f, 0.02f);
+
+  // The bubble drifts 1 m and doubles in size: one frame later the camera has moved only a little (eased, no
+  // jump), three seconds later it frames the bubble again.
+  for (size_t i = 0; i < film.state.size(); ++i)
+    film.state.position.set(i, Vec3(1.0f, 1.2f, 0.0f) + 2.0f * (film.state.position.get(i) - Vec3(0.0f, 1.2f, 0.0f)));
+  camera = framing.update(base, film.state, 0.02f);
+  EXPECT_LT(camera.target.x(), 0.1f);
+  for (int f = 0; f < 150; ++f) camera = framing.update(base, film.state, 0.02f);
+  EXPECT_NEAR(camera.target.x(), 1.0f, 0.01f);
+  EXPECT_NEAR(heightFractionOnScreen(camera, film.state), 0.5f, 0.05f);
+
+  // A burst film (nothing alive) leaves the camera where it was.
+  std::fill(film.state.alive.begin(), film.state.alive.end(), 0u);
+  const OrbitCamera after = framing.update(base, film.state, 0.02f);
+  EXPECT_FLOAT_EQ(after.distance, camera.distance);
+}
+
+TEST(FilmSwirls, LogVariationHasZeroMeanAndUnitSpread) {
+  // Over points spread across many swirls: mean 0 within 0.05, standard deviation 1 within 15% (kFractalSpread
+  // is this measurement, rounded).
+  double sum = 0, squares = 0;
+  const int n = 100000;
+  for (int k = 0; k < n; ++k) {
+    const Vec3 p(0.0137f * static_cast<float>(k % 317), 0.0191f * static_cast<float>(k / 317), 0.3f);
+    const double g = FilmSwirls::logVariation(p, 0.0f);
+    sum += g;
+    squares += g * g;
+  }
+  const double mean = sum / n, spread = std::sqrt(squares / n - mean * mean);
+  std::printf("swirl field: mean %.3f, standard deviation %.3f\n", mean, spread);
+  EXPECT_NEAR(mean, 0.0, 0.05);
+  EXPECT_NEAR(spread, 1.0, 0.15);
+}
+
+TEST(FilmSwirls, FactorsMoveWithTheFilmAndANewFilmIsSeededAgain) {
+  const Params params;
+  Film film = generateSphere(params, Vec3(0.0f, 1.2f, 0.0f), 3.0f, 4);
+  FilmSwirls swirls(0.45f);
+  const std::vector<float> first = swirls.update(film.state);
+  // Mean factor 1 (the simulated thickness is the mean): within 5% over a sphere of 3 m radius, about 1800
+  // swirls of 25 cm (a sampling error of about 1%).
+  EXPECT_NEAR(std::accumulate(first.begin(), first.end(), 0.0) / static_cast<double>(first.size()), 1.0, 0.05);
+  // The film moves and stretches (every particle 0.3 m up, scaled 1.5x), no time passes: the same factors,
+  // since each particle keeps its material coordinate.
+  for (size_t i = 0; i < film.state.size(); ++i)
+    film.state.position.set(i, Vec3(0.0f, 1.5f, 0.0f) + 1.5f * (film.state.position.get(i) - Vec3(0.0f, 1.2f, 0.0f)));
+  EXPECT_EQ(swirls.update(film.state), first);
+  // Time passes: the swirls turn, slowly (factors change, but not all of them by much in 0.1 s).
+  for (float& t : film.state.lifetime) t += 0.1f;
+  const std::vector<float> later = swirls.update(film.state);
+  double change = 0;
+  for (size_t i = 0; i < later.size(); ++i) change += std::abs(std::log(later[i] / first[i]));
+  change /= static_cast<double>(later.size());
+  EXPECT_GT(change, 1e-4);
+  EXPECT_LT(change, 0.1);
+  // A new film made in its place (lifetimes back to 0) is seeded from where its particles are now.
+  for (float& t : film.state.lifetime) t = 0.0f;
+  EXPECT_NE(swirls.update(film.state), first);
+}
+
+TEST(HoleRims, AnIntactFilmHasNoneAndATornOneHasItsHoleEdge) {
+  const Params params;
+  Film bubble = generateSphere(params, Vec3(0.0f, 1.2f, 0.0f), 0.5f, 2);
+  EXPECT_TRUE(holeRimEdges(bubble).empty()) << "a closed bubble has no rim";
+  // Tear out the triangles around particle 0: the edges of its one-ring become the rim.
+  std::vector<uint32_t> kept;
+  size_t removed = 0;
+  for (size_t t = 0; t < bubble.topology.triangles.size(); t += 3) {
+    const uint32_t* tri = &bubble.topology.triangles[t];
+    if (tri[0] == 0 || tri[1] == 0 || tri[2] == 0)
+      ++removed;
+    else
+      kept.insert(kept.end(), tri, tri + 3);
+  }
+  bubble.topology.triangles = kept;
+  EXPECT_EQ(holeRimEdges(bubble).size(), 2 * removed) << "one rim edge per removed triangle around a vertex";
+}
+
+TEST(SkyEnvironment, IsBrightAboveNeutralBelowWithTheSunAsKeyLight) {
+  const EnvironmentImage sky = skyEnvironment(256);
+  const std::array<Vec3, 2> means = hemisphereMeans(sky);
+  EXPECT_GT(means[0].mean(), 0.4f) << "a bright sky";
+  EXPECT_GT(means[0].z(), means[0].x()) << "blue";
+  EXPECT_LT(means[1].mean(), means[0].mean());
+  // The ground is neutral: channels within 10% of each other.
+  EXPECT_LT(means[1].maxCoeff() / means[1].minCoeff(), 1.1f);
+  EXPECT_GT(sky.keyLight.y(), 0.3f) << "the sun is up";
+  const Vec3 horizon = horizonRadiance(sky);
+  EXPECT_GT(horizon.mean(), means[1].mean()) << "the ground fades into a lighter haze";
+}
+
+}  // namespace
+}  // namespace gb

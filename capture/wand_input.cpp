@@ -1,5 +1,6 @@
 #include "wand_input.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -56,7 +57,7 @@ StabilizedWands::StabilizedWands(std::unique_ptr<HandSource> source, const Stabi
     }
   }
   StabilizerOptions options = stabilizer;
-  options.period = source_->period();
+  options.period = period();
   stabilizer_ =
       std::make_unique<Stabilizer>(options, calibration_.restHand(Hand::Left), calibration_.restHand(Hand::Right));
   lastMeasured_[0] = lastMeasured_[1] = start_;
@@ -103,8 +104,10 @@ void StabilizedWands::feed(const HandSample& sample) {
   }
 }
 
+double StabilizedWands::period() const { return std::max(source_->period(), kMinSamplePeriod); }
+
 WandFrame StabilizedWands::at(double t) {
-  const double T = start_ + t, period = source_->period(), gap = 3.0 * period;
+  const double T = start_ + t, period = this->period(), gap = 3.0 * period;
   // A hold: both hands where they were last measured, not measured now.
   auto holdUntil = [&](double until) {
     while (lastFed_ + period <= until) {
@@ -120,6 +123,7 @@ WandFrame StabilizedWands::at(double t) {
   while ((!ahead_.empty() || fetch()) && ahead_.front().time <= T) {
     const HandSample s = ahead_.front();
     ahead_.pop_front();
+    if (s.time - lastFed_ < kMinSamplePeriod) continue;       // denser than the guard: thinned, not fed
     if (s.time - lastFed_ > gap) holdUntil(s.time - period);  // a gap in the input: the wands rest through it
     feed(s);
   }

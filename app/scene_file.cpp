@@ -154,7 +154,11 @@ void readParams(const std::string& source, const toml::table& table, Params& par
     if (!field) fail(source, key.source(), "unknown parameter '" + name + "' in [params] (docs/model.md lists them)");
     if (!node.is_number()) fail(source, node.source(), name + " in [params] must be a number");
     if (field->integer && !node.is_integer()) fail(source, node.source(), name + " in [params] must be a whole number");
-    setParameter(params, name, node.value<double>().value_or(0.0));
+    try {
+      setParameter(params, name, node.value<double>().value_or(0.0));
+    } catch (const std::invalid_argument& e) {  // an integer beyond int, say: named with its line
+      fail(source, node.source(), e.what());
+    }
     lines[name] = node.source();
   }
   // validate() names the parameter first: "parameter NAME = ..."; point at its line when the scene set it.

@@ -7,6 +7,7 @@
 
 #include "cli_checks.h"
 #include "cpu_stepper.h"
+#include "interrupt.h"
 #include "osc_events.h"
 #include "run_output.h"
 #include "scripted_gestures.h"
@@ -142,6 +143,7 @@ int runView(ViewOptions o) try {
   Renderer renderer(window.context(), image, loadEnvironment(run.render.environment));
   show.frame(*sim, sim->stats(), "film_created");
 
+  const InterruptCatcher interrupts;  // Ctrl-C ends the show as Esc does, with its totals
   bool paused = false;
   long shown = 0, dips = 0, recoveries = 0;
   double filmGoneSince = -1;  // time the last film disappeared, -1 while there is one
@@ -152,7 +154,7 @@ int runView(ViewOptions o) try {
   for (;;) {
     WindowKeys keys = window.poll();
     addScriptedKeys(o.keys, shown, keys);
-    if (keys.quit) break;
+    if (keys.quit || InterruptCatcher::requested()) break;  // Esc/Q, the window closed, Ctrl-C or SIGTERM
     auto say = [&](const std::string& what) {
       std::printf("live: frame %ld: %s\n", shown, what.c_str());
       std::fflush(stdout);
@@ -236,9 +238,9 @@ int runView(ViewOptions o) try {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const size_t errors = window.context()->validationErrors();
   std::printf(
-      "live: presented %ld frames in %.2f s (%.1f frames/s), %ld dips, %ld recoveries from instability, "
-      "%zu validation errors\n",
-      shown, seconds, static_cast<double>(shown) / std::max(seconds, 1e-9), dips, recoveries, errors);
+      "live: presented %ld frames in %.2f s (%.1f frames/s), %ld dips, %zu validation errors, %ld recoveries "
+      "from instability\n",
+      shown, seconds, static_cast<double>(shown) / std::max(seconds, 1e-9), dips, errors, recoveries);
   return errors == 0 ? 0 : 4;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "error: %s\n", e.what());

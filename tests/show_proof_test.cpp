@@ -163,7 +163,7 @@ TEST(ShowProof, AnOscPortOutOfRangeIsRefusedNotWrapped) {
   EXPECT_NO_THROW(OscSender("127.0.0.1:65535"));
 }
 
-// A PNG of one IHDR chunk claiming width x height (CRC correct, no image data).
+// A PNG whose IHDR chunk claims width x height (CRCs correct, no image data).
 void writePngHeader(const fs::path& path, uint32_t width, uint32_t height) {
   std::string ihdr = "IHDR";
   for (uint32_t v : {width, height})
@@ -173,6 +173,10 @@ void writePngHeader(const fs::path& path, uint32_t width, uint32_t height) {
   std::string png = "\x89PNG\r\n\x1a\n";
   png += std::string("\x00\x00\x00\x0d", 4) + ihdr;
   for (int shift = 24; shift >= 0; shift -= 8) png += static_cast<char>((crc >> shift) & 0xff);
+  // An empty IDAT: libpng reads the header up to the first IDAT, where readPng must stop and check.
+  const uLong idatCrc = crc32(0, reinterpret_cast<const Bytef*>("IDAT"), 4);
+  png += std::string("\x00\x00\x00\x00IDAT", 8);
+  for (int shift = 24; shift >= 0; shift -= 8) png += static_cast<char>((idatCrc >> shift) & 0xff);
   std::ofstream(path, std::ios::binary) << png;
 }
 
@@ -184,9 +188,9 @@ TEST(ShowProof, APngHeaderClaimingAHugeImageIsRefusedBeforeAllocating) {
 }
 
 TEST(ShowProof, SceneCameraAndTargetMustBeFiniteCoordinates) {
-  for (const std::string& bad : {"camera = [nan, 1.0, 3.0]", "target = [0.0, inf, 0.0]", "camera = [1e9, 0, 0]"}) {
-    const std::string message =
-        errorOf([&] { (void)parseScene("name = \"s\"\n[render]\n" + bad + "\n", "s.toml", fs::current_path()); });
+  for (const char* bad : {"camera = [nan, 1.0, 3.0]", "target = [0.0, inf, 0.0]", "camera = [1e9, 0, 0]"}) {
+    const std::string message = errorOf(
+        [&] { (void)parseScene(std::string("name = \"s\"\n[render]\n") + bad + "\n", "s.toml", fs::current_path()); });
     EXPECT_NE(message.find("s.toml:3:"), std::string::npos) << message;
     EXPECT_NE(message.find("is not a coordinate within 1000 m"), std::string::npos) << message;
   }
@@ -201,10 +205,9 @@ TEST(ShowProof, ASceneThatIsAFolderOrAFifoIsNamedNotReadOrWaitedOn) {
 }
 
 TEST(ShowProof, AnIntegerTooLargeForTomlKeepsItsFileAndLine) {
-  const std::string message = errorOf([] {
-    (void)parseScene("name = \"s\"\n[output]\nply_every = 99999999999999999999\n", "s.toml", fs::current_path());
-  });
-  EXPECT_NE(message.find("s.toml:3:"), std::string::npos) << message;
+  const std::string message = errorOf(
+      [] { (void)parseScene("name = \"s\"\n[params]\nmaxSubsteps = 9999999999999\n", "s.toml", fs::current_path()); });
+  EXPECT_NE(message.find("s.toml:3:15: parameter maxSubsteps"), std::string::npos) << message;
 }
 
 TEST(ShowProof, TrajectorySamplesANanosecondApartDoNotStallTheLoop) {

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "freenect_stream.h"
+#include "hand_source.h"
 #include "kinect_depth.h"
 
 namespace fs = std::filesystem;

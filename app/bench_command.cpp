@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "backend.h"
+#include "output_file.h"
 #include "scripted_gestures.h"
 #include "simulation.h"
 #include "vulkan_context.h"
@@ -28,7 +29,8 @@ double streamTriadGBs() {
   for (int run = 0; run < 5; ++run) {
     const auto start = Clock::now();
 #pragma omp parallel for schedule(static)
-    for (long i = 0; i < n; ++i) a[static_cast<size_t>(i)] = b[static_cast<size_t>(i)] + 3.0 * c[static_cast<size_t>(i)];
+    for (long i = 0; i < n; ++i)
+      a[static_cast<size_t>(i)] = b[static_cast<size_t>(i)] + 3.0 * c[static_cast<size_t>(i)];
     best = std::min(best, seconds(start));
   }
   return 24.0 * static_cast<double>(n) / best / 1e9;
@@ -138,11 +140,13 @@ FilmRun benchOne(const std::string& backendName, const std::string& device, int 
                 std::string s;
                 for (int k = 0; k < kStageCount; ++k) {
                   char buf[48];
-                  std::snprintf(buf, sizeof buf, "%s=%.3f ", stageName(static_cast<Stage>(k)), st.stageTimes()[k] / 8.0);
+                  std::snprintf(buf, sizeof buf, "%s=%.3f ", stageName(static_cast<Stage>(k)),
+                                st.stageTimes()[k] / 8.0);
                   s += buf;
                 }
                 return s;
-              }().c_str());
+              }()
+                  .c_str());
   std::fflush(stdout);
   out.ok = true;
   return out;
@@ -157,8 +161,8 @@ int runBenchmark(const BenchOptions& o) {
   std::fflush(stdout);
   const double stream = streamTriadGBs();
   std::printf("%.2f GB/s\n\n", stream);
-  std::printf("%-44s %9s %10s %13s %8s %8s  %s\n", "backend", "particles", "steps/s", "part-steps/s", "GB/s",
-              "GFLOP/s", "ms per step by stage");
+  std::printf("%-44s %9s %10s %13s %8s %8s  %s\n", "backend", "particles", "steps/s", "part-steps/s", "GB/s", "GFLOP/s",
+              "ms per step by stage");
   nlohmann::json runs = nlohmann::json::array();
   int failures = 0;
   for (const std::string& backend : o.backends)
@@ -172,7 +176,12 @@ int runBenchmark(const BenchOptions& o) {
       }
     }
   const nlohmann::json doc = {{"stream_triad_GBs", stream}, {"runs", runs}};
-  std::ofstream(o.json) << doc.dump(2) << '\n';
+  try {
+    writeFileAtomically(o.json, doc.dump(2) + '\n');
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
   std::printf("\nresults written to %s\n", o.json.string().c_str());
   return failures ? 1 : 0;
 }

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "output_file.h"
+
 namespace gb {
 namespace {
 
@@ -37,8 +39,8 @@ void axes(std::ostream& svg, const Frame& f, const Measurement& m) {
     };
     const double xv = tick(f.x, k), yv = tick(f.y, k);
     svg << "<text x='" << f.px(xv) << "' y='" << Frame::bottom + 18 << "' font-size='11' text-anchor='middle'>" << xv
-        << "</text>\n<text x='" << Frame::left - 6 << "' y='" << f.py(yv) + 4
-        << "' font-size='11' text-anchor='end'>" << yv << "</text>\n";
+        << "</text>\n<text x='" << Frame::left - 6 << "' y='" << f.py(yv) + 4 << "' font-size='11' text-anchor='end'>"
+        << yv << "</text>\n";
   }
   svg << "<text x='" << (Frame::left + Frame::right) / 2 << "' y='" << Frame::bottom + 40
       << "' font-size='13' text-anchor='middle'>" << m.xLabel << "</text>\n<text x='16' y='"
@@ -65,9 +67,7 @@ void writeExperimentPlot(const std::filesystem::path& path, const Measurement& m
   for (const auto& [x, y] : m.measuredPoints)
     svg << "<circle cx='" << f.px(x) << "' cy='" << f.py(y) << "' r='1.6' fill='#036'/>\n";
   svg << "</svg>\n";
-  std::ofstream out(path);
-  out << svg.str();
-  if (!out) throw std::runtime_error("cannot write " + path.string());
+  writeFileAtomically(path, svg.str());
 }
 
 }  // namespace gb

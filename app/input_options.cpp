@@ -3,6 +3,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cli_checks.h"
+
 namespace gb {
 
 std::string InputOptions::spec() const {
@@ -22,12 +24,12 @@ void addInputOptions(CLI::App* command, InputOptions& o) {
   command->add_option("--performer", o.performer,
                       "camera-space point X,Y,Z (m) between the performer's resting hands, or auto (the first "
                       "sample with both hands, within 3 s); default auto for kinect and fakenect:DIR, else 0,0,2");
-  command->add_option("--reach", o.reach, "world metres per metre of hand motion")->check(CLI::Range(0.1, 20.0));
+  command->add_option("--reach", o.reach, "world metres per metre of hand motion")->check(FiniteRange(0.1, 20.0));
   command->add_option("--camera-pitch", o.cameraPitch, "degrees the camera is tilted up")
-      ->check(CLI::Range(-45.0, 45.0));
+      ->check(FiniteRange(-45.0, 45.0));
   command->add_option("--depth-band", o.depthBand, "NEAR FAR: depths (m) where the performer is looked for")
       ->expected(2)
-      ->check(CLI::Range(0.3, 10.0));
+      ->check(FiniteRange(0.3, 10.0));
   command->add_flag("--mirrored", o.mirrored, "the depth image is mirrored (the performer's left hand on its left)");
 }
 

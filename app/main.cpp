@@ -5,9 +5,11 @@
 #include <string>
 
 #include "bench_command.h"
+#include "cli_checks.h"
 #include "record_command.h"
 #include "run_command.h"
 #include "scene_file.h"
+#include "thread_policy.h"
 #include "view_command.h"
 
 namespace {
@@ -55,6 +57,7 @@ int listScenes() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  gb::preferPassiveOpenMpWaiting(argv);  // before any thread starts (app/thread_policy.h)
   CLI::App app{"giantbubble: real-time giant soap bubbles blown and burst with your hands"};
   app.require_subcommand(0, 1);
 
@@ -77,7 +80,8 @@ int main(int argc, char** argv) {
   runCmd->add_option("--scene", sceneName,
                      "a built-in scene (giantbubble scenes lists them) or a scene file (.toml); "
                      "the other options change it");
-  runCmd->add_option("--duration", run.duration, "simulated seconds")->check(CLI::Range(0.001, 3600.0));
+  runCmd->add_option("--duration", run.duration, "simulated seconds")
+      ->check(gb::FiniteRange(0.001, gb::kMaxRunSeconds));
   runCmd->add_option("--out", run.outDir, "output folder (created if missing)");
   runCmd->add_option("--ply-every", run.plyEvery, "write a PLY mesh every N frames, 0 for none")
       ->check(CLI::Range(0, 1000000));
@@ -85,12 +89,16 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 1000000));
   runCmd->add_option("--tool", tool, "bubble tool")->check(CLI::IsMember({"two-wands", "ring"}));
   gb::addInputOptions(runCmd, run.input);  // --input, --gesture and the capture options
-  runCmd->add_option("--speed", run.gestureOptions.speed, "peak wand speed (m/s)")->check(CLI::Range(0.0, 20.0));
-  runCmd->add_option("--solution", run.params.solution, "remaining soap solution (0, 1]")->check(CLI::Range(0.01, 1.0));
+  runCmd->add_option("--speed", run.gestureOptions.speed, "peak wand speed (m/s)")->check(gb::FiniteRange(0.0, 20.0));
+  runCmd->add_option("--solution", run.params.solution, "remaining soap solution (0, 1]")
+      ->check(gb::FiniteRange(0.01, 1.0));
   runCmd->add_option("--particles", run.params.particlesAtFullSolution, "particles of a film at full solution")
-      ->check(CLI::Range(16, 50000000));
+      ->check(CLI::Range(16, gb::kMaxParticles));
   runCmd->add_option("--param", assignments, "set a model parameter, NAME=VALUE (repeatable)");
-  runCmd->add_option("--burst-at", run.burstAt, "poke the top of the film at this time (s); negative: never");
+  runCmd
+      ->add_option("--burst-at", run.burstAt,
+                   "poke the top of the film at this time (s), whatever the input; negative: never")
+      ->check(gb::FiniteRange(-1e9, gb::kMaxRunSeconds));
   runCmd->add_flag("!--no-progress", run.progress, "do not show the progress bar");
   runCmd->add_flag("--realtime", run.realtime,
                    "keep the wall clock: wait when ahead of it, take fewer solver sweeps when behind (a show's pace)");
@@ -104,7 +112,7 @@ int main(int argc, char** argv) {
 
   gb::BenchOptions bench;
   CLI::App* benchCmd = app.add_subcommand("bench", "measure step throughput on each backend for several film sizes");
-  benchCmd->add_option("--sizes", bench.sizes, "film sizes in particles")->check(CLI::Range(100, 50000000));
+  benchCmd->add_option("--sizes", bench.sizes, "film sizes in particles")->check(CLI::Range(100, gb::kMaxParticles));
   benchCmd->add_option("--backends", bench.backends, "backends to measure")->check(CLI::IsMember({"cpu", "vulkan"}));
   benchCmd->add_option("--steps", bench.steps, "substeps timed per film")->check(CLI::Range(8, 100000));
   benchCmd->add_option("--json", bench.json, "where to write the results");
@@ -139,6 +147,7 @@ int main(int argc, char** argv) {
     if (recordCmd->parsed()) return gb::runRecord(record);
     run.tool.kind = tool == "ring" ? gb::ToolKind::Ring : gb::ToolKind::TwoWands;
     run.durationFromInput = runCmd->count("--duration") == 0 && !sceneSetsDuration;
+    if (runCmd->count("--burst-at") > 0) run.burstOnAnyInput = true;
     run.backend = gb::backendFromName(backend);
     if (argc == 2) {  // `giantbubble run` alone, the README's main job: also the video a newcomer wants to see
       run.render.enabled = run.renderIfPossible = true;
@@ -147,6 +156,9 @@ int main(int argc, char** argv) {
       run.render.pngEvery = 25;
     }
     return gb::runSimulation(run);
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "error: out of memory (a smaller film: --particles, or fewer outputs)\n");
+    return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;

@@ -20,8 +20,10 @@ OscSender::OscSender(const std::string& target) : address_(std::make_unique<Addr
   if (colon == std::string::npos || colon == 0 || colon + 1 == target.size())
     throw std::invalid_argument("OSC target '" + target + "' is not HOST:PORT");
   const std::string host = target.substr(0, colon), port = target.substr(colon + 1);
-  if (port.find_first_not_of("0123456789") != std::string::npos)
-    throw std::invalid_argument("OSC target '" + target + "': the port must be a number");
+  // A UDP port is 1 to 65535; liblo would take 99999 and send to 99999 mod 65536.
+  if (port.find_first_not_of("0123456789") != std::string::npos || port.size() > 5 || std::stoi(port) < 1 ||
+      std::stoi(port) > 65535)
+    throw std::invalid_argument("OSC target '" + target + "': the port must be a number from 1 to 65535");
   address_->handle = lo_address_new(host.c_str(), port.c_str());
   if (!address_->handle) throw std::invalid_argument("OSC target '" + target + "' cannot be used");
 }

@@ -3,7 +3,8 @@
 // UDP (liblo), so that sound and light can follow the bubble. Off unless a target is given (--osc HOST:PORT).
 //
 //   /giantbubble/event  ,sd   name, time (s)     film_created, poked, film_grown, pinched_off,
-//                                                burst_started, burst_finished
+//                                                burst_started, burst_finished; live only:
+//                                                simulation_unstable, input_lost, input_back
 //   /giantbubble/bubble ,dffffff  time (s), centre x y z (m, world), area (m^2), volume (m^3), solution left
 //
 // docs/formats.md describes them.

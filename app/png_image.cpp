@@ -2,30 +2,28 @@
 
 #include <png.h>
 
-#include <cstdio>
-#include <memory>
 #include <stdexcept>
+
+#include "output_file.h"
 
 namespace gb {
 
 void writePng(const std::filesystem::path& path, int width, int height, const std::vector<uint8_t>& rgb) {
-  FILE* file = std::fopen(path.c_str(), "wb");
-  if (!file) throw std::runtime_error("cannot write " + path.string());
-  png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png ? png_create_info_struct(png) : nullptr;
-  if (!png || !info || setjmp(png_jmpbuf(png))) {
-    png_destroy_write_struct(&png, &info);
-    std::fclose(file);
-    throw std::runtime_error("libpng failed writing " + path.string());
-  }
-  png_init_io(png, file);
-  png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8, PNG_COLOR_TYPE_RGB,
-               PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-  png_write_info(png, info);
-  for (int y = 0; y < height; ++y) png_write_row(png, &rgb[static_cast<size_t>(y) * width * 3]);
-  png_write_end(png, nullptr);
-  png_destroy_write_struct(&png, &info);
-  if (std::fclose(file) != 0) throw std::runtime_error("failed writing " + path.string());
+  png_image image{};
+  image.version = PNG_IMAGE_VERSION;
+  image.width = static_cast<png_uint_32>(width);
+  image.height = static_cast<png_uint_32>(height);
+  image.format = PNG_FORMAT_RGB;
+  // Encoded in memory, then written atomically (output_file.h): a full disk is an error naming the file, and a
+  // reader never sees half a PNG. The first call measures, the second encodes.
+  png_alloc_size_t bytes = 0;
+  if (!png_image_write_to_memory(&image, nullptr, &bytes, 0, rgb.data(), 0, nullptr))
+    throw std::runtime_error("libpng failed encoding " + path.string() + ": " + image.message);
+  std::string encoded(bytes, '\0');
+  if (!png_image_write_to_memory(&image, encoded.data(), &bytes, 0, rgb.data(), 0, nullptr))
+    throw std::runtime_error("libpng failed encoding " + path.string() + ": " + image.message);
+  encoded.resize(bytes);
+  writeFileAtomically(path, encoded);
 }
 
 RgbImage readPng(const std::filesystem::path& path) {
@@ -33,6 +31,13 @@ RgbImage readPng(const std::filesystem::path& path) {
   image.version = PNG_IMAGE_VERSION;
   if (!png_image_begin_read_from_file(&image, path.c_str()))
     throw std::runtime_error("cannot read PNG " + path.string() + ": " + image.message);
+  // The header can claim any size: refuse before allocating for it (a 200000 x 100000 header would be 60 GB).
+  if (image.width > kMaxPngSide || image.height > kMaxPngSide) {
+    png_image_free(&image);
+    throw std::runtime_error("PNG " + path.string() + " is " + std::to_string(image.width) + "x" +
+                             std::to_string(image.height) + " pixels; at most " + std::to_string(kMaxPngSide) +
+                             " on a side");
+  }
   image.format = PNG_FORMAT_RGB;
   RgbImage out;
   out.width = static_cast<int>(image.width);

@@ -2,16 +2,16 @@
 
 #include <unistd.h>
 
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <functional>
 #include <memory>
 #include <optional>
 
 #include "depth_plot.h"
+#include "cli_checks.h"
+#include "interrupt.h"
 #include "trajectory_file.h"
 #include "trajectory_metrics.h"
 #include "trajectory_plot.h"
@@ -19,9 +19,6 @@
 namespace gb {
 
 namespace {
-
-std::atomic<bool> gInterrupted{false};
-extern "C" void onInterrupt(int) { gInterrupted = true; }
 
 // The recorded input run through one stabilizer, the way `giantbubble run` would, sampled at the input's own
 // times: in world space for the plot (input hands not measured are NaN there), in camera space, the hand's
@@ -111,15 +108,15 @@ CLI::App* addRecordCommand(CLI::App& app, RecordOptions& o) {
   cmd->add_option("--duration", o.duration,
                   "seconds to record (default: all of a recorded input, a script's "
                   "stroke, a live camera until Ctrl-C)")
-      ->check(CLI::Range(0.0, 86400.0));
+      ->check(FiniteRange(0.0, 86400.0));
   cmd->add_option("--speed", o.gesture.speed, "peak wand speed of a scripted input (m/s)")
-      ->check(CLI::Range(0.0, 20.0));
+      ->check(FiniteRange(0.0, 20.0));
   cmd->add_option("--noise", o.noise.sigma, "Gaussian noise (m, per coordinate) added to a scripted input")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(FiniteRange(0.0, 1.0));
   cmd->add_option("--outliers", o.noise.outlierRate, "fraction of a scripted input's samples made outliers")
-      ->check(CLI::Range(0.0, 1.0));
+      ->check(FiniteRange(0.0, 1.0));
   cmd->add_option("--outlier-distance", o.noise.outlierDistance, "how far an outlier lands (m)")
-      ->check(CLI::Range(0.0, 5.0));
+      ->check(FiniteRange(0.0, 5.0));
   cmd->add_option("--seed", o.noise.seed, "random seed of the noise");
   return cmd;
 }
@@ -167,13 +164,12 @@ int runRecord(const RecordOptions& o) {
   if (duration < 0 && script) duration = o.gesture.start + o.gesture.duration + 0.5;
   const bool live = depth && !source->length();
   if (live && duration < 0) std::printf("recording until Ctrl-C\n");
-  gInterrupted = false;
-  std::signal(SIGINT, onInterrupt);
+  std::optional<InterruptCatcher> interrupts(std::in_place);  // Ctrl-C ends the recording, keeping it
 
   std::vector<HandSample> samples;
   double lastProgress = -1.0;
   try {
-    while (!gInterrupted) {
+    while (!InterruptCatcher::requested()) {
       std::optional<HandSample> s = source->next();
       if (!s) break;
       if (!samples.empty() && duration >= 0 && s->time - samples.front().time > duration + 1e-9) break;
@@ -192,7 +188,7 @@ int runRecord(const RecordOptions& o) {
     std::fprintf(stderr, "warning: input lost after %zu samples: %s; what was recorded is kept\n", samples.size(),
                  e.what());
   }
-  std::signal(SIGINT, SIG_DFL);
+  interrupts.reset();
   if (samples.empty()) {
     std::fprintf(stderr, "error: no samples from %s\n", source->describe().c_str());
     return 1;

@@ -1,15 +1,24 @@
 #include "render_output.h"
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <cerrno>
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
+#include <cstring>
 #include <sstream>
+#include <utility>
 
+#include "output_file.h"
 #include "png_image.h"
 #include "vulkan_stepper.h"
+
+extern char** environ;  // for posix_spawnp: ffmpeg gets this process's environment
 
 namespace gb {
 
@@ -61,33 +70,85 @@ bool ffmpegAvailable() {
   return false;
 }
 
+namespace {
+
+// ffmpeg's arguments: raw RGB frames on stdin, H.264 MP4 out. The output is named "file:/absolute/path" so that
+// no path is read as an option (a leading '-') or a protocol (a ':' in the name).
+std::vector<std::string> ffmpegArguments(const std::filesystem::path& path, int width, int height, double fps) {
+  return {"ffmpeg", "-loglevel", "error", "-y", "-f", "rawvideo", "-pix_fmt", "rgb24", "-s",
+          std::to_string(width) + "x" + std::to_string(height), "-r", std::to_string(fps), "-i", "pipe:0",
+          // yuv420p needs even sizes: ffmpeg pads by one pixel where they are odd.
+          "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf", "18",
+          "file:" + std::filesystem::absolute(path).string()};
+}
+
+// Starts `args` from PATH with `stdinFd` as its stdin, in a process group of its own, with SIGPIPE, SIGINT and
+// SIGTERM at their defaults (this process ignores SIGPIPE, and an ignored signal stays ignored across exec).
+pid_t spawnWithStdin(const std::vector<std::string>& args, int stdinFd) {
+  std::vector<char*> argv;
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, stdinFd, STDIN_FILENO);
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGDEF);
+  posix_spawnattr_setpgroup(&attributes, 0);
+  sigset_t defaults;
+  sigemptyset(&defaults);
+  for (int signal : {SIGPIPE, SIGINT, SIGTERM}) sigaddset(&defaults, signal);
+  posix_spawnattr_setsigdefault(&attributes, &defaults);
+  pid_t pid = -1;
+  const int error = posix_spawnp(&pid, argv[0], &actions, &attributes, argv.data(), environ);
+  posix_spawnattr_destroy(&attributes);
+  posix_spawn_file_actions_destroy(&actions);
+  if (error != 0) throw std::runtime_error(std::string("cannot start ffmpeg: ") + std::strerror(error));
+  return pid;
+}
+
+}  // namespace
+
 VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int height, double fps)
     : path_(path), frameBytes_(3ull * static_cast<size_t>(width) * static_cast<size_t>(height)) {
-  // yuv420p needs even sizes: ffmpeg pads by one pixel where they are odd.
-  const std::string command = "ffmpeg -loglevel error -y -f rawvideo -pix_fmt rgb24 -s " + std::to_string(width) + "x" +
-                              std::to_string(height) + " -r " + std::to_string(fps) +
-                              " -i - -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' -c:v libx264 -pix_fmt yuv420p -crf 18 '" +
-                              path.string() + "'";
   std::signal(SIGPIPE, SIG_IGN);  // if ffmpeg dies, write() reports it instead of the run being killed
-  pipe_ = popen(command.c_str(), "w");
-  if (!pipe_) throw std::runtime_error("cannot start ffmpeg for " + path.string());
+  int fds[2];
+  if (pipe2(fds, O_CLOEXEC) != 0)
+    throw std::runtime_error("cannot make a pipe to ffmpeg: " + std::string(std::strerror(errno)));
+  try {
+    pid_ = spawnWithStdin(ffmpegArguments(path, width, height, fps), fds[0]);
+  } catch (const std::runtime_error& e) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw std::runtime_error(std::string(e.what()) + " for " + path.string());
+  }
+  ::close(fds[0]);
+  pipe_ = fds[1];
 }
 
 VideoWriter::~VideoWriter() {
-  if (pipe_) pclose(pipe_);
+  try {
+    close();
+  } catch (const std::exception&) {  // a destructor cannot report; finish() already did where it mattered
+  }
 }
 
 void VideoWriter::write(const std::vector<uint8_t>& rgb) {
-  if (!pipe_ || rgb.size() != frameBytes_) throw std::logic_error("VideoWriter::write: wrong frame size or closed");
-  if (std::fwrite(rgb.data(), 1, rgb.size(), pipe_) != rgb.size())
-    throw std::runtime_error("ffmpeg stopped taking frames for " + path_.string());
+  if (pipe_ < 0 || rgb.size() != frameBytes_) throw std::logic_error("VideoWriter::write: wrong frame size or closed");
+  if (!writeAll(pipe_, std::string_view(reinterpret_cast<const char*>(rgb.data()), rgb.size())))
+    throw std::runtime_error("ffmpeg stopped taking frames for " + path_.string() + " (" + std::strerror(errno) + ")");
 }
 
 void VideoWriter::close() {
-  if (!pipe_) return;
-  const int status = pclose(pipe_);
-  pipe_ = nullptr;
-  if (status != 0) throw std::runtime_error("ffmpeg failed writing " + path_.string());
+  if (pipe_ >= 0) ::close(std::exchange(pipe_, -1));  // end of input: ffmpeg finishes the file
+  if (pid_ < 0) return;
+  int status = 0;
+  while (waitpid(std::exchange(pid_, -1), &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
+  throw std::runtime_error("ffmpeg failed writing " + path_.string() +
+                           (WIFEXITED(status) ? " (exit status " + std::to_string(WEXITSTATUS(status)) + ")"
+                                              : " (killed by signal " + std::to_string(WTERMSIG(status)) + ")"));
 }
 
 RenderFrame renderFrameOf(Simulation& sim, const WandState&, const WireFrame& wireFrame, const OrbitCamera& camera,
@@ -125,10 +186,12 @@ RunRenderer::RunRenderer(const RenderOutputOptions& options, const std::filesyst
               colouringName(options.image.colouring), context->info().name.c_str(),
               readInPlace_ ? "in place from the Vulkan stepper's buffers" : "from the CPU state, uploaded each frame");
   if (!options.video.empty()) {
-    if (ffmpegAvailable())
-      video_ = std::make_unique<VideoWriter>(outDir / options.video, options.image.width, options.image.height,
-                                             1.0 / sim.params().frameTime);
-    else {
+    if (ffmpegAvailable()) {
+      const std::filesystem::path video = outDir / options.video;
+      std::filesystem::create_directories(video.parent_path());  // --video sub/show.mp4 makes sub, as --out does
+      video_ =
+          std::make_unique<VideoWriter>(video, options.image.width, options.image.height, 1.0 / sim.params().frameTime);
+    } else {
       options_.pngEvery = std::max(options_.pngEvery, 1);
       std::printf("render: ffmpeg is not installed, so no video; the frames are written as PNG instead\n");
     }
@@ -152,14 +215,37 @@ void RunRenderer::frame(long index, Simulation& sim, const WandState& wands) {
     std::snprintf(name, sizeof name, "render_%05ld.png", index);
     writePng(outDir_ / name, options_.image.width, options_.image.height, rgb);
   }
-  if (video_) video_->write(rgb);
+  if (video_) {
+    try {
+      video_->write(rgb);
+    } catch (const std::exception& e) {
+      dropVideo(e.what());
+    }
+  }
   ++written_;
 }
 
+void RunRenderer::dropVideo(const std::string& why) {
+  videoError_ = why;
+  try {
+    video_->close();  // reaps ffmpeg; its own message is already on stderr
+  } catch (const std::exception& e) {
+    videoError_ += std::string("; ") + e.what();
+  }
+  video_.reset();
+  std::fprintf(stderr, "warning: video: %s; the run goes on without it and writes its other outputs\n", why.c_str());
+}
+
 void RunRenderer::finish() {
-  if (video_) {
+  if (!video_) return;
+  try {
     video_->close();
+    video_.reset();
     std::printf("render: %ld frames, video %s\n", written_, (outDir_ / options_.video).string().c_str());
+  } catch (const std::exception& e) {
+    video_.reset();
+    videoError_ = e.what();
+    std::fprintf(stderr, "error: video: %s; the simulation's other outputs are written\n", e.what());
   }
 }
 

@@ -38,21 +38,25 @@ EnvironmentImage loadEnvironment(const std::filesystem::path& path);
 // Whether an `ffmpeg` executable is on PATH.
 bool ffmpegAvailable();
 
-// Raw RGB frames piped into ffmpeg, which encodes H.264 MP4: no temporary file per frame.
+// Raw RGB frames piped into ffmpeg, which encodes H.264 MP4: no temporary file per frame. ffmpeg is started
+// without a shell (posix_spawnp with an argument vector), so any output path works, quotes and spaces
+// included, and none can run a command; it runs in its own process group, so a Ctrl-C at the terminal reaches
+// the run (which then closes the video properly) and not ffmpeg.
 class VideoWriter {
  public:
   VideoWriter(const std::filesystem::path& path, int width, int height, double framesPerSecond);
   ~VideoWriter();
-  VideoWriter(const VideoWriter&) = delete;  // owns the pipe
+  VideoWriter(const VideoWriter&) = delete;  // owns the pipe and the child process
   VideoWriter& operator=(const VideoWriter&) = delete;
-  void write(const std::vector<uint8_t>& rgb);
+  void write(const std::vector<uint8_t>& rgb);  // throws when ffmpeg stopped taking frames
   // Closes the pipe and waits for ffmpeg; throws if it failed.
   void close();
 
  private:
   std::filesystem::path path_;
   size_t frameBytes_;
-  FILE* pipe_ = nullptr;
+  int pipe_ = -1;  // write end of ffmpeg's stdin
+  int pid_ = -1;
 };
 
 // The renderer of a run and what it writes.
@@ -61,7 +65,10 @@ class RunRenderer {
   RunRenderer(const RenderOutputOptions& options, const std::filesystem::path& outDir, Simulation& sim,
               const std::string& device);
   void frame(long index, Simulation& sim, const WandState& wands);
-  void finish();  // closes the video; says what was written
+  // Closes the video; says what was written. An encoder that failed is reported (stderr and videoError()), never
+  // thrown: the simulation's results are written whatever happened to the video.
+  void finish();
+  [[nodiscard]] const std::string& videoError() const { return videoError_; }
 
  private:
   RenderOutputOptions options_;
@@ -71,6 +78,8 @@ class RunRenderer {
   bool readInPlace_ = false;
   long written_ = 0;
   FilmFraming framing_;
+  std::string videoError_;  // why the video stopped (empty while it is fine)
+  void dropVideo(const std::string& why);
 };
 
 // The frame a renderer draws of a simulation: its film, droplets and wands, in place on the device when the

@@ -13,8 +13,10 @@
 
 #include "experiment_plot.h"
 #include "experiments.h"
+#include "interrupt.h"
 #include "osc_events.h"
 #include "realtime_pacer.h"
+#include "output_file.h"
 #include "run_output.h"
 #include "simulation.h"
 #include "thickness_image.h"
@@ -95,13 +97,34 @@ int runPhysicsExperiment(const RunOptions& o) {
                             {"analytic", m.analytic},
                             {"law", m.law},
                             {"relative_error", m.relativeError()}};
-  std::ofstream(o.outDir / "experiment.json") << j.dump(2) << '\n';
+  writeFileAtomically(o.outDir / "experiment.json", j.dump(2) + '\n');
   std::printf("%-28s %s\n", "written to", (o.outDir / "experiment.json").string().c_str());
   if (!m.measuredPoints.empty()) {
     writeExperimentPlot(o.outDir / "experiment.svg", m);
     std::printf("%-28s %s\n", "plot", (o.outDir / "experiment.svg").string().c_str());
   }
   return 0;
+}
+
+}  // namespace
+
+namespace {
+
+// How long a run lasts: --duration, or a recorded input's own length (at most kMaxRunSeconds, like --duration).
+double runDuration(const RunOptions& o, const WandInput& input) {
+  if (!o.durationFromInput || !input.length()) return o.duration;
+  const double length = std::max(*input.length(), 0.02);
+  if (length <= kMaxRunSeconds) return length;
+  std::fprintf(stderr, "note: the input is %.0f s long; the run stops at %.0f s (give --duration for another length)\n",
+               length, kMaxRunSeconds);
+  return kMaxRunSeconds;
+}
+
+// The frame whose end the poke falls on, counted, not compared as floats (0: never). A poke planned for a
+// scripted gesture does not fire on a recorded or live performance unless asked for (burstOnAnyInput).
+long pokeFrame(const RunOptions& o) {
+  if (o.burstAt < 0 || (!o.input.scripted() && !o.burstOnAnyInput)) return 0;
+  return std::max(1L, std::lround(o.burstAt / o.params.frameTime));
 }
 
 }  // namespace
@@ -115,7 +138,7 @@ int runSimulation(const RunOptions& o) {
     for (const std::string& m : input->takeMessages())
       std::fprintf(stderr, "%s%s\n", midBar && isatty(STDERR_FILENO) ? "\n" : "", m.c_str());
   };
-  const double duration = o.durationFromInput && input->length() ? std::max(*input->length(), 0.02) : o.duration;
+  const double duration = runDuration(o, *input);
   WandLog wandLog(o.outDir / "wands.csv");
   const WandFrame startFrame = input->at(0.0);
   report(false);
@@ -126,6 +149,9 @@ int runSimulation(const RunOptions& o) {
   std::printf("%s\n", backendReport.c_str());
   Simulation sim(o.params, o.tool, start, std::move(stepper));
   const long frames = std::max(1L, std::lround(duration / o.params.frameTime));
+  const long poke = pokeFrame(o);
+  if (o.burstAt >= 0 && poke == 0)
+    std::printf("note: no poke at %.2f s: the input is not a script (--burst-at pokes any input)\n", o.burstAt);
   std::printf("giantbubble run: %zu particles, %zu triangles, %d substeps of %.3g ms per %.3g s frame, %ld frames\n",
               sim.film().state.size(), sim.film().topology.triangleCount(), sim.substepsPerFrame(),
               1e3 * o.params.frameTime / sim.substepsPerFrame(), o.params.frameTime, frames);
@@ -151,11 +177,23 @@ int runSimulation(const RunOptions& o) {
     }
   }
 
+  const InterruptCatcher interrupts;  // Ctrl-C or SIGTERM: the frame in flight finishes, then the outputs
   ProgressBar bar(frames);
   FrameStats last = first;
+  std::string status = "finished";
+  int exitCode = 0;
+  long done = 0;
   const auto runStart = std::chrono::steady_clock::now();
   RealTimePacer pacer({o.params.frameTime, sim.solverIterations(), 3, 1}, runStart);
   for (long frame = 1; frame <= frames; ++frame) {
+    if (const int signal = InterruptCatcher::signal()) {
+      status = "interrupted";
+      exitCode = 128 + signal;
+      bar.finish();
+      std::fprintf(stderr, "%s: stopping after frame %ld of %ld; writing the outputs\n", signalName(signal), done,
+                   frames);
+      break;
+    }
     const double t = static_cast<double>(frame) * o.params.frameTime;
     if (o.realtime) {  // the frame is shown when the wall clock reaches it: wait when ahead
       std::this_thread::sleep_until(runStart + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -167,7 +205,7 @@ int runSimulation(const RunOptions& o) {
     wandLog.add(t, wands);
     const auto frameStart = std::chrono::steady_clock::now();
     std::string events;
-    if (o.burstAt >= 0 && t - o.params.frameTime < o.burstAt && o.burstAt <= t) {
+    if (frame == poke && sim.film().state.size() > 0) {  // nothing to poke once the film is gone
       sim.startBurst(sim.topParticle());
       events += "poked ";
     }
@@ -178,11 +216,9 @@ int runSimulation(const RunOptions& o) {
       std::fprintf(stderr, "error: %s\nstopped at frame %ld of %ld; outputs up to frame %ld are in %s\n", e.what(),
                    frame, frames, frame - 1, o.outDir.string().c_str());
       if (o.plyEvery > 0) writePly(o.outDir / ("unstable_" + meshName(frame)), sim.film());
-      if (renderer) renderer->finish();
-      wandLog.writePlot(o.outDir / "wands.svg", "giantbubble run (unstable): " + input->describe());
-      record.writeJson(o.outDir / "stats.json", o.scene,
-                       "unstable at frame " + std::to_string(frame) + ": " + e.what());
-      return 3;
+      status = "unstable at frame " + std::to_string(frame) + ": " + e.what();
+      exitCode = 3;
+      break;
     }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
     pacer.record(1, ms, 0.0);
@@ -199,18 +235,38 @@ int runSimulation(const RunOptions& o) {
       writePly(o.outDir / meshName(frame), sim.film());
       if (sim.aerosol().size() > 0) writeAerosolPly(o.outDir / ("aerosol" + meshName(frame).substr(4)), sim.aerosol());
     }
+    done = frame;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
     if (o.progress) bar.update(frame, sim.time(), static_cast<double>(frame) * sim.substepsPerFrame() / wall);
   }
-  bar.finish();
-  if (renderer) renderer->finish();
+  if (exitCode == 0) bar.finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
-  wandLog.writePlot(o.outDir / "wands.svg", "giantbubble run: " + input->describe());
+  // The outputs, whatever stopped the run: the video first (a failed encoder is noted, not thrown), then the
+  // row files closed and checked, then the summary.
+  if (renderer) {
+    renderer->finish();
+    if (!renderer->videoError().empty()) {
+      record.note("video_error", renderer->videoError());
+      if (exitCode == 0) exitCode = 5;
+    }
+  }
+  stats.close();
+  wandLog.close();
+  wandLog.writePlot(o.outDir / "wands.svg",
+                    "giantbubble run" + (status == "finished" ? "" : " (" + status.substr(0, status.find(':')) + ")") +
+                        ": " + input->describe());
   record.setRealTimeFactor(last.time / std::max(wall, 1e-9));
-  record.writeJson(o.outDir / "stats.json", o.scene, "finished");
+  record.writeJson(o.outDir / "stats.json", o.scene, status);
+  if (status == "interrupted") {
+    std::fprintf(stderr,
+                 "interrupted: %ld of %ld frames simulated; outputs in %s (stats.json status \"interrupted\")\n", done,
+                 frames, o.outDir.string().c_str());
+    return exitCode;
+  }
+  if (exitCode == 3) return exitCode;
   printSummary(first, last, frames, sim.substepsPerFrame(), wall, o.outDir);
   record.printTable1(o.scene);
-  return 0;
+  return exitCode;
 }
 
 }  // namespace gb

@@ -23,6 +23,8 @@ struct RunOptions {
   double duration = 4.0;           // simulated seconds
   bool durationFromInput = false;  // a recorded input runs for its own length instead
   double burstAt = 3.5;            // poke the top of the film at this time (s); negative: never
+  bool burstOnAnyInput = false;    // poke whatever the input; otherwise only a scripted input is poked
+                                   // (set by --burst-at, or a scene file with its own non-script input)
   std::filesystem::path outDir = "out";
   int plyEvery = 25;    // write a mesh every this many frames (0: never)
   int imageEvery = 10;  // write a thickness image every this many frames (0: never)
@@ -36,8 +38,14 @@ struct RunOptions {
   RenderOutputOptions render;     // --render: rendered frames and video (app/render_output.h)
 };
 
+// The longest run a duration taken from a recorded input may ask for, as --duration allows (s).
+inline constexpr double kMaxRunSeconds = 3600.0;
+
 // Runs the simulation and writes its outputs; prints progress and a summary. Returns the process exit code:
-// 0 on success, 3 when the simulation became unstable (outputs up to the last good frame are kept).
+// 0 on success, 3 when the simulation became unstable (outputs up to the last good frame are kept), 5 when it
+// finished but the video could not be written (every other output is), 128 + the signal (130 for Ctrl-C, 143
+// for SIGTERM) when a signal stopped it (the frame in flight finished, every output written, status
+// "interrupted" in stats.json). An output that cannot be written throws OutputError naming it.
 int runSimulation(const RunOptions& options);
 
 }  // namespace gb

@@ -12,15 +12,9 @@ namespace gb {
 namespace {
 
 template <class T>
-void writeRaw(std::ofstream& out, T value) {
+void writeRaw(std::string& out, T value) {
   static_assert(std::endian::native == std::endian::little, "PLY writer assumes a little-endian host");
-  out.write(reinterpret_cast<const char*>(&value), sizeof(T));
-}
-
-std::ofstream openForWriting(const std::filesystem::path& path, std::ios::openmode mode = std::ios::out) {
-  std::ofstream out(path, mode);
-  if (!out) throw std::runtime_error("cannot write " + path.string());
-  return out;
+  out.append(reinterpret_cast<const char*>(&value), sizeof(T));
 }
 
 }  // namespace
@@ -28,11 +22,12 @@ std::ofstream openForWriting(const std::filesystem::path& path, std::ios::openmo
 void writePly(const std::filesystem::path& path, const Film& film) {
   const State& s = film.state;
   const Topology& topo = film.topology;
-  std::ofstream out = openForWriting(path, std::ios::out | std::ios::binary);
-  out << "ply\nformat binary_little_endian 1.0\ncomment giantbubble film\n"
-      << "element vertex " << s.size() << "\nproperty float x\nproperty float y\nproperty float z\n"
-      << "property float thickness\nproperty float air_flow\n"
-      << "element face " << topo.triangleCount() << "\nproperty list uchar uint vertex_indices\nend_header\n";
+  std::string out = "ply\nformat binary_little_endian 1.0\ncomment giantbubble film\nelement vertex " +
+                    std::to_string(s.size()) +
+                    "\nproperty float x\nproperty float y\nproperty float z\n"
+                    "property float thickness\nproperty float air_flow\nelement face " +
+                    std::to_string(topo.triangleCount()) + "\nproperty list uchar uint vertex_indices\nend_header\n";
+  out.reserve(out.size() + s.size() * 5 * sizeof(float) + topo.triangleCount() * (1 + 3 * sizeof(uint32_t)));
   for (size_t i = 0; i < s.size(); ++i) {
     writeRaw(out, s.position.x[i]);
     writeRaw(out, s.position.y[i]);
@@ -44,14 +39,14 @@ void writePly(const std::filesystem::path& path, const Film& film) {
     writeRaw(out, static_cast<uint8_t>(3));
     for (int c = 0; c < 3; ++c) writeRaw(out, topo.triangles[3 * t + c]);
   }
-  if (!out.flush()) throw std::runtime_error("failed writing " + path.string());
+  writeFileAtomically(path, out);
 }
 
 void writeAerosolPly(const std::filesystem::path& path, const Aerosol& aerosol) {
-  std::ofstream out = openForWriting(path, std::ios::out | std::ios::binary);
-  out << "ply\nformat binary_little_endian 1.0\ncomment giantbubble aerosol droplets\n"
-      << "element vertex " << aerosol.size() << "\nproperty float x\nproperty float y\nproperty float z\n"
-      << "property float mass\nproperty float age\nend_header\n";
+  std::string out = "ply\nformat binary_little_endian 1.0\ncomment giantbubble aerosol droplets\nelement vertex " +
+                    std::to_string(aerosol.size()) +
+                    "\nproperty float x\nproperty float y\nproperty float z\nproperty float mass\n"
+                    "property float age\nend_header\n";
   for (size_t i = 0; i < aerosol.size(); ++i) {
     writeRaw(out, aerosol.position.x[i]);
     writeRaw(out, aerosol.position.y[i]);
@@ -59,24 +54,26 @@ void writeAerosolPly(const std::filesystem::path& path, const Aerosol& aerosol) 
     writeRaw(out, aerosol.mass[i]);
     writeRaw(out, aerosol.age[i]);
   }
-  if (!out.flush()) throw std::runtime_error("failed writing " + path.string());
+  writeFileAtomically(path, out);
 }
 
-StatsWriter::StatsWriter(const std::filesystem::path& path) : out_(openForWriting(path)) {
-  out_ << "frame,time_s,particles,triangles,area_m2,volume_m3,kinetic_J,elastic_J,potential_J,liquid_m3,"
-          "mean_thickness_m,max_speed_mps,mean_air_flow_m3ps,solution,droplets,droplet_mass_kg,substeps,frame_ms,"
-          "events\n";
-  out_.flush();
+StatsWriter::StatsWriter(const std::filesystem::path& path) : out_(path) {
+  out_.write(
+      "frame,time_s,particles,triangles,area_m2,volume_m3,kinetic_J,elastic_J,potential_J,liquid_m3,"
+      "mean_thickness_m,max_speed_mps,mean_air_flow_m3ps,solution,droplets,droplet_mass_kg,substeps,frame_ms,events\n");
 }
 
 void StatsWriter::write(long frame, const FrameStats& st, int substeps, double frameMilliseconds,
                         const std::string& events) {
-  out_ << frame << ',' << st.time << ',' << st.particles << ',' << st.triangles << ',' << st.area << ',' << st.volume
-       << ',' << st.kineticEnergy << ',' << st.elasticEnergy << ',' << st.potentialEnergy << ',' << st.liquid << ','
-       << st.meanThickness << ',' << st.maxSpeed << ',' << st.meanAirFlow << ',' << st.solution << ',' << st.droplets
-       << ',' << st.dropletMass << ',' << substeps << ',' << frameMilliseconds << ',' << events << '\n';
-  out_.flush();
+  std::ostringstream row;
+  row << frame << ',' << st.time << ',' << st.particles << ',' << st.triangles << ',' << st.area << ',' << st.volume
+      << ',' << st.kineticEnergy << ',' << st.elasticEnergy << ',' << st.potentialEnergy << ',' << st.liquid << ','
+      << st.meanThickness << ',' << st.maxSpeed << ',' << st.meanAirFlow << ',' << st.solution << ',' << st.droplets
+      << ',' << st.dropletMass << ',' << substeps << ',' << frameMilliseconds << ',' << events << '\n';
+  out_.write(row.str());
 }
+
+void StatsWriter::close() { out_.close(); }
 
 void RunRecord::start(const FrameStats& first) {
   first_ = last_ = first;
@@ -86,12 +83,16 @@ void RunRecord::start(const FrameStats& first) {
 void RunRecord::addFrame(const FrameStats& stats, int substeps, double frameMilliseconds, const std::string& events) {
   last_ = stats;
   ++frames_;
+  std::istringstream words(events);
+  for (std::string event; words >> event;) events_.emplace_back(stats.time, event);
+  // Table 1 averages a performance with a film: frames after the film is gone (droplets alone) would drag
+  // the particle and triangle counts towards zero and the frame rate up.
+  if (stats.particles == 0) return;
+  ++filmFrames_;
   particleSum_ += static_cast<double>(stats.particles);
   triangleSum_ += static_cast<double>(stats.triangles);
   millisecondSum_ += frameMilliseconds;
   substepSum_ += substeps;
-  std::istringstream words(events);
-  for (std::string event; words >> event;) events_.emplace_back(stats.time, event);
 }
 
 namespace {
@@ -113,12 +114,13 @@ nlohmann::json frameJson(const FrameStats& s) {
 
 void RunRecord::writeJson(const std::filesystem::path& path, const std::string& scene,
                           const std::string& status) const {
-  const double n = static_cast<double>(std::max(frames_, 1L));
+  const double n = static_cast<double>(std::max(filmFrames_, 1L));
   const double msPerFrame = millisecondSum_ / n;
   nlohmann::json j;
   j["scene"] = scene;
   j["status"] = status;
   j["frames"] = frames_;
+  j["frames_with_film"] = filmFrames_;
   j["average"] = {{"particles", particleSum_ / n},
                   {"triangles", triangleSum_ / n},
                   {"frame_ms", msPerFrame},
@@ -131,17 +133,14 @@ void RunRecord::writeJson(const std::filesystem::path& path, const std::string& 
   nlohmann::json events = nlohmann::json::array();
   for (const auto& [time, name] : events_) events.push_back({{"time_s", time}, {"event", name}});
   j["events"] = events;
-  const std::filesystem::path partial = path.string() + ".partial";
-  {
-    std::ofstream out(partial);
-    out << j.dump(2) << '\n';
-    if (!out) throw std::runtime_error("cannot write " + partial.string());
-  }
-  std::filesystem::rename(partial, path);
+  for (const auto& [key, value] : extra_) j[key] = value;
+  writeFileAtomically(path, j.dump(2) + '\n');
 }
 
+void RunRecord::note(const std::string& key, const std::string& value) { extra_.emplace_back(key, value); }
+
 void RunRecord::printTable1(const std::string& scene) const {
-  const double n = static_cast<double>(std::max(frames_, 1L));
+  const double n = static_cast<double>(std::max(filmFrames_, 1L));
   const double msPerFrame = millisecondSum_ / n;
   std::printf("\n%-12s %18s %18s %26s\n", "Example", "Avg. Particle Size", "Avg. Triangle Size",
               "Avg. Time (fps) (simulation)");

@@ -1,14 +1,15 @@
 #pragma once
-// What a run leaves in its output folder: per-frame stats, meshes, and a summary. Every file is flushed as
-// it is written, so a run that stops part-way keeps everything up to its last frame.
+// What a run leaves in its output folder: per-frame stats, meshes, and a summary. Whole files are written
+// atomically and rows are checked as they are written (output_file.h), so a run that stops part-way keeps
+// everything up to its last frame and a full disk stops the run with an OutputError naming the file.
 
 #include <filesystem>
-#include <fstream>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "film.h"
+#include "output_file.h"
 #include "simulation.h"
 
 namespace gb {
@@ -25,17 +26,21 @@ class RunRecord {
  public:
   void start(const FrameStats& first);  // the new film, before any frame ran
   void addFrame(const FrameStats& stats, int substeps, double frameMilliseconds, const std::string& events);
-  // stats.json: the scene, status ("finished" or why it stopped), frames, averages as in Table 1 of the
-  // paper, the first and last frame's figures and every event with its time. Written whole, atomically
-  // (a temporary file renamed), so a reader never sees half of it.
+  // stats.json: the scene, status ("finished", "interrupted" or why it stopped), frames, averages as in Table 1
+  // of the paper over the frames with a film, the first and last frame's figures, every event with its time and
+  // the notes. Written whole, atomically (a temporary file renamed), so a reader never sees half of it.
   void writeJson(const std::filesystem::path& path, const std::string& scene, const std::string& status) const;
   // Simulated seconds per wall second of the run (1: real time), for stats.json.
   void setRealTimeFactor(double factor) { realTimeFactor_ = factor; }
+  // A string field of stats.json beside the figures, e.g. "video_error".
+  void note(const std::string& key, const std::string& value);
   // The paper's Table 1 row for this run: example, average particles, average triangles, average frames/s.
   void printTable1(const std::string& scene) const;
 
  private:
   long frames_ = 0;
+  long filmFrames_ = 0;  // frames with a film (particles > 0): what Table 1 averages
+  std::vector<std::pair<std::string, std::string>> extra_;
   double particleSum_ = 0, triangleSum_ = 0, millisecondSum_ = 0, substepSum_ = 0;
   FrameStats first_, last_;
   double realTimeFactor_ = 0;
@@ -46,14 +51,15 @@ class RunRecord {
 // film_grown), space-separated; empty when nothing happened.
 std::string describeEvents(const TopologyEvents& events);
 
-// stats.csv: one row per frame.
+// stats.csv: one row per frame, each checked (OutputError naming the file when it cannot be written).
 class StatsWriter {
  public:
   explicit StatsWriter(const std::filesystem::path& path);
   void write(long frame, const FrameStats& stats, int substeps, double frameMilliseconds, const std::string& events);
+  void close();
 
  private:
-  std::ofstream out_;
+  RowFile out_;
 };
 
 }  // namespace gb

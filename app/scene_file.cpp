@@ -6,10 +6,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <optional>
 #include <fstream>
 #include <functional>
 #include <map>
+#include <optional>
 #include <sstream>
 
 #include "builtin_scenes.h"
@@ -29,6 +29,8 @@ std::string where(const std::string& source, const toml::source_region& region) 
   throw SceneError(where(source, region) + ": " + message);
 }
 
+constexpr double kMaxCoordinate = 1000.0;  // metres: camera and target points are checked against it
+
 // Reads one table's keys through a handler per key; any other key is an error naming it.
 class TableReader {
  public:
@@ -41,7 +43,8 @@ class TableReader {
   void read(const toml::table& table) const {
     for (auto&& [key, node] : table) {
       const auto it = handlers_.find(std::string(key.str()));
-      if (it == handlers_.end()) fail(source_, key.source(), "unknown key '" + std::string(key.str()) + "'" + in() + known());
+      if (it == handlers_.end())
+        fail(source_, key.source(), "unknown key '" + std::string(key.str()) + "'" + in() + known());
       it->second(node);
     }
   }
@@ -81,7 +84,15 @@ class TableReader {
     if (!a || a->size() != 3 || !std::all_of(a->begin(), a->end(), isNumber))
       fail(source_, node.source(), key + in() + " must be three numbers [x, y, z] (m)");
     std::array<float, 3> p{};
-    for (size_t k = 0; k < 3; ++k) p[k] = static_cast<float>((*a)[k].value<double>().value_or(0.0));
+    for (size_t k = 0; k < 3; ++k) {
+      // TOML has nan and inf; a camera there draws grey frames. kMaxCoordinate is far beyond any stage.
+      const double v = (*a)[k].value<double>().value_or(0.0);
+      if (!(std::abs(v) <= kMaxCoordinate))
+        fail(source_, (*a)[k].source(),
+             key + in() + ": " + std::to_string(v) + " is not a coordinate within " +
+                 std::to_string(static_cast<int>(kMaxCoordinate)) + " m of the origin");
+      p[k] = static_cast<float>(v);
+    }
     return p;
   }
 
@@ -118,11 +129,13 @@ std::string resolveInput(const std::string& source, const toml::node& node, cons
     if (spec.rfind(prefix, 0) != 0) continue;
     std::filesystem::path path = spec.substr(prefix.size());
     if (path.is_relative()) path = baseDir / path;
-    if (!std::filesystem::exists(path)) fail(source, node.source(), "input file '" + path.string() + "' does not exist");
+    if (!std::filesystem::exists(path))
+      fail(source, node.source(), "input file '" + path.string() + "' does not exist");
     return prefix + path.string();
   }
   if (spec != "kinect" && spec != "mouse" && spec.rfind("script:", 0) != 0)
-    fail(source, node.source(), "input = '" + spec + "' is not kinect, mouse, fakenect:DIR, trajectory:FILE or script:NAME");
+    fail(source, node.source(),
+         "input = '" + spec + "' is not kinect, mouse, fakenect:DIR, trajectory:FILE or script:NAME");
   if (spec.rfind("script:", 0) == 0) {
     try {
       (void)gestureFromName(spec.substr(7));
@@ -141,7 +154,11 @@ void readParams(const std::string& source, const toml::table& table, Params& par
     if (!field) fail(source, key.source(), "unknown parameter '" + name + "' in [params] (docs/model.md lists them)");
     if (!node.is_number()) fail(source, node.source(), name + " in [params] must be a number");
     if (field->integer && !node.is_integer()) fail(source, node.source(), name + " in [params] must be a whole number");
-    setParameter(params, name, node.value<double>().value_or(0.0));
+    try {
+      setParameter(params, name, node.value<double>().value_or(0.0));
+    } catch (const std::invalid_argument& e) {  // an integer beyond int, say: named with its line
+      fail(source, node.source(), e.what());
+    }
     lines[name] = node.source();
   }
   // validate() names the parameter first: "parameter NAME = ..."; point at its line when the scene set it.
@@ -168,32 +185,54 @@ Scene parseScene(std::string_view text, const std::string& source, const std::fi
   top.on("name", [&](const toml::node& n) { scene.name = top.text(n, "name"); });
   top.on("description", [&](const toml::node& n) { scene.description = top.text(n, "description"); });
   top.on("duration", [&](const toml::node& n) { run.duration = top.number(n, "duration", 0.001, 3600.0); });
-  top.on("burst_at", [&](const toml::node& n) { run.burstAt = top.number(n, "burst_at", -1.0, 3600.0); });
+  bool burstAtSet = false;
+  top.on("burst_at", [&](const toml::node& n) {
+    run.burstAt = top.number(n, "burst_at", -1.0, 3600.0);
+    burstAtSet = true;
+  });
   top.on("experiment", [&](const toml::node& n) { run.experiment = top.text(n, "experiment", experimentNames()); });
 
   TableReader tool(source, "tool");
   tool.on("kind", [&](const toml::node& n) {
     run.tool.kind = tool.text(n, "kind", {"two-wands", "ring"}) == "ring" ? ToolKind::Ring : ToolKind::TwoWands;
   });
-  tool.on("loop_depth", [&](const toml::node& n) { run.tool.loopDepth = static_cast<float>(tool.number(n, "loop_depth", 0.05, 5.0)); });
-  tool.on("ring_radius", [&](const toml::node& n) { run.tool.ringRadius = static_cast<float>(tool.number(n, "ring_radius", 0.02, 5.0)); });
+  tool.on("loop_depth", [&](const toml::node& n) {
+    run.tool.loopDepth = static_cast<float>(tool.number(n, "loop_depth", 0.05, 5.0));
+  });
+  tool.on("ring_radius", [&](const toml::node& n) {
+    run.tool.ringRadius = static_cast<float>(tool.number(n, "ring_radius", 0.02, 5.0));
+  });
   top.on("tool", [&](const toml::node& n) { tool.read(subTable(source, n, "tool")); });
 
   TableReader input(source, "input");
-  input.on("source", [&](const toml::node& n) { run.input.input = resolveInput(source, n, input.text(n, "source"), baseDir); });
-  input.on("stabilizer", [&](const toml::node& n) { run.input.stabilizer = input.text(n, "stabilizer", {"bspline", "one-euro"}); });
-  input.on("speed", [&](const toml::node& n) { run.gestureOptions.speed = static_cast<float>(input.number(n, "speed", 0.0, 20.0)); });
-  input.on("start", [&](const toml::node& n) { run.gestureOptions.start = static_cast<float>(input.number(n, "start", 0.0, 3600.0)); });
-  input.on("stroke", [&](const toml::node& n) { run.gestureOptions.duration = static_cast<float>(input.number(n, "stroke", 0.01, 3600.0)); });
-  input.on("tip_separation", [&](const toml::node& n) { run.gestureOptions.tipSeparation = static_cast<float>(input.number(n, "tip_separation", 0.05, 5.0)); });
-  input.on("height", [&](const toml::node& n) { run.gestureOptions.height = static_cast<float>(input.number(n, "height", 0.1, 5.0)); });
+  input.on("source",
+           [&](const toml::node& n) { run.input.input = resolveInput(source, n, input.text(n, "source"), baseDir); });
+  input.on("stabilizer", [&](const toml::node& n) {
+    run.input.stabilizer = input.text(n, "stabilizer", {"bspline", "one-euro"});
+  });
+  input.on("speed", [&](const toml::node& n) {
+    run.gestureOptions.speed = static_cast<float>(input.number(n, "speed", 0.0, 20.0));
+  });
+  input.on("start", [&](const toml::node& n) {
+    run.gestureOptions.start = static_cast<float>(input.number(n, "start", 0.0, 3600.0));
+  });
+  input.on("stroke", [&](const toml::node& n) {
+    run.gestureOptions.duration = static_cast<float>(input.number(n, "stroke", 0.01, 3600.0));
+  });
+  input.on("tip_separation", [&](const toml::node& n) {
+    run.gestureOptions.tipSeparation = static_cast<float>(input.number(n, "tip_separation", 0.05, 5.0));
+  });
+  input.on("height", [&](const toml::node& n) {
+    run.gestureOptions.height = static_cast<float>(input.number(n, "height", 0.1, 5.0));
+  });
   top.on("input", [&](const toml::node& n) { input.read(subTable(source, n, "input")); });
 
   top.on("params", [&](const toml::node& n) { readParams(source, subTable(source, n, "params"), run.params); });
 
   TableReader output(source, "output");
   output.on("ply_every", [&](const toml::node& n) { run.plyEvery = output.integer(n, "ply_every", 0, 1000000); });
-  output.on("images_every", [&](const toml::node& n) { run.imageEvery = output.integer(n, "images_every", 0, 1000000); });
+  output.on("images_every",
+            [&](const toml::node& n) { run.imageEvery = output.integer(n, "images_every", 0, 1000000); });
   top.on("output", [&](const toml::node& n) { output.read(subTable(source, n, "output")); });
 
   TableReader view(source, "render");
@@ -215,12 +254,26 @@ Scene parseScene(std::string_view text, const std::string& source, const std::fi
   top.on("render", [&](const toml::node& n) { view.read(subTable(source, n, "render")); });
 
   top.read(root);
+  // A scene written for a recorded or live input pokes it when it says so; a scene's poke for its script does
+  // not follow the performance to another input (--input on the command line).
+  run.burstOnAnyInput = burstAtSet && !run.input.scripted();
   if (eye) lookFrom(Vec3((*eye)[0], (*eye)[1], (*eye)[2]), render.camera);
   if (scene.name.empty()) throw SceneError(source + ": the scene has no name (name = \"...\")");
   return scene;
 }
 
 Scene loadSceneFile(const std::filesystem::path& path) {
+  // Checked before opening: a folder opens as an empty file, and a FIFO or a device would block or never end.
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (!std::filesystem::exists(status)) throw SceneError("scene file '" + path.string() + "' does not exist");
+  if (std::filesystem::is_directory(status))
+    throw SceneError("scene file '" + path.string() + "' is a folder; give a .toml file in it");
+  if (!std::filesystem::is_regular_file(status))
+    throw SceneError("scene file '" + path.string() + "' is not a regular file (a FIFO or a device is not read)");
+  if (std::filesystem::file_size(path, ec) > kMaxSceneBytes)
+    throw SceneError("scene file '" + path.string() + "' is larger than " + std::to_string(kMaxSceneBytes / 1024) +
+                     " KiB; a scene is a page of settings");
   std::ifstream in(path);
   if (!in) throw SceneError("cannot read scene file '" + path.string() + "'");
   std::ostringstream text;
@@ -243,7 +296,11 @@ Scene builtinScene(const std::string& name) {
 }
 
 Scene resolveScene(const std::string& nameOrPath) {
-  const bool looksLikePath = nameOrPath.find('/') != std::string::npos || nameOrPath.ends_with(".toml");
+  const std::vector<std::string> names = builtinSceneNames();
+  const bool builtin = std::find(names.begin(), names.end(), nameOrPath) != names.end();
+  std::error_code ec;
+  const bool looksLikePath = nameOrPath.find('/') != std::string::npos || nameOrPath.ends_with(".toml") ||
+                             (!builtin && std::filesystem::exists(nameOrPath, ec));
   return looksLikePath ? loadSceneFile(nameOrPath) : builtinScene(nameOrPath);
 }
 

@@ -3,6 +3,7 @@
 // and render settings and the duration of a run. The paper's figures are built-in scenes (scenes/*.toml,
 // embedded at build time), listed by `giantbubble scenes` and run by `giantbubble run --scene NAME`.
 
+#include <cstdint>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -29,7 +30,10 @@ struct Scene {
 // keys, wrong types, out-of-range values and missing input files are SceneErrors.
 Scene parseScene(std::string_view text, const std::string& source, const std::filesystem::path& baseDir);
 
-// A scene file on disk (SceneError if it cannot be read).
+// The largest scene file read (bytes): the built-in scenes are under 2 KiB.
+inline constexpr std::uintmax_t kMaxSceneBytes = 1 << 20;
+
+// A scene file on disk (SceneError if it cannot be read, is not a regular file or is over kMaxSceneBytes).
 Scene loadSceneFile(const std::filesystem::path& path);
 
 // The built-in scenes, in the order of the paper's figures.

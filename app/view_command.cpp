@@ -1,10 +1,13 @@
 #include "view_command.h"
 
 #include <CLI/CLI.hpp>
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 
+#include "cli_checks.h"
 #include "cpu_stepper.h"
+#include "interrupt.h"
 #include "osc_events.h"
 #include "realtime_pacer.h"
 #include "run_output.h"
@@ -25,10 +28,11 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
   addInputOptions(cmd, o.run.input);  // --input kinect|fakenect:DIR|trajectory:FILE|script:NAME, --gesture, ...
   cmd->add_option("--param", o.assignments, "set a model parameter, NAME=VALUE (repeatable)");
   cmd->add_option("--osc", o.run.osc, "send events and the bubble's size and position as OSC to HOST:PORT (UDP)");
-  cmd->add_option("--auto-dip", o.autoDip, "seconds without a film before the wands dip again (negative: never)");
+  cmd->add_option("--auto-dip", o.autoDip, "seconds without a film before the wands dip again (negative: never)")
+      ->check(FiniteRange(-1e9, 86400.0));
   cmd->add_option("--particles", o.run.params.particlesAtFullSolution, "particles of a film at full solution")
-      ->check(CLI::Range(16, 50000000));
-  cmd->add_option("--solution", o.run.params.solution, "remaining soap solution (0, 1]")->check(CLI::Range(0.01, 1.0));
+      ->check(CLI::Range(16, kMaxParticles));
+  cmd->add_option("--solution", o.run.params.solution, "remaining soap solution (0, 1]")->check(FiniteRange(0.01, 1.0));
   cmd->add_option("--backend", o.backend, "cpu, vulkan (on the window's device), or auto (Vulkan on a GPU)")
       ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
   cmd->add_option("--device", o.run.device, "Vulkan device: index or part of its name");
@@ -37,12 +41,8 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
   cmd->add_option("--keys", o.keys,
                   "scripted key presses FRAME:KEY, e.g. 50:b 80:c (keys r d b p c; for tests and demos)")
       ->check([](const std::string& s) {
-        const auto colon = s.find(':');
-        return colon != std::string::npos && colon > 0 && s.size() == colon + 2 &&
-                       std::string("rdbpc").find(s.back()) != std::string::npos &&
-                       s.find_first_not_of("0123456789") == colon
-                   ? std::string()
-                   : "expected FRAME:KEY with KEY one of r d b p c, got '" + s + "'";
+        std::string why;
+        return parseKeyPress(s, why) ? std::string() : why;
       });
   cmd->add_flag("--fixed-step", o.fixedStep,
                 "advance one 0.02 s frame per presented frame instead of keeping the wall clock (slow motion on a slow "
@@ -79,9 +79,11 @@ std::unique_ptr<WandInput> makeLiveInput(const RunOptions& run, Window& window) 
 
 // Adds the scripted key presses of frame `frame` to what the window reported.
 void addScriptedKeys(const std::vector<std::string>& script, long frame, WindowKeys& keys) {
+  std::string why;
   for (const std::string& entry : script) {
-    if (std::stol(entry.substr(0, entry.find(':'))) != frame) continue;
-    switch (entry.back()) {
+    const auto press = parseKeyPress(entry, why);
+    if (!press || press->frame != frame) continue;
+    switch (press->key) {
       case 'r':
         keys.reset = true;
         break;
@@ -113,8 +115,29 @@ std::string liveFigures(const RealTimePacer& pacer, long shown, std::chrono::ste
                 pacer.sweeps(), pacer.atFloor() ? " (floor)" : "");
   return text;
 }
+// A camera that was unplugged is looked for again this often (s of wall time); a recording or a file that
+// ended stays ended, the wands at rest, until R restarts it.
+constexpr double kReopenCameraEvery = 2.0;
 
 }  // namespace
+
+std::optional<KeyPress> parseKeyPress(const std::string& text, std::string& why) {
+  const auto colon = text.find(':');
+  why = "expected FRAME:KEY with KEY one of r d b p c, got '" + text + "'";
+  if (colon == std::string::npos || colon == 0 || text.size() != colon + 2 ||
+      std::string("rdbpc").find(text.back()) == std::string::npos)
+    return std::nullopt;
+  KeyPress press{0, text.back()};
+  const char* end = text.data() + colon;
+  const auto [ptr, ec] = std::from_chars(text.data(), end, press.frame);
+  if (ec == std::errc::result_out_of_range || (ec == std::errc() && press.frame > kMaxKeyFrame)) {
+    why = "--keys " + text + ": frame " + text.substr(0, colon) + " is too large (at most " +
+          std::to_string(kMaxKeyFrame) + ")";
+    return std::nullopt;
+  }
+  if (ec != std::errc() || ptr != end) return std::nullopt;
+  return press;
+}
 
 int runView(ViewOptions o) try {
   RunOptions& run = o.run;
@@ -132,47 +155,99 @@ int runView(ViewOptions o) try {
               stepper->name().c_str());
   double t = 0;
   WandState wands = input->at(t).wands;
-  Simulation sim(run.params, run.tool, wands, std::move(stepper));
+  auto sim = std::make_unique<Simulation>(run.params, run.tool, wands, std::move(stepper));
   Renderer renderer(window.context(), image, loadEnvironment(run.render.environment));
-  show.frame(sim, sim.stats(), "film_created");
+  show.frame(*sim, sim->stats(), "film_created");
 
+  const InterruptCatcher interrupts;  // Ctrl-C ends the show as Esc does, with its totals
   bool paused = false;
-  long shown = 0, dips = 0;
+  long shown = 0, dips = 0, recoveries = 0;
   double filmGoneSince = -1;  // time the last film disappeared, -1 while there is one
+  double inputStart = 0;      // show time at which the current input's time 0 is
+  bool inputLost = false;
+  auto lastReopen = std::chrono::steady_clock::now();
   const auto start = std::chrono::steady_clock::now();
-  RealTimePacer pacer({run.params.frameTime, sim.solverIterations(), o.minSweeps, 4}, start);
+  RealTimePacer pacer({run.params.frameTime, sim->solverIterations(), o.minSweeps, 4}, start);
   auto lastTitle = start;
   for (;;) {
     WindowKeys keys = window.poll();
     addScriptedKeys(o.keys, shown, keys);
-    if (keys.quit) break;
-    auto say = [&](const char* what) { std::printf("live: frame %ld: %s\n", shown, what); };
+    if (keys.quit || InterruptCatcher::requested()) break;  // Esc/Q, the window closed, Ctrl-C or SIGTERM
+    auto say = [&](const std::string& what) {
+      std::printf("live: frame %ld: %s\n", shown, what.c_str());
+      std::fflush(stdout);
+    };
+    auto dipNewFilm = [&](const std::string& why, const std::string& events) {
+      sim->dip(wands);
+      filmGoneSince = -1;
+      ++dips;
+      say(why);
+      show.frame(*sim, sim->stats(), events);
+    };
     if (keys.pause) {
       paused = !paused;
       say(paused ? "paused" : "resumed");
     }
     if (keys.reset) {  // the input from its start: a new source, since time only moves forward in one
-      t = 0;
       input = makeLiveInput(run, window);
-      wands = input->at(t).wands;
+      inputStart = t;
+      inputLost = false;
+      wands = input->at(0).wands;
     }
     const bool autoDip = o.autoDip >= 0 && filmGoneSince >= 0 && t - filmGoneSince >= o.autoDip;
-    if (keys.reset || keys.dip || autoDip) {
-      sim.dip(wands);
-      filmGoneSince = -1;
-      ++dips;
-      say(keys.reset ? "reset: new film, performance from its start"
-                     : (autoDip ? "auto dip: new film" : "dip: new film"));
-      show.frame(sim, sim.stats(), "film_created");
-    }
-    if (keys.burst) {
-      sim.startBurst(sim.topParticle());
+    if (keys.reset || keys.dip || autoDip)
+      dipNewFilm(keys.reset ? "reset: new film, performance from its start"
+                            : (autoDip ? "auto dip: new film" : "dip: new film"),
+                 "film_created");
+    if (keys.burst && sim->film().state.size() > 0) {
+      sim->startBurst(sim->topParticle());
       say("burst");
     }
     if (keys.nextColouring) {
       renderer.setColouring(static_cast<Colouring>((static_cast<int>(renderer.options().colouring) + 1) % 3));
       say(colouringName(renderer.options().colouring));
     }
+    // One frame of h on the wall clock: the input, then the simulation; a simulation that blows up is replaced.
+    auto advanceOneFrame = [&] {
+      t += run.params.frameTime;
+      wands = input->at(t - inputStart).wands;  // a live camera may wait here for its next frame
+      for (const std::string& m : input->takeMessages()) std::fprintf(stderr, "%s\n", m.c_str());
+      if (input->ended() && !inputLost) {  // the wands rest where they are (wand_input.h) until the input returns
+        inputLost = true;
+        say("the input has ended or was lost; the wands rest" + std::string(run.input.spec() == "kinect"
+                                                                                ? ", and the camera is looked for again"
+                                                                                : " (R starts it again)"));
+        show.frame(*sim, sim->stats(), "input_lost");
+      }
+      if (inputLost && run.input.spec() == "kinect" &&
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - lastReopen).count() >= kReopenCameraEvery) {
+        lastReopen = std::chrono::steady_clock::now();
+        try {
+          input = makeLiveInput(run, window);
+          inputStart = t;
+          inputLost = false;
+          say("the camera is back");
+          show.frame(*sim, sim->stats(), "input_back");
+        } catch (const HandSourceError&) {  // not yet: the wands go on resting
+        }
+      }
+      try {
+        sim->advanceFrame(wands);
+        const FrameStats stats = sim->stats();
+        show.frame(*sim, stats, describeEvents(sim->lastEvents()));
+        if (stats.particles == 0 && filmGoneSince < 0) filmGoneSince = t;
+      } catch (const SimulationUnstable& e) {
+        // The show goes on: the broken simulation is dropped whole (a dip keeps state the blow-up may have
+        // poisoned, such as the air) and a new one starts with a film on the wands as they are.
+        ++recoveries;
+        std::fprintf(stderr, "warning: %s\n", e.what());
+        sim = std::make_unique<Simulation>(run.params, run.tool, wands, viewStepper(o.backend, window.context()));
+        filmGoneSince = -1;
+        ++dips;
+        say("the simulation became unstable; a new film is dipped");
+        show.frame(*sim, sim->stats(), "simulation_unstable film_created");
+      }
+    };
     int due = 0;
     double simMs = 0;
     if (paused) {
@@ -183,24 +258,16 @@ int runView(ViewOptions o) try {
         pacer.sleepUntilDue();
         due = pacer.framesDue();
       }
-      sim.setSolverIterations(o.fixedStep ? 0 : pacer.sweeps());
+      sim->setSolverIterations(o.fixedStep ? 0 : pacer.sweeps());
       const auto simStart = std::chrono::steady_clock::now();
-      for (int k = 0; k < due; ++k) {
-        t += run.params.frameTime;
-        wands = input->at(t).wands;  // a live camera may wait here for its next frame
-        for (const std::string& m : input->takeMessages()) std::fprintf(stderr, "%s\n", m.c_str());
-        sim.advanceFrame(wands);
-        const FrameStats stats = sim.stats();
-        show.frame(sim, stats, describeEvents(sim.lastEvents()));
-        if (stats.particles == 0 && filmGoneSince < 0) filmGoneSince = t;
-      }
+      for (int k = 0; k < due; ++k) advanceOneFrame();
       simMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - simStart).count();
     }
     const auto renderStart = std::chrono::steady_clock::now();
     const Vec3 gravity(run.params.gravityX, run.params.gravityY, run.params.gravityZ);
-    const WireFrame wire = makeWireFrame(sim.film().tool, wands, sim.film().stringLength, gravity);
+    const WireFrame wire = makeWireFrame(sim->film().tool, wands, sim->film().stringLength, gravity);
     DeviceFilm deviceFilm;
-    window.present(renderer, renderFrameOf(sim, wands, wire, window.camera(), readInPlace, deviceFilm));
+    window.present(renderer, renderFrameOf(*sim, wands, wire, window.camera(), readInPlace, deviceFilm));
     const auto now = std::chrono::steady_clock::now();
     pacer.record(due, simMs, std::chrono::duration<double, std::milli>(now - renderStart).count());
     if (now - lastTitle > std::chrono::seconds(1)) {  // the show's figures in the title bar, once a second
@@ -214,8 +281,10 @@ int runView(ViewOptions o) try {
   const size_t errors = window.context()->validationErrors();
   std::printf("live: %s, %ld frames simulated, %ld dropped\n", liveFigures(pacer, shown, start, end).c_str(),
               pacer.simulatedFrames(), pacer.droppedFrames());
-  std::printf("live: presented %ld frames in %.2f s (%.1f frames/s), %ld dips, %zu validation errors\n", shown, seconds,
-              static_cast<double>(shown) / std::max(seconds, 1e-9), dips, errors);
+  std::printf(
+      "live: presented %ld frames in %.2f s (%.1f frames/s), %ld dips, %zu validation errors, %ld recoveries "
+      "from instability\n",
+      shown, seconds, static_cast<double>(shown) / std::max(seconds, 1e-9), dips, errors, recoveries);
   return errors == 0 ? 0 : 4;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "error: %s\n", e.what());

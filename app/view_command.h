@@ -6,7 +6,13 @@
 // (interference, thickness, air flow), Home camera back, Esc/Q quit. When the film is gone (burst, or a free
 // bubble burst), the wands dip again after --auto-dip seconds, so a show can run for hours; events and the
 // bubble's state go out as OSC with --osc.
+//
+// A show never ends on its own (issue 14): an unstable simulation is reported (console, OSC event
+// simulation_unstable) and a new film dipped at once; an input that ends or is lost leaves the wands at rest
+// (OSC input_lost) and a Kinect is looked for again every 2 s (input_back); only Esc/Q, the window closing or
+// --frames end it.
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,6 +36,15 @@ struct ViewOptions {
   bool fixedStep = false;  // one simulation frame per presented frame (slow motion when the machine is slow)
   int minSweeps = 3;       // the fewest solver sweeps the wall clock may leave the film (realtime_pacer.h)
 };
+
+// A scripted key press of --keys: at presented frame `frame`, key `key` (r d b p c).
+struct KeyPress {
+  long frame = 0;
+  char key = 0;
+};
+inline constexpr long kMaxKeyFrame = 100'000'000;  // as --frames
+// FRAME:KEY, or nothing with `why` naming what is wrong (not FRAME:KEY, a frame too large).
+std::optional<KeyPress> parseKeyPress(const std::string& text, std::string& why);
 
 // Adds the `view` subcommand and its options to the application.
 CLI::App* addViewCommand(CLI::App& app, ViewOptions& options);

@@ -12,6 +12,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <sstream>
 
 #include "hand_source.h"
 
@@ -34,12 +35,21 @@ double steadySeconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-// Bytes after the one-line header of a depth file, or -1 when there is no header line.
-long long depthPayload(const fs::path& file) {
+// Bytes after the one-line header of a depth file, or -1 when there is no header line; `header` gets the line.
+long long depthPayload(const fs::path& file, std::string& header) {
   std::ifstream in(file, std::ios::binary);
-  std::string header;
   if (!in || !std::getline(in, header) || in.eof() || header.size() > 64) return -1;
   return static_cast<long long>(fs::file_size(file)) - static_cast<long long>(header.size() + 1);
+}
+
+// fakenect reads the frame as 640x480 big-endian 16-bit depth whatever the header says: a header that says
+// anything else is a file of some other kind.
+bool isKinectDepthHeader(const std::string& header) {
+  std::istringstream in(header);
+  std::string magic;
+  int width = 0, height = 0, maxValue = 0;
+  return (in >> magic >> width >> height >> maxValue) && (in >> std::ws).eof() && magic == "P5" &&
+         width == kinect::kWidth && height == kinect::kHeight && maxValue > 255 && maxValue <= 65535;
 }
 
 // Why fakenect could not read this entry's file now (empty when it can).
@@ -50,8 +60,11 @@ std::string fileProblem(const fs::path& folder, const FakenectEntry& e) {
   const auto size = fs::file_size(path, ec);
   if (ec || size == 0) return "file " + path.string() + " is empty";
   if (e.type != 'd') return {};
-  const long long payload = depthPayload(path);
+  std::string header;
+  const long long payload = depthPayload(path, header);
   if (payload < 0) return "depth file " + path.string() + " has no one-line PGM header";
+  if (!isKinectDepthHeader(header))
+    return "depth file " + path.string() + " has the header '" + header + "', expected 'P5 640 480 65535'";
   if (payload < static_cast<long long>(kDepthBytes))
     return "depth file " + path.string() + " is truncated: " + std::to_string(payload) + " bytes of depth, expected " +
            std::to_string(kDepthBytes) + " (640x480 16-bit values)";
@@ -78,6 +91,8 @@ FakenectIndex readFakenectIndex(const fs::path& folder) {
       continue;
     }
     const std::string at = where + ", INDEX.txt line " + std::to_string(lineNumber);
+    if (line.back() == '\r')
+      throw HandSourceError(at + ": the line ends in a carriage return (CR LF line endings); fakenect reads LF only");
     if (blankLine)
       throw HandSourceError(at + ": entries after the empty line " + std::to_string(blankLine) +
                             " (fakenect stops there)");
@@ -87,6 +102,11 @@ FakenectIndex readFakenectIndex(const fs::path& folder) {
     if (std::sscanf(line.c_str(), "%c-%lf-%u%n", &e.type, &e.time, &timestamp, &used) != 3 ||
         (e.type != 'd' && e.type != 'r' && e.type != 'a') || !std::isfinite(e.time))
       throw HandSourceError(at + ": '" + line + "' is not a fakenect entry (TYPE-TIME-TIMESTAMP…, TYPE d, r or a)");
+    // fakenect sleeps through the time between entries: a jump forward would stall playback for as long.
+    if (!index.entries.empty() && e.time - index.entries.back().time > kMaxFakenectGap)
+      throw HandSourceError(at + ": time jumps " + std::to_string(e.time - index.entries.back().time) +
+                            " s forward (fakenect would sleep through it; at most " +
+                            std::to_string(static_cast<int>(kMaxFakenectGap)) + " s between entries)");
     e.timestamp = timestamp;
     e.file = line;
     if (const std::string problem = fileProblem(folder, e); !problem.empty())

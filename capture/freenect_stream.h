@@ -39,7 +39,11 @@ struct FakenectIndex {
   int depthFrames = 0;
 };
 
-// Reads and checks a recording: every listed file present and non-empty, every depth file complete.
+// The longest pause between two entries of a recording (s): fakenect sleeps through each pause as it plays.
+inline constexpr double kMaxFakenectGap = 10.0;
+
+// Reads and checks a recording: every listed file present and non-empty, every depth file complete with a
+// 'P5 640 480 MAX' header, LF line endings, no pause longer than kMaxFakenectGap.
 // Throws HandSourceError naming the folder, the line or the file and what is wrong.
 FakenectIndex readFakenectIndex(const std::filesystem::path& folder);
 

@@ -50,6 +50,7 @@ std::vector<HandSample> readTrajectory(const std::filesystem::path& path, double
   bool header = false;
   std::string line;
   for (int lineNumber = 1; std::getline(in, line); ++lineNumber) {
+    if (lineNumber == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 BOM some editors add
     line = trim(line);
     if (line.empty() || line[0] == '#') continue;
     const std::string at = file + ", line " + std::to_string(lineNumber);
@@ -114,7 +115,9 @@ void TrajectoryWriter::write(const HandSample& s) {
       std::fputs(",,,", file_);
   }
   std::fputc('\n', file_);
-  std::fflush(file_);
+  // A full disk stops the recording with a message instead of cutting rows silently.
+  if (std::fflush(file_) != 0 || std::ferror(file_))
+    throw HandSourceError("failed writing the trajectory file (disk full?)");
 }
 
 }  // namespace gb

@@ -120,9 +120,11 @@ void StabilizedWands::feed(const HandSample& sample) {
   }
 }
 
+double StabilizedWands::period() const { return std::max(source_->period(), kMinSamplePeriod); }
+
 WandFrame StabilizedWands::at(double t) {
   // The observed period, not the nominal one: a camera delivering 7.5 frames per second is slow, not absent.
-  const double T = start_ + t, period = std::max(period_, source_->period()), gap = 3.0 * period;
+  const double T = start_ + t, period = std::max(period_, this->period()), gap = 3.0 * period;
   // A hold: both hands where they were last measured, not measured now.
   auto holdUntil = [&](double until) {
     while (lastFed_ + period <= until) {
@@ -138,6 +140,7 @@ WandFrame StabilizedWands::at(double t) {
   while ((!ahead_.empty() || fetch()) && ahead_.front().time <= T) {
     const HandSample s = ahead_.front();
     ahead_.pop_front();
+    if (s.time - lastFed_ < kMinSamplePeriod) continue;  // denser than the guard: thinned, not fed
     observeInterval(s.time - lastFed_);
     if (s.time - lastFed_ > gap) holdUntil(s.time - period);  // a gap in the input: the wands rest through it
     feed(s);

@@ -36,6 +36,8 @@ class WandInput {
   [[nodiscard]] virtual std::string describe() const = 0;
   // Seconds of input a recorded source holds; nothing for scripts and live sources.
   [[nodiscard]] virtual std::optional<double> length() const { return std::nullopt; }
+  // Whether the input has ended or was lost (the wands at rest); scripts never end.
+  [[nodiscard]] virtual bool ended() const { return false; }
   // Warnings and notes since the last call, each one line ("warning: …" or "note: …").
   std::vector<std::string> takeMessages() { return std::exchange(messages_, {}); }
 
@@ -68,6 +70,11 @@ class StabilizedWands : public WandInput {
 
   static constexpr double kLostHandAfter = 0.25;  // s unmeasured before a hand is reported lost
   static constexpr double kSlowRate = 25.0;       // samples per second below which the input is reported slow
+  // Samples closer than this (s) to the last one fed are skipped, and holds through a gap go at least this far
+  // apart: an input with samples 1 ns apart would otherwise cost millions of stabilizer updates per frame.
+  static constexpr double kMinSamplePeriod = 1e-3;
+  // The source ended or was lost, and every sample read is used: the wands hold still from here on.
+  [[nodiscard]] bool ended() const override { return finished_ && ahead_.empty(); }
 
  private:
   std::unique_ptr<HandSource> source_;
@@ -84,7 +91,8 @@ class StabilizedWands : public WandInput {
   bool reportedLost_[2] = {false, false};
   HandSample latest_;
   std::string describe_;
-  bool fetch();  // reads one more sample into ahead_; false when there are no more
+  [[nodiscard]] double period() const;  // the source's, at least kMinSamplePeriod
+  bool fetch();                         // reads one more sample into ahead_; false when there are no more
   void feed(const HandSample& sample);
   void observeInterval(double dt);  // updates period_ and warns once about a slow input
 };

@@ -12,7 +12,7 @@ packages=(
   libomp-dev                         # OpenMP runtime (g++ uses libgomp; kept for clang builds)
   libcli11-dev                       # command line of the giantbubble executable
   nlohmann-json3-dev                 # JSON outputs (bench results)
-  libpng-dev                         # thickness images of a run
+  libpng-dev zlib1g-dev              # thickness images of a run; the show-proof test writes PNG CRCs
   libvulkan-dev glslang-tools        # Vulkan compute backend; shaders compiled to SPIR-V at build time
   mesa-vulkan-drivers                # lavapipe: the software Vulkan device the tests and CI run on
   vulkan-validationlayers            # the tests run with the Khronos validation layer

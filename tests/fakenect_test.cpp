@@ -156,3 +156,53 @@ TEST(Kinect, WithoutACameraTheLiveSourceSaysNoKinectFound) {
 
 }  // namespace
 }  // namespace gb
+
+namespace gb {
+namespace {
+
+// The recording's INDEX.txt lines, and the first depth file's name.
+std::vector<std::string> indexLines(const fs::path& dir) {
+  std::ifstream in(dir / "INDEX.txt");
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+TEST(Fakenect, APauseLongerThanTheLimitIsRefusedBeforeFakenectSleepsThroughIt) {
+  const fs::path dir = scratch("gap");
+  {
+    FakenectWriter writer(dir);
+    writer.write(test::renderPerformer(test::sessionPose(0.0), 0.0, 1000u), 1700000000.0);
+    writer.write(test::renderPerformer(test::sessionPose(0.1), 0.1, 2000u), 1700000000.0 + kMaxFakenectGap + 5.0);
+  }
+  const std::string message = errorOf([&] { (void)readFakenectIndex(dir); });
+  EXPECT_NE(message.find("line 2: time jumps 15."), std::string::npos) << message;
+  EXPECT_NE(message.find("at most 10 s between entries"), std::string::npos) << message;
+}
+
+TEST(Fakenect, CrLfLineEndingsAndAForeignFrameHeaderAreNamed) {
+  const fs::path dir = scratch("crlf");
+  writeSession(dir, 2);
+  const std::vector<std::string> lines = indexLines(dir);
+  {
+    std::ofstream index(dir / "INDEX.txt", std::ios::trunc);
+    for (const std::string& line : lines) index << line << "\r\n";
+  }
+  std::string message = errorOf([&] { (void)readFakenectIndex(dir); });
+  EXPECT_NE(message.find("line 1: the line ends in a carriage return"), std::string::npos) << message;
+
+  {
+    std::ofstream index(dir / "INDEX.txt", std::ios::trunc);
+    for (const std::string& line : lines) index << line << "\n";
+  }
+  // The same byte count as a Kinect frame, but an ASCII greymap header: fakenect would read it as depth.
+  std::fstream frame(dir / lines.front(), std::ios::in | std::ios::out | std::ios::binary);
+  frame.write("P2", 2);
+  frame.close();
+  message = errorOf([&] { (void)readFakenectIndex(dir); });
+  EXPECT_NE(message.find("has the header 'P2 640 480 65535', expected 'P5 640 480 65535'"), std::string::npos)
+      << message;
+}
+
+}  // namespace
+}  // namespace gb

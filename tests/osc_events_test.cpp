@@ -1,8 +1,8 @@
 // OSC show control: events and the bubble's state reach a loopback receiver, in order.
 #include <gtest/gtest.h>
-
 #include <lo/lo.h>
 
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -35,7 +35,10 @@ class LoopbackReceiver {
   static int onEvent(const char*, const char*, lo_arg** argv, int, lo_message, void* self) {
     auto* r = static_cast<LoopbackReceiver*>(self);
     r->events.emplace_back(&argv[0]->s);
-    r->eventTimes.push_back(argv[1]->d);
+    // liblo packs the arguments as OSC does, 4-byte aligned: a double is copied out, not read in place (UBSan).
+    double time = 0;
+    std::memcpy(&time, argv[1], sizeof time);
+    r->eventTimes.push_back(time);
     return 0;
   }
   static int onBubble(const char*, const char*, lo_arg**, int, lo_message, void* self) {

@@ -1,0 +1,175 @@
+#!/usr/bin/env bash
+# Show-proofing on the command line (issue 14), one case per ctest test:
+#   cli_show_proof_test.sh EXE OUT CASE
+# Each case prints what it checks and exits non-zero with the reason when the program does not do it.
+set -u
+EXE=$1
+OUT=$2
+CASE=$3
+rm -rf "$OUT"
+mkdir -p "$OUT"
+cd "$OUT" || exit 1
+SMALL=(--particles 400 --backend cpu --ply-every 0 --images-every 0 --no-progress)
+RENDER=(--render --width 64 --height 48 --render-every 0)
+
+fail() {
+  echo "FAIL: $*"
+  exit 1
+}
+
+# Waits (at most 120 s) until FILE has at least N lines.
+wait_for_lines() {
+  for _ in $(seq 1200); do
+    [ -f "$1" ] && [ "$(wc -l <"$1")" -ge "$2" ] && return 0
+    sleep 0.1
+  done
+  fail "$1 never reached $2 lines"
+}
+
+# Frames in an MP4 as ffprobe decodes them (0 when it cannot be read).
+mp4_frames() {
+  ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 "$1" 2>/dev/null || echo 0
+}
+
+# A trajectory CSV: rows at the given times, both hands still in front of the camera.
+trajectory() {
+  echo "t,left_x,left_y,left_z,right_x,right_y,right_z"
+  for t in "$@"; do echo "$t,-0.15,0,2,0.15,0,2"; done
+}
+
+# A signal mid-run: the frame in flight finishes, stats.json says "interrupted", stats.csv holds every frame
+# done and the MP4 plays with the frames rendered. The input is a trajectory two hours long: the duration it
+# gives is capped at 3600 s (180,000 frames) with a note, not taken whole.
+signal_case() {
+  local signal=$1 expected=$2
+  trajectory 0 7200 >long.csv
+  "$EXE" run --input trajectory:long.csv "${SMALL[@]}" "${RENDER[@]}" --out run >log.txt 2>&1 &
+  local pid=$!
+  wait_for_lines run/stats.csv 8
+  kill "-$signal" "$pid"
+  wait "$pid"
+  local rc=$?
+  cat log.txt
+  [ "$rc" -eq "$expected" ] || fail "exit status $rc after SIG$signal, expected $expected"
+  grep -q "the run stops at 3600 s" log.txt || fail "no note that the input's duration was capped"
+  grep -q "180000 frames" log.txt || fail "the run was not planned for 180000 frames"
+  grep -q '"status": "interrupted"' run/stats.json || fail "stats.json does not say interrupted"
+  local rows frames
+  rows=$(($(wc -l <run/stats.csv) - 2))  # the header and frame 0
+  frames=$(mp4_frames run/render.mp4)
+  echo "frames simulated: $rows, frames in the MP4: $frames"
+  [ "$frames" -eq $((rows + 1)) ] || fail "the MP4 has $frames frames, expected $((rows + 1)) (frame 0 and $rows)"
+}
+
+case "$CASE" in
+  sigint) signal_case INT 130 ;;
+  sigterm) signal_case TERM 143 ;;
+  failed_encoder)
+    # An ffmpeg that fails at once: the run says so, goes on, and writes all its results (exit 5).
+    mkdir fakebin
+    printf '#!/bin/sh\necho "fake ffmpeg: cannot encode" >&2\nexit 1\n' >fakebin/ffmpeg
+    chmod +x fakebin/ffmpeg
+    PATH="$OUT/fakebin:$PATH" "$EXE" run --duration 0.2 "${SMALL[@]}" "${RENDER[@]}" --out run 2>&1 | tee log.txt
+    rc=${PIPESTATUS[0]}
+    [ "$rc" -eq 5 ] || fail "exit status $rc, expected 5"
+    grep -q "warning: video: ffmpeg stopped taking frames" log.txt || fail "the failed encoder was not reported"
+    grep -q '"status": "finished"' run/stats.json || fail "stats.json missing or not finished"
+    grep -q '"video_error"' run/stats.json || fail "stats.json does not note the video error"
+    [ "$(wc -l <run/stats.csv)" -eq 12 ] || fail "stats.csv does not have the header and frames 0 to 10"
+    ;;
+  any_path)
+    # Quotes and spaces in the output folder; a video name that would run a command through a shell.
+    "$EXE" run --duration 0.1 "${SMALL[@]}" "${RENDER[@]}" --out "bob's show" || fail "run into \"bob's show\" failed"
+    [ "$(mp4_frames "bob's show/render.mp4")" -eq 6 ] || fail "no 6-frame MP4 in \"bob's show\""
+    "$EXE" run --duration 0.1 "${SMALL[@]}" "${RENDER[@]}" --out run --video "x';touch pwned;'.mp4" || fail "run failed"
+    [ ! -e pwned ] && [ ! -e run/pwned ] || fail "the video name ran a command"
+    [ "$(mp4_frames "run/x';touch pwned;'.mp4")" -eq 6 ] || fail "the video was not written under its own name"
+    "$EXE" run --duration 0.1 "${SMALL[@]}" "${RENDER[@]}" --out run --video "sub folder/show.mp4" || fail "run failed"
+    [ "$(mp4_frames "run/sub folder/show.mp4")" -eq 6 ] || fail "--video into a new folder was not written"
+    ;;
+  full_disk)
+    # Every file limited to 40 KiB (RLIMIT_FSIZE; SIGXFSZ ignored so the write fails as on a full disk): the run
+    # stops with an error naming the file, not a cut row and exit 0.
+    (
+      ulimit -f 40
+      trap '' XFSZ
+      exec "$EXE" run --duration 10 "${SMALL[@]}" --out run
+    ) >log.txt 2>&1
+    rc=$?
+    cat log.txt
+    [ "$rc" -ne 0 ] || fail "exit status 0 on a full disk"
+    grep -Eq "error: failed writing .*(stats|wands)\.csv: File too large" log.txt || fail "the file is not named"
+    ;;
+  bench_json)
+    "$EXE" bench --sizes 500 --backends cpu --steps 8 --json /nonexistent/bench.json >log.txt 2>&1
+    rc=$?
+    cat log.txt
+    [ "$rc" -ne 0 ] || fail "bench --json into a missing folder exited 0"
+    grep -q "error: cannot write /nonexistent/bench.json" log.txt || fail "the unwritable path is not named"
+    grep -q "results written" log.txt && fail "says the results were written"
+    ;;
+  not_finite)
+    for args in "--duration nan" "--speed nan" "--reach nan" "--camera-pitch nan" "--solution nan" \
+      "--depth-band nan 2" "--burst-at inf" "--duration -inf"; do
+      # shellcheck disable=SC2086
+      "$EXE" run $args --out run >log.txt 2>&1
+      rc=$?
+      [ "$rc" -ne 0 ] || fail "run $args exited 0"
+      grep -q "is not a finite number" log.txt || fail "run $args: $(cat log.txt)"
+      echo "run $args: $(head -1 log.txt)"
+    done
+    ;;
+  scene_not_a_file)
+    "$EXE" run --scene "$OUT" >log.txt 2>&1 && fail "--scene on a folder exited 0"
+    grep -q "is a folder" log.txt || fail "--scene on a folder: $(cat log.txt)"
+    mkfifo scene.toml
+    timeout 20 "$EXE" run --scene ./scene.toml >log.txt 2>&1
+    rc=$?
+    [ "$rc" -ne 124 ] || fail "--scene on a FIFO blocked"
+    grep -q "not a regular file" log.txt || fail "--scene on a FIFO: $(cat log.txt)"
+    ;;
+  keys_overflow)
+    "$EXE" live --keys 99999999999999999999:b >log.txt 2>&1 && fail "exited 0"
+    grep -q "frame 99999999999999999999 is too large" log.txt || fail "$(cat log.txt)"
+    ;;
+  dense_trajectory)
+    trajectory 0 0.000000001 >dense.csv
+    timeout 120 "$EXE" run --input trajectory:dense.csv --duration 5 "${SMALL[@]}" --out run >log.txt 2>&1
+    rc=$?
+    [ "$rc" -eq 0 ] || fail "exit status $rc (124: it stalled) $(cat log.txt)"
+    ;;
+  no_poke_on_recordings)
+    # The default scene's 3.5 s poke is for its scripted gesture: not on a recorded performance, unless asked.
+    trajectory $(seq 0 0.1 4.5) >hands.csv
+    "$EXE" run --input trajectory:hands.csv "${SMALL[@]}" --out run >log.txt 2>&1 || fail "$(cat log.txt)"
+    grep -q "note: no poke at 3.50 s" log.txt || fail "no note about the poke"
+    grep -q poked run/stats.csv && fail "the default poke fired on a trajectory"
+    "$EXE" run --input trajectory:hands.csv --burst-at 1 "${SMALL[@]}" --out run >log.txt 2>&1 || fail "$(cat log.txt)"
+    # Poked at frame 50 exactly (1 s at 50 frames/s), counted, not compared as floats.
+    grep -q "^50,.*poked" run/stats.csv || fail "--burst-at 1 did not poke at frame 50"
+    ;;
+  live_input_ends)
+    # A live show whose input ends: the wands rest, the show goes on to the end of --frames.
+    trajectory $(seq 0 0.1 0.5) >short.csv
+    xvfb-run -a "$EXE" live --input trajectory:short.csv --frames 60 --width 160 --height 120 --particles 400 \
+      --backend cpu --osc 127.0.0.1:9 >log.txt 2>&1
+    rc=$?
+    cat log.txt
+    [ "$rc" -eq 0 ] || fail "exit status $rc"
+    grep -q "the input has ended or was lost; the wands rest" log.txt || fail "the end of the input was not said"
+    grep -q "presented 60 frames" log.txt || fail "the show did not go on"
+    ;;
+  live_unstable)
+    # A live show whose simulation blows up (an air pressure gain a thousand times the default blows the film
+    # past 100 m/s in about 0.6 s): reported, a new film, and the show goes on to the end of --frames.
+    xvfb-run -a "$EXE" live --frames 50 --width 160 --height 120 --particles 400 --backend cpu \
+      --param airPressureGain=10000 --param pressureCoefficient=10000000 --osc 127.0.0.1:9 >log.txt 2>&1
+    rc=$?
+    cat log.txt
+    [ "$rc" -eq 0 ] || fail "exit status $rc"
+    grep -q "the simulation became unstable; a new film is dipped" log.txt || fail "no recovery reported"
+    grep -q "presented 50 frames" log.txt || fail "the show did not go on"
+    ;;
+  *) fail "unknown case $CASE" ;;
+esac
+echo "PASS: $CASE"

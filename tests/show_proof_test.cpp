@@ -1,0 +1,238 @@
+// Show-proofing (issue 14): nothing lost on a full disk, inputs that cannot stall the loop or slip a NaN past a
+// check, messages that say what is wrong. The command-line halves (signals, ffmpeg, live recovery) are in
+// cli_show_proof_test.sh.
+#include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
+#include <zlib.h>
+
+#include <csignal>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "cli_checks.h"
+#include "osc_events.h"
+#include "output_file.h"
+#include "png_image.h"
+#include "run_output.h"
+#include "scene_file.h"
+#include "trajectory_file.h"
+#include "view_command.h"
+#include "wand_input.h"
+
+namespace gb {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path scratch(const std::string& name) {
+  static const struct Root {
+    fs::path path = fs::temp_directory_path() / ("giantbubble_show_proof_test_" + std::to_string(::getpid()));
+    ~Root() { fs::remove_all(path); }
+  } root;
+  const fs::path dir = root.path / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string readAll(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// A disk that is full after `bytes` more bytes in any one file: RLIMIT_FSIZE, with SIGXFSZ ignored so that a
+// write past it fails with EFBIG as a write to a full disk fails with ENOSPC. Restored when it goes.
+class FullDiskAfter {
+ public:
+  explicit FullDiskAfter(rlim_t bytes) {
+    getrlimit(RLIMIT_FSIZE, &saved_);
+    previous_ = std::signal(SIGXFSZ, SIG_IGN);
+    rlimit limit = saved_;
+    limit.rlim_cur = bytes;
+    setrlimit(RLIMIT_FSIZE, &limit);
+  }
+  ~FullDiskAfter() {
+    setrlimit(RLIMIT_FSIZE, &saved_);
+    std::signal(SIGXFSZ, previous_);
+  }
+
+ private:
+  rlimit saved_{};
+  void (*previous_)(int) = nullptr;
+};
+
+template <typename F>
+std::string errorOf(F&& f) {
+  try {
+    f();
+  } catch (const std::exception& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+TEST(ShowProof, StatsJsonOnAFullDiskIsAnErrorAndTheOldFileIsKept) {
+  const fs::path dir = scratch("full_json");
+  const fs::path json = dir / "stats.json";
+  std::ofstream(json) << "{\"status\": \"the previous run\"}\n";
+  RunRecord record;
+  FrameStats stats;
+  stats.particles = 100;
+  record.start(stats);
+  for (int k = 0; k < 50; ++k) record.addFrame(stats, 4, 1.0, k % 5 == 0 ? "film_grown" : "");
+  std::string message;
+  {
+    const FullDiskAfter full(512);  // stats.json of 50 frames with events is several KB
+    message = errorOf([&] { record.writeJson(json, "scene", "finished"); });
+  }
+  EXPECT_NE(message.find("failed writing " + json.string()), std::string::npos) << message;
+  EXPECT_EQ(readAll(json), "{\"status\": \"the previous run\"}\n");  // the old file, whole
+  EXPECT_FALSE(fs::exists(dir / "stats.json.partial"));
+}
+
+TEST(ShowProof, AStatsRowThatDoesNotFitStopsTheRunInsteadOfBeingCut) {
+  const fs::path csv = scratch("full_csv") / "stats.csv";
+  StatsWriter writer(csv);  // the header, before the disk fills
+  FrameStats stats;
+  std::string message;
+  {
+    const FullDiskAfter full(fs::file_size(csv) + 300);
+    message = errorOf([&] {
+      for (long frame = 0; frame < 100; ++frame) writer.write(frame, stats, 4, 1.0, "");
+    });
+  }
+  EXPECT_NE(message.find("failed writing " + csv.string()), std::string::npos) << message;
+}
+
+TEST(ShowProof, AWholeFileIsReplacedAtomicallyAndAnUnwritablePathIsNamed) {
+  const fs::path dir = scratch("atomic");
+  writeFileAtomically(dir / "a.json", "first\n");
+  writeFileAtomically(dir / "a.json", "second\n");
+  EXPECT_EQ(readAll(dir / "a.json"), "second\n");
+  const std::string message = errorOf([&] { writeFileAtomically(dir / "no_such_folder" / "a.json", "x"); });
+  EXPECT_NE(message.find("cannot write " + (dir / "no_such_folder" / "a.json").string() + ": No such file"),
+            std::string::npos)
+      << message;
+}
+
+TEST(ShowProof, Table1AveragesOnlyTheFramesWithAFilm) {
+  const fs::path json = scratch("table1") / "stats.json";
+  RunRecord record;
+  FrameStats film, gone;
+  film.particles = 1000;
+  film.triangles = 1900;
+  record.start(film);
+  for (int k = 0; k < 10; ++k) record.addFrame(film, 4, 10.0, "");
+  for (int k = 0; k < 30; ++k) record.addFrame(gone, 4, 1.0, "");  // the film burst: droplets only
+  record.writeJson(json, "scene", "finished");
+  const std::string text = readAll(json);
+  // Exact: the averages of ten equal frames.
+  EXPECT_NE(text.find("\"particles\": 1000.0"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"frame_ms\": 10.0"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"frames\": 40"), std::string::npos) << text;
+  EXPECT_NE(text.find("\"frames_with_film\": 10"), std::string::npos) << text;
+}
+
+TEST(ShowProof, CommandLineNumbersMustBeFinite) {
+  const FiniteRange range(0.0, 20.0);
+  for (std::string bad : {"nan", "NaN", "inf", "-inf", "21", "-1", "fast"}) EXPECT_NE(range(bad), "") << bad;
+  for (std::string good : {"0", "2.5", "20"}) EXPECT_EQ(range(good), "") << good;
+}
+
+TEST(ShowProof, AScriptedKeyFrameTooLargeIsNamed) {
+  std::string why;
+  EXPECT_FALSE(parseKeyPress("99999999999999999999:b", why));
+  EXPECT_NE(why.find("frame 99999999999999999999 is too large"), std::string::npos) << why;
+  const auto press = parseKeyPress("50:c", why);
+  ASSERT_TRUE(press);
+  EXPECT_EQ(press->frame, 50);
+  EXPECT_EQ(press->key, 'c');
+  EXPECT_FALSE(parseKeyPress("5x:b", why));
+  EXPECT_FALSE(parseKeyPress("50:z", why));
+}
+
+TEST(ShowProof, AnOscPortOutOfRangeIsRefusedNotWrapped) {
+  EXPECT_NE(errorOf([] { OscSender("127.0.0.1:99999"); }).find("from 1 to 65535"), std::string::npos);
+  EXPECT_NE(errorOf([] { OscSender("127.0.0.1:0"); }).find("from 1 to 65535"), std::string::npos);
+  EXPECT_NO_THROW(OscSender("127.0.0.1:65535"));
+}
+
+// A PNG whose IHDR chunk claims width x height (CRCs correct, no image data).
+void writePngHeader(const fs::path& path, uint32_t width, uint32_t height) {
+  std::string ihdr = "IHDR";
+  for (uint32_t v : {width, height})
+    for (int shift = 24; shift >= 0; shift -= 8) ihdr += static_cast<char>((v >> shift) & 0xff);
+  ihdr += std::string("\x08\x02\x00\x00\x00", 5);  // 8-bit RGB, no interlace
+  const uLong crc = crc32(0, reinterpret_cast<const Bytef*>(ihdr.data()), static_cast<uInt>(ihdr.size()));
+  std::string png = "\x89PNG\r\n\x1a\n";
+  png += std::string("\x00\x00\x00\x0d", 4) + ihdr;
+  for (int shift = 24; shift >= 0; shift -= 8) png += static_cast<char>((crc >> shift) & 0xff);
+  // An empty IDAT: libpng reads the header up to the first IDAT, where readPng must stop and check.
+  const uLong idatCrc = crc32(0, reinterpret_cast<const Bytef*>("IDAT"), 4);
+  png += std::string("\x00\x00\x00\x00IDAT", 8);
+  for (int shift = 24; shift >= 0; shift -= 8) png += static_cast<char>((idatCrc >> shift) & 0xff);
+  std::ofstream(path, std::ios::binary) << png;
+}
+
+TEST(ShowProof, APngHeaderClaimingAHugeImageIsRefusedBeforeAllocating) {
+  const fs::path png = scratch("png") / "huge.png";
+  writePngHeader(png, 200000, 100000);  // 60 GB of RGB if believed
+  const std::string message = errorOf([&] { (void)readPng(png); });
+  EXPECT_NE(message.find("is 200000x100000 pixels; at most 16384 on a side"), std::string::npos) << message;
+}
+
+TEST(ShowProof, SceneCameraAndTargetMustBeFiniteCoordinates) {
+  for (const char* bad : {"camera = [nan, 1.0, 3.0]", "target = [0.0, inf, 0.0]", "camera = [1e9, 0, 0]"}) {
+    const std::string message = errorOf(
+        [&] { (void)parseScene(std::string("name = \"s\"\n[render]\n") + bad + "\n", "s.toml", fs::current_path()); });
+    EXPECT_NE(message.find("s.toml:3:"), std::string::npos) << message;
+    EXPECT_NE(message.find("is not a coordinate within 1000 m"), std::string::npos) << message;
+  }
+}
+
+TEST(ShowProof, ASceneThatIsAFolderOrAFifoIsNamedNotReadOrWaitedOn) {
+  const fs::path dir = scratch("scene_kinds");
+  EXPECT_NE(errorOf([&] { (void)resolveScene(dir.string()); }).find("is a folder"), std::string::npos);
+  const fs::path fifo = dir / "scene.toml";
+  ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
+  EXPECT_NE(errorOf([&] { (void)resolveScene(fifo.string()); }).find("not a regular file"), std::string::npos);
+}
+
+TEST(ShowProof, AnIntegerTooLargeForTomlKeepsItsFileAndLine) {
+  const std::string message = errorOf(
+      [] { (void)parseScene("name = \"s\"\n[params]\nmaxSubsteps = 9999999999999\n", "s.toml", fs::current_path()); });
+  EXPECT_NE(message.find("s.toml:3:15: parameter maxSubsteps"), std::string::npos) << message;
+}
+
+TEST(ShowProof, TrajectorySamplesANanosecondApartDoNotStallTheLoop) {
+  // Two samples 1 ns apart, then 10 s of run: the holds through the gap go at least kMinSamplePeriod apart
+  // (10,000 stabilizer updates); at the input's own period, 1 ns, it would be 10^10.
+  std::vector<HandSample> samples(2);
+  samples[1].time = 1e-9;
+  for (HandSample& s : samples)
+    for (HandObservation* o : {&s.left, &s.right}) {
+      o->measured = true;
+      o->confidence = 1.0;
+      o->position = Vec3d(0.2, 0.0, 2.0);
+    }
+  StabilizedWands wands(std::make_unique<ReplayHandSource>(samples, "dense"), StabilizerOptions{}, Calibration{});
+  const WandFrame f = wands.at(10.0);
+  EXPECT_TRUE(f.wands.leftPosition.allFinite());
+  EXPECT_TRUE(wands.ended());
+}
+
+TEST(ShowProof, ATrajectoryHeaderWithAByteOrderMarkIsRead) {
+  const fs::path csv = scratch("bom") / "hands.csv";
+  std::ofstream(csv)
+      << "\xEF\xBB\xBFt,left_x,left_y,left_z,right_x,right_y,right_z\n0,0,0,2,0.3,0,2\n0.1,0,0,2,0.3,0,2\n";
+  EXPECT_EQ(readTrajectory(csv).size(), 2u);
+}
+
+}  // namespace
+}  // namespace gb

@@ -58,7 +58,7 @@ StabilizedWands::StabilizedWands(std::unique_ptr<HandSource> source, const Stabi
   }
   StabilizerOptions options = stabilizer;
   period_ = source_->period();
-  options.period = period_;
+  options.period = period();  // at least kMinSamplePeriod: a 1 ns input must not set a 1 ns stabilizer step
   stabilizer_ =
       std::make_unique<Stabilizer>(options, calibration_.restHand(Hand::Left), calibration_.restHand(Hand::Right));
   lastMeasured_[0] = lastMeasured_[1] = start_;

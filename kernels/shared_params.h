@@ -15,7 +15,7 @@ struct Params {
   float frameTime GB_DEFAULT(0.02f);       // h, Table 2: 0.02 s. One frame of wand input
   int integrator GB_DEFAULT(1);            // 1: implicit Euler solved by vertex block descent (one step per frame);
                                            // 0: the paper's semi-implicit Euler, Eqs. (12)-(13), in stable substeps
-  int solverIterations GB_DEFAULT(10);     // vertex block descent sweeps per implicit step
+  int solverIterations GB_DEFAULT(6);      // vertex block descent sweeps per implicit step
   int implicitSubsteps GB_DEFAULT(1);      // implicit steps per frame (a scene may ask for more; stability never does)
   float stabilitySafety GB_DEFAULT(0.5f);  // fraction of the explicit stability limit taken as the substep (0, 1]
   int maxSubsteps GB_DEFAULT(4000);        // refuse films whose stability limit needs more substeps per frame

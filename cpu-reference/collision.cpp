@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <unordered_map>
 
 namespace gb {
 
@@ -34,6 +33,48 @@ bool inFilm(const Film& film, uint32_t i) {
   return film.state.alive[i] && film.topology.triangleOffset[i + 1] > film.topology.triangleOffset[i];
 }
 
+// Particles bucketed by a hash of their grid cell, counting-sorted into one flat array: the same lookups as a
+// map of cells without a heap allocation per cell. Different cells may share a bucket; the distance test
+// in findContacts sorts them out.
+struct CellTable {
+  std::vector<uint32_t> offset;    // bucket b holds particle[offset[b] .. offset[b + 1])
+  std::vector<uint32_t> particle;  // particle ids, ascending within each bucket
+  // Their positions and normals in the same order: the search streams through these instead of
+  // gathering from the state's arrays, which is most of its time on a large film.
+  std::vector<Vec3> position;
+  std::vector<Vec3> normal;
+  uint64_t mask = 0;
+
+  [[nodiscard]] uint32_t bucketOf(const Cell& c) const {
+    return static_cast<uint32_t>((cellKey(c) * 0x9E3779B97F4A7C15ull) >> 32 & mask);
+  }
+};
+
+CellTable bucketParticles(const Film& film, float cellSize) {
+  const State& s = film.state;
+  const size_t n = s.size();
+  CellTable table;
+  size_t buckets = 1;
+  while (buckets < 2 * n) buckets *= 2;
+  table.mask = buckets - 1;
+  std::vector<uint32_t> bucket(n, 0u);
+  table.offset.assign(buckets + 1, 0u);
+  for (uint32_t i = 0; i < n; ++i)
+    if (inFilm(film, i)) ++table.offset[(bucket[i] = table.bucketOf(cellOf(s.position.get(i), cellSize))) + 1];
+  for (size_t b = 0; b < buckets; ++b) table.offset[b + 1] += table.offset[b];
+  table.particle.resize(table.offset[buckets]);
+  std::vector<uint32_t> fill(table.offset.begin(), table.offset.end() - 1);
+  for (uint32_t i = 0; i < n; ++i)
+    if (inFilm(film, i)) table.particle[fill[bucket[i]]++] = i;
+  table.position.resize(table.particle.size());
+  table.normal.resize(table.particle.size());
+  for (size_t k = 0; k < table.particle.size(); ++k) {
+    table.position[k] = s.position.get(table.particle[k]);
+    table.normal[k] = s.normal.get(table.particle[k]);
+  }
+  return table;
+}
+
 }  // namespace
 
 size_t findContacts(const Params& p, float margin, Film& film) {
@@ -43,11 +84,11 @@ size_t findContacts(const Params& p, float margin, Film& film) {
   const float reach = p.collisionDistance + margin;
   std::vector<std::vector<uint32_t>> lists(n);
   if (reach > 0 && p.collisionStiffness > 0) {
-    std::unordered_map<uint64_t, std::vector<uint32_t>> grid;
-    for (uint32_t i = 0; i < n; ++i)
-      if (inFilm(film, i)) grid[cellKey(cellOf(s.position.get(i), reach))].push_back(i);
-    constexpr float acrossCosine = 0.7071f;  // 45 degrees
-    // Each particle fills its own list from the read-only grid: parallel, and the same lists in any order.
+    const CellTable table = bucketParticles(film, reach);
+    const float reachSquared = reach * reach;
+    constexpr float acrossCosineSquared = 0.5f;  // 45 degrees
+    // Each particle lists its partners of higher index from the read-only table (each pair once, half the
+    // distance tests): parallel, and the same lists in any order.
 #pragma omp parallel for schedule(dynamic, 256)
     for (uint32_t i = 0; i < n; ++i) {
       if (!inFilm(film, i)) continue;
@@ -56,29 +97,43 @@ size_t findContacts(const Params& p, float margin, Film& film) {
       for (int dx = -1; dx <= 1; ++dx)
         for (int dy = -1; dy <= 1; ++dy)
           for (int dz = -1; dz <= 1; ++dz) {
-            const auto found = grid.find(cellKey({c[0] + dx, c[1] + dy, c[2] + dz}));
-            if (found == grid.end()) continue;
-            for (uint32_t j : found->second) {
-              if (j == i) continue;
-              const Vec3 d = s.position.get(j) - xi;
-              const float len = d.norm();
-              if (!(len < reach) || len <= 0) continue;
-              const bool across = std::abs(ni.dot(d)) > acrossCosine * len ||
-                                  std::abs(s.normal.get(j).dot(d)) > acrossCosine * len;
+            const uint32_t bucket = table.bucketOf({c[0] + dx, c[1] + dy, c[2] + dz});
+            const auto bucketEnd = table.particle.begin() + table.offset[bucket + 1];
+            const auto higher = std::upper_bound(table.particle.begin() + table.offset[bucket], bucketEnd, i);
+            for (auto k = static_cast<size_t>(higher - table.particle.begin()); k < table.offset[bucket + 1]; ++k) {
+              const uint32_t j = table.particle[k];
+              // Squared lengths throughout: most candidates are the film's own in-plane neighbours,
+              // rejected here without a square root.
+              const Vec3 d = table.position[k] - xi;
+              const float lengthSquared = d.squaredNorm();
+              if (!(lengthSquared < reachSquared) || lengthSquared <= 0) continue;
+              const float alongI = ni.dot(d), alongJ = table.normal[k].dot(d);
+              const bool across = alongI * alongI > acrossCosineSquared * lengthSquared ||
+                                  alongJ * alongJ > acrossCosineSquared * lengthSquared;
               if (across && !isOneRingNeighbour(topo, i, j)) lists[i].push_back(j);
             }
           }
+      // Two of the 27 cells can share a bucket (a hash collision): sorting and removing repeats keeps the
+      // lists the same however the table falls.
       std::sort(lists[i].begin(), lists[i].end());
+      lists[i].erase(std::unique(lists[i].begin(), lists[i].end()), lists[i].end());
     }
   }
+  // Each particle's partners of lower index, in ascending order because i ascends.
+  std::vector<std::vector<uint32_t>> lower(n);
+  for (uint32_t i = 0; i < n; ++i)
+    for (uint32_t j : lists[i]) lower[j].push_back(i);
   std::vector<uint32_t> packed(n + 1, 0u);
   size_t total = 0;
   for (size_t i = 0; i < n; ++i) {
     packed[i] = static_cast<uint32_t>(total);
-    total += lists[i].size();
+    total += lower[i].size() + lists[i].size();
   }
   packed[n] = static_cast<uint32_t>(total);
-  for (const auto& list : lists) packed.insert(packed.end(), list.begin(), list.end());
+  for (size_t i = 0; i < n; ++i) {
+    packed.insert(packed.end(), lower[i].begin(), lower[i].end());
+    packed.insert(packed.end(), lists[i].begin(), lists[i].end());
+  }
   topo.contacts = std::move(packed);
   return total / 2;
 }

@@ -1,8 +1,8 @@
 #include "pinch_off.h"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <optional>
 #include <stdexcept>
 
@@ -11,23 +11,41 @@
 namespace gb {
 
 std::vector<uint32_t> boundaryLoop(const Topology& topo) {
-  // Directed boundary edges: an edge a->b of a triangle whose reverse b->a belongs to no triangle.
-  std::map<std::pair<uint32_t, uint32_t>, int> directed;
-  for (size_t t = 0; t < topo.triangleCount(); ++t)
-    for (int c = 0; c < 3; ++c) ++directed[{topo.triangles[3 * t + c], topo.triangles[3 * t + (c + 1) % 3]}];
-  std::map<uint32_t, uint32_t> next;
-  for (const auto& [edge, count] : directed)
-    if (!directed.count({edge.second, edge.first})) {
-      if (next.count(edge.first)) throw std::runtime_error("pinch-off: the film's boundary is not a single loop");
-      next[edge.first] = edge.second;
+  // Directed boundary edges: an edge a->b of a triangle whose reverse b->a belongs to no triangle. Found per
+  // particle from its own triangles (b leaves a, but no triangle of a enters a from b), not from a map of
+  // every edge: film growth asks for the loop every frame, over ~60,000 edges.
+  std::vector<std::pair<uint32_t, uint32_t>> next;  // boundary edges, sorted by their first particle
+  std::vector<uint32_t> leaving, entering;
+  for (uint32_t a = 0; a < topo.particleCount(); ++a) {
+    leaving.clear();
+    entering.clear();
+    for (uint32_t k = topo.triangleOffset[a]; k < topo.triangleOffset[a + 1]; ++k) {
+      const uint32_t* corner = &topo.triangles[3 * topo.triangleIndex[k]];
+      const int c = corner[0] == a ? 0 : corner[1] == a ? 1 : 2;
+      leaving.push_back(corner[(c + 1) % 3]);
+      entering.push_back(corner[(c + 2) % 3]);
     }
+    std::sort(leaving.begin(), leaving.end());
+    leaving.erase(std::unique(leaving.begin(), leaving.end()), leaving.end());
+    for (uint32_t b : leaving) {
+      if (std::find(entering.begin(), entering.end(), b) != entering.end()) continue;
+      if (!next.empty() && next.back().first == a)
+        throw std::runtime_error("pinch-off: the film's boundary is not a single loop");
+      next.emplace_back(a, b);
+    }
+  }
   if (next.empty()) return {};
-  std::vector<uint32_t> loop = {next.begin()->first};
+  const auto successor = [&next](uint32_t a) -> std::optional<uint32_t> {
+    const auto it = std::lower_bound(next.begin(), next.end(), std::make_pair(a, 0u));
+    if (it == next.end() || it->first != a) return std::nullopt;
+    return it->second;
+  };
+  std::vector<uint32_t> loop = {next.front().first};
   while (loop.size() <= next.size()) {
-    const auto it = next.find(loop.back());
-    if (it == next.end()) throw std::runtime_error("pinch-off: the film's boundary is open");
-    if (it->second == loop.front()) break;
-    loop.push_back(it->second);
+    const std::optional<uint32_t> following = successor(loop.back());
+    if (!following) throw std::runtime_error("pinch-off: the film's boundary is open");
+    if (*following == loop.front()) break;
+    loop.push_back(*following);
   }
   if (loop.size() != next.size()) throw std::runtime_error("pinch-off: the film's boundary is not a single loop");
   return loop;
@@ -37,7 +55,8 @@ namespace {
 
 double signedVolume(const Film& film, const Vec3& origin) {
   double v = 0;
-  for (size_t t = 0; t < film.topology.triangleCount(); ++t) v += triangleSignedVolume(film.topology, film.state, t, origin);
+  for (size_t t = 0; t < film.topology.triangleCount(); ++t)
+    v += triangleSignedVolume(film.topology, film.state, t, origin);
   return v;
 }
 
@@ -45,7 +64,8 @@ double signedVolume(const Film& film, const Vec3& origin) {
 float loopSpacing(const State& s, const std::vector<uint32_t>& loop) {
   float spacing = 0.0f;
   for (size_t k = 0; k < loop.size(); ++k)
-    spacing += (s.position.get(loop[(k + 1) % loop.size()]) - s.position.get(loop[k])).norm() / static_cast<float>(loop.size());
+    spacing += (s.position.get(loop[(k + 1) % loop.size()]) - s.position.get(loop[k])).norm() /
+               static_cast<float>(loop.size());
   return spacing;
 }
 
@@ -94,7 +114,8 @@ std::vector<uint32_t> zipCollapsedLoop(const State& s, const std::vector<uint32_
 // together ring by ring, and a last particle at the centroid. Its triangles touch the loop only along loop
 // edges, so no cap edge can coincide with an edge of the film. New particles are numbered from `first`
 // and their positions appended to `added`.
-std::vector<uint32_t> ringCap(const State& s, const std::vector<uint32_t>& loop, size_t first, std::vector<Vec3>& added) {
+std::vector<uint32_t> ringCap(const State& s, const std::vector<uint32_t>& loop, size_t first,
+                              std::vector<Vec3>& added) {
   Vec3 centre = Vec3::Zero();
   for (uint32_t v : loop) centre += s.position.get(v) / static_cast<float>(loop.size());
   float radius = 0.0f;
@@ -113,7 +134,9 @@ std::vector<uint32_t> ringCap(const State& s, const std::vector<uint32_t>& loop,
   std::vector<uint32_t> outer(loop.begin(), loop.end());
   for (int ring = 1; ring <= rings; ++ring) {
     const float scale = 1.0f - static_cast<float>(ring) / static_cast<float>(rings);
-    const size_t count = ring == rings ? 1 : std::max<size_t>(3, static_cast<size_t>(std::lround(static_cast<double>(loop.size()) * scale)));
+    const size_t count =
+        ring == rings ? 1
+                      : std::max<size_t>(3, static_cast<size_t>(std::lround(static_cast<double>(loop.size()) * scale)));
     std::vector<uint32_t> inner;
     for (size_t k = 0; k < count; ++k) {
       inner.push_back(static_cast<uint32_t>(first + added.size()));

@@ -8,14 +8,15 @@
 namespace gb {
 
 std::string InputOptions::spec() const {
-  if (!input.empty()) return input;
-  return "script:" + (gesture.empty() ? std::string("straight") : gesture);
+  // --gesture comes from the command line only, so it wins over a scene's input (the default scene's too).
+  if (!gesture.empty()) return "script:" + gesture;
+  return input.empty() ? std::string("script:straight") : input;
 }
 
 void addInputOptions(CLI::App* command, InputOptions& o) {
   command->add_option("--input", o.input,
                       "where the hands come from: kinect, fakenect:DIR, trajectory:FILE or script:NAME "
-                      "(default script:straight)");
+                      "(default: the scene's, script:giant for the default scene)");
   command->add_option("--gesture", o.gesture, "scripted wand gesture, the same as --input script:NAME")
       ->check(CLI::IsMember(gestureNames()))
       ->excludes("--input");

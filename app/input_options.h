@@ -24,7 +24,7 @@ struct InputOptions {
   std::vector<double> depthBand = {0.5, 4.0};  // metres: the performer stands inside this band
   bool mirrored = false;                       // the depth image is mirrored
 
-  [[nodiscard]] std::string spec() const;  // --input, else script:GESTURE, else script:straight
+  [[nodiscard]] std::string spec() const;  // script:GESTURE, else --input, else script:straight
   [[nodiscard]] bool scripted() const { return spec().rfind("script:", 0) == 0; }
 };
 

@@ -63,9 +63,11 @@ int main(int argc, char** argv) {
 
   gb::RunOptions run;
   std::string sceneName = sceneArgument(argc, argv);
-  if (!sceneName.empty()) {
+  const bool sceneSetsDuration = !sceneName.empty();
+  {
     try {
-      const gb::Scene scene = gb::resolveScene(sceneName);
+      // Without --scene, the built-in scene "default" (scenes/default.toml): the giant bubble performance.
+      const gb::Scene scene = gb::resolveScene(sceneName.empty() ? "default" : sceneName);
       run = scene.run;
       run.scene = scene.name;
     } catch (const std::exception& e) {
@@ -73,7 +75,6 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  const bool sceneSetsDuration = !sceneName.empty();
   std::string tool = run.tool.kind == gb::ToolKind::Ring ? "ring" : "two-wands";
   std::vector<std::string> assignments;
   CLI::App* runCmd = app.add_subcommand("run", "simulate a performance headless and write its outputs");

@@ -156,6 +156,7 @@ std::string describeEvents(const TopologyEvents& e) {
     words += word;
   };
   add(e.started, "burst_started");
+  if (e.started && e.cause != nullptr) add(true, (std::string("burst_by_") + e.cause).c_str());
   add(e.finished, "burst_finished");
   add(e.pinchedOff, "pinched_off");
   add(e.particlesAdded > 0, "film_grown");

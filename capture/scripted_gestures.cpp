@@ -18,6 +18,31 @@ void strokeAt(const GestureOptions& o, double tau, double& distance, double& spe
   speed = (tau > 0 && tau < T) ? o.speed * s * s : 0.0;
 }
 
+// The giant bubble's stroke: speed rises as sin^2 over the first kGiantRise of it, holds, and falls as sin^2 over
+// the last kGiantFall, so the wands are still at full speed (the bag still full of their air) when they close;
+// closed, they slow down and lift away (kGiantLift) so the bubble flies on ahead of them.
+constexpr double kGiantRise = 0.35, kGiantCloseFrom = 0.45, kGiantCloseTo = 0.72, kGiantFall = 1.0 - kGiantCloseTo;
+constexpr double kGiantLift = 0.4;  // m
+
+void giantStrokeAt(const GestureOptions& o, double tau, double& distance, double& speed) {
+  const double T = o.duration, pi = std::numbers::pi, t = std::clamp(tau, 0.0, T);
+  const double rise = kGiantRise * T, fall = kGiantFall * T, holdEnd = T - fall;
+  // Distance covered by a sin^2 ramp of length r after time x into it: S (x/2 - r/(2 pi) sin(pi x / r)).
+  auto ramp = [&](double x, double r) { return o.speed * (x / 2.0 - r / (2.0 * pi) * std::sin(pi * x / r)); };
+  if (t < rise) {
+    distance = ramp(t, rise);
+    speed = o.speed * std::pow(std::sin(pi * t / (2.0 * rise)), 2);
+  } else if (t < holdEnd) {
+    distance = ramp(rise, rise) + o.speed * (t - rise);
+    speed = o.speed;
+  } else {  // the falling half-ramp, mirrored: full speed at holdEnd, still at T
+    const double x = t - holdEnd;
+    distance = ramp(rise, rise) + o.speed * (holdEnd - rise) + ramp(fall, fall) - ramp(fall - x, fall);
+    speed = o.speed * std::pow(std::sin(pi * (fall - x) / (2.0 * fall)), 2);
+  }
+  if (!(tau > 0 && tau < T)) speed = 0.0;
+}
+
 }  // namespace
 
 struct HandOffsets {
@@ -60,6 +85,18 @@ HandOffsets extraMotion(Gesture gesture, const GestureOptions& o, double tau) {
     case Gesture::Rising:  // from 0.6 m below up to the tip height
       h.left = h.right = Vec3(0.0f, static_cast<float>(-0.6 * (1.0 - u)), 0.0f);
       break;
+    case Gesture::Giant: {
+      // A giant bubble is blown and let go: at full speed (giantStrokeAt) the tips come together to kClosedGap,
+      // well inside Params::pinchDistance, so the bag behind them pinches off into a free bubble.
+      constexpr double kClosedGap = 0.04;
+      const double closing = std::clamp((u - kGiantCloseFrom) / (kGiantCloseTo - kGiantCloseFrom), 0.0, 1.0);
+      const double eased = closing * closing * (3.0 - 2.0 * closing);  // smoothstep: no jerk at either end
+      const double lifting = std::clamp((u - kGiantCloseTo) / kGiantFall, 0.0, 1.0);
+      const auto lift = static_cast<float>(kGiantLift * lifting * lifting * (3.0 - 2.0 * lifting));
+      h.left = Vec3(static_cast<float>(0.5 * (o.tipSeparation - kClosedGap) * eased), lift, 0.0f);
+      h.right = Vec3(-h.left.x(), lift, 0.0f);
+      break;
+    }
   }
   return h;
 }
@@ -69,7 +106,10 @@ WandState gestureAt(Gesture gesture, const GestureOptions& o, double t) {
   w.leftPosition = Vec3(-0.5f * o.tipSeparation, o.height, 0.0f);
   w.rightPosition = Vec3(0.5f * o.tipSeparation, o.height, 0.0f);
   double distance = 0, speed = 0;
-  strokeAt(o, t - o.start, distance, speed);
+  if (gesture == Gesture::Giant)
+    giantStrokeAt(o, t - o.start, distance, speed);
+  else
+    strokeAt(o, t - o.start, distance, speed);
   const Vec3 offset(0.0f, 0.0f, static_cast<float>(distance));
   const Vec3 velocity(0.0f, 0.0f, static_cast<float>(speed));
   w.leftPosition += offset;
@@ -89,7 +129,8 @@ WandState gestureAt(Gesture gesture, const GestureOptions& o, double t) {
 namespace {
 const std::pair<const char*, Gesture> kGestures[] = {
     {"straight", Gesture::Straight}, {"circle-left", Gesture::CircleLeft}, {"circles", Gesture::Circles},
-    {"twisted", Gesture::Twisted},   {"up-down", Gesture::UpDown},         {"rising", Gesture::Rising}};
+    {"twisted", Gesture::Twisted},   {"up-down", Gesture::UpDown},         {"rising", Gesture::Rising},
+    {"giant", Gesture::Giant}};
 }  // namespace
 
 Gesture gestureFromName(const std::string& name) {

@@ -10,8 +10,9 @@
 namespace gb {
 
 // The wand motions of Figure 10: straight (a), left wand circling (b), both circling (c), twisted with
-// sudden, growing redirections (d), up and down (e), rising from below (f).
-enum class Gesture { Straight, CircleLeft, Circles, Twisted, UpDown, Rising };
+// sudden, growing redirections (d), up and down (e), rising from below (f); and giant, the default
+// performance: a fast forward stroke that closes the wands as it ends, blowing and releasing a free bubble.
+enum class Gesture { Straight, CircleLeft, Circles, Twisted, UpDown, Rising, Giant };
 
 struct GestureOptions {
   float tipSeparation = 1.0f;  // distance between the wand tips (m)

@@ -149,9 +149,10 @@ float taylorCulickSpeed(const Params& p, float thickness) {
   return std::sqrt(2.0f * p.surfaceTension / (p.liquidDensity * e));
 }
 
-void startCrack(BurstFront& front, const Film& film, size_t i, double t) {
+void startCrack(BurstFront& front, const Film& film, size_t i, double t, const char* cause) {
   fitToFilm(front, film);
   if (!film.state.alive[i]) return;
+  if (front.cause == nullptr) front.cause = cause;
   front.arrival[i] = std::min(front.arrival[i], static_cast<float>(t));
 }
 
@@ -163,7 +164,8 @@ TopologyEvents advanceBurst(const Params& p, double now, Film& film, BurstFront&
   // Algorithm 3, line 1: particles thinner than the threshold crack (a particle with no area left has no
   // meaningful thickness and is left to its neighbours).
   for (size_t i = 0; i < s.size(); ++i)
-    if (s.alive[i] && s.voronoiArea[i] > 0 && s.thickness[i] < p.thicknessThreshold) startCrack(front, film, i, now);
+    if (s.alive[i] && s.voronoiArea[i] > 0 && s.thickness[i] < p.thicknessThreshold)
+      startCrack(front, film, i, now, "thin");
 
   // The front: Dijkstra over the one-ring from every scheduled particle, settling all arrivals up to now.
   using Entry = std::pair<float, uint32_t>;
@@ -196,6 +198,7 @@ TopologyEvents advanceBurst(const Params& p, double now, Film& film, BurstFront&
     front.started = *std::min_element(front.arrival.begin(), front.arrival.end());
     countShares(front, film);
     events.started = true;
+    events.cause = front.cause;
   }
   for (uint32_t i : dying) s.alive[i] = 0u;  // Algorithm 3, line 4
   events.particlesRemoved = dying.size();

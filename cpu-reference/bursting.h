@@ -39,13 +39,15 @@ struct BurstFront {
   std::vector<uint32_t> torn;    // triangles left the physics mesh with a dead corner, 3 indices each
   double started = -1.0;         // time of the first crack, -1 before
   double finished = -1.0;        // time the last particle died, -1 before
+  const char* cause = nullptr;   // what scheduled the first crack: "thin", "impact", "wand", "floor" or "poke"
   [[nodiscard]] bool active() const { return started >= 0 && finished < 0; }
 };
 
 // What one frame's topology events did.
 struct TopologyEvents {
-  bool started = false;   // the first crack of this film opened
-  bool finished = false;  // the film is gone
+  bool started = false;         // the first crack of this film opened
+  const char* cause = nullptr;  // with started: BurstFront::cause
+  bool finished = false;        // the film is gone
   size_t particlesRemoved = 0;
   size_t trianglesRemoved = 0;  // left the physics mesh
   size_t dropletsEmitted = 0;
@@ -56,8 +58,9 @@ struct TopologyEvents {
 // Taylor-Culick speed of a hole's rim in a film of thickness e: sqrt(2 gamma / (rho e)) (m/s).
 float taylorCulickSpeed(const Params& params, float thickness);
 
-// Schedules a crack at particle i at time t (a poke, a collision, or the thickness test).
-void startCrack(BurstFront& front, const Film& film, size_t i, double t);
+// Schedules a crack at particle i at time t; cause says why (a poke, a collision, the thickness test...); the
+// burst keeps the first one's.
+void startCrack(BurstFront& front, const Film& film, size_t i, double t, const char* cause);
 
 // One frame's topology step at time `now`: cracks where the film is thinner than the threshold, the front
 // advanced to `now`, the particles it reached removed with their springs and triangles, droplets emitted

@@ -11,14 +11,14 @@ struct Film {
   State state;
   Topology topology;
   WandTool tool;
-  float stringLength = 0.0f;     // two wands: length of the hanging bottom string, fixed while the film lives
-  float referenceVolume = 0.0f;       // V_0 of Eq. (11) once the film is a closed bubble (m^3)
-  Vec3 volumeOrigin = Vec3::Zero();   // closed bubble: apex of the volume's cone decomposition, fixed at
-                                      // closure so that no backend needs to read the state back for it
+  float stringLength = 0.0f;         // two wands: length of the hanging bottom string, fixed while the film lives
+  float referenceVolume = 0.0f;      // V_0 of Eq. (11) once the film is a closed bubble (m^3)
+  Vec3 volumeOrigin = Vec3::Zero();  // closed bubble: apex of the volume's cone decomposition, fixed at
+                                     // closure so that no backend needs to read the state back for it
   // Soap solution control (Section 7): liquid still on the wet wire, from which new film is drawn.
-  float wireLiquid = 0.0f;        // m^3 left
-  float wireLiquidAtDip = 0.0f;   // m^3 the wire held when the film was made
-  float wireSpacing = 0.0f;       // spacing of the wire's particles when the film was made (m)
+  float wireLiquid = 0.0f;       // m^3 left
+  float wireLiquidAtDip = 0.0f;  // m^3 the wire held when the film was made
+  float wireSpacing = 0.0f;      // spacing of the wire's particles when the film was made (m)
   // Remaining soap solution in [0, 1]: Params::solution at the dip, less what growth has used since.
   [[nodiscard]] float solutionLeft(const Params& params) const {
     return wireLiquidAtDip > 0 ? params.solution * wireLiquid / wireLiquidAtDip : 0.0f;
@@ -29,10 +29,17 @@ struct Film {
 // liquid (initial thickness x rest Voronoi area), thickness, elasticity; lifetime 0, at rest.
 void initialiseFilmMaterial(const Params& params, Film& film);
 
-// The mass of a particle with that Voronoi area and liquid: the paper's film has a chosen inertia per area
-// (filmInertia); the physical one (tensionModel 1) weighs what its liquid weighs.
+// The mass gravity pulls on: the particle's liquid. Air inside and outside the film weigh the same, so a
+// film (and a free bubble) sinks under its liquid's weight alone.
+inline float liquidMass(const Params& p, float liquid) { return p.liquidDensity * liquid; }
+
+// The mass of a particle with that Voronoi area and liquid, its inertia: the paper's film has a chosen inertia
+// per area (filmInertia, 0.1 kg/m^2, about 30 times a 3.5 um film's liquid); we read the difference as the air
+// the film drags along (added mass), which it must accelerate but which weighs nothing in air, so gravity
+// pulls on liquidMass only (docs/model.md, "Weight and inertia"). The physical model (tensionModel 1) is its
+// liquid alone.
 inline float particleMass(const Params& p, float voronoiArea, float liquid) {
-  return p.tensionModel == 1 ? p.liquidDensity * liquid : p.filmInertia * voronoiArea;
+  return p.tensionModel == 1 ? liquidMass(p, liquid) : p.filmInertia * voronoiArea;
 }
 
 // Gives particles [first, n) the material of a new film (mass, liquid, thickness, elasticity, at rest),

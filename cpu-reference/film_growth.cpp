@@ -101,7 +101,8 @@ void restLikeNewFilm(const Params& params, const std::vector<uint32_t>& released
     const bool toFilm = (isReleased[a] && !isReleased[b] && !topo.boundary[b]) ||
                         (isReleased[b] && !isReleased[a] && !topo.boundary[a]);
     if (toFilm)
-      topo.restLength[k] = (film.state.position.get(a) - film.state.position.get(b)).norm() * (1.0f - params.springPrestrain);
+      topo.restLength[k] =
+          (film.state.position.get(a) - film.state.position.get(b)).norm() * (1.0f - params.springPrestrain);
   }
 }
 
@@ -176,6 +177,25 @@ size_t payOutFilmAtWire(const Params& params, Film& film) {
   for (const auto& [k, length] : stretched)
     topo.restLength[k] = length * (1.0f - params.springPrestrain);  // as taut as a new film, no more
   return stretched.size();
+}
+
+size_t yieldStretchedSprings(const Params& params, Film& film) {
+  // The physical model's tension does not use rest lengths (tensionModel 1).
+  if (!(params.yieldStretch > 1.0f) || params.tensionModel != 0) return 0;
+  Topology& topo = film.topology;
+  const State& s = film.state;
+  size_t yielded = 0;
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    // Springs held by the wire follow the wire's own rule (payOutFilmAtWire), which also decides ring insertion.
+    if (!s.alive[a] || !s.alive[b] || topo.boundary[a] || topo.boundary[b]) continue;
+    if (std::min(s.thickness[a], s.thickness[b]) < params.yieldThickness) continue;
+    const float length = (s.position.get(a) - s.position.get(b)).norm();
+    if (!(length > params.yieldStretch * topo.restLength[k])) continue;
+    topo.restLength[k] = length / params.yieldStretch;
+    ++yielded;
+  }
+  return yielded;
 }
 
 float wireBandWidth(const Film& film) {

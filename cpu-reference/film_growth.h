@@ -34,6 +34,15 @@ float wireBandWidth(const Film& film);
 // and intact and the wire still holds liquid. Returns how many rungs it lengthened.
 size_t payOutFilmAtWire(const Params& params, Film& film);
 
+// Plastic yield of the film itself: every spring stretched past Params::yieldStretch times its rest length
+// gets a rest length that keeps it exactly at the yield stretch. A soap film is not rubber: stretched well
+// past its elastic (Gibbs) range it makes new surface out of its own thickness rather than pulling harder, so a
+// bag the air has drawn out sags when the air stops instead of springing back flat. The film's liquid stays
+// with its particles, so a yielded region thins. Springs held by the wire pay out by the wire's rule instead, and
+// the physical model (tensionModel 1) has no rest lengths to yield. Returns how many springs yielded (0 with
+// yieldStretch 0, or below 1: off).
+size_t yieldStretchedSprings(const Params& params, Film& film);
+
 struct GrowthEvent {
   size_t restLengthsChanged = 0;  // rungs lengthened by the payout
   size_t particlesAdded = 0;      // the new ring (0: no ring inserted)
@@ -42,8 +51,8 @@ struct GrowthEvent {
 };
 
 // Both steps on an open, intact film (one boundary loop) at the wire frame `frame` of now, the payout only
-// while the faster wand tip moves at wandSpeed >= kDrawingSpeed; a closed, torn or dry film is left as it is. New particles are appended (old indices stay); the mesh stays an oriented
-// manifold disc whose boundary is the new ring.
+// while the faster wand tip moves at wandSpeed >= kDrawingSpeed; a closed, torn or dry film is left as it is. New
+// particles are appended (old indices stay); the mesh stays an oriented manifold disc whose boundary is the new ring.
 GrowthEvent growFilmAtWire(const Params& params, const WireFrame& frame, float wandSpeed, Film& film);
 
 }  // namespace gb

@@ -97,9 +97,15 @@ void Simulation::advanceFrame(const WandState& next) {
   time_ += params_.frameTime;
   checkStable();
   burstOnWandTouch();
+  burstOnFloorTouch();
   events_ = advanceBurst(params_, time_, film_, burst_, aerosol_);
   if (events_.particlesRemoved > 0) stepper_->updateTopology(params_, film_);  // the mesh shrank
-  if (!burst_.active()) growFilm(next, wandSpeed);
+  if (!burst_.active()) {
+    // Only a film being drawn yields: a free bubble's wobbles are elastic, so it rounds up again instead of
+    // keeping every dent its momentum makes.
+    if (!film_.topology.isClosed() && yieldStretchedSprings(params_, film_) > 0) stepper_->updateRestLengths(film_);
+    growFilm(next, wandSpeed);
+  }
   const bool tipsTogether =
       film_.tool.kind == ToolKind::TwoWands && (next.rightPosition - next.leftPosition).norm() < params_.pinchDistance;
   if (tipsTogether && !film_.topology.isClosed() && !burst_.active()) events_.pinchedOff = pinch();
@@ -110,7 +116,7 @@ void Simulation::advanceFrame(const WandState& next) {
 void Simulation::burstOnHardImpact() {
   if (burst_.active() || params_.collisionThreshold <= 0.0f) return;
   const Impact impact = hardestImpact(params_, params_.frameTime, film_);
-  if (impact.number > params_.collisionThreshold) startCrack(burst_, film_, impact.particle, time_);
+  if (impact.number > params_.collisionThreshold) startCrack(burst_, film_, impact.particle, time_, "impact");
 }
 
 void Simulation::burstOnWandTouch() {
@@ -121,10 +127,22 @@ void Simulation::burstOnWandTouch() {
     if (!wandArmed_[w]) {
       wandArmed_[w] = nearest.distance > params_.pinchDistance;  // pulled clear of the bubble it let go of
     } else if (nearest.distance < params_.collisionDistance || windingNumber(film_, tips[w]) > 0.5) {
-      startCrack(burst_, film_, nearest.particle, time_);
+      startCrack(burst_, film_, nearest.particle, time_, "wand");
       return;
     }
   }
+}
+
+void Simulation::burstOnFloorTouch() {
+  // A soap film bursts on a dry floor: the step lets particles land on y = 0 (and slide), this pops them.
+  constexpr float kTouching = 1e-3f;  // m above the floor
+  if (burst_.active()) return;
+  const State& s = film_.state;
+  for (uint32_t i = 0; i < s.size(); ++i)
+    if (s.alive[i] && s.position.get(i).y() < kTouching) {
+      startCrack(burst_, film_, i, time_, "floor");
+      return;
+    }
 }
 
 void Simulation::growFilm(const WandState& wands, float wandSpeed) {
@@ -151,7 +169,7 @@ void Simulation::updateContacts() {
   stepper_->updateContacts(film_);
 }
 
-void Simulation::startBurst(size_t particle) { startCrack(burst_, film_, particle, time_); }
+void Simulation::startBurst(size_t particle) { startCrack(burst_, film_, particle, time_, "poke"); }
 
 size_t Simulation::topParticle() const {
   const State& s = film_.state;
@@ -171,6 +189,13 @@ bool Simulation::pinch() {
     if (!pinchOff(params_, film_)) return false;
   } catch (const std::runtime_error&) {
     return false;  // a torn boundary: the burst will take it
+  }
+  // The wands' air is shut in: it moves with the bubble now. Left in place, the air transfer would carry it
+  // round the closed film for ever (no wire feeds or drains it), pushing the bubble out of shape.
+  for (size_t i = 0; i < film_.state.size(); ++i) {
+    film_.state.airFlow.set(i, Vec3::Zero());
+    film_.state.airInflow.set(i, Vec3::Zero());
+    film_.state.airFlowNext.set(i, Vec3::Zero());
   }
   CpuStepper::refreshGeometry(params_, film_);
   burst_ = BurstFront{};
@@ -218,7 +243,7 @@ FrameStats Simulation::stats() {
     ++st.particles;
     const Eigen::Vector3d v = s.velocity.get(i).cast<double>();
     st.kineticEnergy += 0.5 * s.mass[i] * v.squaredNorm();
-    st.potentialEnergy -= s.mass[i] * g.dot(s.position.get(i).cast<double>());
+    st.potentialEnergy -= liquidMass(params_, s.liquid[i]) * g.dot(s.position.get(i).cast<double>());
     st.liquid += s.liquid[i];
     st.maxSpeed = std::max(st.maxSpeed, v.norm());
     thicknessSum += s.thickness[i];

@@ -97,6 +97,7 @@ class Simulation {
   void growFilm(const WandState& wands, float wandSpeed);
   void burstOnHardImpact();
   void burstOnWandTouch();
+  void burstOnFloorTouch();
   void updateContacts();
   void checkStable() const;
 

@@ -63,6 +63,10 @@ struct Params {
   float solutionReserve GB_DEFAULT(1.0f);        // liquid a full dip leaves on the wire for new film, in films' worth
   float growthStretch GB_DEFAULT(1.15f);         // new film is drawn off the wire when the springs joining the wire
                                                  // to the film are this many times their rest length (mean)
+  float yieldStretch GB_DEFAULT(1.3f);  // a spring stretched past this x its rest length yields: its rest grows with
+                                        // it (new surface, the film thins); 0: the paper's purely elastic springs
+  float yieldThickness GB_DEFAULT(0.5e-6f);  // film thinner than this no longer yields: too little liquid is left
+                                             // to make new surface of, so a thinned region stays elastic (m)
   int airTransfer GB_DEFAULT(1);  // 1: air flow transfer, Eqs. (7)-(8) (the paper); 0: each particle feels only
                                   // the inflow of Eq. (5) where it arrives (Figure 12a's comparison)
 

@@ -23,7 +23,8 @@ void addInputOptions(CLI::App* command, InputOptions& o) {
       ->check(CLI::IsMember({"bspline", "one-euro"}));
   command->add_option("--performer", o.performer,
                       "camera-space point X,Y,Z (m) between the performer's resting hands, or auto (the first "
-                      "sample with both hands, within 3 s); default auto for kinect and fakenect:DIR, else 0,0,2");
+                      "sample with both hands, when the performer is found); default auto for kinect and "
+                      "fakenect:DIR, else 0,0,2");
   command->add_option("--reach", o.reach, "world metres per metre of hand motion")->check(FiniteRange(0.1, 20.0));
   command->add_option("--camera-pitch", o.cameraPitch, "degrees the camera is tilted up")
       ->check(FiniteRange(-45.0, 45.0));
@@ -82,7 +83,10 @@ std::unique_ptr<WandInput> makeWandInput(const InputOptions& o, const GestureOpt
     }
   }
   const SourceOptions source = sourceOptionsOf(o, gesture);
-  return std::make_unique<StabilizedWands>(makeHandSource(spec, source), stabilizerOptionsOf(o), source.calibration);
+  // The film is made on the performer's hands: camera inputs and trajectories start when both hands are seen.
+  const bool waitForPerformer = source.calibration.autoPerformer || spec.rfind("trajectory:", 0) == 0;
+  return std::make_unique<StabilizedWands>(makeHandSource(spec, source), stabilizerOptionsOf(o), source.calibration,
+                                           waitForPerformer);
 }
 
 }  // namespace gb

@@ -31,6 +31,15 @@ DepthHandSource::DepthHandSource(std::unique_ptr<DepthStream> stream, const Dete
     : stream_(std::move(stream)), detectionOptions_(detection), tracker_(tracker) {}
 
 std::optional<HandSample> DepthHandSource::next() {
+  try {
+    return nextSample();
+  } catch (const HandSourceLost&) {
+    stream_->release();  // so that the camera, back again, can be opened anew (the live window reopens it)
+    throw;
+  }
+}
+
+std::optional<HandSample> DepthHandSource::nextSample() {
   while (true) {
     // A camera slower than 30 Hz (a busy USB bus, a 15 Hz mode) is late by its own measure, not by 30 Hz's.
     const double timeout = std::max(kFrameTimeout, 2.5 * frameInterval_);
@@ -53,9 +62,22 @@ std::optional<HandSample> DepthHandSource::next() {
                                                  : frameInterval_ + 0.2 * (frame_.time - lastFrame_ - frameInterval_);
         lastFrame_ = frame_.time;
         if (observer_) observer_(frame_);
-        return tracker_.update(frame_.time, detectHands(frame_, detectionOptions_));
+        const Detection detection = detectHands(frame_, detectionOptions_);
+        performerPixels_ = detection.performerPixels;
+        bodyDepth_ = detection.bodyDepth;
+        return tracker_.update(frame_.time, detection);
     }
   }
+}
+
+std::string DepthHandSource::whyNoHands() const {
+  char text[96];
+  if (performerPixels_ == 0)
+    std::snprintf(text, sizeof text, "no body in the depth band %.1f-%.1f m", detectionOptions_.nearLimit,
+                  detectionOptions_.farLimit);
+  else
+    std::snprintf(text, sizeof text, "a body at %.1f m, no hand held out from it", bodyDepth_);
+  return text;
 }
 
 ReplayHandSource::ReplayHandSource(std::vector<HandSample> samples, std::string describe)

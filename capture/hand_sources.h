@@ -29,6 +29,8 @@ class DepthHandSource : public HandSource {
   // Called with every depth frame before detection (giantbubble record writes them as a fakenect recording).
   void onFrame(std::function<void(const kinect::DepthFrame&)> observer) { observer_ = std::move(observer); }
   [[nodiscard]] std::optional<double> length() const override { return stream_->length(); }
+  // "no body in the depth band 0.5-4.0 m", or where the body is when it has no hand.
+  [[nodiscard]] std::string whyNoHands() const override;
 
   static constexpr double kFrameTimeout = 0.1;  // s without a frame (or 2.5 frame intervals, if longer): a
                                                 //   sample with both hands held
@@ -41,7 +43,10 @@ class DepthHandSource : public HandSource {
   kinect::DepthFrame frame_;
   double lastFrame_ = 0.0;
   double frameInterval_ = 0.0;  // s between depth frames, smoothed (0: not known yet)
+  int performerPixels_ = 0;     // of the newest detection (0: nobody in the band)
+  double bodyDepth_ = 0.0;      // m, of the newest detection
   std::function<void(const kinect::DepthFrame&)> observer_;
+  std::optional<HandSample> nextSample();  // next() but for letting go of a lost camera
 };
 
 // Samples already in memory, played in order: a trajectory file, or a recorded session replayed.

@@ -47,6 +47,58 @@ Vec3d upFromTilt(double pitchDeg, double rollDeg) {
   return Vec3d(std::sin(r) * std::cos(p), std::cos(r) * std::cos(p), -std::sin(p)).normalized();
 }
 
+// The plane normal to a known up through the points near the layer: their mean height, in two rounds (the
+// layer's middle is only good to a bin, 3 cm, and the floor's points must be cut a few centimetres over it).
+std::optional<FloorPlane> fitHeight(const std::vector<Vec3d>& points, const Vec3d& up, double height) {
+  FloorPlane floor;
+  floor.up = up;
+  floor.offset = height;
+  for (int round = 0; round < 2; ++round) {
+    double sum = 0.0;
+    int n = 0;
+    for (const Vec3d& p : points)
+      if (const double h = up.dot(p); std::abs(h - floor.offset) < kFitTolerance) sum += h, ++n;
+    if (n < 3) return std::nullopt;
+    floor.offset = sum / n;
+    floor.inliers = n;
+  }
+  return floor;
+}
+
+// Every step-th point: enough to compare tilts, whose layers hold thousands of floor points.
+std::vector<Vec3d> thinned(const std::vector<Vec3d>& points, size_t step) {
+  std::vector<Vec3d> out;
+  out.reserve(points.size() / step + 1);
+  for (size_t i = 0; i < points.size(); i += step) out.push_back(points[i]);
+  return out;
+}
+
+// The tilt whose densest low layer holds the most points: pitches from 10 degrees up to 40 down and rolls of
+// +-6 degrees, coarse to fine (4 then 1 degree of pitch, 6 then 3 of roll) on a quarter, then half of the
+// points: a tilt a few degrees off still gathers most of the floor into its layer, so the coarse pass lands
+// next to the best tilt. Its layer is then counted over all the points. A twelfth of the work of the full
+// 1-degree grid's 255 histograms over every point, for the same tilts.
+void searchTilts(const std::vector<Vec3d>& points, Vec3d& bestUp, Layer& best) {
+  const std::vector<Vec3d> quarter = thinned(points, 4), half = thinned(points, 2);
+  double bestPitch = 0.0, bestRoll = 0.0;
+  int bestCount = -1;
+  for (double pitch = -10.0; pitch <= 40.0; pitch += 4.0)
+    for (double roll = -6.0; roll <= 6.0; roll += 6.0) {
+      const Layer layer = densestLowLayer(quarter, upFromTilt(pitch, roll));
+      if (layer.count > bestCount) bestCount = layer.count, bestPitch = pitch, bestRoll = roll;
+    }
+  const double coarsePitch = bestPitch, coarseRoll = bestRoll;
+  bestCount = -1;
+  for (double pitch = coarsePitch - 3.0; pitch <= coarsePitch + 3.0; pitch += 1.0)
+    for (double roll = coarseRoll - 3.0; roll <= coarseRoll + 3.0; roll += 3.0) {
+      if (pitch < -10.0 || pitch > 40.0 || roll < -6.0 || roll > 6.0) continue;
+      const Layer layer = densestLowLayer(half, upFromTilt(pitch, roll));
+      if (layer.count > bestCount) bestCount = layer.count, bestPitch = pitch, bestRoll = roll;
+    }
+  bestUp = upFromTilt(bestPitch, bestRoll);
+  best = densestLowLayer(points, bestUp);
+}
+
 // Least-squares plane through the points near the layer: the normal is the covariance's smallest eigenvector.
 std::optional<FloorPlane> fitPlane(const std::vector<Vec3d>& points, const Vec3d& up, double height) {
   Vec3d mean = Vec3d::Zero();
@@ -81,22 +133,14 @@ std::optional<FloorPlane> findFloor(const std::vector<Vec3d>& points, const std:
     bestUp = gravityUp->normalized();
     best = densestLowLayer(points, bestUp);
   } else {
-    for (double pitch = -10.0; pitch <= 40.0; pitch += 1.0)
-      for (double roll = -6.0; roll <= 6.0; roll += 3.0) {
-        const Vec3d up = upFromTilt(pitch, roll);
-        const Layer layer = densestLowLayer(points, up);
-        if (layer.count > best.count) best = layer, bestUp = up;
-      }
+    searchTilts(points, bestUp, best);
   }
   if (best.count < minFraction * static_cast<double>(points.size())) return std::nullopt;
-  // Two rounds of fitting: the second with the fitted normal, which the 1-degree search only approximates. A
-  // measured gravity is kept as the normal: only the height is fitted.
+  // A measured gravity is kept as the normal: only the height is fitted.
+  if (gravityUp) return fitHeight(points, bestUp, best.height);
+  // Two rounds of fitting: the second with the fitted normal, which the 1-degree search only approximates.
   std::optional<FloorPlane> floor = fitPlane(points, bestUp, best.height);
   if (floor) floor = fitPlane(points, floor->up, floor->offset);
-  if (floor && gravityUp) {
-    floor->up = bestUp;
-    floor->offset = best.height;
-  }
   return floor;
 }
 

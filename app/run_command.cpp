@@ -160,7 +160,8 @@ int runSimulation(const RunOptions& o) {
   RunRecord record;
   const FrameStats first = sim.stats();
   // A performer waited for: the film is made when both hands are found, and the run's time 0 is then.
-  const std::string created = input->performerFound() ? "performer_found film_created" : "film_created";
+  const std::string created =
+      input->performerFound().value_or(0.0) > 0.0 ? "performer_found film_created" : "film_created";
   stats.write(0, first, sim.substepsPerFrame(), 0.0, created);
   record.start(first);
   if (const auto found = input->performerFound()) {

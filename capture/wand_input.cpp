@@ -102,8 +102,9 @@ void StabilizedWands::waitForPerformer(const MessageSink& say) {
   ahead_.erase(ahead_.begin(), ahead_.end() - 1);
   start_ = ahead_.front().time;
   performerFound_ = start_ - first_;
-  messages_.push_back("note: performer found after " + seconds(*performerFound_) +
-                      " of input: both hands tracked; the film is made now");
+  if (*performerFound_ > 0.0)  // an input with both hands from its first sample needs no word
+    messages_.push_back("note: performer found after " + seconds(*performerFound_) +
+                        " of input: both hands tracked; the film is made now");
   if (calibration_.autoPerformer) centreOnPerformer(ahead_.front());
 }
 

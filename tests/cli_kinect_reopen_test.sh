@@ -41,8 +41,8 @@ wait_for() {
   return 1
 }
 
-wait_for "note: performer found" || fail "the show did not start on the fake Kinect"
-echo "the show started: $(grep -m1 'performer found' log.txt)"
+wait_for "note: calibration: performer at" || fail "the show did not start on the fake Kinect"
+echo "the show started: $(grep -m1 "calibration: performer at" log.txt)"
 sleep 1
 touch unplugged
 wait_for "the input has ended or was lost" || fail "the unplugged camera was not noticed"

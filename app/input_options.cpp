@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "cli_checks.h"
+#include "interrupt.h"
 
 namespace gb {
 
@@ -84,9 +85,11 @@ std::unique_ptr<WandInput> makeWandInput(const InputOptions& o, const GestureOpt
   }
   const SourceOptions source = sourceOptionsOf(o, gesture);
   // The film is made on the performer's hands: camera inputs and trajectories start when both hands are seen.
-  const bool waitForPerformer = source.calibration.autoPerformer || spec.rfind("trajectory:", 0) == 0;
+  PerformerWait wait;
+  wait.enabled = source.calibration.autoPerformer || spec.rfind("trajectory:", 0) == 0;
+  wait.cancelled = [] { return InterruptCatcher::requested(); };  // Ctrl-C in the live window while waiting
   return std::make_unique<StabilizedWands>(makeHandSource(spec, source), stabilizerOptionsOf(o), source.calibration,
-                                           waitForPerformer);
+                                           wait);
 }
 
 }  // namespace gb

@@ -39,13 +39,13 @@ bool bothMeasured(const HandSample& s) { return s.left.measured && s.right.measu
 }  // namespace
 
 StabilizedWands::StabilizedWands(std::unique_ptr<HandSource> source, const StabilizerOptions& stabilizer,
-                                 const Calibration& calibration, bool waitForPerformer, const MessageSink& say)
+                                 const Calibration& calibration, const PerformerWait& wait)
     : source_(std::move(source)), calibration_(calibration), describe_(source_->describe()) {
   if (!fetch())
     throw HandSourceError(describe_ + ": no samples" + (messages_.empty() ? "" : " (" + messages_.back() + ")"));
   start_ = first_ = ahead_.front().time;
-  if (waitForPerformer) {
-    this->waitForPerformer(say);
+  if (wait.enabled) {
+    waitForPerformer(wait);
   } else if (calibration_.autoPerformer) {
     while (!bothMeasured(ahead_.back()) && ahead_.back().time - start_ < 3.0 && fetch()) {
     }
@@ -75,7 +75,7 @@ void StabilizedWands::centreOnPerformer(const HandSample& sample) {
   messages_.push_back(text);
 }
 
-void StabilizedWands::waitForPerformer(const MessageSink& say) {
+void StabilizedWands::waitForPerformer(const PerformerWait& wait) {
   // Said at once, then once per second of input: a waiting console is not flooded.
   double saidAt = -1.0;
   const bool live = !source_->length();
@@ -87,11 +87,11 @@ void StabilizedWands::waitForPerformer(const MessageSink& say) {
             : source_->whyNoHands();
     const double t = s.time - first_;
     if (saidAt < 0.0 || t - saidAt >= 1.0) {
-      say("waiting for a performer: " + why + " (" + seconds(t) + " of input)");
+      wait.say("waiting for a performer: " + why + " (" + seconds(t) + " of input)");
       saidAt = t;
     }
-    if (live && ahead_.size() > 1) ahead_.pop_front();  // a camera may wait for hours: keep the newest only
-    if (!fetch()) break;                                // the input ended or was lost while waiting
+    if (live && ahead_.size() > 1) ahead_.pop_front();            // a camera may wait for hours: keep the newest only
+    if ((wait.cancelled && wait.cancelled()) || !fetch()) break;  // stopped, or the input ended or was lost
   }
   if (!bothMeasured(ahead_.back())) {
     messages_.push_back("warning: no performer found (no sample with both hands); the run starts where the input does");

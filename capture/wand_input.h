@@ -65,17 +65,23 @@ class ScriptedWands : public WandInput {
 using MessageSink = std::function<void(const std::string&)>;
 void printToStderr(const std::string& message);
 
+// Waiting for a performer before run time 0 (StabilizedWands).
+struct PerformerWait {
+  bool enabled = false;
+  MessageSink say = printToStderr;  // "waiting for a performer: …", once per second of input
+  std::function<bool()> cancelled;  // polled while waiting: true stops the wait (Ctrl-C), the run starts as is
+};
+
 class StabilizedWands : public WandInput {
  public:
-  // waitForPerformer: run time 0 is the first sample with both hands measured; the samples before it are
+  // With wait.enabled, run time 0 is the first sample with both hands measured; the samples before it are
   // dropped, so the wands (and the film made on them) start at the performer's hands rather than between one
-  // hand and the other's rest pose. While waiting, `say` gets "waiting for a performer: …" once per second
-  // of input; an input that ends without both hands starts at its first sample, with a warning.
+  // hand and the other's rest pose. While waiting, wait.say gets "waiting for a performer: …" once per second
+  // of input; an input that ends (or a wait cancelled) without both hands starts where it is, with a warning.
   // With calibration.autoPerformer the calibration is centred between the hands of that sample (without the
   // wait: of the first sample with both hands within 3 s).
   StabilizedWands(std::unique_ptr<HandSource> source, const StabilizerOptions& stabilizer,
-                  const Calibration& calibration, bool waitForPerformer = false,
-                  const MessageSink& say = printToStderr);
+                  const Calibration& calibration, const PerformerWait& wait = {});
   WandFrame at(double t) override;
   [[nodiscard]] std::string describe() const override;
   [[nodiscard]] std::optional<double> length() const override;
@@ -113,7 +119,7 @@ class StabilizedWands : public WandInput {
   std::string describe_;
   [[nodiscard]] double period() const;  // the source's, at least kMinSamplePeriod
   bool fetch();                         // reads one more sample into ahead_; false when there are no more
-  void waitForPerformer(const MessageSink& say);
+  void waitForPerformer(const PerformerWait& wait);
   void centreOnPerformer(const HandSample& sample);
   void feed(const HandSample& sample);
   void observeInterval(double dt);  // updates period_ and warns once about a slow input

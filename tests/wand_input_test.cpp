@@ -186,8 +186,10 @@ TEST(WandInput, APerformerFoundLateStartsTheWandsOnBothHandsAndTheWaitIsSaid) {
   std::vector<std::string> said;
   std::vector<HandSample> samples;
   for (int i = 0; i < 150; ++i) samples.push_back(late(10.0 + i / 30.0));
-  StabilizedWands input(std::make_unique<ReplayHandSource>(samples, "late"), StabilizerOptions{}, c, true,
-                        [&](const std::string& m) { said.push_back(m); });
+  PerformerWait wait;
+  wait.enabled = true;
+  wait.say = [&](const std::string& m) { said.push_back(m); };
+  StabilizedWands input(std::make_unique<ReplayHandSource>(samples, "late"), StabilizerOptions{}, c, wait);
   // Found at the first sample at or after 2.4 s: sample 72 at 30 Hz (2.4 s; within one sample of it).
   ASSERT_TRUE(input.performerFound());
   EXPECT_NEAR(*input.performerFound(), 2.4, 1.0 / 30.0 + 1e-9);
@@ -219,10 +221,32 @@ TEST(WandInput, AnInputThatNeverShowsBothHandsStartsWhereItDoesWithAWarning) {
     return s;
   };
   std::vector<std::string> said;
-  StabilizedWands input(std::make_unique<FunctionSource>(oneHand, 45, false), StabilizerOptions{}, Calibration{}, true,
-                        [&](const std::string& m) { said.push_back(m); });
+  PerformerWait wait;
+  wait.enabled = true;
+  wait.say = [&](const std::string& m) { said.push_back(m); };
+  StabilizedWands input(std::make_unique<FunctionSource>(oneHand, 45, false), StabilizerOptions{}, Calibration{}, wait);
   EXPECT_FALSE(input.performerFound());
   EXPECT_EQ(said.size(), 2u);  // at 0 and 1 s of the 1.5 s input
+  EXPECT_TRUE(mentions(input.takeMessages(), "warning: no performer found"));
+}
+
+// A live camera with nobody in view would wait for ever: Ctrl-C (the cancel predicate) ends the wait, and the
+// input starts where it is instead of hanging.
+TEST(WandInput, AWaitForAPerformerEndsWhenCancelled) {
+  auto nobody = [](double t) {
+    HandSample s;
+    s.time = t;
+    return s;
+  };
+  int polls = 0;
+  PerformerWait wait;
+  wait.enabled = true;
+  wait.say = [](const std::string&) {};
+  wait.cancelled = [&] { return ++polls > 20; };
+  StabilizedWands input(std::make_unique<FunctionSource>(nobody, 1000000000, false), StabilizerOptions{}, Calibration{},
+                        wait);
+  EXPECT_EQ(polls, 21);
+  EXPECT_FALSE(input.performerFound());
   EXPECT_TRUE(mentions(input.takeMessages(), "warning: no performer found"));
 }
 

@@ -100,25 +100,37 @@ void searchTilts(const std::vector<Vec3d>& points, Vec3d& bestUp, Layer& best) {
 }
 
 // Least-squares plane through the points near the layer: the normal is the covariance's smallest eigenvector.
-std::optional<FloorPlane> fitPlane(const std::vector<Vec3d>& points, const Vec3d& up, double height) {
-  Vec3d mean = Vec3d::Zero();
-  int n = 0;
+// The least-squares plane through the points near the layer: their mean and the covariance's smallest
+// eigenvector, turned to point along up; nothing with fewer than 3 points.
+struct LayerFit {
+  Vec3d mean, normal;
+  int points = 0;
+};
+std::optional<LayerFit> fitLayer(const std::vector<Vec3d>& points, const Vec3d& up, double height) {
+  LayerFit fit;
+  fit.mean = Vec3d::Zero();
   for (const Vec3d& p : points)
-    if (std::abs(up.dot(p) - height) < kFitTolerance) mean += p, ++n;
-  if (n < 3) return std::nullopt;
-  mean /= n;
+    if (std::abs(up.dot(p) - height) < kFitTolerance) fit.mean += p, ++fit.points;
+  if (fit.points < 3) return std::nullopt;
+  fit.mean /= fit.points;
   Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
   for (const Vec3d& p : points)
-    if (std::abs(up.dot(p) - height) < kFitTolerance) cov += (p - mean) * (p - mean).transpose();
+    if (std::abs(up.dot(p) - height) < kFitTolerance) cov += (p - fit.mean) * (p - fit.mean).transpose();
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(cov);
-  Vec3d normal = solver.eigenvectors().col(0);
-  if (normal.dot(up) < 0.0) normal = -normal;
-  // A fit that leans far from the layer's direction caught something else (a wall's foot, a table's edge).
-  if (normal.dot(up) < std::cos(10.0 * std::numbers::pi / 180.0)) normal = up;
+  fit.normal = solver.eigenvectors().col(0);
+  if (fit.normal.dot(up) < 0.0) fit.normal = -fit.normal;
+  return fit;
+}
+
+std::optional<FloorPlane> fitPlane(const std::vector<Vec3d>& points, const Vec3d& up, double height) {
+  const std::optional<LayerFit> fit = fitLayer(points, up, height);
+  if (!fit) return std::nullopt;
   FloorPlane floor;
-  floor.up = normal;
-  floor.offset = normal.dot(mean);
-  floor.inliers = n;
+  floor.up = fit->normal;
+  // A fit that leans far from the layer's direction caught something else (a wall's foot, a table's edge).
+  if (floor.up.dot(up) < std::cos(10.0 * std::numbers::pi / 180.0)) floor.up = up;
+  floor.offset = floor.up.dot(fit->mean);
+  floor.inliers = fit->points;
   return floor;
 }
 
@@ -129,15 +141,17 @@ std::optional<FloorPlane> findFloor(const std::vector<Vec3d>& points, const std:
   if (points.empty()) return std::nullopt;
   Vec3d bestUp = Vec3d::UnitY();
   Layer best;
+  const double fewest = minFraction * static_cast<double>(points.size());
   if (gravityUp) {
+    // A measured gravity is kept as the normal: only the height is fitted. With no floor along it (none in
+    // view, or a reading not to be trusted) the floor is searched for as without one. (A wrong reading can
+    // still gather a slanted strip of the floor: DepthHandSource checks the accelerometer against the search.)
     bestUp = gravityUp->normalized();
     best = densestLowLayer(points, bestUp);
-  } else {
-    searchTilts(points, bestUp, best);
+    if (best.count >= fewest) return fitHeight(points, bestUp, best.height);
   }
-  if (best.count < minFraction * static_cast<double>(points.size())) return std::nullopt;
-  // A measured gravity is kept as the normal: only the height is fitted.
-  if (gravityUp) return fitHeight(points, bestUp, best.height);
+  searchTilts(points, bestUp, best);
+  if (best.count < fewest) return std::nullopt;
   // Two rounds of fitting: the second with the fitted normal, which the 1-degree search only approximates.
   std::optional<FloorPlane> floor = fitPlane(points, bestUp, best.height);
   if (floor) floor = fitPlane(points, floor->up, floor->offset);

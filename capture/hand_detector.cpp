@@ -54,13 +54,18 @@ Grid sampleGrid(const kinect::DepthFrame& frame, const DetectionOptions& o) {
   return g;
 }
 
-// Drops the floor (and anything under it): returns the plane when one is in view.
-std::optional<FloorPlane> removeFloor(Grid& g, const std::optional<Vec3d>& gravityUp, const DetectionOptions& o) {
+// The floor of the grid's points (every other one each way), when one is in view.
+std::optional<FloorPlane> gridFloor(const Grid& g, const std::optional<Vec3d>& gravityUp) {
   std::vector<Vec3d> sample;
   for (int v = 0; v < kH; v += 2)
     for (int u = 0; u < kW; u += 2)
       if (g.valid[v * kW + u]) sample.push_back(g.point[v * kW + u]);
-  std::optional<FloorPlane> floor = findFloor(sample, gravityUp);
+  return findFloor(sample, gravityUp);
+}
+
+// Drops the floor (and anything under it): returns the plane when one is in view.
+std::optional<FloorPlane> removeFloor(Grid& g, const std::optional<Vec3d>& gravityUp, const DetectionOptions& o) {
+  std::optional<FloorPlane> floor = gridFloor(g, gravityUp);
   if (!floor) return floor;
   for (int i = 0; i < kNodes; ++i)
     if (g.valid[i] && floor->heightOf(g.point[i]) < o.floorClearance) g.valid[i] = 0;
@@ -334,6 +339,11 @@ void dropElbows(std::vector<DetectedHand>& candidates) {
 }
 
 }  // namespace
+
+std::optional<FloorPlane> floorOf(const kinect::DepthFrame& frame, const DetectionOptions& o,
+                                  const std::optional<Vec3d>& gravityUp) {
+  return gridFloor(sampleGrid(frame, o), gravityUp);
+}
 
 Detection detectHands(const kinect::DepthFrame& frame, const DetectionOptions& o) {
   Detection d;

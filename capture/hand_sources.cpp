@@ -62,12 +62,33 @@ std::optional<HandSample> DepthHandSource::nextSample() {
                                                  : frameInterval_ + 0.2 * (frame_.time - lastFrame_ - frameInterval_);
         lastFrame_ = frame_.time;
         if (observer_) observer_(frame_);
+        if (frame_.gravityUp) checkGravity();
+        if (!gravityBelieved_) frame_.gravityUp.reset();
         const Detection detection = detectHands(frame_, detectionOptions_);
         performerPixels_ = detection.performerPixels;
         bodyDepth_ = detection.bodyDepth;
         return tracker_.update(frame_.time, detection);
     }
   }
+}
+
+void DepthHandSource::checkGravity() {
+  if (detectionOptions_.gravityUp || framesToGravityCheck_-- > 0) return;
+  const std::optional<FloorPlane> along = floorOf(frame_, detectionOptions_, frame_.gravityUp);
+  const std::optional<FloorPlane> searched = floorOf(frame_, detectionOptions_, std::nullopt);
+  if (!along || !searched) return;  // no floor in view: nothing to check against, the next frame tries again
+  framesToGravityCheck_ = kGravityCheckEvery;
+  const double degrees = std::acos(std::clamp(along->up.dot(searched->up), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+  const bool agrees = degrees <= kGravityAgreement;
+  if (!agrees && gravityBelieved_) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "warning: the accelerometer's gravity is %.0f degrees from the floor in view; the floor is "
+                  "found from the depth instead",
+                  degrees);
+    messages_.push_back(text);
+  }
+  gravityBelieved_ = agrees;
 }
 
 std::string DepthHandSource::whyNoHands() const {

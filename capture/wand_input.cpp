@@ -121,6 +121,7 @@ bool StabilizedWands::fetch() {
   const double now = (ahead_.empty() ? lastFed_ : ahead_.back().time) - start_;
   try {
     std::optional<HandSample> s = source_->next();
+    for (std::string& m : source_->takeMessages()) messages_.push_back(std::move(m));
     if (s) {
       ahead_.push_back(*s);
       return true;

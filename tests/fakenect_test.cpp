@@ -131,6 +131,40 @@ TEST(Fakenect, TheAccelerometerOfARecordingGivesTheFloorItsGravity) {
   EXPECT_EQ(level[1], 819);
 }
 
+// An accelerometer read with its pitch's sign the wrong way (a camera tilted 13 degrees down taken for 13 up)
+// still gathers a slanted strip of the floor along it, so the detector alone cannot tell; the source checks it
+// against the floor found without it, warns once and finds the floor from the depth: both hands are found.
+// A right reading raises no warning.
+TEST(Fakenect, AnAccelerometerThatDisagreesWithTheFloorIsNotBelieved) {
+  test::SceneOptions options;
+  options.cameraPitch = 13.0;
+  options.cameraHeight = test::cameraHeightFor(13.0, 2.5);
+  const test::SyntheticScene scene = test::renderScene(test::namedPose("forward"), options);
+  for (const bool wrong : {true, false}) {
+    const fs::path dir = scratch(wrong ? "wrong_accelerometer" : "right_accelerometer");
+    {
+      FakenectWriter writer(dir);
+      for (int i = 0; i < 3; ++i) {
+        kinect::DepthFrame frame = scene.frame;
+        frame.gravityUp = wrong ? Vec3d(scene.up.x(), scene.up.y(), -scene.up.z()) : scene.up;
+        writer.write(frame, 1700000000.0 + i / 30.0);
+      }
+    }
+    DepthHandSource played(DepthStream::openRecording(dir), DetectionOptions{}, TrackerOptions{});
+    std::vector<std::string> messages;
+    for (int i = 0; i < 3; ++i) {
+      const std::optional<HandSample> s = played.next();
+      ASSERT_TRUE(s);
+      EXPECT_TRUE(s->left.measured && s->right.measured) << wrong << " " << i;
+      for (const std::string& m : played.takeMessages()) messages.push_back(m);
+    }
+    ASSERT_EQ(messages.size(), wrong ? 1u : 0u) << (messages.empty() ? "" : messages.front());
+    if (wrong) {
+      EXPECT_NE(messages.front().find("26 degrees from the floor in view"), std::string::npos) << messages.front();
+    }
+  }
+}
+
 TEST(Fakenect, RecordingsPlayOneAfterAnotherInOneProcess) {
   const fs::path a = scratch("first"), b = scratch("second");
   writeSession(a, 2);
@@ -257,9 +291,13 @@ TEST(Kinect, AnUnpluggedCameraIsLostAndOpensAgainWhenItIsBack) {
   fs::remove(unplugged);
   std::unique_ptr<DepthHandSource> again;
   EXPECT_NO_THROW(again = open()) << errorOf([&] { open(); });
-  if (again) EXPECT_TRUE(bothHands(*again));
+  if (again) {
+    EXPECT_TRUE(bothHands(*again));
+  }
   source.reset();  // the old input goes after the new one came, as in the live window
-  if (again) EXPECT_TRUE(bothHands(*again));
+  if (again) {
+    EXPECT_TRUE(bothHands(*again));
+  }
   unsetenv("GIANTBUBBLE_FREENECT_LIBRARY");
   unsetenv("GB_FAKE_KINECT_FRAME");
   unsetenv("GB_FAKE_KINECT_UNPLUGGED_IF");

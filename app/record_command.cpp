@@ -173,6 +173,7 @@ int runRecord(const RecordOptions& o) {
   try {
     while (!InterruptCatcher::requested()) {
       std::optional<HandSample> s = source->next();
+      for (const std::string& m : source->takeMessages()) std::fprintf(stderr, "%s\n", m.c_str());
       if (!s) break;
       if (!samples.empty() && duration >= 0 && s->time - samples.front().time > duration + 1e-9) break;
       samples.push_back(*s);

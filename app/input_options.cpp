@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "cli_checks.h"
+#include "interrupt.h"
 
 namespace gb {
 
@@ -24,7 +25,8 @@ void addInputOptions(CLI::App* command, InputOptions& o) {
       ->check(CLI::IsMember({"bspline", "one-euro"}));
   command->add_option("--performer", o.performer,
                       "camera-space point X,Y,Z (m) between the performer's resting hands, or auto (the first "
-                      "sample with both hands, within 3 s); default auto for kinect and fakenect:DIR, else 0,0,2");
+                      "sample with both hands, when the performer is found); default auto for kinect and "
+                      "fakenect:DIR, else 0,0,2");
   command->add_option("--reach", o.reach, "world metres per metre of hand motion")->check(FiniteRange(0.1, 20.0));
   command->add_option("--camera-pitch", o.cameraPitch, "degrees the camera is tilted up")
       ->check(FiniteRange(-45.0, 45.0));
@@ -83,7 +85,12 @@ std::unique_ptr<WandInput> makeWandInput(const InputOptions& o, const GestureOpt
     }
   }
   const SourceOptions source = sourceOptionsOf(o, gesture);
-  return std::make_unique<StabilizedWands>(makeHandSource(spec, source), stabilizerOptionsOf(o), source.calibration);
+  // The film is made on the performer's hands: camera inputs and trajectories start when both hands are seen.
+  PerformerWait wait;
+  wait.enabled = source.calibration.autoPerformer || spec.rfind("trajectory:", 0) == 0;
+  wait.cancelled = [] { return InterruptCatcher::requested(); };  // Ctrl-C in the live window while waiting
+  return std::make_unique<StabilizedWands>(makeHandSource(spec, source), stabilizerOptionsOf(o), source.calibration,
+                                           wait);
 }
 
 }  // namespace gb

@@ -9,8 +9,8 @@
 #include <memory>
 #include <optional>
 
-#include "depth_plot.h"
 #include "cli_checks.h"
+#include "depth_plot.h"
 #include "interrupt.h"
 #include "trajectory_file.h"
 #include "trajectory_metrics.h"
@@ -26,6 +26,7 @@ namespace {
 struct Stabilized {
   std::vector<Vec3> plotInput[2], wand[2];
   std::vector<Vec3d> input[2], cameraWand[2], truth[2];
+  Vec3 camera;  // world space
 };
 
 Stabilized stabilize(const std::vector<HandSample>& samples, StabilizerKind kind, const InputOptions& options,
@@ -36,6 +37,7 @@ Stabilized stabilize(const std::vector<HandSample>& samples, StabilizerKind kind
                         calibrationOf(options));
   const Calibration& c = wands.calibration();
   Stabilized out;
+  out.camera = c.toWorld(Vec3d::Zero()).cast<float>();
   for (const HandSample& s : samples) {
     const WandFrame f = wands.at(s.time - samples.front().time);
     const HandSample truth = script ? script->truth(s.time) : HandSample{};
@@ -171,6 +173,7 @@ int runRecord(const RecordOptions& o) {
   try {
     while (!InterruptCatcher::requested()) {
       std::optional<HandSample> s = source->next();
+      for (const std::string& m : source->takeMessages()) std::fprintf(stderr, "%s\n", m.c_str());
       if (!s) break;
       if (!samples.empty() && duration >= 0 && s->time - samples.front().time > duration + 1e-9) break;
       samples.push_back(*s);
@@ -205,6 +208,7 @@ int runRecord(const RecordOptions& o) {
     plot.rightInput = s.plotInput[1];
     plot.leftWand = s.wand[0];
     plot.rightWand = s.wand[1];
+    plot.camera = s.camera;
     writeTrajectoryPlot(o.plot, plot);
     std::printf("plot written to %s\n", o.plot.c_str());
   }

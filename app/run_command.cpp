@@ -159,12 +159,22 @@ int runSimulation(const RunOptions& o) {
   StatsWriter stats(o.outDir / "stats.csv");
   RunRecord record;
   const FrameStats first = sim.stats();
-  stats.write(0, first, sim.substepsPerFrame(), 0.0, "film_created");
+  // A performer waited for: the film is made when both hands are found, and the run's time 0 is then.
+  const std::string created =
+      input->performerFound().value_or(0.0) > 0.0 ? "performer_found film_created" : "film_created";
+  stats.write(0, first, sim.substepsPerFrame(), 0.0, created);
   record.start(first);
+  if (const auto found = input->performerFound()) {
+    char seconds[32];
+    std::snprintf(seconds, sizeof seconds, "%.3f", *found);
+    record.note("performer_found_after_s", seconds);
+  }
   ShowControl show(o.osc);
-  show.frame(sim, first, "film_created");
+  show.frame(sim, first, created);
   if (o.plyEvery > 0) writePly(o.outDir / meshName(0), sim.film());
-  if (o.imageEvery > 0) writeThicknessImage(o.outDir / imageName(0), sim.film(), sim.aerosol(), ImageView{});
+  ImageFraming framing;  // the images frame the film wherever it goes, growing only (no jitter)
+  if (o.imageEvery > 0)
+    writeThicknessImage(o.outDir / imageName(0), sim.film(), sim.aerosol(), framing.frame(sim.film()));
   std::unique_ptr<RunRenderer> renderer;
   if (o.render.enabled) {
     try {
@@ -229,7 +239,7 @@ int runSimulation(const RunOptions& o) {
     record.addFrame(last, sim.substepsPerFrame(), ms, events);
     show.frame(sim, last, events);
     if (o.imageEvery > 0 && frame % o.imageEvery == 0)
-      writeThicknessImage(o.outDir / imageName(frame), sim.film(), sim.aerosol(), ImageView{});
+      writeThicknessImage(o.outDir / imageName(frame), sim.film(), sim.aerosol(), framing.frame(sim.film()));
     if (renderer) renderer->frame(frame, sim, wands.wands);
     if (o.plyEvery > 0 && frame % o.plyEvery == 0) {
       writePly(o.outDir / meshName(frame), sim.film());
@@ -254,7 +264,8 @@ int runSimulation(const RunOptions& o) {
   wandLog.close();
   wandLog.writePlot(o.outDir / "wands.svg",
                     "giantbubble run" + (status == "finished" ? "" : " (" + status.substr(0, status.find(':')) + ")") +
-                        ": " + input->describe());
+                        ": " + input->describe(),
+                    input->camera());
   record.setRealTimeFactor(last.time / std::max(wall, 1e-9));
   record.writeJson(o.outDir / "stats.json", o.scene, status);
   if (status == "interrupted") {

@@ -24,6 +24,18 @@ Rgb thicknessColour(float e, const ImageView& v) {
 
 }  // namespace
 
+ImageView ImageFraming::frame(const Film& film) {
+  const State& s = film.state;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.alive[i]) box_.extend(Eigen::Vector2f(s.position.x[i], s.position.y[i]));
+  if (box_.isEmpty()) return view_;
+  const Eigen::Vector2f size = box_.sizes(), centre = box_.center();
+  const float aspect = static_cast<float>(view_.width) / static_cast<float>(view_.height);
+  view_.center = Vec3(centre.x(), centre.y(), 0.0f);
+  view_.metresAcross = std::max({size.x(), size.y() * aspect, kSmallest}) * (1.0f + 2.0f * kMargin);
+  return view_;
+}
+
 void writeThicknessImage(const std::filesystem::path& path, const Film& film, const Aerosol& aerosol,
                          const ImageView& v) {
   const float scale = static_cast<float>(v.width) / v.metresAcross;

@@ -39,9 +39,11 @@ void WandLog::add(double time, const WandFrame& f) {
 
 void WandLog::close() { csv_.close(); }
 
-void WandLog::writePlot(const std::filesystem::path& svg, const std::string& title) const {
+void WandLog::writePlot(const std::filesystem::path& svg, const std::string& title,
+                        const std::optional<Vec3>& camera) const {
   TrajectoryPlot plot = plot_;
   plot.title = title;
+  plot.camera = camera;
   writeTrajectoryPlot(svg, plot);
 }
 

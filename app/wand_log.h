@@ -3,6 +3,7 @@
 // input hands against the wands (trajectory_plot.h). docs/formats.md describes both.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "output_file.h"
@@ -16,7 +17,8 @@ class WandLog {
   explicit WandLog(const std::filesystem::path& csv);
   void add(double time, const WandFrame& frame);  // a row of wands.csv; OutputError when it cannot be written
   void close();
-  void writePlot(const std::filesystem::path& svg, const std::string& title) const;
+  // camera: where the camera stands in the world, drawn in the scene panels when given.
+  void writePlot(const std::filesystem::path& svg, const std::string& title, const std::optional<Vec3>& camera) const;
 
  private:
   RowFile csv_;

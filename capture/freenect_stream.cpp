@@ -4,6 +4,7 @@
 #include <libfreenect.h>
 #include <sys/time.h>
 
+#include <array>
 #include <atomic>
 #include <chrono>
 #include <cinttypes>
@@ -131,6 +132,7 @@ FakenectWriter::FakenectWriter(const fs::path& folder) : folder_(folder) {
 }
 
 void FakenectWriter::write(const kinect::DepthFrame& frame, double recordTime) {
+  if (frame.gravityUp) writeAccelerometer(*frame.gravityUp, frame.timestamp, recordTime);
   char name[96];
   std::snprintf(name, sizeof name, "d-%f-%" PRIu32 ".pgm", recordTime, frame.timestamp);
   {
@@ -144,12 +146,32 @@ void FakenectWriter::write(const kinect::DepthFrame& frame, double recordTime) {
     out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
     if (!out) throw HandSourceError("cannot write " + (folder_ / name).string());
   }
-  index_ += name;
+  addToIndex(name);
+  ++frames_;
+}
+
+void FakenectWriter::writeAccelerometer(const Eigen::Vector3d& up, uint32_t timestamp, double recordTime) {
+  // fakenect-record's 'a' entry: libfreenect's freenect_raw_tilt_state as it lies in memory.
+  freenect_raw_tilt_state state{};
+  const std::array<int16_t, 3> counts = kinect::cameraUpToAccel(up);
+  state.accelerometer_x = counts[0];
+  state.accelerometer_y = counts[1];
+  state.accelerometer_z = counts[2];
+  state.tilt_status = TILT_STATUS_STOPPED;
+  char name[96];
+  std::snprintf(name, sizeof name, "a-%f-%" PRIu32 ".dump", recordTime, timestamp);
+  std::ofstream out(folder_ / name, std::ios::binary);
+  out.write(reinterpret_cast<const char*>(&state), sizeof state);
+  if (!out) throw HandSourceError("cannot write " + (folder_ / name).string());
+  addToIndex(name);
+}
+
+void FakenectWriter::addToIndex(const std::string& entry) {
+  index_ += entry;
   index_ += '\n';
   std::ofstream index(folder_ / "INDEX.txt", std::ios::trunc);
   index << index_;
   if (!index) throw HandSourceError("cannot write " + (folder_ / "INDEX.txt").string());
-  ++frames_;
 }
 
 // One dlopen'ed libfreenect build and the device opened through it.
@@ -171,6 +193,9 @@ class FreenectLibrary {
     bind(startDepth, "freenect_start_depth");
     bind(stopDepth, "freenect_stop_depth");
     bind(processEvents, "freenect_process_events_timeout");
+    bind(updateTiltState, "freenect_update_tilt_state");
+    bind(getTiltState, "freenect_get_tilt_state");
+    bind(getMksAccel, "freenect_get_mks_accel");
   }
   ~FreenectLibrary() {
     if (device) {
@@ -194,25 +219,31 @@ class FreenectLibrary {
   }
 
   // Initialises libfreenect and starts 11-bit depth on the first device; a message naming the failure otherwise.
+  // The motor subdevice is opened too, for its accelerometer only (the tilt is never set); a Kinect whose motor
+  // cannot be opened is used without it.
   void start(const std::string& what) {
-    if (init(&context, nullptr) < 0) {
-      context = nullptr;
-      throw HandSourceError("no Kinect found: libfreenect could not start (" + what + ", no USB access?)");
-    }
-    setLogLevel(context, FREENECT_LOG_ERROR);
-    selectSubdevices(context, FREENECT_DEVICE_CAMERA);  // camera only: tilt motor and LED untouched
-    if (numDevices(context) < 1)
-      throw HandSourceError("no Kinect found (" + what + "): is a Kinect v1 plugged in and powered?");
-    if (openDevice(context, &device, 0) < 0) {
-      device = nullptr;
-      throw HandSourceError("no Kinect found: the Kinect could not be opened (" + what +
-                            "; permissions on /dev/bus/usb?)");
+    if (!open(what, static_cast<freenect_device_flags>(FREENECT_DEVICE_CAMERA | FREENECT_DEVICE_MOTOR))) {
+      close();
+      if (!open(what, FREENECT_DEVICE_CAMERA))
+        throw HandSourceError("no Kinect found: the Kinect could not be opened (" + what +
+                              "; permissions on /dev/bus/usb?)");
+    } else {
+      hasAccelerometer = true;
     }
     setDepthCallback(device, &FreenectLibrary::onDepth);
     const freenect_frame_mode mode = findDepthMode(FREENECT_RESOLUTION_MEDIUM, FREENECT_DEPTH_11BIT);
     if (!mode.is_valid || setDepthMode(device, mode) < 0 || startDepth(device) < 0)
       throw HandSourceError("the Kinect refused 640x480 11-bit depth (" + what + ")");
     depthStarted = true;
+  }
+
+  // The accelerometer's up direction in camera space (kinect_depth.h), when it reads about 1 g.
+  std::optional<Eigen::Vector3d> gravityUp() {
+    double x = 0, y = 0, z = 0;
+    freenect_raw_tilt_state* state = getTiltState(device);
+    if (!state) return std::nullopt;
+    getMksAccel(state, &x, &y, &z);
+    return kinect::accelToCameraUp(x, y, z);
   }
 
   // One round of libfreenect events; true when a depth frame arrived into `frame`.
@@ -240,12 +271,40 @@ class FreenectLibrary {
   int (*startDepth)(freenect_device*) = nullptr;
   int (*stopDepth)(freenect_device*) = nullptr;
   int (*processEvents)(freenect_context*, timeval*) = nullptr;
+  int (*updateTiltState)(freenect_device*) = nullptr;
+  freenect_raw_tilt_state* (*getTiltState)(freenect_device*) = nullptr;
+  void (*getMksAccel)(freenect_raw_tilt_state*, double*, double*, double*) = nullptr;
 
   freenect_context* context = nullptr;
   freenect_device* device = nullptr;
   bool depthStarted = false;
+  bool hasAccelerometer = false;  // the motor subdevice is open (live) or the recording may carry 'a' entries
 
  private:
+  // libfreenect started with these subdevices and the first device opened; false when it could not be.
+  bool open(const std::string& what, freenect_device_flags subdevices) {
+    if (init(&context, nullptr) < 0) {
+      context = nullptr;
+      throw HandSourceError("no Kinect found: libfreenect could not start (" + what + ", no USB access?)");
+    }
+    setLogLevel(context, FREENECT_LOG_FATAL);  // a missing motor is handled here, not printed
+    selectSubdevices(context, subdevices);
+    if (numDevices(context) < 1)
+      throw HandSourceError("no Kinect found (" + what + "): is a Kinect v1 plugged in and powered?");
+    if (openDevice(context, &device, 0) < 0) {
+      device = nullptr;
+      return false;
+    }
+    setLogLevel(context, FREENECT_LOG_ERROR);
+    return true;
+  }
+  void close() {
+    if (device) closeDevice(device);
+    if (context) shutdown(context);
+    device = nullptr;
+    context = nullptr;
+  }
+
   template <typename F>
   void bind(F& f, const char* name) {
     f = reinterpret_cast<F>(dlsym(handle_, name));
@@ -313,7 +372,10 @@ std::optional<double> DepthStream::length() const {
 
 double DepthStream::clock() const { return steadySeconds() - openedAt_; }
 
+void DepthStream::release() { lib_.reset(); }
+
 DepthStream::Poll DepthStream::poll(kinect::DepthFrame& frame, double timeout) {
+  if (!lib_) throw HandSourceLost("the camera was let go of after it was lost");
   if (recording_) {
     // fakenect consumes one INDEX.txt line per call; stop at the last one rather than let it run off the end.
     while (cursor_ < recording_->entries.size()) {
@@ -325,8 +387,10 @@ DepthStream::Poll DepthStream::poll(kinect::DepthFrame& frame, double timeout) {
       const bool got = lib_->pump(frame, 0.0, status);
       ++cursor_;
       if (status < 0) throw HandSourceLost("fakenect playback failed at " + e.file);
+      if (e.type == 'a') gravityUp_ = lib_->gravityUp();  // fakenect keeps the entry as its tilt state
       if (got) {
         frame.time = e.time - firstDepthTime_;
+        frame.gravityUp = gravityUp_;
         return Poll::Frame;
       }
     }
@@ -338,12 +402,21 @@ DepthStream::Poll DepthStream::poll(kinect::DepthFrame& frame, double timeout) {
     const double left = timeout - (clock() - start);
     if (lib_->pump(frame, std::max(0.0, std::min(left, 0.05)), status)) {
       frame.time = clock();
+      readAccelerometer();
+      frame.gravityUp = gravityUp_;
       return Poll::Frame;
     }
     if (status < 0)
       throw HandSourceLost("the Kinect stopped responding (unplugged?): libusb error " + std::to_string(status));
     if (clock() - start >= timeout) return Poll::Nothing;
   }
+}
+
+void DepthStream::readAccelerometer() {
+  // A control transfer per reading: twice a second is plenty for a camera standing still.
+  if (!lib_->hasAccelerometer || clock() - accelReadAt_ < kAccelPeriod) return;
+  accelReadAt_ = clock();
+  if (lib_->updateTiltState(lib_->device) >= 0) gravityUp_ = lib_->gravityUp();
 }
 
 std::string DepthStream::describe() const {

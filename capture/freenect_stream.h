@@ -6,7 +6,8 @@
 // other's symbols) instead of linking either, and the `fakenect` wrapper script is not needed.
 //
 // Depth is always asked for as FREENECT_DEPTH_11BIT: Debian's fakenect 0.5.3 plays back nothing else.
-// Only the camera subdevice is opened: the tilt motor and the LED are left alone.
+// The camera and the motor subdevices are opened, the motor for its accelerometer only (read twice a second
+// live, from the recording's 'a' entries in playback): the tilt is never set and the LED is left alone.
 //
 // fakenect keeps its playback state in globals and calls exit() on a missing or malformed file, so a
 // recording is validated in full before playback starts and each file is checked again just before
@@ -53,11 +54,14 @@ FakenectIndex readFakenectIndex(const std::filesystem::path& folder);
 class FakenectWriter {
  public:
   explicit FakenectWriter(const std::filesystem::path& folder);  // creates the folder; refuses a non-empty one
-  // recordTime: wall-clock seconds of the frame (fakenect replays the differences).
+  // recordTime: wall-clock seconds of the frame (fakenect replays the differences). A frame that carries the
+  // accelerometer's gravity gets an 'a' entry before it, as fakenect-record writes them.
   void write(const kinect::DepthFrame& frame, double recordTime);
   [[nodiscard]] int frames() const { return frames_; }
 
  private:
+  void writeAccelerometer(const Eigen::Vector3d& up, uint32_t timestamp, double recordTime);
+  void addToIndex(const std::string& entry);
   std::filesystem::path folder_;
   std::string index_;
   int frames_ = 0;
@@ -85,6 +89,9 @@ class DepthStream {
   [[nodiscard]] std::optional<double> length() const;
   // Seconds since the stream opened (live); frame times are on this clock.
   [[nodiscard]] double clock() const;
+  // Closes the device and unloads libfreenect now: a lost camera must be let go of before it can be opened
+  // again (a device still open in this process cannot be claimed a second time). poll() then throws.
+  void release();
 
  private:
   DepthStream();
@@ -92,7 +99,11 @@ class DepthStream {
   std::unique_ptr<FakenectIndex> recording_;
   size_t cursor_ = 0;  // next INDEX.txt entry fakenect will read
   double firstDepthTime_ = 0.0;
-  double openedAt_ = 0.0;  // steady clock at open (s)
+  double openedAt_ = 0.0;                      // steady clock at open (s)
+  std::optional<Eigen::Vector3d> gravityUp_;   // the newest accelerometer reading, camera space
+  double accelReadAt_ = -1.0;                  // clock() of the last live reading
+  static constexpr double kAccelPeriod = 0.5;  // s between live readings
+  void readAccelerometer();                    // live: a new reading when the last is kAccelPeriod old
   friend class FreenectLibrary;
 };
 

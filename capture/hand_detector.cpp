@@ -31,8 +31,10 @@ struct Grid {
   std::vector<Vec3d> point = std::vector<Vec3d>(kNodes, Vec3d::Zero());
   std::vector<uint8_t> valid = std::vector<uint8_t>(kNodes, 0);
   // Edges beyond the grid's neighbours: a forearm pointing at the camera is foreshortened into depth steps
-  // the grid does not join, and is bridged to the body where it comes closest (attachFragments).
-  std::unordered_map<int, std::vector<std::pair<int, double>>> bridges;
+  // the grid does not join, and is bridged to the body where it comes closest (attachFragments). Like the
+  // grid's own edges, a bridge is as long as the 3D distance between its ends.
+  std::unordered_map<int, std::vector<int>> bridges;
+  std::vector<uint8_t> bridged = std::vector<uint8_t>(kNodes, 0);  // has bridges: the map is looked up only then
 };
 
 // Each 2 x 2 block's first pixel with a reading inside the band, in camera space.
@@ -52,33 +54,41 @@ Grid sampleGrid(const kinect::DepthFrame& frame, const DetectionOptions& o) {
   return g;
 }
 
-// Drops the floor (and anything under it): returns the plane when one is in view.
-std::optional<FloorPlane> removeFloor(Grid& g, const std::optional<Vec3d>& gravityUp, const DetectionOptions& o) {
+// The floor of the grid's points (every other one each way), when one is in view.
+std::optional<FloorPlane> gridFloor(const Grid& g, const std::optional<Vec3d>& gravityUp) {
   std::vector<Vec3d> sample;
   for (int v = 0; v < kH; v += 2)
     for (int u = 0; u < kW; u += 2)
       if (g.valid[v * kW + u]) sample.push_back(g.point[v * kW + u]);
-  std::optional<FloorPlane> floor = findFloor(sample, gravityUp);
+  return findFloor(sample, gravityUp);
+}
+
+// Drops the floor (and anything under it): returns the plane when one is in view.
+std::optional<FloorPlane> removeFloor(Grid& g, const std::optional<Vec3d>& gravityUp, const DetectionOptions& o) {
+  std::optional<FloorPlane> floor = gridFloor(g, gravityUp);
   if (!floor) return floor;
   for (int i = 0; i < kNodes; ++i)
     if (g.valid[i] && floor->heightOf(g.point[i]) < o.floorClearance) g.valid[i] = 0;
   return floor;
 }
 
-// The 8 neighbours of node i joined to it (valid, depth step under depthJump), with the 3D distance.
+// The 8 neighbours of node i joined to it (valid, depth step under depthJump), and its bridges. An edge's
+// length is the 3D distance between its ends; the callers that need it compute it.
 template <typename Visit>
 void forNeighbours(const Grid& g, int i, const DetectionOptions& o, Visit visit) {
   const int u = i % kW, v = i / kW;
-  for (int dv = -1; dv <= 1; ++dv)
+  const double z = g.point[i].z();
+  for (int dv = -1; dv <= 1; ++dv) {
+    if (v + dv < 0 || v + dv >= kH) continue;
     for (int du = -1; du <= 1; ++du) {
-      if ((du == 0 && dv == 0) || u + du < 0 || u + du >= kW || v + dv < 0 || v + dv >= kH) continue;
+      if ((du == 0 && dv == 0) || u + du < 0 || u + du >= kW) continue;
       const int j = i + dv * kW + du;
-      if (!g.valid[j] || std::abs(g.point[j].z() - g.point[i].z()) > o.depthJump) continue;
-      visit(j, (g.point[j] - g.point[i]).norm());
+      if (g.valid[j] && std::abs(g.point[j].z() - z) <= o.depthJump) visit(j);
     }
-  if (const auto bridge = g.bridges.find(i); bridge != g.bridges.end())
-    for (const auto& [j, w] : bridge->second)
-      if (g.valid[j]) visit(j, w);
+  }
+  if (g.bridged[i])
+    for (const int j : g.bridges.at(i))
+      if (g.valid[j]) visit(j);
 }
 
 double median(std::vector<double> values) {
@@ -114,9 +124,10 @@ Bodies connectedBodies(const Grid& g, const Vec3d& up, const DetectionOptions& o
       const double footprint = kStep * p.z() / kinect::kFx;
       area += footprint * footprint;
       depth += p.z();
-      low = std::min(low, up.dot(p)), high = std::max(high, up.dot(p));
+      const double height = up.dot(p);
+      low = std::min(low, height), high = std::max(high, height);
       left = std::min(left, p.x()), right = std::max(right, p.x());
-      forNeighbours(g, i, o, [&](int j, double) {
+      forNeighbours(g, i, o, [&](int j) {
         if (b.label[j] < 0) b.label[j] = id, stack.push_back(j);
       });
     }
@@ -135,6 +146,24 @@ Bodies connectedBodies(const Grid& g, const Vec3d& up, const DetectionOptions& o
 // Pieces of the performer the grid did not join to the body (a forearm or hand pointing at the camera, seen
 // end-on as a few depth steps): a body nearer than the performer just beside it in the image is bridged to
 // the performer's nearest point within kMaxBridge, in rounds, so that a hand beyond a forearm joins too.
+// Summed-area table of a mask over the grid: how many set nodes lie in any rectangle, in constant time.
+class MaskSums {
+ public:
+  explicit MaskSums(const std::vector<uint8_t>& mask) : sums_(static_cast<size_t>(kW + 1) * (kH + 1), 0) {
+    for (int v = 0; v < kH; ++v)
+      for (int u = 0; u < kW; ++u)
+        sums_[at(u + 1, v + 1)] = mask[v * kW + u] + sums_[at(u, v + 1)] + sums_[at(u + 1, v)] - sums_[at(u, v)];
+  }
+  // Set nodes with u in [u0, u1] and v in [v0, v1] (inclusive, inside the grid).
+  [[nodiscard]] int count(int u0, int v0, int u1, int v1) const {
+    return sums_[at(u1 + 1, v1 + 1)] - sums_[at(u0, v1 + 1)] - sums_[at(u1 + 1, v0)] + sums_[at(u0, v0)];
+  }
+
+ private:
+  std::vector<int> sums_;
+  static size_t at(int u, int v) { return static_cast<size_t>(v) * (kW + 1) + u; }
+};
+
 std::vector<int> attachFragments(Grid& g, const Bodies& b) {
   constexpr int kReach = 4;           // half-resolution pixels searched around each fragment point
   constexpr double kMaxBridge = 0.6;  // m: a forearm hidden behind its hand leaves the hand up to an arm in front
@@ -145,14 +174,20 @@ std::vector<int> attachFragments(Grid& g, const Bodies& b) {
   attached[b.performer] = 1;
   for (int round = 0; round < 3; ++round) {
     bool grew = false;
+    // Most fragment points (the wall, the furniture) have no body point within reach: they are passed over
+    // by one look at the table instead of a search of their whole window. Rebuilt when the body grows.
+    MaskSums bodyNear(inBody);
     for (size_t f = 0; f < b.members.size(); ++f) {
       if (attached[f] || static_cast<int>(b.members[f].size()) < kMinFragment) continue;
       int from = -1, to = -1;
       double shortest = kMaxBridge;
       for (const int i : b.members[f]) {
         const int u = i % kW, v = i / kW;
-        for (int y = std::max(0, v - kReach); y <= std::min(kH - 1, v + kReach); ++y)
-          for (int x = std::max(0, u - kReach); x <= std::min(kW - 1, u + kReach); ++x) {
+        const int u0 = std::max(0, u - kReach), u1 = std::min(kW - 1, u + kReach);
+        const int v0 = std::max(0, v - kReach), v1 = std::min(kH - 1, v + kReach);
+        if (bodyNear.count(u0, v0, u1, v1) == 0) continue;
+        for (int y = v0; y <= v1; ++y)
+          for (int x = u0; x <= u1; ++x) {
             const int j = y * kW + x;
             // The fragment must be in front of the body there: it occludes it, it is not a wall behind.
             if (!inBody[j] || g.point[i].z() > g.point[j].z() + 0.05) continue;
@@ -161,9 +196,11 @@ std::vector<int> attachFragments(Grid& g, const Bodies& b) {
           }
       }
       if (from < 0) continue;
-      g.bridges[from].emplace_back(to, shortest);
-      g.bridges[to].emplace_back(from, shortest);
+      g.bridges[from].push_back(to);
+      g.bridges[to].push_back(from);
+      g.bridged[from] = g.bridged[to] = 1;
       for (const int i : b.members[f]) inBody[i] = 1, body.push_back(i);
+      bodyNear = MaskSums(inBody);
       attached[f] = 1;
       grew = true;
     }
@@ -185,7 +222,8 @@ void geodesicFrom(const Grid& g, int source, const DetectionOptions& o, std::vec
     const auto [d, i] = queue.top();
     queue.pop();
     if (d > dist[i]) continue;
-    forNeighbours(g, i, o, [&](int j, double w) {
+    forNeighbours(g, i, o, [&](int j) {
+      const double w = (g.point[j] - g.point[i]).norm();
       if (d + w < dist[j]) {
         dist[j] = d + w;
         if (pred) (*pred)[j] = i;
@@ -225,7 +263,7 @@ DetectedHand handAt(const Grid& g, int tip, const DetectionOptions& o) {
     const int i = stack.back();
     stack.pop_back();
     sum += g.point[i];
-    forNeighbours(g, i, o, [&](int j, double) {
+    forNeighbours(g, i, o, [&](int j) {
       if (visited[j] || (g.point[j] - g.point[tip]).norm() > o.handRadius) return;
       visited[j] = 1;
       stack.push_back(j);
@@ -302,6 +340,11 @@ void dropElbows(std::vector<DetectedHand>& candidates) {
 
 }  // namespace
 
+std::optional<FloorPlane> floorOf(const kinect::DepthFrame& frame, const DetectionOptions& o,
+                                  const std::optional<Vec3d>& gravityUp) {
+  return gridFloor(sampleGrid(frame, o), gravityUp);
+}
+
 Detection detectHands(const kinect::DepthFrame& frame, const DetectionOptions& o) {
   Detection d;
   Grid g = sampleGrid(frame, o);
@@ -317,9 +360,8 @@ Detection detectHands(const kinect::DepthFrame& frame, const DetectionOptions& o
   d.bodyDepth = median(depths);
 
   // Only the performer's nodes take part in the paths.
-  Grid bodyGrid;
-  bodyGrid.point = g.point;
-  bodyGrid.bridges = g.bridges;
+  Grid& bodyGrid = g;
+  std::fill(bodyGrid.valid.begin(), bodyGrid.valid.end(), uint8_t{0});
   for (const int i : body) bodyGrid.valid[i] = 1;
   const int centre = torsoCentre(bodyGrid, body, up);
   const Vec3d c = bodyGrid.point[centre];

@@ -63,6 +63,9 @@ struct Detection {
 };
 
 Detection detectHands(const kinect::DepthFrame& frame, const DetectionOptions& options);
+// The floor detectHands would find along gravityUp (nothing: searched for), for checking an accelerometer.
+std::optional<FloorPlane> floorOf(const kinect::DepthFrame& frame, const DetectionOptions& options,
+                                  const std::optional<Vec3d>& gravityUp);
 
 struct TrackerOptions {
   bool mirrored = false;      // the depth image is mirrored (the performer's left hand on the image's left)

@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 namespace gb {
 
@@ -53,6 +54,10 @@ class HandSource {
   [[nodiscard]] virtual double period() const { return 1.0 / 30.0; }
   // Seconds from the first sample to the last, for a finite recorded input; nothing for a live or endless one.
   [[nodiscard]] virtual std::optional<double> length() const { return std::nullopt; }
+  // Warnings and notes since the last call, one line each ("warning: …"), passed on by StabilizedWands.
+  virtual std::vector<std::string> takeMessages() { return {}; }
+  // Why the newest sample has no hand, for the message shown while a performer is waited for.
+  [[nodiscard]] virtual std::string whyNoHands() const { return "no hands in the input"; }
 };
 
 // Hold and decay, the one definition every source uses for a hand it did not measure: the hand stays at its

@@ -31,6 +31,15 @@ DepthHandSource::DepthHandSource(std::unique_ptr<DepthStream> stream, const Dete
     : stream_(std::move(stream)), detectionOptions_(detection), tracker_(tracker) {}
 
 std::optional<HandSample> DepthHandSource::next() {
+  try {
+    return nextSample();
+  } catch (const HandSourceLost&) {
+    stream_->release();  // so that the camera, back again, can be opened anew (the live window reopens it)
+    throw;
+  }
+}
+
+std::optional<HandSample> DepthHandSource::nextSample() {
   while (true) {
     // A camera slower than 30 Hz (a busy USB bus, a 15 Hz mode) is late by its own measure, not by 30 Hz's.
     const double timeout = std::max(kFrameTimeout, 2.5 * frameInterval_);
@@ -53,9 +62,43 @@ std::optional<HandSample> DepthHandSource::next() {
                                                  : frameInterval_ + 0.2 * (frame_.time - lastFrame_ - frameInterval_);
         lastFrame_ = frame_.time;
         if (observer_) observer_(frame_);
-        return tracker_.update(frame_.time, detectHands(frame_, detectionOptions_));
+        if (frame_.gravityUp) checkGravity();
+        if (!gravityBelieved_) frame_.gravityUp.reset();
+        const Detection detection = detectHands(frame_, detectionOptions_);
+        performerPixels_ = detection.performerPixels;
+        bodyDepth_ = detection.bodyDepth;
+        return tracker_.update(frame_.time, detection);
     }
   }
+}
+
+void DepthHandSource::checkGravity() {
+  if (detectionOptions_.gravityUp || framesToGravityCheck_-- > 0) return;
+  const std::optional<FloorPlane> along = floorOf(frame_, detectionOptions_, frame_.gravityUp);
+  const std::optional<FloorPlane> searched = floorOf(frame_, detectionOptions_, std::nullopt);
+  if (!along || !searched) return;  // no floor in view: nothing to check against, the next frame tries again
+  framesToGravityCheck_ = kGravityCheckEvery;
+  const double degrees = std::acos(std::clamp(along->up.dot(searched->up), -1.0, 1.0)) * 180.0 / std::numbers::pi;
+  const bool agrees = degrees <= kGravityAgreement;
+  if (!agrees && gravityBelieved_) {
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "warning: the accelerometer's gravity is %.0f degrees from the floor in view; the floor is "
+                  "found from the depth instead",
+                  degrees);
+    messages_.push_back(text);
+  }
+  gravityBelieved_ = agrees;
+}
+
+std::string DepthHandSource::whyNoHands() const {
+  char text[96];
+  if (performerPixels_ == 0)
+    std::snprintf(text, sizeof text, "no body in the depth band %.1f-%.1f m", detectionOptions_.nearLimit,
+                  detectionOptions_.farLimit);
+  else
+    std::snprintf(text, sizeof text, "a body at %.1f m, no hand held out from it", bodyDepth_);
+  return text;
 }
 
 ReplayHandSource::ReplayHandSource(std::vector<HandSample> samples, std::string describe)

@@ -11,6 +11,7 @@
 #include <mutex>
 #include <random>
 #include <string>
+#include <utility>
 
 #include "calibration.h"
 #include "freenect_stream.h"
@@ -29,6 +30,9 @@ class DepthHandSource : public HandSource {
   // Called with every depth frame before detection (giantbubble record writes them as a fakenect recording).
   void onFrame(std::function<void(const kinect::DepthFrame&)> observer) { observer_ = std::move(observer); }
   [[nodiscard]] std::optional<double> length() const override { return stream_->length(); }
+  // "no body in the depth band 0.5-4.0 m", or where the body is when it has no hand.
+  [[nodiscard]] std::string whyNoHands() const override;
+  std::vector<std::string> takeMessages() override { return std::exchange(messages_, {}); }
 
   static constexpr double kFrameTimeout = 0.1;  // s without a frame (or 2.5 frame intervals, if longer): a
                                                 //   sample with both hands held
@@ -41,7 +45,18 @@ class DepthHandSource : public HandSource {
   kinect::DepthFrame frame_;
   double lastFrame_ = 0.0;
   double frameInterval_ = 0.0;  // s between depth frames, smoothed (0: not known yet)
+  int performerPixels_ = 0;     // of the newest detection (0: nobody in the band)
+  double bodyDepth_ = 0.0;      // m, of the newest detection
   std::function<void(const kinect::DepthFrame&)> observer_;
+  std::optional<HandSample> nextSample();  // next() but for letting go of a lost camera
+  // The accelerometer is believed while it agrees with the floor found in the depth without it: checked on
+  // the first frame that has both, then every kGravityCheckEvery frames; a disagreement is warned about once.
+  void checkGravity();
+  static constexpr int kGravityCheckEvery = 150;    // frames (5 s at 30 Hz)
+  static constexpr double kGravityAgreement = 5.0;  // degrees between the two floors' normals
+  bool gravityBelieved_ = true;
+  int framesToGravityCheck_ = 0;
+  std::vector<std::string> messages_;
 };
 
 // Samples already in memory, played in order: a trajectory file, or a recorded session replayed.

@@ -30,4 +30,19 @@ Eigen::Vector2d cameraToPixel(const Eigen::Vector3d& p) {
   return {kCx + kFx * p.x() / p.z(), kCy - kFy * p.y() / p.z()};
 }
 
+std::optional<Eigen::Vector3d> accelToCameraUp(double ax, double ay, double az) {
+  const Eigen::Vector3d up(-ax, ay, az);
+  const double g = up.norm() / kStandardGravity;
+  if (!(g > 0.5 && g < 1.5)) return std::nullopt;
+  const Eigen::Vector3d unit = up.normalized();
+  if (unit.y() < 0.5) return std::nullopt;  // cos 60 degrees
+  return unit;
+}
+
+std::array<int16_t, 3> cameraUpToAccel(const Eigen::Vector3d& up) {
+  const Eigen::Vector3d counts = kAccelCountsPerG * up.normalized();
+  return {static_cast<int16_t>(std::lround(-counts.x())), static_cast<int16_t>(std::lround(counts.y())),
+          static_cast<int16_t>(std::lround(counts.z()))};
+}
+
 }  // namespace gb::kinect

@@ -47,6 +47,18 @@ Eigen::Vector3d pixelToCamera(double u, double v, double z);
 // Pixel coordinates (u, v) of a camera-space point in front of the camera.
 Eigen::Vector2d cameraToPixel(const Eigen::Vector3d& p);
 
+// The accelerometer (libfreenect's tilt state, in m/s^2 from freenect_get_mks_accel; raw counts are 819 per g)
+// reads the reaction to gravity, i.e. "up", in the Kinect's own axes: x to the Kinect's left as it looks out, y up, z
+// forward along the optical axis. In camera space (x right, y up, z forward) up is (-x, y, z), normalised.
+// Nothing for a reading that is not about 1 g (0.5-1.5 g: the Kinect being moved) or that puts up more than
+// 60 degrees from the camera's y axis (a Kinect on its side or upside down, or axes read wrongly): the floor
+// is then searched for instead.
+std::optional<Eigen::Vector3d> accelToCameraUp(double ax, double ay, double az);
+// The raw accelerometer counts of a camera-space up direction (1 g), for synthetic recordings.
+std::array<int16_t, 3> cameraUpToAccel(const Eigen::Vector3d& up);
+constexpr double kAccelCountsPerG = 819.0;    // FREENECT_COUNTS_PER_G
+constexpr double kStandardGravity = 9.80665;  // m/s^2, libfreenect's GRAVITY
+
 // One depth frame: raw 11-bit disparities, row-major, kWidth x kHeight.
 struct DepthFrame {
   double time = 0.0;       // seconds since the stream started (recording: from the file name)

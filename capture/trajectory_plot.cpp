@@ -12,7 +12,9 @@ namespace gb {
 
 namespace {
 
-constexpr double kPanel = 300.0, kMargin = 40.0, kTop = 50.0;
+constexpr double kPanel = 300.0, kMargin = 40.0;
+constexpr double kTitleLine = 18.0;   // px between the title's lines (14 px font)
+constexpr size_t kTitleColumns = 88;  // characters per title line: a 14 px sans-serif line of the plot's width
 
 struct Range {
   double lo = std::numeric_limits<double>::infinity(), hi = -std::numeric_limits<double>::infinity();
@@ -88,6 +90,23 @@ void marker(std::ostream& out, double x, double y, bool cross, const char* colou
   out << "\"/>\n";
 }
 
+// The title broken into lines at spaces (or slashes, for long paths), none longer than kTitleColumns.
+std::vector<std::string> titleLines(const std::string& title) {
+  std::vector<std::string> lines;
+  std::string rest = title;
+  while (rest.size() > kTitleColumns) {
+    size_t cut = rest.find_last_of(" /", kTitleColumns - 1);
+    cut = cut == std::string::npos || cut == 0 ? kTitleColumns : cut + 1;
+    lines.push_back(rest.substr(0, cut));
+    rest = rest.substr(cut);
+  }
+  lines.push_back(rest);
+  return lines;
+}
+
+// The scene row: both wands in one frame with the references (floor, origin, camera), front and top.
+void scenePanels(std::ostream& out, const TrajectoryPlot& plot, double top);
+
 std::string escaped(const std::string& text) {
   std::string out;
   for (const char ch : text) {
@@ -110,13 +129,18 @@ void writeTrajectoryPlot(const std::filesystem::path& path, const TrajectoryPlot
   const std::vector<const std::vector<Vec3>*> tracks[2] = {{&plot.leftInput, &plot.leftWand},
                                                            {&plot.rightInput, &plot.rightWand}};
   for (View& v : views) v.fit(tracks);
-  const double width = 2 * kPanel + 3 * kMargin, height = kTop + 2 * kPanel + 3 * kMargin;
+  const std::vector<std::string> title = titleLines(plot.title);
+  const double kTop = 32.0 + kTitleLine * static_cast<double>(title.size());
+  const double width = 2 * kPanel + 3 * kMargin, height = kTop + 3 * kPanel + 4 * kMargin;
   std::ofstream out(path);
   if (!out) throw std::runtime_error("cannot write the trajectory plot " + path.string());
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
-  out << "<text x=\"" << kMargin << "\" y=\"22\" font-size=\"14\">" << escaped(plot.title) << "</text>\n";
-  out << "<text x=\"" << kMargin << "\" y=\"40\">input hand: dotted   wand: solid   start: +   end: x   "
+  for (size_t i = 0; i < title.size(); ++i)
+    out << "<text x=\"" << kMargin << "\" y=\"" << 22 + kTitleLine * static_cast<double>(i) << "\" font-size=\"14\">"
+        << escaped(title[i]) << "</text>\n";
+  out << "<text x=\"" << kMargin << "\" y=\"" << kTop - 10
+      << "\">input hand: dotted   wand: solid   start: +   end: x   "
       << "(world space; both panels of a row share their scale)</text>\n";
   const struct {
     const char* name;
@@ -146,8 +170,58 @@ void writeTrajectoryPlot(const std::filesystem::path& path, const TrajectoryPlot
       }
     }
   }
+  scenePanels(out, plot, kTop + kMargin + 2 * (kPanel + kMargin));
   out << "</svg>\n";
   if (!out) throw std::runtime_error("cannot write the trajectory plot " + path.string());
 }
+
+namespace {
+
+void scenePanels(std::ostream& out, const TrajectoryPlot& plot, double top) {
+  // Both views take one scale, from everything that is drawn: the wands, the origin and the camera.
+  std::vector<Vec3> references = {Vec3::Zero()};
+  if (plot.camera) references.push_back(*plot.camera);
+  Range axes[3];
+  const std::vector<Vec3>* tracks[] = {&plot.leftWand, &plot.rightWand, &references};
+  for (const std::vector<Vec3>* track : tracks)
+    for (const Vec3& p : *track)
+      for (int a = 0; a < 3; ++a) axes[a].add(p[a]);
+  axes[1].add(0.0);  // the floor
+  double span = 0.5;
+  for (const Range& r : axes) span = std::max(span, r.hi - r.lo);
+  const double scale = 0.85 * kPanel / span;
+  const char* names[2] = {"scene, front (x right, y up)", "scene, top (x right, z forward)"};
+  for (int c = 0; c < 2; ++c) {
+    const int vertical = c == 0 ? 1 : 2;
+    const double left = kMargin + c * (kPanel + kMargin);
+    const double cx = 0.5 * (axes[0].lo + axes[0].hi), cy = 0.5 * (axes[vertical].lo + axes[vertical].hi);
+    const View view{0, vertical, names[c], scale, {cx, cx}, {cy, cy}};
+    auto x = [&](const Vec3& p) { return view.x(p, 0, left); };
+    auto y = [&](const Vec3& p) { return view.y(p, 0, top); };
+    out << "<rect x=\"" << left << "\" y=\"" << top << "\" width=\"" << kPanel << "\" height=\"" << kPanel
+        << "\" fill=\"none\" stroke=\"#999\"/>\n<text x=\"" << left << "\" y=\"" << top - 6 << "\">" << names[c]
+        << "</text>\n";
+    if (c == 0) {  // the floor, y = 0, across the front view
+      const double floorY = y(Vec3::Zero());
+      out << "<path stroke=\"#8c6d31\" stroke-width=\"2\" d=\"M" << left << ',' << floorY << " h" << kPanel
+          << "\"/><text x=\"" << left + 4 << "\" y=\"" << floorY - 4 << "\" fill=\"#8c6d31\">floor</text>\n";
+    }
+    polyline(out, plot.leftWand, view, 0, left, top, "#d62728", false);
+    polyline(out, plot.rightWand, view, 1, left, top, "#1f77b4", false);
+    marker(out, x(Vec3::Zero()), y(Vec3::Zero()), false, "#2ca02c");
+    out << "<text x=\"" << x(Vec3::Zero()) + 7 << "\" y=\"" << y(Vec3::Zero()) + 14
+        << "\" fill=\"#2ca02c\">origin</text>\n";
+    if (plot.camera) {
+      const double px = x(*plot.camera), py = y(*plot.camera);
+      out << "<rect x=\"" << px - 6 << "\" y=\"" << py - 4 << "\" width=\"12\" height=\"8\" fill=\"#555\"/><text x=\""
+          << px + 9 << "\" y=\"" << py + 4 << "\">camera</text>\n";
+    }
+    const double bar = 0.5 * scale;
+    out << "<path stroke=\"#333\" d=\"M" << left + 8 << ',' << top + kPanel - 10 << " h" << bar << "\"/><text x=\""
+        << left + 12 + bar << "\" y=\"" << top + kPanel - 6 << "\">50 cm</text>\n";
+  }
+}
+
+}  // namespace
 
 }  // namespace gb

@@ -32,29 +32,29 @@ std::string ScriptedWands::describe() const {
   return "scripted gesture";
 }
 
+void printToStderr(const std::string& message) { std::fprintf(stderr, "%s\n", message.c_str()); }
+
+namespace {
+bool bothMeasured(const HandSample& s) { return s.left.measured && s.right.measured; }
+}  // namespace
+
 StabilizedWands::StabilizedWands(std::unique_ptr<HandSource> source, const StabilizerOptions& stabilizer,
-                                 const Calibration& calibration)
+                                 const Calibration& calibration, const PerformerWait& wait)
     : source_(std::move(source)), calibration_(calibration), describe_(source_->describe()) {
   if (!fetch())
     throw HandSourceError(describe_ + ": no samples" + (messages_.empty() ? "" : " (" + messages_.back() + ")"));
-  start_ = ahead_.front().time;
-  if (calibration_.autoPerformer) {
-    auto both = [](const HandSample& s) { return s.left.measured && s.right.measured; };
-    while (!both(ahead_.back()) && ahead_.back().time - start_ < 3.0 && fetch()) {
+  start_ = first_ = ahead_.front().time;
+  if (wait.enabled) {
+    waitForPerformer(wait);
+  } else if (calibration_.autoPerformer) {
+    while (!bothMeasured(ahead_.back()) && ahead_.back().time - start_ < 3.0 && fetch()) {
     }
-    if (both(ahead_.back())) {
-      calibration_.performer = 0.5 * (ahead_.back().left.position + ahead_.back().right.position);
-      char text[160];
-      std::snprintf(text, sizeof text,
-                    "note: calibration: performer at (%.2f, %.2f, %.2f) m, between the hands at t = %s",
-                    calibration_.performer.x(), calibration_.performer.y(), calibration_.performer.z(),
-                    seconds(ahead_.back().time - start_).c_str());
-      messages_.push_back(text);
-    } else {
+    if (bothMeasured(ahead_.back()))
+      centreOnPerformer(ahead_.back());
+    else
       messages_.push_back(
           "warning: calibration: no sample with both hands in the first 3 s; the performer stays at "
           "the configured point");
-    }
   }
   StabilizerOptions options = stabilizer;
   period_ = source_->period();
@@ -66,13 +66,62 @@ StabilizedWands::StabilizedWands(std::unique_ptr<HandSource> source, const Stabi
   ahead_.pop_front();
 }
 
+void StabilizedWands::centreOnPerformer(const HandSample& sample) {
+  calibration_.performer = 0.5 * (sample.left.position + sample.right.position);
+  char text[160];
+  std::snprintf(text, sizeof text, "note: calibration: performer at (%.2f, %.2f, %.2f) m, between the hands at t = %s",
+                calibration_.performer.x(), calibration_.performer.y(), calibration_.performer.z(),
+                seconds(sample.time - start_).c_str());
+  messages_.push_back(text);
+}
+
+void StabilizedWands::waitForPerformer(const PerformerWait& wait) {
+  // Said at once, then once per second of input: a waiting console is not flooded.
+  double saidAt = -1.0;
+  const bool live = !source_->length();
+  while (!bothMeasured(ahead_.back())) {
+    const HandSample& s = ahead_.back();
+    const bool one = s.left.measured || s.right.measured;
+    const std::string why =
+        one ? std::string(s.left.measured ? "the left" : "the right") + " hand found, waiting for the other"
+            : source_->whyNoHands();
+    const double t = s.time - first_;
+    if (saidAt < 0.0 || t - saidAt >= 1.0) {
+      wait.say("waiting for a performer: " + why + " (" + seconds(t) + " of input)");
+      saidAt = t;
+    }
+    if (live && ahead_.size() > 1) ahead_.pop_front();            // a camera may wait for hours: keep the newest only
+    if ((wait.cancelled && wait.cancelled()) || !fetch()) break;  // stopped, or the input ended or was lost
+  }
+  if (!bothMeasured(ahead_.back())) {
+    messages_.push_back("warning: no performer found (no sample with both hands); the run starts where the input does");
+    start_ = ahead_.front().time;
+    return;
+  }
+  // Run time 0 is the sample with both hands: the ones before it are dropped.
+  ahead_.erase(ahead_.begin(), ahead_.end() - 1);
+  start_ = ahead_.front().time;
+  performerFound_ = start_ - first_;
+  if (*performerFound_ > 0.0)  // an input with both hands from its first sample needs no word
+    messages_.push_back("note: performer found after " + seconds(*performerFound_) +
+                        " of input: both hands tracked; the film is made now");
+  if (calibration_.autoPerformer) centreOnPerformer(ahead_.front());
+}
+
+std::optional<double> StabilizedWands::length() const {
+  const std::optional<double> length = source_->length();
+  if (!length) return std::nullopt;
+  return std::max(*length - (start_ - first_), 0.0);
+}
+
 std::string StabilizedWands::describe() const { return describe_ + ", stabilized"; }
 
 bool StabilizedWands::fetch() {
   if (finished_) return false;
-  const double now = lastFed_ - start_;
+  const double now = (ahead_.empty() ? lastFed_ : ahead_.back().time) - start_;
   try {
     std::optional<HandSample> s = source_->next();
+    for (std::string& m : source_->takeMessages()) messages_.push_back(std::move(m));
     if (s) {
       ahead_.push_back(*s);
       return true;

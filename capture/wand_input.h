@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <deque>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -38,6 +39,10 @@ class WandInput {
   [[nodiscard]] virtual std::optional<double> length() const { return std::nullopt; }
   // Whether the input has ended or was lost (the wands at rest); scripts never end.
   [[nodiscard]] virtual bool ended() const { return false; }
+  // Where the camera stands in the world, for inputs seen by one (camera space carried by the calibration).
+  [[nodiscard]] virtual std::optional<Vec3> camera() const { return std::nullopt; }
+  // Seconds of input read before the performer was found (run time 0 is then), when waited for.
+  [[nodiscard]] virtual std::optional<double> performerFound() const { return std::nullopt; }
   // Warnings and notes since the last call, each one line ("warning: …" or "note: …").
   std::vector<std::string> takeMessages() { return std::exchange(messages_, {}); }
 
@@ -56,15 +61,34 @@ class ScriptedWands : public WandInput {
   GestureOptions options_;
 };
 
+// Where the messages go while a performer is waited for: the caller cannot print them until the wait is over.
+using MessageSink = std::function<void(const std::string&)>;
+void printToStderr(const std::string& message);
+
+// Waiting for a performer before run time 0 (StabilizedWands).
+struct PerformerWait {
+  bool enabled = false;
+  MessageSink say = printToStderr;  // "waiting for a performer: …", once per second of input
+  std::function<bool()> cancelled;  // polled while waiting: true stops the wait (Ctrl-C), the run starts as is
+};
+
 class StabilizedWands : public WandInput {
  public:
-  // With calibration.autoPerformer, reads ahead until a sample shows both hands (at most the first 3 s) and
-  // centres the calibration between them.
+  // With wait.enabled, run time 0 is the first sample with both hands measured; the samples before it are
+  // dropped, so the wands (and the film made on them) start at the performer's hands rather than between one
+  // hand and the other's rest pose. While waiting, wait.say gets "waiting for a performer: …" once per second
+  // of input; an input that ends (or a wait cancelled) without both hands starts where it is, with a warning.
+  // With calibration.autoPerformer the calibration is centred between the hands of that sample (without the
+  // wait: of the first sample with both hands within 3 s).
   StabilizedWands(std::unique_ptr<HandSource> source, const StabilizerOptions& stabilizer,
-                  const Calibration& calibration);
+                  const Calibration& calibration, const PerformerWait& wait = {});
   WandFrame at(double t) override;
   [[nodiscard]] std::string describe() const override;
-  [[nodiscard]] std::optional<double> length() const override { return source_->length(); }
+  [[nodiscard]] std::optional<double> length() const override;
+  [[nodiscard]] std::optional<double> performerFound() const override { return performerFound_; }
+  [[nodiscard]] std::optional<Vec3> camera() const override {
+    return calibration_.toWorld(Vec3d::Zero()).cast<float>();
+  }
   [[nodiscard]] const Calibration& calibration() const { return calibration_; }
   [[nodiscard]] double confidence(Hand hand) const { return stabilizer_->confidence(hand); }
 
@@ -83,9 +107,11 @@ class StabilizedWands : public WandInput {
   std::deque<HandSample> ahead_;  // read from the source, not yet given to the stabilizer
   bool finished_ = false;         // the source ended or was lost: only holds from here on
   double start_ = 0.0;            // source time at run time 0
-  double lastFed_ = 0.0;          // source time of the newest sample the stabilizer has
-  double period_ = 1.0 / 30.0;    // s between samples: the source's nominal period, then as observed
-  int intervals_ = 0;             // sample intervals observed
+  double first_ = 0.0;            // source time of the first sample read
+  std::optional<double> performerFound_;
+  double lastFed_ = 0.0;        // source time of the newest sample the stabilizer has
+  double period_ = 1.0 / 30.0;  // s between samples: the source's nominal period, then as observed
+  int intervals_ = 0;           // sample intervals observed
   bool reportedSlow_ = false;
   double lastMeasured_[2] = {0.0, 0.0};
   bool reportedLost_[2] = {false, false};
@@ -93,6 +119,8 @@ class StabilizedWands : public WandInput {
   std::string describe_;
   [[nodiscard]] double period() const;  // the source's, at least kMinSamplePeriod
   bool fetch();                         // reads one more sample into ahead_; false when there are no more
+  void waitForPerformer(const PerformerWait& wait);
+  void centreOnPerformer(const HandSample& sample);
   void feed(const HandSample& sample);
   void observeInterval(double dt);  // updates period_ and warns once about a slow input
 };

@@ -77,3 +77,33 @@ execute_process(COMMAND ${EXE} run --input fakenect:${OUT}/truncated --out ${OUT
 if(rc EQUAL 0 OR NOT err MATCHES "error: fakenect recording .*INDEX.txt line 3: depth file .* is truncated")
   message(FATAL_ERROR "a truncated recording was not refused clearly (${rc}):\n${out}\n${err}")
 endif()
+
+# A performer who walks in late (issue 15): the room is empty for 0.5 s. The run waits, says why once per
+# second, and makes the film when both hands are found: stats.csv's frame 0 says so, and the film's first area
+# is the rest pose's (a scripted run's first frame) within 10%: the detected hands stand 0.5 m apart, as the
+# rest pose's tips do after the reach, each within a few centimetres of its true centre.
+run_ok(${MAKE_RECORDING} ${OUT}/late 30 --nobody-until 0.5)
+run_ok(${EXE} run --input fakenect:${OUT}/late --out ${OUT}/run_late ${run_args})
+if(NOT out MATCHES "waiting for a performer: no body in the depth band 0.5-4.0 m")
+  message(FATAL_ERROR "no message while nobody was in view:\n${out}")
+endif()
+if(NOT out MATCHES "performer found after 0.50 s of input")
+  message(FATAL_ERROR "the performer was not reported found at 0.5 s:\n${out}")
+endif()
+file(STRINGS ${OUT}/run_late/stats.csv late_rows)
+list(GET late_rows 1 late_first)
+if(NOT late_first MATCHES "performer_found film_created")
+  message(FATAL_ERROR "stats.csv frame 0 does not say when the performer was found: ${late_first}")
+endif()
+run_ok(${EXE} run --gesture straight --duration 0.02 --out ${OUT}/run_rest ${run_args})
+file(STRINGS ${OUT}/run_rest/stats.csv rest_rows)
+list(GET rest_rows 1 rest_first)
+string(REPLACE "," ";" late_fields "${late_first}")
+string(REPLACE "," ";" rest_fields "${rest_first}")
+list(GET late_fields 4 late_area)
+list(GET rest_fields 4 rest_area)
+execute_process(COMMAND awk "BEGIN { r = ${late_area} / ${rest_area}; exit !(r > 0.9 && r < 1.1) }" RESULT_VARIABLE ratio_rc)
+if(NOT ratio_rc EQUAL 0)
+  message(FATAL_ERROR "the film's first area ${late_area} m^2 is not the rest pose's ${rest_area} m^2 within 10%")
+endif()
+message(STATUS "late performer: first film area ${late_area} m^2, rest pose ${rest_area} m^2")

@@ -1,8 +1,10 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <numbers>
 #include <string>
 
 #include "freenect_stream.h"
@@ -13,6 +15,7 @@ namespace gb {
 namespace {
 
 namespace fs = std::filesystem;
+constexpr double kPi = std::numbers::pi;
 
 // A fresh path under this process's scratch folder, which is removed when the tests end.
 fs::path scratch(const std::string& name) {
@@ -79,6 +82,87 @@ TEST(Fakenect, ASyntheticSessionPlayedThroughLibfreenectsFakenectGivesTheSameHan
   }
   EXPECT_EQ(firstRaw, frames.front().raw);
   EXPECT_FALSE(played.next());  // the end of the recording, without fakenect's complaint
+}
+
+// Issue 15: a recording's 'a' entries (fakenect-record's accelerometer dumps) reach the detector as gravity. A
+// camera tilted 15 degrees down: each played frame carries the accelerometer's up within 0.2
+// degrees (the raw counts' rounding, 1/819 g, is 0.07 degrees), and the floor is fitted along it, its height
+// within 3 cm (two 3 cm height bins). An accelerometer reading upside down is not believed: the floor is then
+// searched for, as without one.
+TEST(Fakenect, TheAccelerometerOfARecordingGivesTheFloorItsGravity) {
+  test::SceneOptions options;
+  options.cameraPitch = 15.0;
+  options.cameraHeight = test::cameraHeightFor(15.0, 2.5);
+  options.noise = false;
+  const test::SyntheticScene scene = test::renderScene(test::namedPose("forward"), options);
+  const Vec3d up = scene.up;
+  const fs::path dir = scratch("accelerometer");
+  {
+    FakenectWriter writer(dir);
+    for (int i = 0; i < 4; ++i) {
+      kinect::DepthFrame frame = scene.frame;
+      frame.gravityUp = up;
+      writer.write(frame, 1700000000.0 + i / 30.0);
+    }
+  }
+  std::ifstream index(dir / "INDEX.txt");
+  std::string line;
+  int accelerometerEntries = 0;
+  while (std::getline(index, line)) accelerometerEntries += line.rfind("a-", 0) == 0;
+  EXPECT_EQ(accelerometerEntries, 4);
+
+  auto stream = DepthStream::openRecording(dir);
+  kinect::DepthFrame played;
+  int frames = 0;
+  while (stream->poll(played, 0.1) == DepthStream::Poll::Frame) {
+    ++frames;
+    ASSERT_TRUE(played.gravityUp) << frames;
+    EXPECT_LT(std::acos(std::min(1.0, played.gravityUp->dot(up))) * 180.0 / kPi, 0.2) << frames;
+    const Detection d = detectHands(played, DetectionOptions{});
+    ASSERT_TRUE(d.floor);
+    EXPECT_LT((d.floor->up - *played.gravityUp).norm(), 1e-12);  // a measured gravity is the floor's normal
+    EXPECT_NEAR(-d.floor->offset, scene.floorDistance, 0.03);
+  }
+  EXPECT_EQ(frames, 4);
+
+  EXPECT_FALSE(kinect::accelToCameraUp(0.0, -kinect::kStandardGravity, 0.0));       // upside down
+  EXPECT_FALSE(kinect::accelToCameraUp(0.0, 0.2 * kinect::kStandardGravity, 0.0));  // falling, or no reading
+  const std::array<int16_t, 3> level = kinect::cameraUpToAccel(Vec3d::UnitY());
+  EXPECT_EQ(level[1], 819);
+}
+
+// An accelerometer read with its pitch's sign the wrong way (a camera tilted 13 degrees down taken for 13 up)
+// still gathers a slanted strip of the floor along it, so the detector alone cannot tell; the source checks it
+// against the floor found without it, warns once and finds the floor from the depth: both hands are found.
+// A right reading raises no warning.
+TEST(Fakenect, AnAccelerometerThatDisagreesWithTheFloorIsNotBelieved) {
+  test::SceneOptions options;
+  options.cameraPitch = 13.0;
+  options.cameraHeight = test::cameraHeightFor(13.0, 2.5);
+  const test::SyntheticScene scene = test::renderScene(test::namedPose("forward"), options);
+  for (const bool wrong : {true, false}) {
+    const fs::path dir = scratch(wrong ? "wrong_accelerometer" : "right_accelerometer");
+    {
+      FakenectWriter writer(dir);
+      for (int i = 0; i < 3; ++i) {
+        kinect::DepthFrame frame = scene.frame;
+        frame.gravityUp = wrong ? Vec3d(scene.up.x(), scene.up.y(), -scene.up.z()) : scene.up;
+        writer.write(frame, 1700000000.0 + i / 30.0);
+      }
+    }
+    DepthHandSource played(DepthStream::openRecording(dir), DetectionOptions{}, TrackerOptions{});
+    std::vector<std::string> messages;
+    for (int i = 0; i < 3; ++i) {
+      const std::optional<HandSample> s = played.next();
+      ASSERT_TRUE(s);
+      EXPECT_TRUE(s->left.measured && s->right.measured) << wrong << " " << i;
+      for (const std::string& m : played.takeMessages()) messages.push_back(m);
+    }
+    ASSERT_EQ(messages.size(), wrong ? 1u : 0u) << (messages.empty() ? "" : messages.front());
+    if (wrong) {
+      EXPECT_NE(messages.front().find("26 degrees from the floor in view"), std::string::npos) << messages.front();
+    }
+  }
 }
 
 TEST(Fakenect, RecordingsPlayOneAfterAnotherInOneProcess) {
@@ -166,6 +250,57 @@ std::vector<std::string> indexLines(const fs::path& dir) {
   std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);) lines.push_back(line);
   return lines;
+}
+
+// Issue 15: a Kinect unplugged mid-performance and plugged back in, through a stand-in for the live libfreenect
+// (fake_freenect.cpp). Unplugged, the source is lost and no Kinect is found; plugged back, it opens again while
+// the lost source still exists (the live window opens the new input before it drops the old one), which needs
+// the lost device let go of: a device still open in the process cannot be claimed again.
+TEST(Kinect, AnUnpluggedCameraIsLostAndOpensAgainWhenItIsBack) {
+  const fs::path dir = scratch("fake_kinect");
+  writeSession(dir / "frame", 1);
+  std::string frameFile;
+  for (const auto& entry : fs::directory_iterator(dir / "frame"))
+    if (entry.path().filename().string().rfind("d-", 0) == 0) frameFile = entry.path().string();
+  const fs::path unplugged = dir / "unplugged";
+  setenv("GIANTBUBBLE_FREENECT_LIBRARY", GB_FAKE_FREENECT, 1);
+  setenv("GB_FAKE_KINECT_FRAME", frameFile.c_str(), 1);
+  setenv("GB_FAKE_KINECT_UNPLUGGED_IF", unplugged.c_str(), 1);
+  auto open = [] {
+    return std::make_unique<DepthHandSource>(DepthStream::openKinect(), DetectionOptions{}, TrackerOptions{});
+  };
+  auto bothHands = [](HandSource& source) {
+    for (int i = 0; i < 5; ++i) {  // a late frame is a sample with both hands held: give it a few
+      const std::optional<HandSample> s = source.next();
+      if (s && s->left.measured && s->right.measured) return true;
+    }
+    return false;
+  };
+
+  auto source = open();
+  std::optional<Vec3d> gravity;
+  source->onFrame([&](const kinect::DepthFrame& f) { gravity = f.gravityUp; });
+  EXPECT_TRUE(bothHands(*source));
+  ASSERT_TRUE(gravity);  // the accelerometer, read through the motor subdevice: level
+  EXPECT_LT((*gravity - Vec3d::UnitY()).norm(), 1e-9);
+
+  std::ofstream(unplugged).put('\n');
+  EXPECT_THROW(source->next(), HandSourceLost);
+  EXPECT_NE(errorOf([] { DepthStream::openKinect(); }).find("no Kinect found"), std::string::npos);
+
+  fs::remove(unplugged);
+  std::unique_ptr<DepthHandSource> again;
+  EXPECT_NO_THROW(again = open()) << errorOf([&] { open(); });
+  if (again) {
+    EXPECT_TRUE(bothHands(*again));
+  }
+  source.reset();  // the old input goes after the new one came, as in the live window
+  if (again) {
+    EXPECT_TRUE(bothHands(*again));
+  }
+  unsetenv("GIANTBUBBLE_FREENECT_LIBRARY");
+  unsetenv("GB_FAKE_KINECT_FRAME");
+  unsetenv("GB_FAKE_KINECT_UNPLUGGED_IF");
 }
 
 TEST(Fakenect, APauseLongerThanTheLimitIsRefusedBeforeFakenectSleepsThroughIt) {

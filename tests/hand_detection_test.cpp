@@ -48,7 +48,9 @@ TEST(FloorRemoval, FindsTheFloorOfACameraTiltedUpToTwentyDegrees) {
       const Detection d = detectHands(s.frame, o);
       ASSERT_TRUE(d.floor) << pitch;
       EXPECT_LT(std::acos(std::min(1.0, d.floor->up.dot(s.up))) * 180.0 / 3.14159265, 1.0) << pitch;
-      EXPECT_NEAR(-d.floor->offset, s.floorDistance, 0.03) << pitch;  // the camera's height over it
+      // The camera's height over it: the fitted plane within 3 cm; along a measured gravity the floor points'
+      // mean height, within 1 cm (the middle of the densest layer alone is only good to a 3 cm bin).
+      EXPECT_NEAR(-d.floor->offset, s.floorDistance, accelerometer ? 0.01 : 0.03) << pitch;
       // Nothing on the floor is taken for a hand, and the feet are not hands either.
       for (const DetectedHand& h : d.hands) EXPECT_GT(d.floor->heightOf(h.position), 0.5) << pitch;
     }

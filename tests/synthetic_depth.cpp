@@ -195,19 +195,22 @@ SyntheticScene renderScene(const BodyPose& pose, const SceneOptions& options, do
 
   // Legs, torso (two capsules side by side: wider than deep), neck and head.
   for (const double side : {1.0, -1.0}) {
+    if (!options.performer) continue;
     canvas.capsule({at(0.09 * side, 0.92, 0.0), at(0.10 * side, 0.50, -0.02), 0.07 * s});
     canvas.capsule({at(0.10 * side, 0.50, -0.02), at(0.10 * side, 0.09, 0.0), 0.05 * s});
     canvas.capsule({at(0.10 * side, 0.05, 0.0), at(0.11 * side, 0.04, -0.15), 0.04 * s});
     canvas.capsule({at(0.075 * side, 0.95, 0.0), at(0.075 * side, 1.36, 0.0), 0.11 * s});
   }
-  canvas.capsule({at(0.0, 1.40, 0.0), at(0.0, 1.52, 0.0), 0.05 * s});
-  canvas.sphere(at(0.0, 1.62, 0.0), 0.10 * s);
+  if (options.performer) {
+    canvas.capsule({at(0.0, 1.40, 0.0), at(0.0, 1.52, 0.0), 0.05 * s});
+    canvas.sphere(at(0.0, 1.62, 0.0), 0.10 * s);
+  }
 
   // Arms: shoulder, elbow, hand centre; the forearm runs on to the hand.
   const Vec3d shoulders = at(0.0, 1.43, 0.0);
   Vec3d hands[2] = {shoulders + pose.leftHand, shoulders + pose.rightHand};
   const Vec3d hints[2] = {pose.leftElbowHint, pose.rightElbowHint};
-  for (int side = 0; side < 2; ++side) {
+  for (int side = 0; side < 2 && options.performer; ++side) {
     const Vec3d shoulder = at(side == 0 ? 0.19 : -0.19, 1.41, 0.0);
     const Vec3d elbow = elbowOf(shoulder, hands[side], 0.29 * s, 0.33 * s, hints[side]);
     canvas.capsule({shoulder, elbow, 0.045 * s});
@@ -327,6 +330,7 @@ kinect::DepthFrame renderPerformer(const SyntheticPerformer& p, double time, uin
   scene.furniture = false;
   scene.wallDistance = p.wallDepth;
   scene.noise = false;
+  scene.performer = p.present;
   BodyPose pose;
   pose.feet = Vec3d(0.0, 0.0, p.bodyDepth);
   // A level camera: scene axes are camera axes, lifted by the camera's height.

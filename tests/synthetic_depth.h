@@ -20,6 +20,7 @@ struct SyntheticPerformer {
   std::optional<Vec3d> rightHand = Vec3d(-0.25, 0.0, 1.95);
   double bodyDepth = 2.45;  // the torso's axis (m from the camera)
   double wallDepth = 3.6;
+  bool present = true;  // false: the room without anybody in it
 };
 
 kinect::DepthFrame renderPerformer(const SyntheticPerformer& performer, double time = 0.0, uint32_t timestamp = 0);
@@ -54,6 +55,7 @@ struct SceneOptions {
   bool furniture = true;      // a chair and a table beside the performer
   double wallDistance = 3.6;  // m from the camera along the floor; 0: no wall
   bool noise = true;          // Kinect v1 noise, shadows and holes
+  bool performer = true;      // false: the scene without the body
   unsigned seed = 1;
 };
 

@@ -162,6 +162,94 @@ TEST(WandInput, AutomaticCalibrationCentresThePerformerBetweenTheHands) {
   EXPECT_NEAR(input.calibration().performer.x(), 1.0 + 0.5 * 0.3 * 0.2, 1e-3);
 }
 
+// Issue 15: the film is made on the performer's hands. Nobody for 1.2 s, then the left hand alone, raised far
+// out to the side, for 1.2 s, then both hands at rest: run time 0 is the first sample with both hands, the
+// wands start on them (the rest pose, tips 1 m apart), and the wait is said once per second of input.
+TEST(WandInput, APerformerFoundLateStartsTheWandsOnBothHandsAndTheWaitIsSaid) {
+  const Vec3d performer(0.1, -0.1, 2.3);
+  auto late = [&](double t) {
+    HandSample s;
+    s.time = t;
+    const double since = t - 10.0;
+    s.left.position = since < 2.4 ? Vec3d(performer + Vec3d(0.7, 0.6, -0.3)) : Vec3d(performer + Vec3d(0.25, 0, 0));
+    s.right.position = performer - Vec3d(0.25, 0, 0);
+    s.left.measured = since >= 1.2;
+    s.right.measured = since >= 2.4;
+    for (HandObservation* h : {&s.left, &s.right}) {
+      h->confidence = h->measured ? 1.0 : 0.0;
+      if (!h->measured) h->position = Vec3d::Constant(NAN);
+    }
+    return s;
+  };
+  Calibration c;
+  c.autoPerformer = true;
+  std::vector<std::string> said;
+  std::vector<HandSample> samples;
+  for (int i = 0; i < 150; ++i) samples.push_back(late(10.0 + i / 30.0));
+  PerformerWait wait;
+  wait.enabled = true;
+  wait.say = [&](const std::string& m) { said.push_back(m); };
+  StabilizedWands input(std::make_unique<ReplayHandSource>(samples, "late"), StabilizerOptions{}, c, wait);
+  // Found at the first sample at or after 2.4 s: sample 72 at 30 Hz (2.4 s; within one sample of it).
+  ASSERT_TRUE(input.performerFound());
+  EXPECT_NEAR(*input.performerFound(), 2.4, 1.0 / 30.0 + 1e-9);
+  // Once per second of input while waiting: at 0, 1 and 2 s (three messages, not one per sample).
+  ASSERT_EQ(said.size(), 3u);
+  EXPECT_EQ(said[0], "waiting for a performer: no hands in the input (0.00 s of input)");
+  EXPECT_TRUE(said[2].find("the left hand found, waiting for the other") != std::string::npos) << said[2];
+  const auto messages = input.takeMessages();
+  EXPECT_TRUE(mentions(messages, "note: performer found after 2.40 s of input")) << messages.front();
+  EXPECT_TRUE(mentions(messages, "calibration: performer at (0.10, -0.10, 2.30) m"));
+  // The wands start where the hands are: the rest pose, 1 mm (float world coordinates) at most from it.
+  const WandFrame first = input.at(0.0);
+  const Calibration& calibrated = input.calibration();
+  EXPECT_LT((first.wands.leftPosition.cast<double>() - calibrated.toWorld(calibrated.restHand(Hand::Left))).norm(),
+            1e-3);
+  EXPECT_LT((first.wands.rightPosition.cast<double>() - calibrated.toWorld(calibrated.restHand(Hand::Right))).norm(),
+            1e-3);
+  // The run lasts what is left of the input after the wait (149 intervals minus the 72 waited through).
+  ASSERT_TRUE(input.length());
+  EXPECT_NEAR(*input.length(), 149.0 / 30.0 - *input.performerFound(), 1e-9);
+}
+
+// Without both hands ever, the run starts where the input does, with a warning (not a hang, not an error).
+TEST(WandInput, AnInputThatNeverShowsBothHandsStartsWhereItDoesWithAWarning) {
+  auto oneHand = [](double t) {
+    HandSample s = moving(t);
+    s.right.measured = false;
+    s.right.position = Vec3d::Constant(NAN);
+    return s;
+  };
+  std::vector<std::string> said;
+  PerformerWait wait;
+  wait.enabled = true;
+  wait.say = [&](const std::string& m) { said.push_back(m); };
+  StabilizedWands input(std::make_unique<FunctionSource>(oneHand, 45, false), StabilizerOptions{}, Calibration{}, wait);
+  EXPECT_FALSE(input.performerFound());
+  EXPECT_EQ(said.size(), 2u);  // at 0 and 1 s of the 1.5 s input
+  EXPECT_TRUE(mentions(input.takeMessages(), "warning: no performer found"));
+}
+
+// A live camera with nobody in view would wait for ever: Ctrl-C (the cancel predicate) ends the wait, and the
+// input starts where it is instead of hanging.
+TEST(WandInput, AWaitForAPerformerEndsWhenCancelled) {
+  auto nobody = [](double t) {
+    HandSample s;
+    s.time = t;
+    return s;
+  };
+  int polls = 0;
+  PerformerWait wait;
+  wait.enabled = true;
+  wait.say = [](const std::string&) {};
+  wait.cancelled = [&] { return ++polls > 20; };
+  StabilizedWands input(std::make_unique<FunctionSource>(nobody, 1000000000, false), StabilizerOptions{}, Calibration{},
+                        wait);
+  EXPECT_EQ(polls, 21);
+  EXPECT_FALSE(input.performerFound());
+  EXPECT_TRUE(mentions(input.takeMessages(), "warning: no performer found"));
+}
+
 TEST(PointerHandSource, DraggingMovesOnlyTheHeldHandWithoutAJump) {
   double now = 0.0;
   Calibration c;

@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# giantbubble live with the Kinect unplugged mid-show and plugged back in (issue 15), through the stand-in for
+# the live libfreenect (fake_freenect.cpp), under Xvfb:
+#   cli_kinect_reopen_test.sh EXE FAKE_LIBRARY MAKE_RECORDING OUT
+# The show must notice the lost camera, keep going while it is away (reopening fails: no Kinect on the bus),
+# and follow it again once it is back. Prints what it checks and exits non-zero with the reason otherwise.
+set -u
+EXE=$1
+FAKE=$2
+MAKE_RECORDING=$3
+OUT=$4
+rm -rf "$OUT"
+mkdir -p "$OUT"
+cd "$OUT" || exit 1
+
+fail() {
+  echo "FAIL: $*"
+  cat log.txt
+  [ -n "${group:-}" ] && kill -TERM -- "-$group" 2>/dev/null
+  exit 1
+}
+
+"$MAKE_RECORDING" frame 1 >/dev/null || fail "could not write the synthetic depth frame"
+export GIANTBUBBLE_FREENECT_LIBRARY=$FAKE
+GB_FAKE_KINECT_FRAME=$(ls frame/d-*.pgm)
+export GB_FAKE_KINECT_FRAME
+export GB_FAKE_KINECT_UNPLUGGED_IF=$OUT/unplugged
+
+# Its own process group, so that the show (under xvfb-run) can be stopped as a whole at the end.
+setsid xvfb-run -a "$EXE" live --input kinect --width 160 --height 120 --particles 400 --backend cpu \
+  >log.txt 2>&1 &
+group=$!
+
+# Waits (at most 120 s) for TEXT in the log while the show runs.
+wait_for() {
+  for _ in $(seq 1200); do
+    grep -q "$1" log.txt && return 0
+    kill -0 "$group" 2>/dev/null || return 1
+    sleep 0.1
+  done
+  return 1
+}
+
+wait_for "note: calibration: performer at" || fail "the show did not start on the fake Kinect"
+echo "the show started: $(grep -m1 "calibration: performer at" log.txt)"
+sleep 1
+touch unplugged
+wait_for "the input has ended or was lost" || fail "the unplugged camera was not noticed"
+echo "unplugged: $(grep -m1 'input lost' log.txt)"
+sleep 3  # at least one attempt to reopen it fails while it is away
+kill -0 "$group" 2>/dev/null || fail "the show stopped while the camera was away"
+rm unplugged
+wait_for "the camera is back" || fail "the camera was not followed again after it came back"
+echo "plugged back: $(grep -m1 'the camera is back' log.txt)"
+sleep 1
+kill -0 "$group" 2>/dev/null || fail "the show stopped after the camera came back"
+kill -TERM -- "-$group"
+wait "$group" 2>/dev/null
+echo "PASS"

@@ -40,10 +40,10 @@ TEST(ImageFraming, FramesTheFilmWhereverItIsAndOnlyGrows) {
   const ImageView first = framing.frame(raised);
   const Eigen::Vector4f box = pixelBox(raised, first);
   // Inside by most of the margin: 15% of the larger box side on each side, less for the aspect (2 px slack).
-  EXPECT_GT(box[0], 0.1f * first.width);
-  EXPECT_LT(box[2], 0.9f * first.width);
+  EXPECT_GT(box[0], 0.1f * static_cast<float>(first.width));
+  EXPECT_LT(box[2], 0.9f * static_cast<float>(first.width));
   EXPECT_GT(box[1], 2.0f);
-  EXPECT_LT(box[3], first.height - 2.0f);
+  EXPECT_LT(box[3], static_cast<float>(first.height) - 2.0f);
   // A fixed window (y 0.3-2.1 m) would have missed it: the film's lowest point is above 2.1 m.
   float lowest = 1e9f;
   for (size_t i = 0; i < raised.state.size(); ++i) lowest = std::min(lowest, raised.state.position.y[i]);

@@ -5,7 +5,7 @@
 // objective with the same projected Hessian:
 //   - vertex block descent (VBD) as the step runs it: Gauss-Seidel over the colours, a trust-region Newton
 //     step per particle;
-//   - VBD with Chebyshev acceleration (Chen et al. 2024, Sec. 3.7, after Wang 2015): after sweep k the
+//   - VBD with Chebyshev acceleration (Chen et al. 2024, after Wang 2015): after sweep k the
 //     iterate is x_k = omega_k (xbar_k - x_{k-2}) + x_{k-2}, omega_1 = 1, omega_2 = 2 / (2 - rho^2),
 //     omega_k = 4 / (4 - rho^2 omega_{k-1}), rho the spectral radius of the plain sweep;
 //   - block Jacobi on the same blocks (every particle's step from the same iterate: the projective-dynamics

@@ -3,17 +3,18 @@
 // preconditioned conjugate gradients (cpu-reference/solver_comparison.h), on one step of two films: the default
 // film mid-stroke (the default run at 1.5 s, wands moving at 0.6 m/s) and fig11b's 25,650-particle ring film
 // at 1.5 s. For each candidate it prints the objective above the best one found (J) and the gradient norm (N)
-// after 1, 2, 4, 6, 10, 20 and 50 iterations, and the CPU milliseconds per iteration (best of five runs of
-// ten); then VBD's milliseconds per sweep on the Vulkan backend from its GPU timestamps (the other candidates
-// are CPU-only).
+// after 1, 2, 4, 6, 10, 20 and 50 iterations, and the CPU milliseconds per iteration (best of seven runs of
+// ten, the candidates taking turns); then VBD's milliseconds per sweep on the Vulkan backend from its GPU timestamps
+// (the other candidates are CPU-only).
 //
-// Run: ./build/bench/gb_solver_bench [--quick]   (--quick: the default film only, no Vulkan)
+// Run: ./build/bench/gb_solver_bench [--quick | --fig11b]   (--quick: the default film only, no Vulkan;
+// --fig11b: fig11b only)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "bench_device.h"
@@ -85,16 +86,19 @@ Trace trace(const Params& p, const StepUniforms& u, const Film& start, const Sol
   return t;
 }
 
-// Best of five runs of ten iterations from the prepared film (ms per iteration).
-double msPerIteration(const Params& p, const StepUniforms& u, const Film& start, const SolverChoice& choice) {
-  double best = 1e30;
-  for (int run = 0; run < 5; ++run) {
-    Film film = start;
-    ImplicitSolve solve(p, u, film, choice);
-    const auto t0 = Clock::now();
-    for (int k = 0; k < 10; ++k) solve.iterate();
-    best = std::min(best, std::chrono::duration<double, std::milli>(Clock::now() - t0).count() / 10.0);
-  }
+// Milliseconds per iteration of each choice: the best of seven runs of ten iterations from the prepared film,
+// the choices taking turns so that a change in the machine's load falls on all of them alike.
+std::vector<double> msPerIteration(const Params& p, const StepUniforms& u, const Film& start,
+                                   const std::vector<SolverChoice>& choices) {
+  std::vector<double> best(choices.size(), 1e30);
+  for (int run = 0; run < 7; ++run)
+    for (size_t c = 0; c < choices.size(); ++c) {
+      Film film = start;
+      ImplicitSolve solve(p, u, film, choices[c]);
+      const auto t0 = Clock::now();
+      for (int k = 0; k < 10; ++k) solve.iterate();
+      best[c] = std::min(best[c], std::chrono::duration<double, std::milli>(Clock::now() - t0).count() / 10.0);
+    }
   return best;
 }
 
@@ -178,10 +182,11 @@ void runCase(const Case& c, bool vulkan) {
   for (int k : kCheckpoints) std::printf(" %9d", k);
   std::printf("\n");
   std::vector<Trace> traces;
-  for (const SolverChoice& choice : choices) {
-    const Trace t = trace(p, u, start, choice, 50);
+  const std::vector<double> ms = msPerIteration(p, u, start, choices);
+  for (size_t c = 0; c < choices.size(); ++c) {
+    const Trace t = trace(p, u, start, choices[c], 50);
     traces.push_back(t);
-    std::printf("%-40s %9.3f", describe(choice).c_str(), msPerIteration(p, u, start, choice));
+    std::printf("%-40s %9.3f", describe(choices[c]).c_str(), ms[c]);
     for (double e : t.objective) std::printf(" %9.2e", e - best);
     std::printf("\n");
     std::fflush(stdout);
@@ -198,12 +203,18 @@ void runCase(const Case& c, bool vulkan) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const bool quick = argc > 1 && std::strcmp(argv[1], "--quick") == 0;
-  Case defaultFilm{"default film (9,500 particles, straight stroke)", Params{}, WandTool{}, GestureOptions{}};
-  runCase(defaultFilm, !quick);
-  if (quick) return 0;
+  const std::string only = argc > 1 ? argv[1] : "";
+  if (!only.empty() && only != "--quick" && only != "--fig11b") {
+    std::fprintf(stderr, "usage: gb_solver_bench [--quick | --fig11b]\n");
+    return 2;
+  }
+  if (only != "--fig11b") {
+    const Case defaultFilm{"default film (9,500 particles, straight stroke)", Params{}, WandTool{}, GestureOptions{}};
+    runCase(defaultFilm, only.empty());
+  }
+  if (only == "--quick") return 0;
   const Scene fig11b = builtinScene("fig11b");
-  Case ring{"fig11b (25,650 particles, ring)", fig11b.run.params, fig11b.run.tool, fig11b.run.gestureOptions};
+  const Case ring{"fig11b (25,650 particles, ring)", fig11b.run.params, fig11b.run.tool, fig11b.run.gestureOptions};
   runCase(ring, true);
   return 0;
 }

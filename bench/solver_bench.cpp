@@ -183,10 +183,10 @@ void runCase(const Case& c, bool vulkan) {
   std::printf("\n");
   std::vector<Trace> traces;
   const std::vector<double> ms = msPerIteration(p, u, start, choices);
-  for (size_t c = 0; c < choices.size(); ++c) {
-    const Trace t = trace(p, u, start, choices[c], 50);
+  for (size_t n = 0; n < choices.size(); ++n) {
+    const Trace t = trace(p, u, start, choices[n], 50);
     traces.push_back(t);
-    std::printf("%-40s %9.3f", describe(choices[c]).c_str(), ms[c]);
+    std::printf("%-40s %9.3f", describe(choices[n]).c_str(), ms[n]);
     for (double e : t.objective) std::printf(" %9.2e", e - best);
     std::printf("\n");
     std::fflush(stdout);

@@ -35,10 +35,18 @@ void copyPositions(const Vec3Array& from, Vec3Array& to) {
   to.z = from.z;
 }
 
+// The particles the solver moves: the coloured ones still alive (a burst may have killed some since the colouring).
+std::vector<uint32_t> solvedParticles(const Topology& topo, const State& s) {
+  std::vector<uint32_t> solved;
+  for (uint32_t i : topo.colourOrder)
+    if (s.alive[i]) solved.push_back(i);
+  return solved;
+}
+
 // Per particle: 1 where the solver moves it.
-std::vector<char> solvedFlags(const Topology& topo, size_t n) {
+std::vector<char> solvedFlags(const std::vector<uint32_t>& solved, size_t n) {
   std::vector<char> flags(n, 0);
-  for (uint32_t i : topo.colourOrder) flags[i] = 1;
+  for (uint32_t i : solved) flags[i] = 1;
   return flags;
 }
 
@@ -119,14 +127,15 @@ std::string describe(const SolverChoice& c) {
 
 double implicitObjective(const Params& p, const StepUniforms& u, const Topology& topo, const State& s) {
   if (u.closed) throw std::invalid_argument("implicitObjective: open films only (a bubble's gas needs its volume)");
-  const std::vector<char> solved = solvedFlags(topo, s.size());
-  double e = sumSolved(topo.colourOrder, [&](size_t i) { return particleObjective(p, u, topo, s, solved, i); });
+  const std::vector<uint32_t> particles = solvedParticles(topo, s);
+  const std::vector<char> solved = solvedFlags(particles, s.size());
+  double e = sumSolved(particles, [&](size_t i) { return particleObjective(p, u, topo, s, solved, i); });
   if (p.tensionModel == 1) e += areaObjective(topo, s, solved);
   return e;
 }
 
 ImplicitSolve::ImplicitSolve(const Params& p, const StepUniforms& u, Film& film, SolverChoice choice)
-    : params_(p), uniforms_(u), film_(film), choice_(choice), solved_(film.topology.colourOrder) {
+    : params_(p), uniforms_(u), film_(film), choice_(choice), solved_(solvedParticles(film.topology, film.state)) {
   if (u.closed) throw std::invalid_argument("ImplicitSolve: open films only (a bubble's gas needs its volume)");
   if (!(choice.relaxation > 0 && choice.relaxation <= 1) || !(choice.rho >= 0 && choice.rho < 1) ||
       choice.cgPerNewton < 1)

@@ -65,7 +65,7 @@ class ImplicitSolve {
   StepUniforms uniforms_;
   Film& film_;
   SolverChoice choice_;
-  std::vector<uint32_t> solved_;  // the particles the solver moves (the colouring's), in colour order
+  std::vector<uint32_t> solved_;  // the particles the solver moves (the colouring's living ones), in colour order
   int iterations_ = 0;
   float omega_ = 1.0f;
   Vec3Array older_;  // Chebyshev: x_{k-2}

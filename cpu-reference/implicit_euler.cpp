@@ -12,27 +12,21 @@ constexpr float kTrustRegion = 0.25f;  // largest move per sweep, in shortest on
 
 using Mat3 = Eigen::Matrix3f;
 
-// The gradient and Hessian of the objective with respect to one particle, summed term by term.
-struct Block {
-  Vec3 gradient = Vec3::Zero();
-  Mat3 hessian = Mat3::Zero();
-  float shortestSpring = std::numeric_limits<float>::infinity();  // of the particle's one-ring (m)
-};
-
 // Outer product d d^T.
 Mat3 outer(const Vec3& d) { return d * d.transpose(); }
 
 // Damping along a direction, dissipation c/(2h) ((dx_i - dx_j) . dir)^2 with dx the displacement over the
 // step: the implicit form of the damping force c ((v_j - v_i) . dir) dir. Its Hessian c/h dir dir^T is
 // returned for the caller to add with the other terms along dir.
-float addDampingGradient(float coefficient, float h, const Vec3& dir, const Vec3& relativeDisplacement, Block& b) {
+float addDampingGradient(float coefficient, float h, const Vec3& dir, const Vec3& relativeDisplacement,
+                         VertexBlock& b) {
   b.gradient += coefficient / h * relativeDisplacement.dot(dir) * dir;
   return coefficient / h;
 }
 
 // Physical model: tension x area of triangle (x, xj, xl), counter-clockwise. grad_x A = 1/2 n x (xl - xj);
 // the Hessian of A in x alone is |xl - xj|^2 / (4 A) n n^T, positive semi-definite.
-void addAreaTension(float tension, const Vec3& x, const Vec3& xj, const Vec3& xl, Block& b) {
+void addAreaTension(float tension, const Vec3& x, const Vec3& xj, const Vec3& xl, VertexBlock& b) {
   const Vec3 twiceAreaNormal = (xj - x).cross(xl - x);
   const float twiceArea = twiceAreaNormal.norm();
   if (!(twiceArea > 0)) return;
@@ -42,8 +36,22 @@ void addAreaTension(float tension, const Vec3& x, const Vec3& xj, const Vec3& xl
   b.hessian += tension * edge.squaredNorm() / (2.0f * twiceArea) * outer(n);
 }
 
+}  // namespace
+
+float springStiffness(const State& s, size_t i, size_t j) { return 0.5f * (s.elasticity[i] + s.elasticity[j]); }
+
+float transverseStiffness(float stiffness, float rest, float length) {
+  return stiffness * std::max(0.0f, 1.0f - rest / length);
+}
+
+float triangleTension(const State& s, const uint32_t* corners) {
+  return (s.elasticity[corners[0]] + s.elasticity[corners[1]] + s.elasticity[corners[2]]) / 3.0f;
+}
+
+namespace {
+
 // The internal energies and dissipations of particle i at its current position x.
-void addInternal(const Params& p, float h, const Topology& topo, const State& s, size_t i, Block& b) {
+void addInternal(const Params& p, float h, const Topology& topo, const State& s, size_t i, VertexBlock& b) {
   const Vec3 x = s.position.get(i), dx = x - s.previousPosition.get(i);
   const bool physical = p.tensionModel == 1;
   float isotropic = 0.0f;  // Hessian terms proportional to the identity, added once at the end
@@ -59,10 +67,10 @@ void addInternal(const Params& p, float h, const Topology& topo, const State& s,
     if (!physical) {
       // The spring of Eq. (3), energy k/2 (len - l0)^2; Hessian k dir dir^T + k (1 - l0/len) (I - dir dir^T),
       // projected onto the positive semi-definite cone by dropping the transverse term of a compressed spring.
-      const float stiffness = 0.5f * (s.elasticity[i] + s.elasticity[j]);
+      const float stiffness = springStiffness(s, i, j);
       const float rest = topo.restLength[topo.springIndex[k]];
       b.gradient -= stiffness * (len - rest) * dir;
-      const float transverse = stiffness * std::max(0.0f, 1.0f - rest / len);
+      const float transverse = transverseStiffness(stiffness, rest, len);
       isotropic += transverse;
       along += stiffness - transverse;
     }
@@ -73,8 +81,7 @@ void addInternal(const Params& p, float h, const Topology& topo, const State& s,
     for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
       const uint32_t* tri = &topo.triangles[3 * topo.triangleIndex[k]];
       const uint32_t c = tri[0] == i ? 0u : (tri[1] == i ? 1u : 2u);
-      const float tension = (s.elasticity[tri[0]] + s.elasticity[tri[1]] + s.elasticity[tri[2]]) / 3.0f;
-      addAreaTension(tension, x, s.position.get(tri[(c + 1) % 3]), s.position.get(tri[(c + 2) % 3]), b);
+      addAreaTension(triangleTension(s, tri), x, s.position.get(tri[(c + 1) % 3]), s.position.get(tri[(c + 2) % 3]), b);
     }
   }
   // Contacts: penalty k_c/2 (d_c - |x - xj|)^2 inside the collision distance (its transverse Hessian term is
@@ -129,21 +136,16 @@ void predictImplicitStep(const StepUniforms& u, const Topology& topo, State& s, 
     if (s.frameParam[i] >= 0.0f) s.position.set(i, framePoint(u.frameNext, s.frameParam[i]));
     return;
   }
-  Vec3 guess = x + u.dt * s.velocity.get(i);
-  guess.y() = std::max(guess.y(), 0.0f);  // the floor, y = 0
-  s.position.set(i, guess);
+  s.position.set(i, aboveFloor(x + u.dt * s.velocity.get(i)));
 }
 
-namespace {
-
-// The gradient and Hessian of the step's objective in x_i with every other particle fixed.
-Block objectiveBlock(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, const State& s,
-                     size_t i) {
+VertexBlock objectiveBlock(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo,
+                           const State& s, size_t i) {
   const float h = u.dt, m = s.mass[i];
   const Vec3 x = s.position.get(i), xt = s.previousPosition.get(i);
   const Vec3 y = xt + h * s.velocity.get(i) + (h * h / m) * s.force.get(i);
   const float inertia = m / (h * h), drag = p.airDrag * s.voronoiArea[i] / h;
-  Block b;
+  VertexBlock b;
   b.gradient = inertia * (x - y) + drag * (x - xt);
   b.hessian = (inertia + drag) * Mat3::Identity();
   addInternal(p, h, topo, s, i, b);
@@ -156,24 +158,32 @@ Block objectiveBlock(const Params& p, const StepUniforms& u, const Bubble& bubbl
   return b;
 }
 
-}  // namespace
+Vec3 trustedNewtonStep(const VertexBlock& b) {
+  // The Hessian is at least (m / h^2) I, so it is invertible; a non-finite gradient gives a non-finite step,
+  // which the caller leaves unapplied for the stability check to report.
+  return withinTrustRegion(solveLinear3(b.hessian, b.gradient), b.shortestSpring);
+}
+
+Vec3 withinTrustRegion(Vec3 step, float shortestSpring) {
+  // A sweep moves a particle at most kTrustRegion of its shortest spring. The area energy of the physical
+  // model has no curvature in the film's plane (A is linear in a corner's height), so there the Newton step is
+  // only held by the film's small inertia and would fold triangles over.
+  const float limit = kTrustRegion * shortestSpring, length = step.norm();
+  if (length > limit) step *= limit / length;
+  return step;
+}
+
+Vec3 aboveFloor(Vec3 x) {
+  x.y() = std::max(x.y(), 0.0f);
+  return x;
+}
 
 void solveVertexBlock(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, State& s,
                       size_t i) {
   if (!s.alive[i]) return;  // died in a burst since the colouring was made
-  const Block b = objectiveBlock(p, u, bubble, topo, s, i);
-  // The Hessian is at least (m / h^2) I, so it is invertible; a non-finite gradient leaves x as it is for the
-  // stability check to report.
-  Vec3 step = solveLinear3(b.hessian, b.gradient);
+  const Vec3 step = trustedNewtonStep(objectiveBlock(p, u, bubble, topo, s, i));
   if (!step.allFinite()) return;
-  // Trust region: a sweep moves a particle at most kTrustRegion of its shortest spring. The area energy of the
-  // physical model has no curvature in the film's plane (A is linear in a corner's height), so there the
-  // Newton step is only held by the film's small inertia and would fold triangles over.
-  const float limit = kTrustRegion * b.shortestSpring, length = step.norm();
-  if (length > limit) step *= limit / length;
-  Vec3 next = s.position.get(i) - step;
-  next.y() = std::max(next.y(), 0.0f);
-  s.position.set(i, next);
+  s.position.set(i, aboveFloor(s.position.get(i) - step));
 }
 
 double implicitResidual(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo,

@@ -16,6 +16,8 @@
 // step is stable at any h; a fixed number of sweeps leaves the stiffest long waves under-resolved, which
 // acts as numerical damping (docs/model.md measures it).
 
+#include <limits>
+
 #include "stages.h"
 
 namespace gb {
@@ -35,6 +37,34 @@ struct Bubble {
 // Hessian along its normal so that a colour of particles moving out together under a stale volume cannot
 // overshoot; it changes how fast the sweeps converge, not what they converge to.
 float breathingStiffness(const Bubble& bubble, float area);
+
+// The terms of the objective that the solvers of solver_comparison.h also build their Hessian from:
+// the paper's spring between i and j has stiffness (E_i + E_j) / 2 (N/m), and its Hessian k dir dir^T +
+// k (1 - l0/len) (I - dir dir^T) keeps the transverse part only while stretched (projected onto the positive
+// semi-definite cone); a triangle of the physical model pulls with the mean 2 gamma of its corners (N/m).
+float springStiffness(const State& s, size_t i, size_t j);
+float transverseStiffness(float stiffness, float rest, float length);
+float triangleTension(const State& s, const uint32_t* corners);
+
+// The gradient (N) and Hessian (N/m) of the step's objective in x_i with every other particle fixed, summed
+// term by term; the Hessian is projected to be positive semi-definite (docs/model.md "Integrators") and holds
+// at least (m / h^2) I.
+struct VertexBlock {
+  Vec3 gradient = Vec3::Zero();
+  Eigen::Matrix3f hessian = Eigen::Matrix3f::Zero();
+  float shortestSpring = std::numeric_limits<float>::infinity();  // of the particle's one-ring (m)
+};
+VertexBlock objectiveBlock(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo,
+                           const State& s, size_t i);
+
+// The Newton step H^-1 g of a particle's block, shortened to the trust region (a quarter of its shortest
+// one-ring spring); the particle moves to x - step. Non-finite when the gradient is.
+Vec3 trustedNewtonStep(const VertexBlock& b);
+// A particle's step shortened to the trust region (kTrustRegion of its shortest one-ring spring, m).
+Vec3 withinTrustRegion(Vec3 step, float shortestSpring);
+
+// The floor, y = 0: a solved position never goes below it.
+Vec3 aboveFloor(Vec3 x);
 
 // Vertex block descent sweeps of a step: the step's own count (the live loop lowers it under load), else
 // Params::solverIterations.

@@ -205,11 +205,15 @@ Vec3 externalForce(const Params& p, const StepUniforms& u, float pressure, const
   return f;
 }
 
+float fullAirCoupling(const Params& p, float frameArea, float voronoiArea) {
+  return p.airPressureGain * frameArea * voronoiArea;
+}
+
 float airCoupling(const Params& p, const StepUniforms& u, const State& s, size_t i) {
   if (u.closed || !(u.frameArea > 0)) return 0.0f;
   constexpr float stillAir = 0.05f;  // m/s: below this air speed the coupling fades out (still air: drag only)
   const float airSpeed = std::abs((s.airFlow.get(i) + s.airInflow.get(i)).dot(s.normal.get(i))) / u.frameArea;
-  return p.airPressureGain * u.frameArea * s.voronoiArea[i] * std::min(1.0f, airSpeed / stillAir);
+  return fullAirCoupling(p, u.frameArea, s.voronoiArea[i]) * std::min(1.0f, airSpeed / stillAir);
 }
 
 Vec3 boyleForce(const Params& p, float pressure, const State& s, size_t i) {
@@ -314,6 +318,10 @@ float stableTimeStep(const Params& p, const Topology& topo, const State& s, floa
   const float tensionMax = 4.0f * p.surfaceTension;  // filmTension is at most 2 x 2 gamma_0
   float dt = std::numeric_limits<float>::infinity();
   const bool closed = topo.isClosed();
+  // The air coupling's frame area Area_wm is at most the film's area: the film spans the planar wire frame.
+  float filmArea = 0.0f;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.alive[i]) filmArea += s.voronoiArea[i];
   for (size_t i = 0; i < s.size(); ++i) {
     if (!s.alive[i] || topo.boundary[i] || s.mass[i] <= 0) continue;
     const float springs = static_cast<float>(topo.springOffset[i + 1] - topo.springOffset[i]);
@@ -322,8 +330,10 @@ float stableTimeStep(const Params& p, const Topology& topo, const State& s, floa
     float stiffness = 2.0f * (filmStiffness + 6.0f * p.collisionStiffness);
     if (closed && volume > 0) stiffness += pressure * s.voronoiArea[i] * s.voronoiArea[i] / volume;
     const float omega = std::sqrt(stiffness / s.mass[i]);
-    const float damping =
-        (2.0f * (springs * p.springDamping + 6.0f * p.collisionDamping) + p.airDrag * s.voronoiArea[i]) / s.mass[i];
+    const float airCouplingMax = closed ? 0.0f : fullAirCoupling(p, filmArea, s.voronoiArea[i]);
+    const float damping = (2.0f * (springs * p.springDamping + 6.0f * p.collisionDamping) +
+                           p.airDrag * s.voronoiArea[i] + airCouplingMax) /
+                          s.mass[i];
     dt = std::min(dt, 2.0f / (omega + damping));
   }
   return p.stabilitySafety * dt;

@@ -95,6 +95,9 @@ Vec3 externalForce(const Params& p, const StepUniforms& u, float pressure, const
 // with the same force however fast the film already moves, and a film drawn at real arm speeds runs away (docs/model.md
 // "Air coupling"). The implicit step takes it as a dissipation.
 float airCoupling(const Params& p, const StepUniforms& u, const State& s, size_t i);
+// The air coupling at full strength (air at or above 5 cm/s) for a frame of area Area_wm (m^2): kappa Area_wm
+// A_Vor (N s/m). airCoupling fades it out in still air; stableTimeStep bounds the explicit step with it.
+float fullAirCoupling(const Params& p, float frameArea, float voronoiArea);
 
 // Closed bubble, Eqs. (10)-(11): the excess of Boyle's pressure P_cur = P_0 V_0 / V over P_0 on the particle's
 // area, along its normal. It pushes a compressed bubble out and pulls an expanded one in. The implicit step
@@ -135,8 +138,8 @@ void gatherDrainage(const Params& p, const Topology& topo, State& s, size_t j);
 float elasticityBound(const Params& p);
 
 // Largest explicit substep that keeps semi-implicit Euler stable for every particle (Gershgorin bound on
-// the stiffness of its springs, damping and drag, and the pressure of a closed film), times
-// Params::stabilitySafety.
+// the stiffness of its springs, damping, drag and, on an open film, the air coupling at full strength with
+// the film's area as a bound on the frame's; and the pressure of a closed film), times Params::stabilitySafety.
 float stableTimeStep(const Params& p, const Topology& topo, const State& s, float pressure, float volume);
 
 }  // namespace gb

@@ -1,0 +1,81 @@
+// Implicit frames per second of one film on the CPU backend (issue 12's targets for the physical tension model
+// and for 1,000,000 particles): the straight stroke is started at once and run for a few frames so the wands
+// move, then the program times (1) the stepper alone, one implicit step of h = 0.02 s at a time on the moving
+// wands' uniforms, and (2) whole frames (Simulation::advanceFrame: the step plus the per-frame contact search,
+// film growth and burst checks). Per-stage milliseconds of the stepper come from its host timer.
+//
+// Run: ./build/bench/gb_step_rate_bench [--particles N] [--tension-model 0|1] [--frames N] [--sweeps N]
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+
+#include "scripted_gestures.h"
+#include "simulation.h"
+
+namespace {
+
+using namespace gb;
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Params p;
+  int frames = 20;
+  for (int k = 1; k + 1 < argc; k += 2) {
+    const std::string flag = argv[k];
+    const int value = static_cast<int>(std::strtol(argv[k + 1], nullptr, 10));
+    if (flag == "--particles")
+      p.particlesAtFullSolution = value;
+    else if (flag == "--tension-model")
+      p.tensionModel = value;
+    else if (flag == "--frames")
+      frames = value;
+    else if (flag == "--sweeps")
+      p.solverIterations = value;
+    else {
+      std::fprintf(stderr, "unknown option %s (--particles N --tension-model 0|1 --frames N --sweeps N)\n",
+                   flag.c_str());
+      return 2;
+    }
+  }
+  if (!validate(p).empty() || frames < 1) {
+    std::fprintf(stderr, "bad options: %s\n", validate(p).empty() ? "--frames < 1" : validate(p).front().c_str());
+    return 2;
+  }
+  GestureOptions g;
+  g.start = 0.0f;
+  const auto wandsAt = [&](int frame) {
+    return gestureAt(Gesture::Straight, g, frame * static_cast<double>(p.frameTime));
+  };
+  auto t0 = Clock::now();
+  Simulation sim(p, WandTool{}, wandsAt(0));
+  std::printf("%zu particles, %s tension, %d sweeps: film made in %.1f s\n", sim.film().state.size(),
+              p.tensionModel ? "physical" : "springs", p.solverIterations, secondsSince(t0));
+  int frame = 0;
+  while (frame < 5) sim.advanceFrame(wandsAt(++frame));  // the wands are moving
+
+  Stepper& stepper = sim.stepper();
+  const StepUniforms u = sim.uniformsFor(wandsAt(frame), wandsAt(frame + 1), p.frameTime);
+  stepper.resetStageTimes();
+  stepper.enableTiming(true);
+  t0 = Clock::now();
+  for (int k = 0; k < frames; ++k) stepper.run(std::span(&u, 1));
+  const double stepSeconds = secondsSince(t0);
+  stepper.enableTiming(false);
+  std::printf("stepper alone: %.2f frames/s (%.1f ms per step); ms per step by stage:", frames / stepSeconds,
+              1e3 * stepSeconds / frames);
+  for (int s = 0; s < kStageCount; ++s)
+    if (stepper.stageTimes()[s] > 0)
+      std::printf(" %s %.2f", stageName(static_cast<Stage>(s)), stepper.stageTimes()[s] / frames);
+  std::printf("\n");
+
+  t0 = Clock::now();
+  for (int k = 0; k < frames; ++k) sim.advanceFrame(wandsAt(++frame));
+  const double frameSeconds = secondsSince(t0);
+  std::printf("whole frames: %.2f frames/s (%.1f ms per frame)\n", frames / frameSeconds, 1e3 * frameSeconds / frames);
+  return 0;
+}

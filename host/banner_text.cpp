@@ -14,7 +14,8 @@ namespace {
 constexpr uint8_t kInk[4] = {255, 244, 214, 255};
 constexpr uint8_t kBand[4] = {18, 18, 26, 255};
 
-constexpr int kLinesPerScale = 240;  // image rows per unit of glyph scale: 1 at 320x240, 3 at 1280x720
+constexpr int kLinesPerScale = 180;  // image rows per unit of glyph scale: 1 at 320x240, 4 at 1280x720 (letters
+                                     // 5% of the picture high, as subtitles, to be read across a room)
 constexpr int kCharGap = 1;          // font pixels between characters
 constexpr int kLineGap = 2;          // font pixels between lines
 constexpr int kPadding = 3;          // font pixels between the text and the band's edges

@@ -24,7 +24,7 @@ struct BannerImage {
 std::vector<std::string> wrapBannerLines(const std::string& text, size_t columns, size_t maxLines);
 
 // The banner for an image of `imageWidth` x `imageHeight` pixels: the image's width, the text centred, light on
-// dark. Glyphs are scaled by imageHeight / 240 (at least 1) so they read the same at any size. Empty text, or an
+// dark. Glyphs are scaled by imageHeight / 180 (at least 1) so they read the same at any size. Empty text, or an
 // image too small for one line: a banner of height 0.
 BannerImage drawBanner(const std::string& text, int imageWidth, int imageHeight);
 

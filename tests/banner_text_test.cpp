@@ -40,8 +40,8 @@ TEST(BannerText, BannerSpansTheImageWidthAndScalesWithItsHeight) {
   EXPECT_EQ(small.height, kGlyphHeight + 2 * 3);
   EXPECT_EQ(small.rgba.size(), 4u * 320 * small.height);
   const BannerImage large = drawBanner("camera lost", 1280, 720);
-  EXPECT_EQ(large.height, 3 * small.height);  // scale 3 at 720 rows
-  EXPECT_EQ(inkPixels(large), 9 * inkPixels(small));
+  EXPECT_EQ(large.height, 4 * small.height);  // scale 4 at 720 rows
+  EXPECT_EQ(inkPixels(large), 16 * inkPixels(small));
   EXPECT_GT(inkPixels(small), 40u);  // "camera lost": ten glyphs of several pixels each
 }
 

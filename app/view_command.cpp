@@ -177,6 +177,10 @@ int runView(ViewOptions o) try {
       std::printf("live: frame %ld: %s\n", shown, what.c_str());
       std::fflush(stdout);
     };
+    auto announce = [&](const std::string& what) {  // a fault the show recovers from: the console and the screen
+      say(what);
+      window.showMessage(what);
+    };
     auto dipNewFilm = [&](const std::string& why, const std::string& events) {
       sim->dip(wands);
       filmGoneSince = -1;
@@ -210,13 +214,16 @@ int runView(ViewOptions o) try {
     // One frame of h on the wall clock: the input, then the simulation; a simulation that blows up is replaced.
     auto advanceOneFrame = [&] {
       t += run.params.frameTime;
-      wands = input->at(t - inputStart).wands;  // a live camera may wait here for its next frame
-      for (const std::string& m : input->takeMessages()) std::fprintf(stderr, "%s\n", m.c_str());
+      wands = input->at(t - inputStart).wands;              // a live camera may wait here for its next frame
+      for (const std::string& m : input->takeMessages()) {  // e.g. a camera's hands lost or found
+        std::fprintf(stderr, "%s\n", m.c_str());
+        window.showMessage(m);
+      }
       if (input->ended() && !inputLost) {  // the wands rest where they are (wand_input.h) until the input returns
         inputLost = true;
-        say("the input has ended or was lost; the wands rest" + std::string(run.input.spec() == "kinect"
-                                                                                ? ", and the camera is looked for again"
-                                                                                : " (R starts it again)"));
+        announce("the input has ended or was lost; the wands rest" +
+                 std::string(run.input.spec() == "kinect" ? ", and the camera is looked for again"
+                                                          : " (R starts it again)"));
         show.frame(*sim, sim->stats(), "input_lost");
       }
       if (inputLost && run.input.spec() == "kinect" &&
@@ -226,7 +233,7 @@ int runView(ViewOptions o) try {
           input = makeLiveInput(run, window);
           inputStart = t;
           inputLost = false;
-          say("the camera is back");
+          announce("the camera is back");
           show.frame(*sim, sim->stats(), "input_back");
         } catch (const HandSourceError&) {  // not yet: the wands go on resting
         }
@@ -244,7 +251,7 @@ int runView(ViewOptions o) try {
         sim = std::make_unique<Simulation>(run.params, run.tool, wands, viewStepper(o.backend, window.context()));
         filmGoneSince = -1;
         ++dips;
-        say("the simulation became unstable; a new film is dipped");
+        announce("the simulation became unstable; a new film is dipped");
         show.frame(*sim, sim->stats(), "simulation_unstable film_created");
       }
     };

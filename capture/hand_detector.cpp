@@ -219,7 +219,8 @@ void geodesicFrom(const Grid& g, int source, const DetectionOptions& o, std::vec
   if (pred) (*pred)[source] = -1;
   queue.push({0.0, source});
   while (!queue.empty()) {
-    const auto [d, i] = queue.top();
+    const double d = queue.top().first;  // not a structured binding: clang 14 (the sanitizer build) cannot
+    const int i = queue.top().second;    // capture one in the lambda below
     queue.pop();
     if (d > dist[i]) continue;
     forNeighbours(g, i, o, [&](int j) {

@@ -4,6 +4,7 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "banner_text.h"
 #include "device_buffer.h"
 #include "device_image.h"
 #include "film_swirls.h"
@@ -134,7 +135,8 @@ struct Renderer::Impl {
   vk::raii::CommandBuffer commands{nullptr};
 
   DeviceBuffer uniforms, position, normal, thickness, airFlow, triangles, propsMesh, dropletBuffer, variation, readback;
-  uint32_t propsVertices = 0, dropletCount = 0;
+  DeviceBuffer bannerPixels;  // the message banner's RGBA rows (host memory the copy reads)
+  uint32_t propsVertices = 0, dropletCount = 0, bannerRows = 0;
   std::array<Vec3, 2> ambient;  // mean environment radiance above and below the horizon
   Vec3 horizon;                 // just below it
   Vec3 keyLight;
@@ -159,6 +161,7 @@ struct Renderer::Impl {
     makeDescriptors();
     uniforms = DeviceBuffer(*ctx, sizeof(RenderUniforms));
     readback = DeviceBuffer(*ctx, 4ull * extent.width * extent.height, DeviceBuffer::Placement::Host);
+    bannerPixels = DeviceBuffer(*ctx, 4ull * extent.width * extent.height, DeviceBuffer::Placement::Host);
     commands = ctx->newCommandBuffer();
   }
 
@@ -185,7 +188,7 @@ struct Renderer::Impl {
         DeviceImage(*ctx, extent, kDepthFormat, U::eDepthStencilAttachment, vk::ImageAspectFlagBits::eDepth, samples);
     accum = DeviceImage(*ctx, extent, kHdrFormat, U::eColorAttachment | U::eSampled);
     reveal = DeviceImage(*ctx, extent, kRevealFormat, U::eColorAttachment | U::eSampled);
-    output = DeviceImage(*ctx, extent, kOutputFormat, U::eColorAttachment | U::eTransferSrc);
+    output = DeviceImage(*ctx, extent, kOutputFormat, U::eColorAttachment | U::eTransferSrc | U::eTransferDst);
     if (msaa) {
       opaqueSamples = colourTarget(kHdrFormat);
       accumSamples = colourTarget(kHdrFormat);
@@ -469,6 +472,26 @@ struct Renderer::Impl {
     ctx->device.updateDescriptorSets(writes, {});
   }
 
+  // The banner of `text` into bannerPixels; bannerRows its height (0: no banner this frame).
+  void uploadBanner(const std::string& text) {
+    const BannerImage banner = drawBanner(text, static_cast<int>(extent.width), static_cast<int>(extent.height));
+    bannerRows = static_cast<uint32_t>(banner.height);
+    if (bannerRows > 0) bannerPixels.write(banner.rgba.data(), banner.rgba.size());
+  }
+
+  // Copies the banner over the output's top rows. The resolve pass left the output ready to be read by a
+  // transfer; it becomes a transfer destination for the copy and is then handed on, readable, as before.
+  void recordBannerCopy(const vk::raii::CommandBuffer& cb) const {
+    transitionImage(cb, output.handle(), Layout::eTransferSrcOptimal, Layout::eTransferDstOptimal,
+                    Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite, Stage::eTransfer,
+                    Access::eTransferWrite);
+    cb.copyBufferToImage(bannerPixels.handle(), output.handle(), Layout::eTransferDstOptimal,
+                         vk::BufferImageCopy(0, 0, 0, {vk::ImageAspectFlagBits::eColor, 0, 0, 1}, {0, 0, 0},
+                                             vk::Extent3D(extent.width, bannerRows, 1)));
+    transitionImage(cb, output.handle(), Layout::eTransferDstOptimal, Layout::eTransferSrcOptimal, Stage::eTransfer,
+                    Access::eTransferWrite, Stage::eTransfer, Access::eTransferRead);
+  }
+
   void record(const DeviceFilm& f, bool readPixels, const AfterRender& after) {
     const vk::raii::CommandBuffer& cb = commands;
     cb.reset();
@@ -505,6 +528,7 @@ struct Renderer::Impl {
     cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *composite);
     cb.draw(3, 1, 0, 0);
     cb.endRenderPass();
+    if (bannerRows > 0) recordBannerCopy(cb);
 
     if (readPixels) {
       cb.copyImageToBuffer(output.handle(), Layout::eTransferSrcOptimal, readback.handle(),
@@ -532,6 +556,7 @@ void Renderer::render(const RenderFrame& frame, bool readback, const AfterRender
   const bool varied = m.uploadVariation(frame);
   m.uploadUniforms(frame, film.particleCount, varied);
   m.bindSceneBuffers(film);
+  m.uploadBanner(frame.banner);
   m.record(film, readback, after);
   m.ctx->submitAndWait(m.commands);
 }

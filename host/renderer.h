@@ -9,6 +9,7 @@
 //                                                                    -> accum (RGBA16F) + reveal (R16F)
 //   3. resolve:  film over opaque (or the environment where nothing opaque is), exposure, sRGB encoding
 //                                                                    -> output (RGBA8)
+//   then, when the frame has a message, its banner (drawn on the CPU) copied over the output's top rows.
 // docs/rendering.md has the optics and the choices.
 
 #include <functional>
@@ -54,6 +55,7 @@ struct RenderFrame {
   float aerosolLifetime = 1.0f;          // s, for the droplets' fade
   const WireFrame* wireFrame = nullptr;  // the wands and their string (or ring)
   OrbitCamera camera;
+  std::string banner;  // a message drawn over the top of the image (host/banner_text.h); empty: none
 };
 
 class Renderer {

@@ -57,6 +57,8 @@ struct Window::Impl {
   Mouse mouse;
   WindowKeys keys;
   PointerListener pointer;  // empty: the mouse only moves the camera
+  std::string message;      // the banner's text (showMessage), shown until messageUntil
+  std::chrono::steady_clock::time_point messageUntil;
 
   Impl(const std::string& title, int width, int height, const std::string& device)
       : ctx(std::make_shared<const VulkanContext>(device, windowExtensions())) {
@@ -243,10 +245,19 @@ WindowKeys Window::poll() {
 
 void Window::setTitle(const std::string& title) { glfwSetWindowTitle(impl_->window, title.c_str()); }
 
+void Window::showMessage(const std::string& line, double seconds) {
+  const double shownFor = seconds > 0 ? std::min(seconds, 1e6) : 0.0;  // NaN or negative: not shown
+  impl_->message = line;
+  impl_->messageUntil =
+      std::chrono::steady_clock::now() +
+      std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(shownFor));
+}
+
 void Window::present(Renderer& renderer, RenderFrame frame) {
   Impl& m = *impl_;
   const uint32_t index = m.acquire();
   frame.camera = m.camera;
+  if (frame.banner.empty() && std::chrono::steady_clock::now() < m.messageUntil) frame.banner = m.message;
   const vk::Extent2D from(static_cast<uint32_t>(renderer.options().width),
                           static_cast<uint32_t>(renderer.options().height));
   renderer.render(frame, false,

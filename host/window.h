@@ -3,6 +3,7 @@
 // mouse (drag to turn, wheel to zoom) and the keys of `giantbubble view` (app/view_command.cpp). It runs under
 // Xvfb with lavapipe, which is how CI tests it.
 
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <string>
@@ -54,6 +55,11 @@ class Window {
   void present(Renderer& renderer, RenderFrame frame);
   // The title bar's text (the live show's figures).
   void setTitle(const std::string& title);
+  // A status line for the audience and the operator (a recovery, a lost camera, nobody in front of it), shown
+  // in a banner over the top of the image for `seconds` of wall time; a later message replaces it, and an empty
+  // one removes it. The title bar alone is not enough: a show runs full screen or on a projector.
+  void showMessage(const std::string& line, double seconds = kMessageSeconds);
+  static constexpr double kMessageSeconds = 5.0;  // long enough to read two lines from across a room
 
  private:
   struct Impl;

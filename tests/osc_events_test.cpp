@@ -1,13 +1,15 @@
 // OSC show control: events and the bubble's state reach a loopback receiver, in order.
+#include "osc_events.h"
+
 #include <gtest/gtest.h>
 #include <lo/lo.h>
+#include <unistd.h>
 
 #include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
 
-#include "osc_events.h"
 #include "run_command.h"
 
 namespace gb {
@@ -69,7 +71,7 @@ TEST(OscEvents, ARunSendsItsEventsInOrder) {
   run.backend = Backend::Cpu;
   run.progress = false;
   run.plyEvery = run.imageEvery = 0;
-  run.outDir = std::filesystem::temp_directory_path() / "giantbubble_osc_test";
+  run.outDir = std::filesystem::temp_directory_path() / ("giantbubble_osc_test_" + std::to_string(::getpid()));
   run.osc = receiver.target();
   ASSERT_EQ(runSimulation(run), 0);
   receiver.drain();

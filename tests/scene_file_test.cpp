@@ -1,9 +1,10 @@
 // Scene files: the built-in scenes run; every mistake in a scene file is named with its file, line and key.
+#include "scene_file.h"
+
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <filesystem>
-
-#include "scene_file.h"
 
 namespace gb {
 namespace {
@@ -21,7 +22,9 @@ std::string errorOf(const std::string& text) {
 TEST(SceneFile, EveryBuiltInSceneLoadsAndRunsAFewFramesOnTheCpu) {
   const auto names = builtinSceneNames();
   ASSERT_GE(names.size(), 22u) << "fig09a-c, fig10a-f, fig11a-b, fig12a-b, fig14b, fig14d and 7 experiments";
-  const auto out = std::filesystem::temp_directory_path() / "giantbubble_scene_test";
+  // One folder per process: another worktree's test suite on the same machine runs this test too, and a
+  // shared folder removed under a running test failed it.
+  const auto out = std::filesystem::temp_directory_path() / ("giantbubble_scene_test_" + std::to_string(::getpid()));
   for (const std::string& name : names) {
     Scene scene = builtinScene(name);
     EXPECT_EQ(scene.name, name);
@@ -88,11 +91,12 @@ TEST(SceneFile, MalformedTomlIsNamedWithItsLine) {
 }
 
 TEST(SceneFile, AnAcceptedSceneSetsWhatItSays) {
-  const Scene s = parseScene("name = \"mine\"\nduration = 2.5\nburst_at = 1.0\n[tool]\nkind = \"ring\"\n"
-                             "[input]\nsource = \"script:circles\"\nspeed = 1.5\n[params]\nsticky = 28.0\n"
-                             "[render]\nwidth = 640\nheight = 360\ncolouring = \"thickness\"\n"
-                             "camera = [0.0, 1.2, 3.0]\ntarget = [0.0, 1.2, 0.0]\nvideo = false\n",
-                             "test.toml", std::filesystem::current_path());
+  const Scene s = parseScene(
+      "name = \"mine\"\nduration = 2.5\nburst_at = 1.0\n[tool]\nkind = \"ring\"\n"
+      "[input]\nsource = \"script:circles\"\nspeed = 1.5\n[params]\nsticky = 28.0\n"
+      "[render]\nwidth = 640\nheight = 360\ncolouring = \"thickness\"\n"
+      "camera = [0.0, 1.2, 3.0]\ntarget = [0.0, 1.2, 0.0]\nvideo = false\n",
+      "test.toml", std::filesystem::current_path());
   EXPECT_EQ(s.run.duration, 2.5);
   EXPECT_EQ(s.run.burstAt, 1.0);
   EXPECT_EQ(s.run.tool.kind, ToolKind::Ring);

@@ -43,6 +43,7 @@ struct CellTable {
   // gathering from the state's arrays, which is most of its time on a large film.
   std::vector<Vec3> position;
   std::vector<Vec3> normal;
+  std::vector<float> speed;  // about the film's mean velocity
   uint64_t mask = 0;
 
   [[nodiscard]] uint32_t bucketOf(const Cell& c) const {
@@ -50,7 +51,7 @@ struct CellTable {
   }
 };
 
-CellTable bucketParticles(const Film& film, float cellSize) {
+CellTable bucketParticles(const Film& film, const std::vector<float>& speed, float cellSize) {
   const State& s = film.state;
   const size_t n = s.size();
   CellTable table;
@@ -68,23 +69,46 @@ CellTable bucketParticles(const Film& film, float cellSize) {
     if (inFilm(film, i)) table.particle[fill[bucket[i]]++] = i;
   table.position.resize(table.particle.size());
   table.normal.resize(table.particle.size());
+  table.speed.resize(table.particle.size());
   for (size_t k = 0; k < table.particle.size(); ++k) {
+    table.speed[k] = speed[table.particle[k]];
     table.position[k] = s.position.get(table.particle[k]);
     table.normal[k] = s.normal.get(table.particle[k]);
   }
   return table;
 }
 
+std::vector<float> speedsAboutTheMean(const Film& film) {
+  const State& s = film.state;
+  Vec3 sum = Vec3::Zero();
+  size_t living = 0;
+  for (uint32_t i = 0; i < s.size(); ++i)
+    if (inFilm(film, i)) {
+      sum += s.velocity.get(i);
+      ++living;
+    }
+  const Vec3 mean = living ? Vec3(sum / static_cast<float>(living)) : Vec3::Zero();
+  std::vector<float> speed(s.size(), 0.0f);
+  for (uint32_t i = 0; i < s.size(); ++i)
+    if (inFilm(film, i)) speed[i] = (s.velocity.get(i) - mean).norm();
+  return speed;
+}
+
 }  // namespace
 
-size_t findContacts(const Params& p, float margin, Film& film) {
+size_t findContacts(const Params& p, float frameTime, float slack, Film& film) {
   const State& s = film.state;
   Topology& topo = film.topology;
   const size_t n = s.size();
-  const float reach = p.collisionDistance + margin;
+  // Two particles close at most |v_i - v_j| <= |v_i - mean| + |v_j - mean| in a frame: a bubble flying as a whole
+  // needs no wider search than one at rest, and each pair only its own reach.
+  const std::vector<float> speed = speedsAboutTheMean(film);
+  auto margin = [&](float speeds) { return std::min(kMaxContactMargin, frameTime * speeds + slack); };
+  const float fastest = n ? *std::max_element(speed.begin(), speed.end()) : 0.0f;
+  const float reach = p.collisionDistance + margin(2.0f * fastest);
   std::vector<std::vector<uint32_t>> lists(n);
   if (reach > 0 && p.collisionStiffness > 0) {
-    const CellTable table = bucketParticles(film, reach);
+    const CellTable table = bucketParticles(film, speed, reach);
     const float reachSquared = reach * reach;
     constexpr float acrossCosineSquared = 0.5f;  // 45 degrees
     // Each particle lists its partners of higher index from the read-only table (each pair once, half the
@@ -107,6 +131,8 @@ size_t findContacts(const Params& p, float margin, Film& film) {
               const Vec3 d = table.position[k] - xi;
               const float lengthSquared = d.squaredNorm();
               if (!(lengthSquared < reachSquared) || lengthSquared <= 0) continue;
+              const float pairReach = p.collisionDistance + margin(speed[i] + table.speed[k]);
+              if (!(lengthSquared < pairReach * pairReach)) continue;
               const float alongI = ni.dot(d), alongJ = table.normal[k].dot(d);
               const bool across = alongI * alongI > acrossCosineSquared * lengthSquared ||
                                   alongJ * alongJ > acrossCosineSquared * lengthSquared;

@@ -9,11 +9,14 @@
 
 namespace gb {
 
-// Fills film.topology.contacts: for every living particle, the living particles within
-// collisionDistance + margin that are not its one-ring neighbours and that lie across the film from it
-// (their separation makes an angle under 45 degrees with one of the two normals, so neighbours along the
-// same sheet are left out). The list is symmetric and sorted. Returns the number of pairs.
-size_t findContacts(const Params& params, float margin, Film& film);
+// Fills film.topology.contacts: for every living particle, the living particles that may come within
+// collisionDistance of it during the next frame of frameTime and that are not its one-ring neighbours and lie
+// across the film from it (their separation makes an angle under 45 degrees with one of the two normals, so
+// neighbours along the same sheet are left out). A pair may close by h (|v_i - mean| + |v_j - mean|) at its
+// start velocities, plus slack for what the frame's forces add; the margin is capped at kMaxContactMargin. The
+// list is symmetric and sorted. Returns the number of pairs.
+constexpr float kMaxContactMargin = 0.05f;  // m: a film faster than 2.5 m/s relative to itself bursts anyway
+size_t findContacts(const Params& params, float frameTime, float slack, Film& film);
 
 // The impact of two film particles meeting at approach speed v (the closing speed along their separation):
 // the film Weber number m_A v^2 / E, the dynamic pressure of the approach over the film's tension, with m_A

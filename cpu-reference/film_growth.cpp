@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
 #include "pinch_off.h"
@@ -179,23 +180,48 @@ size_t payOutFilmAtWire(const Params& params, Film& film) {
   return stretched.size();
 }
 
-size_t yieldStretchedSprings(const Params& params, Film& film) {
-  // The physical model's tension does not use rest lengths (tensionModel 1).
-  if (!(params.yieldStretch > 1.0f) || params.tensionModel != 0) return 0;
+namespace {
+
+// Gives every living spring not held by the wire the rest length newRest(spring, its ends, its length) returns,
+// where it returns one (the wire's springs follow the wire's own rule, payOutFilmAtWire, which also decides ring
+// insertion). Returns how many changed.
+template <typename NewRest>
+size_t reshapeSpringsOffTheWire(Film& film, NewRest newRest) {
   Topology& topo = film.topology;
   const State& s = film.state;
-  size_t yielded = 0;
+  size_t changed = 0;
   for (size_t k = 0; k < topo.springCount(); ++k) {
     const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
-    // Springs held by the wire follow the wire's own rule (payOutFilmAtWire), which also decides ring insertion.
     if (!s.alive[a] || !s.alive[b] || topo.boundary[a] || topo.boundary[b]) continue;
-    if (std::min(s.thickness[a], s.thickness[b]) < params.yieldThickness) continue;
-    const float length = (s.position.get(a) - s.position.get(b)).norm();
-    if (!(length > params.yieldStretch * topo.restLength[k])) continue;
-    topo.restLength[k] = length / params.yieldStretch;
-    ++yielded;
+    const std::optional<float> rest = newRest(k, a, b, (s.position.get(a) - s.position.get(b)).norm());
+    if (!rest) continue;
+    topo.restLength[k] = *rest;
+    ++changed;
   }
-  return yielded;
+  return changed;
+}
+
+}  // namespace
+
+size_t contractSlackSprings(const Params& params, Film& film) {
+  // The physical model's tension does not use rest lengths (tensionModel 1).
+  if (params.tensionModel != 0) return 0;
+  const std::vector<float>& rest = film.topology.restLength;
+  return reshapeSpringsOffTheWire(film, [&](size_t k, uint32_t, uint32_t, float length) -> std::optional<float> {
+    if (!(length < rest[k])) return std::nullopt;
+    return length * (1.0f - params.springPrestrain);
+  });
+}
+
+size_t yieldStretchedSprings(const Params& params, Film& film) {
+  if (!(params.yieldStretch > 1.0f) || params.tensionModel != 0) return 0;
+  const std::vector<float>& rest = film.topology.restLength;
+  const std::vector<float>& thickness = film.state.thickness;
+  return reshapeSpringsOffTheWire(film, [&](size_t k, uint32_t a, uint32_t b, float length) -> std::optional<float> {
+    if (std::min(thickness[a], thickness[b]) < params.yieldThickness) return std::nullopt;
+    if (!(length > params.yieldStretch * rest[k])) return std::nullopt;
+    return length / params.yieldStretch;
+  });
 }
 
 float wireBandWidth(const Film& film) {

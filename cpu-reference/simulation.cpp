@@ -102,8 +102,12 @@ void Simulation::advanceFrame(const WandState& next) {
   if (events_.particlesRemoved > 0) stepper_->updateTopology(params_, film_);  // the mesh shrank
   if (!burst_.active()) {
     // Only a film being drawn yields: a free bubble's wobbles are elastic, so it rounds up again instead of
-    // keeping every dent its momentum makes.
+    // keeping every dent its momentum makes. A free bubble contracts where it goes slack instead: the long bag it
+    // was drawn as holds about 1.6 times the surface of a sphere of its air, which otherwise hangs in wrinkles
+    // (and fills the contact lists). The open bag is not contracted: it is slack where the air has not yet filled
+    // it, and there it is still being drawn.
     if (!film_.topology.isClosed() && yieldStretchedSprings(params_, film_) > 0) stepper_->updateRestLengths(film_);
+    if (film_.topology.isClosed() && contractSlackSprings(params_, film_) > 0) stepper_->updateRestLengths(film_);
     growFilm(next, wandSpeed);
   }
   const bool tipsTogether =
@@ -159,13 +163,10 @@ void Simulation::growFilm(const WandState& wands, float wandSpeed) {
 }
 
 void Simulation::updateContacts() {
-  // Contacts for the next frame: within reach of what two particles can close in one frame.
-  float fastest = 0.0f;
-  const State& s = film_.state;
-  for (size_t i = 0; i < s.size(); ++i)
-    if (s.alive[i]) fastest = std::max(fastest, s.velocity.get(i).norm());
-  const float margin = std::min(0.05f, 2.0f * fastest * params_.frameTime + 0.005f);
-  findContacts(params_, margin, film_);
+  // Contacts for the next frame: within reach of what two particles can close in one frame, plus 5 mm for what
+  // the frame's forces add to their start velocities.
+  constexpr float slack = 0.005f;
+  findContacts(params_, params_.frameTime, slack, film_);
   stepper_->updateContacts(film_);
 }
 

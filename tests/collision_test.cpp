@@ -24,7 +24,7 @@ Params twoSheetParams() {
 TEST(Collision, ContactsAreSymmetricAcrossTheSheetsAndLeaveTheOneRingOut) {
   const Params p = twoSheetParams();
   Film film = test::makeTwoSheets(p, 0.015f, 0.0f);
-  const size_t pairs = findContacts(p, 0.0f, film);
+  const size_t pairs = findContacts(p, 0.0f, 0.0f, film);
   EXPECT_GT(pairs, 100u);
   const size_t n = film.state.size(), half = n / 2;
   const std::vector<uint32_t>& c = film.topology.contacts;

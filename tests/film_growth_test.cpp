@@ -60,6 +60,38 @@ TEST(FilmGrowth, StretchedRungsPayOutToANewFilmsRestLengthAndOthersStay) {
   EXPECT_EQ(payOutFilmAtWire(p, film), 0u) << "paid-out rungs are no longer stretched";
 }
 
+TEST(FilmGrowth, SlackSpringsContractToANewFilmsTautnessAndTheWireAndTautOnesStay) {
+  Params p;
+  p.particlesAtFullSolution = 1500;
+  Film film = generateFilm(p, WandTool{}, gestureAt(Gesture::Straight, GestureOptions{}, 0.0));
+  Topology& topo = film.topology;
+  // Every other spring made slack: its rest length 20% longer than the spring.
+  for (size_t k = 0; k < topo.springCount(); k += 2) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    topo.restLength[k] = 1.2f * (film.state.position.get(a) - film.state.position.get(b)).norm();
+  }
+  const Topology before = topo;
+  const size_t contracted = contractSlackSprings(p, film);
+  size_t slackInside = 0;
+  for (size_t k = 0; k < before.springCount(); ++k) {
+    const uint32_t a = before.springEnds[2 * k], b = before.springEnds[2 * k + 1];
+    const float length = (film.state.position.get(a) - film.state.position.get(b)).norm();
+    const bool wire = before.boundary[a] || before.boundary[b];
+    if (k % 2 == 0 && !wire) {
+      ++slackInside;
+      // Float rounding of one multiplication: 1e-6 relative.
+      EXPECT_NEAR(topo.restLength[k], length * (1.0f - p.springPrestrain), 1e-6f * length);
+    } else {
+      EXPECT_EQ(topo.restLength[k], before.restLength[k]) << "a taut spring or one held by the wire changed";
+    }
+  }
+  EXPECT_EQ(contracted, slackInside);
+  EXPECT_EQ(contractSlackSprings(p, film), 0u) << "contracted springs are taut again";
+  p.tensionModel = 1;  // constant tension: no rest lengths to contract
+  topo.restLength[0] *= 2.0f;
+  EXPECT_EQ(contractSlackSprings(p, film), 0u);
+}
+
 TEST(FilmGrowth, AFilmHangingStillDoesNotPayOut) {
   Params p;
   p.particlesAtFullSolution = 1500;

@@ -73,7 +73,7 @@ StabilizerOptions stabilizerOptionsOf(const InputOptions& o) {
   return s;
 }
 
-std::unique_ptr<WandInput> makeWandInput(const InputOptions& o, const GestureOptions& gesture) {
+std::unique_ptr<WandInput> makeWandInput(const InputOptions& o, const GestureOptions& gesture, PerformerWait wait) {
   const std::string spec = o.spec();
   if (spec == "mouse")
     throw HandSourceError("the mouse moves the wands in the live window only: giantbubble live --input mouse");
@@ -86,9 +86,8 @@ std::unique_ptr<WandInput> makeWandInput(const InputOptions& o, const GestureOpt
   }
   const SourceOptions source = sourceOptionsOf(o, gesture);
   // The film is made on the performer's hands: camera inputs and trajectories start when both hands are seen.
-  PerformerWait wait;
   wait.enabled = source.calibration.autoPerformer || spec.rfind("trajectory:", 0) == 0;
-  wait.cancelled = [] { return InterruptCatcher::requested(); };  // Ctrl-C in the live window while waiting
+  if (!wait.cancelled) wait.cancelled = [] { return InterruptCatcher::requested(); };  // Ctrl-C while waiting
   return std::make_unique<StabilizedWands>(makeHandSource(spec, source), stabilizerOptionsOf(o), source.calibration,
                                            wait);
 }

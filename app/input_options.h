@@ -36,7 +36,11 @@ SourceOptions sourceOptionsOf(const InputOptions& options, const GestureOptions&
 StabilizerOptions stabilizerOptionsOf(const InputOptions& options);
 
 // What moves the wands of a run: a script exactly as written (world space, no stabilizer), any other input
-// through the stabilizer and the calibration. Throws HandSourceError when the input cannot be opened.
-std::unique_ptr<WandInput> makeWandInput(const InputOptions& options, const GestureOptions& gesture);
+// through the stabilizer and the calibration. Camera inputs and trajectories wait for a performer (both hands
+// seen); `waiting` says where the wait's messages go and what ends it early (its `enabled` is decided here; by
+// default the messages go to stderr and Ctrl-C ends the wait). Throws HandSourceError when the input cannot be
+// opened.
+std::unique_ptr<WandInput> makeWandInput(const InputOptions& options, const GestureOptions& gesture,
+                                         PerformerWait waiting = {});
 
 }  // namespace gb

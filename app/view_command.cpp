@@ -64,8 +64,8 @@ std::unique_ptr<Stepper> viewStepper(const std::string& backend, const std::shar
 
 // The wands' input: the mouse (the window's pointer moves a PointerHandSource, read through the stabilizer
 // like a camera) or any input makeWandInput opens. A new mouse input takes the window's pointer from the old.
-std::unique_ptr<WandInput> makeLiveInput(const RunOptions& run, Window& window) {
-  if (run.input.spec() != "mouse") return makeWandInput(run.input, run.gestureOptions);
+std::unique_ptr<WandInput> makeLiveInput(const RunOptions& run, Window& window, const PerformerWait& waiting) {
+  if (run.input.spec() != "mouse") return makeWandInput(run.input, run.gestureOptions, waiting);
   const Calibration calibration = calibrationOf(run.input);
   auto pointer = std::make_unique<PointerHandSource>(calibration);
   PointerHandSource* hands = pointer.get();
@@ -76,6 +76,46 @@ std::unique_ptr<WandInput> makeLiveInput(const RunOptions& run, Window& window) 
        [hands](double notches) { hands->pushHands(metresPerNotch * notches); }});
   return std::make_unique<StabilizedWands>(std::move(pointer), stabilizerOptionsOf(run.input), calibration);
 }
+
+// While a camera input waits for a performer the window stays alive: it shows the stage without a film and the
+// wait's message a few times a second, and Esc/Q, closing the window or Ctrl-C end the show.
+class PerformerWaitScreen {
+ public:
+  PerformerWaitScreen(Window& window, Renderer& renderer) : window_(window), renderer_(renderer) {}
+
+  [[nodiscard]] PerformerWait hooks() {
+    PerformerWait wait;
+    wait.say = [this](const std::string& message) {
+      printToStderr(message);
+      window_.showMessage(message);
+    };
+    wait.cancelled = [this] { return pollAndRedraw(); };
+    return wait;
+  }
+  [[nodiscard]] bool quit() const { return quit_; }
+  [[nodiscard]] long redrawn() const { return redrawn_; }
+
+ private:
+  static constexpr std::chrono::milliseconds kRedrawEvery{200};
+  bool pollAndRedraw() {
+    quit_ = quit_ || window_.poll().quit || InterruptCatcher::requested();
+    const auto now = std::chrono::steady_clock::now();
+    if (!quit_ && now - lastRedraw_ >= kRedrawEvery) {
+      RenderFrame stage;
+      stage.film = &noFilm_;
+      window_.present(renderer_, stage);
+      lastRedraw_ = now;
+      ++redrawn_;
+    }
+    return quit_;
+  }
+  Window& window_;
+  Renderer& renderer_;
+  const Film noFilm_;
+  bool quit_ = false;
+  long redrawn_ = 0;
+  std::chrono::steady_clock::time_point lastRedraw_;
+};
 
 // Adds the scripted key presses of frame `frame` to what the window reported.
 void addScriptedKeys(const std::vector<std::string>& script, long frame, WindowKeys& keys) {
@@ -145,7 +185,14 @@ int runView(ViewOptions o) try {
   ShowControl show(run.osc);
   const RenderOptions& image = run.render.image;
   Window window("giantbubble", image.width, image.height, run.device);
-  std::unique_ptr<WandInput> input = makeLiveInput(run, window);
+  const InterruptCatcher interrupts;  // Ctrl-C ends the show as Esc does, with its totals
+  Renderer renderer(window.context(), image, loadEnvironment(run.render.environment));
+  PerformerWaitScreen waiting(window, renderer);
+  std::unique_ptr<WandInput> input = makeLiveInput(run, window, waiting.hooks());
+  if (waiting.quit()) {
+    std::printf("live: ended while waiting for a performer (the window was redrawn %ld times)\n", waiting.redrawn());
+    return 0;
+  }
   std::printf("live: input %s\n", input->describe().c_str());
   window.camera() = run.render.camera;
   std::unique_ptr<Stepper> stepper = viewStepper(o.backend, window.context());
@@ -156,10 +203,8 @@ int runView(ViewOptions o) try {
   double t = 0;
   WandState wands = input->at(t).wands;
   auto sim = std::make_unique<Simulation>(run.params, run.tool, wands, std::move(stepper));
-  Renderer renderer(window.context(), image, loadEnvironment(run.render.environment));
   show.frame(*sim, sim->stats(), "film_created");
 
-  const InterruptCatcher interrupts;  // Ctrl-C ends the show as Esc does, with its totals
   bool paused = false;
   long shown = 0, dips = 0, recoveries = 0;
   double filmGoneSince = -1;  // time the last film disappeared, -1 while there is one
@@ -172,7 +217,7 @@ int runView(ViewOptions o) try {
   for (;;) {
     WindowKeys keys = window.poll();
     addScriptedKeys(o.keys, shown, keys);
-    if (keys.quit || InterruptCatcher::requested()) break;  // Esc/Q, the window closed, Ctrl-C or SIGTERM
+    if (keys.quit || waiting.quit() || InterruptCatcher::requested()) break;  // Esc/Q, closed, Ctrl-C, SIGTERM
     auto say = [&](const std::string& what) {
       std::printf("live: frame %ld: %s\n", shown, what.c_str());
       std::fflush(stdout);
@@ -193,7 +238,8 @@ int runView(ViewOptions o) try {
       say(paused ? "paused" : "resumed");
     }
     if (keys.reset) {  // the input from its start: a new source, since time only moves forward in one
-      input = makeLiveInput(run, window);
+      input = makeLiveInput(run, window, waiting.hooks());
+      if (waiting.quit()) break;
       inputStart = t;
       inputLost = false;
       wands = input->at(0).wands;
@@ -230,7 +276,7 @@ int runView(ViewOptions o) try {
           std::chrono::duration<double>(std::chrono::steady_clock::now() - lastReopen).count() >= kReopenCameraEvery) {
         lastReopen = std::chrono::steady_clock::now();
         try {
-          input = makeLiveInput(run, window);
+          input = makeLiveInput(run, window, waiting.hooks());
           inputStart = t;
           inputLost = false;
           announce("the camera is back");
@@ -277,6 +323,8 @@ int runView(ViewOptions o) try {
     window.present(renderer, renderFrameOf(*sim, wands, wire, window.camera(), readInPlace, deviceFilm));
     const auto now = std::chrono::steady_clock::now();
     pacer.record(due, simMs, std::chrono::duration<double, std::milli>(now - renderStart).count());
+    std::fprintf(stderr, "DBG shown=%ld t=%.2f due=%d sweeps=%d sim=%.0f render=%.0f\n", shown, t, due, pacer.sweeps(),
+                 simMs, std::chrono::duration<double, std::milli>(now - renderStart).count());
     if (now - lastTitle > std::chrono::seconds(1)) {  // the show's figures in the title bar, once a second
       window.setTitle(liveFigures(pacer, shown, start, now));
       lastTitle = now;

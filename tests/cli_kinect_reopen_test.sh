@@ -5,6 +5,7 @@
 # The show must notice the lost camera, keep going while it is away (reopening fails: no Kinect on the bus),
 # and follow it again once it is back. Prints what it checks and exits non-zero with the reason otherwise.
 set -u
+source "$(dirname "$0")/live_show_on_fake_kinect.sh"
 EXE=$1
 FAKE=$2
 MAKE_RECORDING=$3
@@ -13,33 +14,12 @@ rm -rf "$OUT"
 mkdir -p "$OUT"
 cd "$OUT" || exit 1
 
-fail() {
-  echo "FAIL: $*"
-  cat log.txt
-  [ -n "${group:-}" ] && kill -TERM -- "-$group" 2>/dev/null
-  exit 1
-}
-
 "$MAKE_RECORDING" frame 1 >/dev/null || fail "could not write the synthetic depth frame"
-export GIANTBUBBLE_FREENECT_LIBRARY=$FAKE
 GB_FAKE_KINECT_FRAME=$(ls frame/d-*.pgm)
 export GB_FAKE_KINECT_FRAME
 export GB_FAKE_KINECT_UNPLUGGED_IF=$OUT/unplugged
 
-# Its own process group, so that the show (under xvfb-run) can be stopped as a whole at the end.
-setsid xvfb-run -a "$EXE" live --input kinect --width 160 --height 120 --particles 400 --backend cpu \
-  >log.txt 2>&1 &
-group=$!
-
-# Waits (at most 120 s) for TEXT in the log while the show runs.
-wait_for() {
-  for _ in $(seq 1200); do
-    grep -q "$1" log.txt && return 0
-    kill -0 "$group" 2>/dev/null || return 1
-    sleep 0.1
-  done
-  return 1
-}
+start_live_show_on_fake_kinect
 
 wait_for "note: calibration: performer at" || fail "the show did not start on the fake Kinect"
 echo "the show started: $(grep -m1 "calibration: performer at" log.txt)"

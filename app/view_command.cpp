@@ -323,8 +323,6 @@ int runView(ViewOptions o) try {
     window.present(renderer, renderFrameOf(*sim, wands, wire, window.camera(), readInPlace, deviceFilm));
     const auto now = std::chrono::steady_clock::now();
     pacer.record(due, simMs, std::chrono::duration<double, std::milli>(now - renderStart).count());
-    std::fprintf(stderr, "DBG shown=%ld t=%.2f due=%d sweeps=%d sim=%.0f render=%.0f\n", shown, t, due, pacer.sweeps(),
-                 simMs, std::chrono::duration<double, std::milli>(now - renderStart).count());
     if (now - lastTitle > std::chrono::seconds(1)) {  // the show's figures in the title bar, once a second
       window.setTitle(liveFigures(pacer, shown, start, now));
       lastTitle = now;

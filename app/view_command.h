@@ -35,6 +35,7 @@ struct ViewOptions {
   std::vector<std::string> keys;         // scripted key presses FRAME:KEY (keys r d b p c), as if typed at that frame
   bool fixedStep = false;  // one simulation frame per presented frame (slow motion when the machine is slow)
   int minSweeps = 3;       // the fewest solver sweeps the wall clock may leave the film (realtime_pacer.h)
+  int longestStep = 2;     // frames of time one implicit step may cover when the machine falls behind
 };
 
 // A scripted key press of --keys: at presented frame `frame`, key `key` (r d b p c).

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <string>
 
 #include "collision.h"
 #include "film_growth.h"
@@ -74,6 +75,16 @@ StepUniforms Simulation::uniformsFor(const WandState& a, const WandState& b, flo
   u.volumeOrigin = u.closed ? film_.volumeOrigin : frameNow.center;
   u.referenceVolume = film_.referenceVolume;
   return u;
+}
+
+void Simulation::setFrameTime(float h) {
+  if (!(h > 0.0f && h <= 0.1f))
+    throw std::invalid_argument("frame time " + std::to_string(h) + " s is not in (0, 0.1]");
+  if (h == params_.frameTime) return;
+  const bool longer = h > params_.frameTime;
+  params_.frameTime = h;
+  chooseSubsteps();
+  if (longer) updateContacts();
 }
 
 void Simulation::advanceFrame(const WandState& next) {

@@ -79,6 +79,11 @@ class Simulation {
   [[nodiscard]] const Params& params() const { return params_; }
   [[nodiscard]] double time() const { return time_; }
   [[nodiscard]] int substepsPerFrame() const { return substeps_; }
+  // The length of the following frames (s), in (0, 0.1]: the live loop takes steps of two frames' time when the
+  // machine falls behind the wall clock. The implicit step is stable at any length (the explicit integrator
+  // takes as many more substeps); the film's behaviour changes with it (docs/model.md). Contacts are looked for
+  // again when the step grows, so that they reach as far as the longer step can move the film.
+  void setFrameTime(float h);
   // Implicit solver sweeps per step from now on (the live loop lowers them when a frame runs over its
   // budget); 0 returns to Params::solverIterations.
   void setSolverIterations(int sweeps) { solverIterations_ = sweeps; }

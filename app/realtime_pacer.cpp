@@ -46,6 +46,15 @@ void RealTimePacer::record(int frames, double simMs, double renderMs) {
     --sweeps_;
   else if (spent < 0.7 * wallMs && sweeps_ < options_.sweeps)
     ++sweeps_;
+  constexpr double step = 0.25;
+  if (++sinceRescale_ < kRescaleEvery) return;
+  if (spent > wallMs && atFloor() && renderScale_ > options_.minRenderScale) {
+    renderScale_ = std::max(renderScale_ - step, options_.minRenderScale);
+    sinceRescale_ = 0;
+  } else if (spent < 0.5 * wallMs && renderScale_ < 1.0) {
+    renderScale_ = std::min(renderScale_ + step, 1.0);
+    sinceRescale_ = 0;
+  }
 }
 
 double RealTimePacer::realTimeFactor(Clock::time_point now) const {

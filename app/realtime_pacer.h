@@ -1,20 +1,22 @@
 #pragma once
 // Keeps a simulation on the wall clock (giantbubble live, run --realtime). Each loop iteration asks how many
 // whole frames of h are due since the last one; when the machine cannot keep up, the solver first takes
-// fewer vertex block descent sweeps (down to a floor), and only then does the simulation slip: at most
-// maxCatchUp frames are run per iteration and the rest of the lag is dropped (the bubble never runs in slow
-// motion for long, it skips). Figures for the live window and the run summary: real-time factor (simulated
-// seconds per wall second), simulation and render milliseconds.
+// fewer vertex block descent sweeps (down to a floor), then the image is drawn smaller (down to a floor, and
+// scaled up to the window), and only then does the simulation slip: at most maxCatchUp frames are run per
+// iteration and the rest of the lag is dropped (the bubble never runs in slow motion for long, it skips). Figures for
+// the live window and the run summary: real-time factor (simulated seconds per wall second), simulation and render
+// milliseconds.
 
 #include <chrono>
 
 namespace gb {
 
 struct PacerOptions {
-  double frameTime = 0.02;  // h (s)
-  int sweeps = 10;          // the solver's sweeps when there is time (Params::solverIterations)
-  int minSweeps = 3;        // the floor: fewer sweeps leave the film visibly soft (docs/model.md)
-  int maxCatchUp = 4;       // frames simulated at most per loop iteration before the lag is dropped
+  double frameTime = 0.02;      // h (s)
+  int sweeps = 10;              // the solver's sweeps when there is time (Params::solverIterations)
+  int minSweeps = 3;            // the floor: fewer sweeps leave the film visibly soft (docs/model.md)
+  int maxCatchUp = 4;           // frames simulated at most per loop iteration before the lag is dropped
+  double minRenderScale = 1.0;  // the smallest image, as a fraction of the window's width and height (1: fixed)
 };
 
 class RealTimePacer {
@@ -35,6 +37,11 @@ class RealTimePacer {
   void record(int frames, double simMs, double renderMs);
 
   [[nodiscard]] int sweeps() const { return sweeps_; }
+  // The fraction of the window's width and height to draw at: lowered a step (0.25) at a time when the sweeps are
+  // at their floor and an iteration still takes longer than its frames, raised when it takes under half; at most
+  // one change per kRescaleEvery iterations, since each costs the renderer new targets and pipelines.
+  [[nodiscard]] double renderScale() const { return renderScale_; }
+  static constexpr int kRescaleEvery = 25;
   [[nodiscard]] bool atFloor() const { return sweeps_ == options_.minSweeps; }
   [[nodiscard]] long droppedFrames() const { return dropped_; }
   [[nodiscard]] long simulatedFrames() const { return simulated_; }
@@ -51,6 +58,8 @@ class RealTimePacer {
   long simulated_ = 0;  // frames simulated
   long dropped_ = 0;    // frames skipped because the machine could not keep up
   int sweeps_;
+  double renderScale_ = 1.0;
+  int sinceRescale_ = 0;  // iterations since the render scale last changed
   double simMs_ = 0, renderMs_ = 0;
 };
 

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <charconv>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 
 #include "cli_checks.h"
@@ -154,9 +155,10 @@ std::string liveFigures(const RealTimePacer& pacer, long shown, std::chrono::ste
                         std::chrono::steady_clock::time_point now) {
   const double seconds = std::max(std::chrono::duration<double>(now - start).count(), 1e-9);
   char text[160];
-  std::snprintf(text, sizeof text, "giantbubble  %.1f fps  real time x%.2f  sim %.1f ms  render %.1f ms  %d sweeps%s",
+  std::snprintf(text, sizeof text,
+                "giantbubble  %.1f fps  real time x%.2f  sim %.1f ms  render %.1f ms at %.0f%%  %d sweeps%s",
                 static_cast<double>(shown) / seconds, pacer.realTimeFactor(now), pacer.simMs(), pacer.renderMs(),
-                pacer.sweeps(), pacer.atFloor() ? " (floor)" : "");
+                100.0 * pacer.renderScale(), pacer.sweeps(), pacer.atFloor() ? " (floor)" : "");
   return text;
 }
 // A camera that was unplugged is looked for again this often (s of wall time); a recording or a file that
@@ -216,7 +218,8 @@ int runView(ViewOptions o) try {
   bool inputLost = false;
   auto lastReopen = std::chrono::steady_clock::now();
   const auto start = std::chrono::steady_clock::now();
-  RealTimePacer pacer({run.params.frameTime, sim->solverIterations(), o.minSweeps, 4}, start);
+  RealTimePacer pacer(
+      {run.params.frameTime, sim->solverIterations(), o.minSweeps, 4, o.fixedStep ? 1.0 : o.minRenderScale}, start);
   auto lastTitle = start;
   for (;;) {
     WindowKeys keys = window.poll();
@@ -330,6 +333,9 @@ int runView(ViewOptions o) try {
       simMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - simStart).count();
     }
     const auto renderStart = std::chrono::steady_clock::now();
+    // The window's blit scales the image to the window (dynamic resolution).
+    renderer.resize(std::max(16, static_cast<int>(std::lround(image.width * pacer.renderScale()))),
+                    std::max(16, static_cast<int>(std::lround(image.height * pacer.renderScale()))));
     const Vec3 gravity(run.params.gravityX, run.params.gravityY, run.params.gravityZ);
     const WireFrame wire = makeWireFrame(sim->film().tool, wands, sim->film().stringLength, gravity);
     DeviceFilm deviceFilm;

@@ -33,9 +33,10 @@ struct ViewOptions {
   double autoDip = 2.0;                  // seconds without a film before the wands dip again (negative: never)
   long frames = 0;                       // quit after this many presented frames (0: when the window closes)
   std::vector<std::string> keys;         // scripted key presses FRAME:KEY (keys r d b p c), as if typed at that frame
-  bool fixedStep = false;  // one simulation frame per presented frame (slow motion when the machine is slow)
-  int minSweeps = 3;       // the fewest solver sweeps the wall clock may leave the film (realtime_pacer.h)
-  int longestStep = 2;     // frames of time one implicit step may cover when the machine falls behind
+  bool fixedStep = false;       // one simulation frame per presented frame (slow motion when the machine is slow)
+  int minSweeps = 3;            // the fewest solver sweeps the wall clock may leave the film (realtime_pacer.h)
+  int longestStep = 2;          // frames of time one implicit step may cover when the machine falls behind
+  double minRenderScale = 0.5;  // the smallest image drawn when behind, as a fraction of the window's size
 };
 
 // A scripted key press of --keys: at presented frame `frame`, key `key` (r d b p c).

@@ -145,10 +145,7 @@ struct Renderer::Impl {
 
   Impl(std::shared_ptr<const VulkanContext> context, const RenderOptions& o, const EnvironmentImage& env)
       : ctx(std::move(context)), options(o), swirls(o.thicknessVariation) {
-    if (o.width < 16 || o.height < 16 || o.width > 16384 || o.height > 16384)
-      throw std::invalid_argument("render size " + std::to_string(o.width) + "x" + std::to_string(o.height) +
-                                  " is outside 16..16384 pixels");
-    extent = vk::Extent2D(static_cast<uint32_t>(o.width), static_cast<uint32_t>(o.height));
+    setExtent(o.width, o.height);
     samples = supportedSamples(o.samples);
     makeTargets();
     makeSamplersAndTextures(env);
@@ -160,9 +157,39 @@ struct Renderer::Impl {
     makePipelines();
     makeDescriptors();
     uniforms = DeviceBuffer(*ctx, sizeof(RenderUniforms));
+    makeImageBuffers();
+    commands = ctx->newCommandBuffer();
+  }
+
+  void setExtent(int width, int height) {
+    if (width < 16 || height < 16 || width > 16384 || height > 16384)
+      throw std::invalid_argument("render size " + std::to_string(width) + "x" + std::to_string(height) +
+                                  " is outside 16..16384 pixels");
+    options.width = width;
+    options.height = height;
+    extent = vk::Extent2D(static_cast<uint32_t>(width), static_cast<uint32_t>(height));
+  }
+
+  void makeImageBuffers() {  // host memory for the read-back image and the banner's rows
     readback = DeviceBuffer(*ctx, 4ull * extent.width * extent.height, DeviceBuffer::Placement::Host);
     bannerPixels = DeviceBuffer(*ctx, 4ull * extent.width * extent.height, DeviceBuffer::Placement::Host);
-    commands = ctx->newCommandBuffer();
+  }
+
+  void resize(int width, int height) {
+    setExtent(width, height);
+    ctx->device.waitIdle();
+    // The descriptor sets go before their pool, the pipelines and modules before they are made again.
+    sceneSet = nullptr;
+    compositeSet = nullptr;
+    props = nullptr;
+    droplets = nullptr;
+    film = nullptr;
+    composite = nullptr;
+    modules.clear();
+    makeTargets();
+    makePipelines();
+    makeDescriptors();
+    makeImageBuffers();
   }
 
   // The sample count of the targets: what colour and depth targets both support, up to `wanted`.
@@ -569,6 +596,10 @@ std::vector<uint8_t> Renderer::readPixels() const {
   for (size_t i = 0; i < pixels; ++i)
     for (size_t c = 0; c < 3; ++c) rgb[3 * i + c] = rgba[4 * i + c];
   return rgb;
+}
+
+void Renderer::resize(int width, int height) {
+  if (width != impl_->options.width || height != impl_->options.height) impl_->resize(width, height);
 }
 
 void Renderer::setColouring(Colouring colouring) { impl_->options.colouring = colouring; }

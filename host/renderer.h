@@ -75,6 +75,10 @@ class Renderer {
   // The last frame read back, RGB 8 bits per channel (sRGB), rows from the top.
   [[nodiscard]] std::vector<uint8_t> readPixels() const;
 
+  // Draws at a new size from the next frame on (the live window's dynamic resolution: its blit scales the image
+  // to the window). The targets and pipelines are made again; the film's swirls and the textures are kept.
+  // Throws std::invalid_argument outside 16..16384 pixels, as the constructor does.
+  void resize(int width, int height);
   void setColouring(Colouring colouring);
   [[nodiscard]] const RenderOptions& options() const;
   [[nodiscard]] const VulkanContext& context() const;

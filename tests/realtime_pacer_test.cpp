@@ -1,0 +1,42 @@
+// The live loop's pacing (app/realtime_pacer.h): what it gives up, in which order, when the machine cannot keep up.
+#include "realtime_pacer.h"
+
+#include <gtest/gtest.h>
+
+namespace gb {
+namespace {
+
+TEST(RealTimePacer, FramesDueFollowTheWallClockAndTheLagBeyondTheCatchUpIsDropped) {
+  using Clock = RealTimePacer::Clock;
+  const Clock::time_point start{};
+  RealTimePacer pacer({0.02, 10, 3, 4}, start);
+  EXPECT_EQ(pacer.framesDue(start + std::chrono::milliseconds(10)), 0) << "half a frame: none due yet";
+  EXPECT_EQ(pacer.framesDue(start + std::chrono::milliseconds(50)), 2);
+  EXPECT_EQ(pacer.framesDue(start + std::chrono::milliseconds(250)), 4) << "10 more due, 4 caught up";
+  EXPECT_EQ(pacer.droppedFrames(), 6);
+}
+
+TEST(RealTimePacer, SweepsGoDownFirstThenTheImageShrinksToItsFloorAndComesBack) {
+  RealTimePacer pacer({0.02, 10, 3, 4, 0.5});
+  // Every iteration simulates 2 frames (40 ms of wall time) and takes 100 ms: over budget.
+  for (int k = 0; k < 7; ++k) pacer.record(2, 50.0, 50.0);
+  EXPECT_EQ(pacer.sweeps(), 3) << "one sweep fewer per iteration, down to the floor";
+  EXPECT_EQ(pacer.renderScale(), 1.0) << "the image is kept until the sweeps are at their floor";
+  for (int k = 7; k < RealTimePacer::kRescaleEvery; ++k) pacer.record(2, 50.0, 50.0);
+  EXPECT_EQ(pacer.renderScale(), 0.75);
+  for (int k = 0; k < 3 * RealTimePacer::kRescaleEvery; ++k) pacer.record(2, 50.0, 50.0);
+  EXPECT_EQ(pacer.renderScale(), 0.5) << "never below minRenderScale";
+  // Now each iteration takes 10 ms of its 40: the sweeps come back first, then the image, a step at a time.
+  for (int k = 0; k < RealTimePacer::kRescaleEvery; ++k) pacer.record(2, 5.0, 5.0);
+  EXPECT_EQ(pacer.sweeps(), 10);
+  EXPECT_EQ(pacer.renderScale(), 0.75);
+  for (int k = 0; k < RealTimePacer::kRescaleEvery; ++k) pacer.record(2, 5.0, 5.0);
+  EXPECT_EQ(pacer.renderScale(), 1.0);
+  // A fixed image (minRenderScale 1, run --realtime) never shrinks.
+  RealTimePacer fixed({0.02, 10, 3, 1});
+  for (int k = 0; k < 4 * RealTimePacer::kRescaleEvery; ++k) fixed.record(1, 50.0, 50.0);
+  EXPECT_EQ(fixed.renderScale(), 1.0);
+}
+
+}  // namespace
+}  // namespace gb

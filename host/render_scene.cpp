@@ -99,8 +99,9 @@ float FilmFraming::framingDistance(const OrbitCamera& base, const State& s, cons
   OrbitCamera probe = base;
   probe.target = centre;
   probe.distance = 1.0f;
-  const Vec3 back = probe.position() - centre;  // unit, towards the camera
-  const Vec3 right = Vec3::UnitY().cross(back).normalized(), up = back.cross(right);
+  const Vec3 back = probe.position() - centre;                      // unit, towards the camera
+  const Vec3 right(std::cos(base.yaw), 0.0f, -std::sin(base.yaw));  // up x back, normalised, from the yaw alone
+  const Vec3 up = back.cross(right);
   // The outline's extent on the image at distance d, as fractions of the image's height and width: each particle
   // at (x, y) across and z towards the camera from the centre is seen at tan = x / (d - z).
   const float tanHalfY = std::tan(0.5f * base.fovY), tanHalfX = options_.aspect * tanHalfY;

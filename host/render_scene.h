@@ -19,7 +19,7 @@ struct OrbitCamera {
   float distance = 3.2f;                 // from the target (m)
   float yaw = 0.8f;                      // about the vertical, radians; 0 looks along -z (the front, along the
                                          // default stroke); 0.8: a three-quarter view that sees the bulge side-on
-  float pitch = 0.45f;                   // above the horizontal, radians
+  float pitch = 0.3f;                    // above the horizontal, radians
   float fovY = 0.75f;                    // vertical field of view, radians
 
   [[nodiscard]] Vec3 position() const;

@@ -399,7 +399,7 @@ TEST(Renderer, DefaultCameraFramesTheGiantBubbleLarge) {
   // default performance's peak film area. Covered: a pixel the film changes by more than 8 levels when drawn in
   // the thickness colouring (mostly opaque sheets, alpha 0.75). The interference colouring cannot measure
   // coverage: a clear film over a background about as bright as what it reflects changes a pixel by a level or
-  // two. Measured when written: 18.3% (a round bubble whose outline spans 0.55 of this 3:2 image's height covers
+  // two. Measured when written: 20.0% (a round bubble whose outline spans 0.55 of this 3:2 image's height covers
   // 16%; the level camera framing the bounding sphere before it: 9.7%).
   GB_REQUIRE_VULKAN(device);
   const DefaultPerformanceFrames& frames = defaultPerformanceFrames();
@@ -421,13 +421,14 @@ TEST(Renderer, DISABLED_DefaultPerformancesFilmIsColourfulMidStroke) {
   // interference can colour a pixel. The film's pixels are those the film changes (by more than 2 levels in a
   // channel) against the same frame without it.
   //
-  // DISABLED: it measures 0.078 (the film on 20% of the image). A film's colour on the picture is its reflectance's
-  // spread over the spectrum times (what it reflects - what is behind it): here the sky against the sunlit
-  // ground, which is about as bright as the sky's horizon. Measured on this frame with the film's thickness scaled
-  // (the camera, sky and swirls as they are): x1 (0.8-1.4 um) 0.078, x0.7 0.092, x0.5 0.095, x0.3 0.081 (thinner
-  // first-order films are greyer); the old level camera (pitch 0.12) 0.036. So no thickness the model could
-  // reach reaches 0.1 from this camera in this sky: what is missing is contrast (a darker background behind the
-  // film, or brighter things to reflect), see docs/rendering.md. Run it with --gtest_also_run_disabled_tests.
+  // DISABLED: it measures 0.060 (the film on 20% of the image; 0.034 from the level camera framing the bounding
+  // sphere before). A film's colour on the picture is the spread of its reflectance over the spectrum times (what
+  // it reflects - what is behind it): here the sky against the sunlit ground, about as bright as the sky near the
+  // horizon. Measured on this frame: a camera looking further down (pitch 0.45, the ground behind the film) 0.078,
+  // and with the film's thickness scaled there (0.8-1.4 um now) x0.7 0.092, x0.5 0.095, x0.3 0.081 (first-order
+  // films are greyer). No thickness the model could reach gives 0.1 from these cameras in this sky: what is
+  // missing is contrast (a darker background behind the film, brighter things to reflect), see docs/rendering.md.
+  // Run it with --gtest_also_run_disabled_tests.
   GB_REQUIRE_VULKAN(device);
   const DefaultPerformanceFrames& frames = defaultPerformanceFrames();
   RenderOptions o = smallImage();

@@ -169,6 +169,9 @@ RenderFrame renderFrameOf(Simulation& sim, const WandState&, const WireFrame& wi
 RunRenderer::RunRenderer(const RenderOutputOptions& options, const std::filesystem::path& outDir, Simulation& sim,
                          const std::string& device)
     : options_(options), outDir_(outDir) {
+  FilmFraming::Options framing;
+  framing.aspect = static_cast<float>(options.image.width) / static_cast<float>(options.image.height);
+  framing_ = FilmFraming(framing);
   std::shared_ptr<const VulkanContext> context;
   if (auto* vulkan = dynamic_cast<VulkanStepper*>(&sim.stepper())) {
     context = vulkan->sharedContext();

@@ -95,6 +95,40 @@ Eigen::Matrix4f OrbitCamera::viewProjection(float aspect) const {
   return proj * view;
 }
 
+float FilmFraming::framingDistance(const OrbitCamera& base, const State& s, const Vec3& centre) const {
+  OrbitCamera probe = base;
+  probe.target = centre;
+  probe.distance = 1.0f;
+  const Vec3 back = probe.position() - centre;                      // unit, towards the camera
+  const Vec3 right(std::cos(base.yaw), 0.0f, -std::sin(base.yaw));  // up x back, normalised, from the yaw alone
+  const Vec3 up = back.cross(right);
+  // The outline's extent on the image at distance d, as fractions of the image's height and width: each particle
+  // at (x, y) across and z towards the camera from the centre is seen at tan = x / (d - z).
+  const float tanHalfY = std::tan(0.5f * base.fovY), tanHalfX = options_.aspect * tanHalfY;
+  float nearest = 0.0f;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.alive[i]) nearest = std::max(nearest, (s.position.get(i) - centre).dot(back));
+  const auto tooLarge = [&](float d) {
+    float loX = 0, hiX = 0, loY = 0, hiY = 0;
+    for (size_t i = 0; i < s.size(); ++i) {
+      if (!s.alive[i]) continue;
+      const Vec3 p = s.position.get(i) - centre;
+      const float depth = d - p.dot(back);
+      loX = std::min(loX, p.dot(right) / depth);
+      hiX = std::max(hiX, p.dot(right) / depth);
+      loY = std::min(loY, p.dot(up) / depth);
+      hiY = std::max(hiY, p.dot(up) / depth);
+    }
+    return (hiY - loY) / (2.0f * tanHalfY) > options_.heightFraction ||
+           (hiX - loX) / (2.0f * tanHalfX) > options_.widthFraction;
+  };
+  // The extent shrinks as the camera backs away: bisect between just beyond the nearest particle and far enough.
+  float lo = nearest + 0.05f, hi = std::max(2.0f * lo, options_.minDistance);
+  while (tooLarge(hi) && hi < 1e4f) hi *= 2.0f;
+  for (int k = 0; k < 30; ++k) (tooLarge(0.5f * (lo + hi)) ? lo : hi) = 0.5f * (lo + hi);
+  return std::max(options_.minDistance, hi);
+}
+
 OrbitCamera FilmFraming::update(const OrbitCamera& base, const State& s, float dt) {
   Vec3 lo = Vec3::Constant(std::numeric_limits<float>::max()), hi = -lo;
   for (size_t i = 0; i < s.size(); ++i)
@@ -111,13 +145,16 @@ OrbitCamera FilmFraming::update(const OrbitCamera& base, const State& s, float d
     return camera;
   }
   const Vec3 centre = 0.5f * (lo + hi);
-  float radius = 0.0f;
-  for (size_t i = 0; i < s.size(); ++i)
-    if (s.alive[i]) radius = std::max(radius, (s.position.get(i) - centre).norm());
-  // The sphere's angular radius is heightFraction times half the vertical field of view.
-  const float distance = std::max(options_.minDistance, radius / std::sin(0.5f * options_.heightFraction * base.fovY));
+  const float distance = framingDistance(base, s, centre);
   const float follow = started_ ? 1.0f - std::exp(-std::max(dt, 0.0f) / options_.easing) : 1.0f;
-  target_ += follow * (centre - target_);
+  if (started_ && dt > 0.0f) {
+    Vec3 drift = (centre - lastCentre_) / dt;
+    if (drift.norm() > options_.maxDrift) drift *= options_.maxDrift / drift.norm();
+    velocity_ += follow * (drift - velocity_);
+  }
+  lastCentre_ = centre;
+  // Leading the centre by velocity x easing cancels the first-order follower's lag at a steady drift.
+  target_ += follow * (centre + options_.easing * velocity_ - target_);
   distance_ += follow * (distance - distance_);
   started_ = true;
   camera.target = target_;

@@ -324,53 +324,128 @@ double saturation(const uint8_t* p) {
   return hi > 0 ? static_cast<double>(hi - lo) / hi : 0.0;
 }
 
-TEST(Renderer, DISABLED_DefaultPerformancesFilmIsColourfulMidStroke) {
-  // The issue's "mean saturation of the film's pixels > 0.1 mid-stroke": the default performance (scenes/
-  // default.toml) simulated to the middle of its stroke (1.6 s: 0.5 s rest, then the bag drawn out, just
-  // before the wands close; 1500 particles to keep the test short), drawn from the default camera framing it,
-  // in the default sky with its colour removed so that only interference can colour a pixel. The film's pixels
-  // are those the film changes (by more than 2 levels in a channel) against the same frame without it.
-  //
-  // DISABLED: the bag now inflates (issue 13 parts 1-2) but is still too thick to colour: at 1.6 s the film is
-  // 0.8-1.4 um (1st percentile, median) and this measures 0.014, with the film on 3% of the image (the follow
-  // camera looks along the stroke, at the bag end-on). Colour needs most of the film below about 0.6 um. Run it
-  // with --gtest_also_run_disabled_tests.
-  GB_REQUIRE_VULKAN(device);
-  const Scene scene = resolveScene("default");
-  Params params = scene.run.params;
-  params.particlesAtFullSolution = 1500;
-  const GestureOptions& stroke = scene.run.gestureOptions;
-  Simulation sim(params, WandTool{}, gestureAt(Gesture::Giant, stroke, 0.0));
-  for (int f = 1; f <= 80; ++f)
-    sim.advanceFrame(gestureAt(Gesture::Giant, stroke, static_cast<double>(f) * params.frameTime));
-  RenderOptions o = smallImage();
-  o.thicknessVariation = RenderOptions{}.thicknessVariation;  // the default look, swirls and all
-  Renderer renderer(device, o, neutralSky());
-  FilmFraming framing;
+// The default performance (scenes/default.toml) as the README's main job runs it, at its full 9,500 particles
+// (coarser films of the same stroke burst before the wands close: 1,500 particles at 1.6 s, 5,000 at 1.9 s), with
+// the run's follow camera (FilmFraming, eased every frame as `giantbubble run --render` does, at the test image's
+// aspect). Simulated once for the tests that look at it (about 10 s on two cores): the film and camera mid-stroke
+// (1.6 s: 0.5 s rest, then the bag drawn out, the wands starting to close) and at the film's peak area (the bag
+// just closed into the free bubble).
+struct DefaultPerformanceFrames {
+  Film midStroke, atPeak;
+  OrbitCamera midStrokeCamera, peakCamera;
+  double peakArea = 0, peakTime = 0;
+};
+
+const DefaultPerformanceFrames& defaultPerformanceFrames() {
+  static const DefaultPerformanceFrames frames = [] {
+    DefaultPerformanceFrames r;
+    const Scene scene = resolveScene("default");
+    const Params& params = scene.run.params;
+    const GestureOptions& stroke = scene.run.gestureOptions;
+    Simulation sim(params, WandTool{}, gestureAt(Gesture::Giant, stroke, 0.0));
+    FilmFraming::Options framingOptions;
+    framingOptions.aspect = static_cast<float>(kWidth) / kHeight;
+    FilmFraming framing(framingOptions);
+    framing.update(OrbitCamera{}, sim.film().state, params.frameTime);
+    for (int f = 1; f <= 125; ++f) {  // to 2.5 s: the free bubble has rounded up, the area is past its peak
+      sim.advanceFrame(gestureAt(Gesture::Giant, stroke, static_cast<double>(f) * params.frameTime));
+      const OrbitCamera camera = framing.update(OrbitCamera{}, sim.film().state, params.frameTime);
+      if (f == 80) {
+        r.midStroke = sim.film();
+        r.midStrokeCamera = camera;
+      }
+      if (sim.stats().area > r.peakArea) {
+        r.peakArea = sim.stats().area;
+        r.peakTime = sim.stats().time;
+        r.atPeak = sim.film();
+        r.peakCamera = camera;
+      }
+    }
+    return r;
+  }();
+  return frames;
+}
+
+// A frame drawn with the film and again without it (the props, ground and environment alone), to tell the film's
+// pixels from the rest.
+struct WithAndWithoutFilm {
+  std::vector<uint8_t> with, without;
+  // Largest change of any channel the film makes to pixel p (8-bit levels).
+  [[nodiscard]] int change(size_t p) const {
+    int largest = 0;
+    for (size_t c = 0; c < 3; ++c)
+      largest = std::max(largest, std::abs(int(with[3 * p + c]) - int(without[3 * p + c])));
+    return largest;
+  }
+};
+
+WithAndWithoutFilm drawWithAndWithoutFilm(Renderer& renderer, const Film& film, const OrbitCamera& camera) {
   RenderFrame frame;
-  frame.film = &sim.film();
-  frame.camera = framing.update(OrbitCamera{}, sim.film().state, 0.0f);
+  frame.film = &film;
+  frame.camera = camera;
+  WithAndWithoutFilm r;
   renderer.render(frame);
-  const std::vector<uint8_t> withFilm = renderer.readPixels();
-  Film none = sim.film();
+  r.with = renderer.readPixels();
+  Film none = film;
   none.topology.triangles.clear();
   frame.film = &none;
   renderer.render(frame);
-  const std::vector<uint8_t> without = renderer.readPixels();
-  writePng("render_mid_stroke.png", kWidth, kHeight, withFilm);
+  r.without = renderer.readPixels();
+  return r;
+}
+
+TEST(Renderer, DefaultCameraFramesTheGiantBubbleLarge) {
+  // The issue's "the film covers >= 15% of the image at peak from the default camera", at the frame of the
+  // default performance's peak film area. Covered: a pixel the film changes by more than 8 levels when drawn in
+  // the thickness colouring (mostly opaque sheets, alpha 0.75). The interference colouring cannot measure
+  // coverage: a clear film over a background about as bright as what it reflects changes a pixel by a level or
+  // two. Measured when written: 20.0% (a round bubble whose outline spans 0.55 of this 3:2 image's height covers
+  // 16%; the level camera framing the bounding sphere before it: 9.7%).
+  GB_REQUIRE_VULKAN(device);
+  const DefaultPerformanceFrames& frames = defaultPerformanceFrames();
+  Renderer renderer(device, smallImage(Colouring::Thickness), neutralSky());
+  const WithAndWithoutFilm drawn = drawWithAndWithoutFilm(renderer, frames.atPeak, frames.peakCamera);
+  writePng("render_coverage.png", kWidth, kHeight, drawn.with);
+  size_t covered = 0;
+  for (size_t p = 0; p < drawn.with.size() / 3; ++p) covered += drawn.change(p) > 8 ? 1 : 0;
+  const double coverage = static_cast<double>(covered) / (kWidth * kHeight);
+  std::printf("peak area %.2f m^2 at %.2f s: the film covers %.1f%% of the image\n", frames.peakArea, frames.peakTime,
+              100.0 * coverage);
+  EXPECT_GE(coverage, 0.15);
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
+TEST(Renderer, DISABLED_DefaultPerformancesFilmIsColourfulMidStroke) {
+  // The issue's "mean saturation of the film's pixels > 0.1 mid-stroke": the default performance mid-stroke,
+  // drawn from the default camera framing it, in the default sky with its colour removed so that only
+  // interference can colour a pixel. The film's pixels are those the film changes (by more than 2 levels in a
+  // channel) against the same frame without it.
+  //
+  // DISABLED: it measures 0.060 (the film on 20% of the image; 0.034 from the level camera framing the bounding
+  // sphere before). A film's colour on the picture is the spread of its reflectance over the spectrum times (what
+  // it reflects - what is behind it): here the sky against the sunlit ground, about as bright as the sky near the
+  // horizon. Measured on this frame: a camera looking further down (pitch 0.45, the ground behind the film) 0.078,
+  // and with the film's thickness scaled there (0.8-1.4 um now) x0.7 0.092, x0.5 0.095, x0.3 0.081 (first-order
+  // films are greyer). No thickness the model could reach gives 0.1 from these cameras in this sky: what is
+  // missing is contrast (a darker background behind the film, brighter things to reflect), see docs/rendering.md.
+  // Run it with --gtest_also_run_disabled_tests.
+  GB_REQUIRE_VULKAN(device);
+  const DefaultPerformanceFrames& frames = defaultPerformanceFrames();
+  RenderOptions o = smallImage();
+  o.thicknessVariation = RenderOptions{}.thicknessVariation;  // the default look, swirls and all
+  Renderer renderer(device, o, neutralSky());
+  const WithAndWithoutFilm drawn = drawWithAndWithoutFilm(renderer, frames.midStroke, frames.midStrokeCamera);
+  writePng("render_mid_stroke.png", kWidth, kHeight, drawn.with);
   double sum = 0;
   size_t pixels = 0;
-  for (size_t p = 0; p < withFilm.size(); p += 3) {
-    int change = 0;
-    for (size_t c = 0; c < 3; ++c) change = std::max(change, std::abs(int(withFilm[p + c]) - int(without[p + c])));
-    if (change <= 2) continue;
-    sum += saturation(&withFilm[p]);
+  for (size_t p = 0; p < drawn.with.size() / 3; ++p) {
+    if (drawn.change(p) <= 2) continue;
+    sum += saturation(&drawn.with[3 * p]);
     ++pixels;
   }
   const double meanSaturation = pixels ? sum / static_cast<double>(pixels) : 0.0;
   std::printf("mid-stroke: %zu film pixels (%.0f%% of the image), mean saturation %.3f\n", pixels,
               100.0 * static_cast<double>(pixels) / (kWidth * kHeight), meanSaturation);
-  EXPECT_GT(pixels, static_cast<size_t>(kWidth * kHeight / 20)) << "the framed film covers a good part of the image";
   EXPECT_GT(meanSaturation, 0.1);
   EXPECT_EQ(device->validationErrors(), 0u);
 }

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# A contact sheet of a rendered run: frames of its video at given times, each labelled with its time, tiled four
+# across into one PNG (ffmpeg only). The sheet in docs/images is the README's main job:
+#   (cd /tmp && giantbubble run) && bash scripts/contact-sheet.sh /tmp/out/render.mp4 docs/images/main_job_contact_sheet.png
+# Usage: contact-sheet.sh VIDEO OUT.png [TIME ...]   (seconds; default: 12 times through the main job's 7 s)
+set -euo pipefail
+
+if [[ $# -lt 2 ]]; then
+  echo "usage: $0 VIDEO OUT.png [TIME ...]" >&2
+  exit 2
+fi
+video=$1
+out=$2
+shift 2
+times=("$@")
+if [[ ${#times[@]} -eq 0 ]]; then
+  # The main job: the dip at rest, the bag drawn out, the wands closing, the pinch-off (1.86 s), the free bubble
+  # flying, sinking, touching the floor (6.16 s) and bursting.
+  times=(0.4 1.0 1.4 1.7 1.9 2.3 3.0 4.0 5.0 5.9 6.2 6.3)
+fi
+command -v ffmpeg >/dev/null || { echo "$0: ffmpeg is not installed (apt-get install ffmpeg)" >&2; exit 1; }
+[[ -f $video ]] || { echo "$0: no video at $video" >&2; exit 1; }
+
+columns=4
+rows=$(((${#times[@]} + columns - 1) / columns))
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+font=$(fc-match -f '%{file}' DejaVuSans 2>/dev/null || true)
+k=0
+for t in "${times[@]}"; do
+  # One frame at time t, scaled to 480 wide, its time written in its corner (when fontconfig finds a font;
+  # without one the frames go unlabelled).
+  label=""
+  [[ -n $font ]] && label=",drawtext=fontfile=${font}:text='${t} s':x=8:y=8:fontsize=22:fontcolor=white:box=1:boxcolor=black@0.5:boxborderw=4"
+  ffmpeg -loglevel error -y -ss "$t" -i "$video" -frames:v 1 -vf "scale=480:-2${label}" "$work/$(printf '%02d' "$k").png"
+  k=$((k + 1))
+done
+ffmpeg -loglevel error -y -framerate 1 -i "$work/%02d.png" -vf "tile=${columns}x${rows}:padding=4:color=white" \
+  -frames:v 1 "$out"
+echo "contact sheet: $out (${#times[@]} frames of $video)"

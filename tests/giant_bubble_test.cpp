@@ -80,8 +80,13 @@ TEST(GiantBubble, DefaultPerformanceBlowsReleasesAndBurstsABubble) {
 }
 
 // A built-in scene driven by its own scripted gesture, at `particles` per full-solution film (fewer than the
-// scene's, so the test stays short); returns its peak volume over the scene's whole duration.
-double scenePeakVolume(const std::string& name, int particles) {
+// scene's, so the test stays short), until the scene ends or its film has burst away.
+struct SceneRecord {
+  double peakVolume = 0;
+  size_t grownParticles = 0;  // film drawn off the wire
+};
+
+SceneRecord performScene(const std::string& name, int particles) {
   const Scene scene = resolveScene(name);
   RunOptions run = scene.run;
   run.params.particlesAtFullSolution = particles;
@@ -89,23 +94,34 @@ double scenePeakVolume(const std::string& name, int particles) {
   EXPECT_EQ(spec.rfind("script:", 0), 0u) << name << " is driven by " << spec;
   const Gesture gesture = gestureFromName(spec.substr(spec.find(':') + 1));
   Simulation sim(run.params, run.tool, gestureAt(gesture, run.gestureOptions, 0.0));
-  double peak = 0;
+  SceneRecord r;
   const long frames = std::lround(run.duration / run.params.frameTime);
-  for (long f = 1; f <= frames; ++f) {
+  for (long f = 1; f <= frames && sim.burst().finished < 0; ++f) {
     sim.advanceFrame(gestureAt(gesture, run.gestureOptions, static_cast<double>(f) * run.params.frameTime));
-    peak = std::max(peak, sim.stats().volume);
+    r.peakVolume = std::max(r.peakVolume, sim.stats().volume);
+    r.grownParticles += sim.lastEvents().particlesAdded;
   }
-  return peak;
+  return r;
 }
 
 // Figure 10e: "when the left and right wands move up and down, the soap bubble is inflated further" than the
 // straight stroke of Figure 10a. Both scenes at the same 3,000 particles (fig10e runs 16,000, fig10a 9,500).
 TEST(GiantBubble, Fig10eInflatesFurtherThanFig10a) {
-  const double straight = scenePeakVolume("fig10a", 3000), upDown = scenePeakVolume("fig10e", 3000);
+  const double straight = performScene("fig10a", 3000).peakVolume, upDown = performScene("fig10e", 3000).peakVolume;
   std::printf("peak volume: fig10a %.3f m^3, fig10e %.3f m^3\n", straight, upDown);
   // Measured when written: 0.20 and 0.46 m^3 (at the scenes' own resolutions 0.18 and 0.52; at fig10a's speed,
   // 0.8 m/s, fig10e still drew 0.34). "Further" is asked to be clear, not a rounding: at least 1.5 times.
   EXPECT_GE(upDown, 1.5 * straight);
+}
+
+// Figure 14d: a single ring raised from bottom to top draws a bubble out of its wet wire. The bound,
+// 0.2 m^3 (a sphere of 0.36 m radius, about the ring's own), at 3,000 particles (the scene's 9,500 drew 0.24 m^3,
+// 3,000-5,000 drew 0.25-0.27).
+TEST(GiantBubble, Fig14dsRingDrawsABubble) {
+  const SceneRecord r = performScene("fig14d", 3000);
+  std::printf("fig14d: peak volume %.3f m^3, %zu particles drawn off the ring\n", r.peakVolume, r.grownParticles);
+  EXPECT_GE(r.peakVolume, 0.2);
+  EXPECT_GT(r.grownParticles, 0u) << "the ring's wire drew no new film";
 }
 
 double filmLiquid(const Film& film) {

@@ -13,6 +13,7 @@
 #include "scene_file.h"
 #include "scripted_gestures.h"
 #include "simulation.h"
+#include "stages.h"
 
 namespace gb {
 namespace {
@@ -112,6 +113,26 @@ TEST(GiantBubble, Fig10eInflatesFurtherThanFig10a) {
   // Measured when written: 0.20 and 0.46 m^3 (at the scenes' own resolutions 0.18 and 0.52; at fig10a's speed,
   // 0.8 m/s, fig10e still drew 0.34). "Further" is asked to be clear, not a rounding: at least 1.5 times.
   EXPECT_GE(upDown, 1.5 * straight);
+}
+
+// Eq. (5) for the ring: its one hand moves the whole frame, so it blows as two wands held together at the hand
+// would: twice the one source's V_wm v / (d + D), along -v.
+TEST(GiantBubble, TheRingBlowsAsTwoWandsHeldTogetherAtItsHand) {
+  Params p;
+  p.particlesAtFullSolution = 300;
+  WandTool ring;
+  ring.kind = ToolKind::Ring;
+  WandState w;
+  w.rightPosition = Vec3(0.0f, 1.2f, 0.0f);
+  w.rightVelocity = Vec3(0.0f, 0.3f, 1.5f);
+  w.leftPosition = Vec3(-3.0f, 0.0f, 0.0f);  // the free hand is elsewhere, and still: it plays no part
+  const Simulation sim(p, ring, w);
+  const StepUniforms u = sim.uniformsFor(w, w, p.frameTime);
+  const Vec3 x(0.2f, 1.0f, -0.3f);
+  const float d = (x - w.rightPosition).norm();
+  const Vec3 expected = -2.0f * u.airVolume * w.rightVelocity / (d + p.airInflowDistance);
+  // Float rounding of a few products: 1e-5 relative.
+  EXPECT_LT((airInflow(p, u, x) - expected).norm(), 1e-5f * expected.norm());
 }
 
 // Figure 14d: a single ring raised from bottom to top draws a bubble out of its wet wire. The bound,

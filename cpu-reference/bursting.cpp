@@ -103,6 +103,7 @@ void emitDroplets(const Params& p, Film& film, BurstFront& front, Aerosol& aeros
     if (v.norm() > rim) v *= rim / v.norm();
     aerosol.add(d.moment / d.mass, v, d.mass);
     ++events.dropletsEmitted;
+    events.dropletMassEmitted += d.mass;
   }
   front.torn = std::move(stillTorn);
 }

@@ -51,8 +51,9 @@ struct TopologyEvents {
   size_t particlesRemoved = 0;
   size_t trianglesRemoved = 0;  // left the physics mesh
   size_t dropletsEmitted = 0;
-  bool pinchedOff = false;    // the film closed into a free bubble this frame (pinch_off.h)
-  size_t particlesAdded = 0;  // new film drawn off the wire this frame (film_growth.h)
+  double dropletMassEmitted = 0.0;  // kg those droplets carry: the aerosol fades, this keeps the film's account
+  bool pinchedOff = false;          // the film closed into a free bubble this frame (pinch_off.h)
+  size_t particlesAdded = 0;        // new film drawn off the wire this frame (film_growth.h)
 };
 
 // Taylor-Culick speed of a hole's rim in a film of thickness e: sqrt(2 gamma / (rho e)) (m/s).

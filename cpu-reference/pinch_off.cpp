@@ -161,6 +161,29 @@ std::vector<uint32_t> ringCap(const State& s, const std::vector<uint32_t>& loop,
   return capTriangles;
 }
 
+// The cap's liquid is not made from nothing: the wet wire lets go of the film with the solution it still holds, so
+// the cap takes a new film's thickness from it, and where the wire runs short, from the loop's own particles (the
+// film's edge, which the cap continues), at most half of what each holds. A cap that still lacks liquid is thinner.
+void takeCapLiquid(const Params& params, const std::vector<uint32_t>& loop, size_t first, Film& film) {
+  State& s = film.state;
+  double wanted = 0;  // initialiseNewParticles gave the cap a new film's thickness over its area
+  for (size_t i = first; i < s.size(); ++i) wanted += s.liquid[i];
+  if (wanted <= 0) return;  // a zipped seam: no new particle
+  const double fromWire = std::min(wanted, static_cast<double>(film.wireLiquid));
+  double edgeLiquid = 0;
+  for (uint32_t i : loop) edgeLiquid += s.liquid[i];
+  const double fromEdge = std::min(wanted - fromWire, 0.5 * edgeLiquid);
+  film.wireLiquid = static_cast<float>(std::max(0.0, film.wireLiquid - fromWire));
+  auto scaleLiquid = [&](size_t i, double factor) {
+    s.liquid[i] = static_cast<float>(s.liquid[i] * factor);
+    s.mass[i] = particleMass(params, s.voronoiArea[i], s.liquid[i]);  // the physical model weighs the liquid
+    updateFilmState(params, 0.0f, s, i);
+  };
+  if (edgeLiquid > 0)
+    for (uint32_t i : loop) scaleLiquid(i, 1.0 - fromEdge / edgeLiquid);
+  for (size_t i = first; i < s.size(); ++i) scaleLiquid(i, (fromWire + fromEdge) / wanted);
+}
+
 }  // namespace
 
 void orientAgainstLoop(const std::vector<uint32_t>& loop, std::vector<uint32_t>& seam) {
@@ -208,6 +231,7 @@ bool pinchOff(const Params& params, Film& film) {
   result.state = std::move(grown);
   result.topology = std::move(*closed);
   initialiseNewParticles(params, result, first);
+  takeCapLiquid(params, loop, first, result);
   // Outward normals: a closed film encloses a positive volume.
   result.volumeOrigin = centroid(result.state);
   double volume = signedVolume(result, result.volumeOrigin);

@@ -64,9 +64,15 @@ StepUniforms Simulation::uniformsFor(const WandState& a, const WandState& b, flo
   StepUniforms u;
   u.dt = dt;
   u.wands = a;
-  const bool ring = film_.tool.kind == ToolKind::Ring;
-  u.leftInflowWeight = ring ? 0.0f : 1.0f;
-  u.wandAlignment = ring ? 1.0f : wandAlignment(a);
+  // Eq. (5) has a source at each end of the frame. The ring's one hand moves its whole frame, both ends at once:
+  // it blows as two wands held together there would (the air a frame pushes is set by the frame's motion, not by
+  // how many hands hold it), both sources at the hand, aligned.
+  if (film_.tool.kind == ToolKind::Ring) {
+    u.wands.leftPosition = a.rightPosition;
+    u.wands.leftVelocity = a.rightVelocity;
+  }
+  u.leftInflowWeight = 1.0f;
+  u.wandAlignment = wandAlignment(u.wands);
   const WireFrame frameNow = makeWireFrame(film_.tool, a, film_.stringLength, gravityOf(params_));
   u.frameArea = frameNow.area();
   u.airVolume = frameNow.height() * u.frameArea;  // Eq. (6)

@@ -16,7 +16,7 @@ namespace gb {
 struct StepUniforms {
   float dt = 0.0f;                   // substep length (s)
   WandState wands;                   // wand tips at the start of the step, the air sources of Eq. (5)
-  float leftInflowWeight = 1.0f;     // 0 for the single ring wand, whose only source is the right hand
+  float leftInflowWeight = 1.0f;     // weight of the left source of Eq. (5); the ring's frame has both at its hand
   float airVolume = 0.0f;            // V_wm = H_wire * Area_wm, Eq. (6) (m^3)
   float frameArea = 0.0f;            // Area_wm (m^2): the air flow over it is the air's speed (airCoupling)
   float wandAlignment = 0.0f;        // MAX(cos(theta), 0) of Eq. (5)

@@ -1,14 +1,19 @@
 // The default performance (scenes/default.toml), simulated as the README's main job runs it: a giant bubble is
-// drawn, let go, flies free and bursts (issue 13, parts 1-2). Each bound is the issue's own.
+// drawn, let go, flies free and bursts (issue 13, parts 1-2); the paper's Figures 10e against 10a and 14d as
+// built-in scenes; the film's liquid accounted for through growth, pinch-off and burst. Each bound is the issue's
+// own unless its comment says why it is tighter.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
+#include "film_growth.h"
 #include "scene_file.h"
 #include "scripted_gestures.h"
 #include "simulation.h"
+#include "stages.h"
 
 namespace gb {
 namespace {
@@ -73,6 +78,120 @@ TEST(GiantBubble, DefaultPerformanceBlowsReleasesAndBurstsABubble) {
   // closure (the bubble wobbles and the film's springs squeeze it slightly; the Boyle test of a bubble at
   // rest holds 2%).
   EXPECT_NEAR(r.volumeOneSecondLater, r.volumeAtPinch, 0.05 * r.volumeAtPinch);
+}
+
+// A built-in scene driven by its own scripted gesture, at `particles` per full-solution film (fewer than the
+// scene's, so the test stays short), until the scene ends or its film has burst away.
+struct SceneRecord {
+  double peakVolume = 0;
+  size_t grownParticles = 0;  // film drawn off the wire
+};
+
+SceneRecord performScene(const std::string& name, int particles) {
+  const Scene scene = resolveScene(name);
+  RunOptions run = scene.run;
+  run.params.particlesAtFullSolution = particles;
+  const std::string spec = run.input.spec();
+  EXPECT_EQ(spec.rfind("script:", 0), 0u) << name << " is driven by " << spec;
+  const Gesture gesture = gestureFromName(spec.substr(spec.find(':') + 1));
+  Simulation sim(run.params, run.tool, gestureAt(gesture, run.gestureOptions, 0.0));
+  SceneRecord r;
+  const long frames = std::lround(run.duration / run.params.frameTime);
+  for (long f = 1; f <= frames && sim.burst().finished < 0; ++f) {
+    sim.advanceFrame(gestureAt(gesture, run.gestureOptions, static_cast<double>(f) * run.params.frameTime));
+    r.peakVolume = std::max(r.peakVolume, sim.stats().volume);
+    r.grownParticles += sim.lastEvents().particlesAdded;
+  }
+  return r;
+}
+
+// Figure 10e: "when the left and right wands move up and down, the soap bubble is inflated further" than the
+// straight stroke of Figure 10a. Both scenes at the same 3,000 particles (fig10e runs 16,000, fig10a 9,500).
+TEST(GiantBubble, Fig10eInflatesFurtherThanFig10a) {
+  const double straight = performScene("fig10a", 3000).peakVolume, upDown = performScene("fig10e", 3000).peakVolume;
+  std::printf("peak volume: fig10a %.3f m^3, fig10e %.3f m^3\n", straight, upDown);
+  // Measured when written: 0.20 and 0.46 m^3 (at the scenes' own resolutions 0.18 and 0.52; at fig10a's speed,
+  // 0.8 m/s, fig10e still drew 0.34). "Further" is asked to be clear, not a rounding: at least 1.5 times.
+  EXPECT_GE(upDown, 1.5 * straight);
+}
+
+// Eq. (5) for the ring: its one hand moves the whole frame, so it blows as two wands held together at the hand
+// would: twice the one source's V_wm v / (d + D), along -v.
+TEST(GiantBubble, TheRingBlowsAsTwoWandsHeldTogetherAtItsHand) {
+  Params p;
+  p.particlesAtFullSolution = 300;
+  WandTool ring;
+  ring.kind = ToolKind::Ring;
+  WandState w;
+  w.rightPosition = Vec3(0.0f, 1.2f, 0.0f);
+  w.rightVelocity = Vec3(0.0f, 0.3f, 1.5f);
+  w.leftPosition = Vec3(-3.0f, 0.0f, 0.0f);  // the free hand is elsewhere, and still: it plays no part
+  const Simulation sim(p, ring, w);
+  const StepUniforms u = sim.uniformsFor(w, w, p.frameTime);
+  const Vec3 x(0.2f, 1.0f, -0.3f);
+  const float d = (x - w.rightPosition).norm();
+  const Vec3 expected = -2.0f * u.airVolume * w.rightVelocity / (d + p.airInflowDistance);
+  // Float rounding of a few products: 1e-5 relative.
+  EXPECT_LT((airInflow(p, u, x) - expected).norm(), 1e-5f * expected.norm());
+}
+
+// Figure 14d: a single ring raised from bottom to top draws a bubble out of its wet wire. The issue's bound,
+// 0.2 m^3 (a sphere of 0.36 m radius, about the ring's own), at 3,000 particles (the scene's 9,500 drew 0.24 m^3,
+// 3,000-5,000 drew 0.25-0.27).
+TEST(GiantBubble, Fig14dsRingDrawsABubble) {
+  const SceneRecord r = performScene("fig14d", 3000);
+  std::printf("fig14d: peak volume %.3f m^3, %zu particles drawn off the ring\n", r.peakVolume, r.grownParticles);
+  EXPECT_GE(r.peakVolume, 0.2);
+  EXPECT_GT(r.grownParticles, 0u) << "the ring's wire drew no new film";
+}
+
+double filmLiquid(const Film& film) {
+  double sum = 0;
+  for (size_t i = 0; i < film.state.size(); ++i)
+    if (film.state.alive[i]) sum += film.state.liquid[i];
+  return sum;
+}
+
+// The default performance at 7,000 particles (the scene's 9,500 free bubble lives seconds; this one bursts soon
+// after pinch-off, and is poked if it has not within 0.1 s): the film's liquid, the wet wire's (which growth and
+// the pinch-off seam draw on) and the droplets' (emitted so far, whether or not they have landed) always add up
+// to what the dip left on film and wire.
+TEST(GiantBubble, LiquidIsConservedThroughGrowthPinchOffAndBurst) {
+  const Scene scene = resolveScene("default");
+  RunOptions run = scene.run;
+  run.params.particlesAtFullSolution = 7000;
+  const GestureOptions& g = run.gestureOptions;
+  Simulation sim(run.params, run.tool, gestureAt(Gesture::Giant, g, 0.0));
+  const double density = run.params.liquidDensity;
+  const double wire0 = sim.film().wireLiquid, total0 = filmLiquid(sim.film()) + wire0;
+  double emitted = 0, worstDrift = 0, filmBeforeBurst = 0, pinchTime = -1;
+  size_t grownParticles = 0;
+  const long frames = std::lround(run.duration / run.params.frameTime);
+  for (long f = 1; f <= frames; ++f) {
+    const double liquidBefore = filmLiquid(sim.film());
+    sim.advanceFrame(gestureAt(Gesture::Giant, g, static_cast<double>(f) * run.params.frameTime));
+    const TopologyEvents& e = sim.lastEvents();
+    emitted += e.dropletMassEmitted / density;
+    grownParticles += e.particlesAdded;
+    if (e.pinchedOff) pinchTime = sim.time();
+    if (e.started) filmBeforeBurst = liquidBefore;  // nothing grows or pinches in the frame a burst starts
+    // Mid-burst, dead particles whose torn triangles still have a living corner hold liquid not yet shed.
+    if (!sim.burst().active())
+      worstDrift = std::max(worstDrift, std::abs(filmLiquid(sim.film()) + sim.film().wireLiquid + emitted - total0));
+    if (sim.burst().finished >= 0) break;
+    if (pinchTime >= 0 && sim.burst().started < 0 && sim.time() >= pinchTime + 0.1) sim.startBurst(sim.topParticle());
+  }
+  ASSERT_GT(grownParticles, 0u) << "the wire drew no new film";
+  ASSERT_GE(pinchTime, 0.0) << "the bag burst before it pinched off";
+  ASSERT_GE(sim.burst().finished, 0.0) << "the free bubble's burst did not finish";
+  EXPECT_LT(sim.film().wireLiquid, wire0) << "growth took liquid from the wire";
+  std::printf("wire gave %.3g m^3, droplets %.4g m^3 from a film of %.4g m^3, worst drift %.2g of the total\n",
+              wire0 - sim.film().wireLiquid, emitted, filmBeforeBurst, worstDrift / total0);
+  // The issue's bound: the droplets carry the film's liquid within 1%.
+  EXPECT_NEAR(emitted, filmBeforeBurst, 0.01 * filmBeforeBurst);
+  // The account is exact up to float rounding (measured ~5e-8); 1e-4 is about one particle's share of the film,
+  // so a particle whose liquid is lost or made from nothing fails it.
+  EXPECT_LE(worstDrift, 1e-4 * total0);
 }
 
 }  // namespace

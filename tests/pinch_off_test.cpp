@@ -50,6 +50,35 @@ TEST(PinchOff, TheBubbleIsAClosedOrientedSphereWithOutwardNormalsAndPositiveVolu
   EXPECT_FALSE(sim->pinch()) << "a closed film cannot pinch off again";
 }
 
+double liquidOf(const Film& film) {
+  double sum = film.wireLiquid;
+  for (size_t i = 0; i < film.state.size(); ++i) sum += film.state.liquid[i];
+  return sum;
+}
+
+// The wands apart: the loop is open, so it gets a cap of new particles, whose liquid must come from somewhere.
+TEST(PinchOff, TheCapTakesItsLiquidFromTheWireAndThenTheFilmsEdge) {
+  for (const float reserve : {1.0f, 0.0f}) {  // a wet wire, and a dry one: the cap then draws on the edge
+    Params p;
+    p.particlesAtFullSolution = 1500;
+    p.solutionReserve = reserve;
+    GestureOptions g;
+    g.start = 0.0f;
+    Simulation sim(p, WandTool{}, gestureAt(Gesture::Straight, g, 0.0));
+    for (int f = 1; f <= 60; ++f) sim.advanceFrame(gestureAt(Gesture::Straight, g, f * 0.02));
+    const size_t before = sim.film().state.size();
+    const double liquid = liquidOf(sim.film()), wire = sim.film().wireLiquid;
+    ASSERT_TRUE(sim.pinch());
+    ASSERT_GT(sim.film().state.size(), before) << "an open loop is capped with new particles";
+    // Film + wire liquid conserved to float rounding (~1e-7 per addition over ~2000 particles).
+    EXPECT_NEAR(liquidOf(sim.film()), liquid, 1e-5 * liquid) << "reserve " << reserve;
+    if (reserve > 0) {
+      EXPECT_LT(sim.film().wireLiquid, wire) << "the cap's liquid comes from the wet wire";
+    }
+    for (size_t i = before; i < sim.film().state.size(); ++i) EXPECT_GT(sim.film().state.liquid[i], 0.0f);
+  }
+}
+
 TEST(PinchOff, TheFreeBubbleKeepsItsVolumeUnderBoylesPressureAndLeavesTheWands) {
   auto sim = bulgedFilm(1200, 60);
   ASSERT_TRUE(sim->pinch());

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <string>
 
 #include "film_growth.h"
@@ -24,6 +25,7 @@ struct PerformanceRecord {
   std::string burstCause;
   double peakWandSpeed = 0, peakFilmSpeedOutsideBursts = 0;
   double volumeAtPinch = 0, volumeOneSecondLater = 0;
+  double roundnessOneSecondLater = 0;  // area over the area of a sphere of the same volume (1: a sphere)
 };
 
 PerformanceRecord performDefaultScene() {
@@ -46,8 +48,10 @@ PerformanceRecord performDefaultScene() {
       r.pinchTime = st.time;
       r.volumeAtPinch = st.volume;
     }
-    if (r.pinchTime >= 0 && r.volumeOneSecondLater == 0 && st.time >= r.pinchTime + 1.0 && r.burstTime < 0)
+    if (r.pinchTime >= 0 && r.volumeOneSecondLater == 0 && st.time >= r.pinchTime + 1.0 && r.burstTime < 0) {
       r.volumeOneSecondLater = st.volume;
+      r.roundnessOneSecondLater = st.area / std::cbrt(36.0 * std::numbers::pi * st.volume * st.volume);
+    }
     if (e.started && r.burstTime < 0) {
       r.burstTime = st.time;
       r.burstCause = e.cause != nullptr ? e.cause : "";
@@ -63,8 +67,8 @@ PerformanceRecord performDefaultScene() {
 
 TEST(GiantBubble, DefaultPerformanceBlowsReleasesAndBurstsABubble) {
   const PerformanceRecord r = performDefaultScene();
-  // Measured when written: area 0.63 -> 4.2 m^2, volume 0.55 m^3, pinch-off at 1.86 s, burst on the floor at
-  // about 6.5 s, fastest film particle 3.6 m/s against the wands' 1.9 m/s.
+  // Measured when written: area 0.63 -> 3.9 m^2, volume 0.55 m^3, pinch-off at 1.86 s, burst where it thinned at
+  // 5.1 s, fastest film particle 3.5 m/s against the wands' 1.9 m/s.
   EXPECT_GE(r.peakArea, 3.0 * r.firstArea) << "the bag is not giant: peak area " << r.peakArea << " m^2";
   EXPECT_GE(r.peakVolume, 0.5) << "peak volume " << r.peakVolume << " m^3";
   ASSERT_GE(r.pinchTime, 0.0) << "the wands closed but the film never pinched off";
@@ -78,6 +82,10 @@ TEST(GiantBubble, DefaultPerformanceBlowsReleasesAndBurstsABubble) {
   // closure (the bubble wobbles and the film's springs squeeze it slightly; the Boyle test of a bubble at
   // rest holds 2%).
   EXPECT_NEAR(r.volumeOneSecondLater, r.volumeAtPinch, 0.05 * r.volumeAtPinch);
+  // A soap film has no slack: the long bag pulls round around its air (contractSlackSprings). A second after
+  // pinch-off its area is within 25% of a sphere's of the same volume (measured 1.17; 1.37 when the slack film
+  // hung in wrinkles; it still wobbles, and its closing seam is a fold).
+  EXPECT_LT(r.roundnessOneSecondLater, 1.25) << "the free bubble hangs in folds";
 }
 
 // A built-in scene driven by its own scripted gesture, at `particles` per full-solution film (fewer than the

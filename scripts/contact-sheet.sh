@@ -16,7 +16,7 @@ times=("$@")
 if [[ ${#times[@]} -eq 0 ]]; then
   # The main job: the dip at rest, the bag drawn out, the wands closing, the pinch-off (1.86 s), the free bubble
   # flying, sinking, touching the floor (6.16 s) and bursting.
-  times=(0.4 1.0 1.4 1.7 1.9 2.3 3.0 4.0 5.0 5.9 6.2 6.3)
+  times=(0.4 1.0 1.4 1.7 1.9 2.3 3.0 3.8 4.5 5.0 5.1 5.2)
 fi
 command -v ffmpeg >/dev/null || { echo "$0: ffmpeg is not installed (apt-get install ffmpeg)" >&2; exit 1; }
 [[ -f $video ]] || { echo "$0: no video at $video" >&2; exit 1; }

@@ -251,7 +251,11 @@ int runView(ViewOptions o) try {
       inputLost = false;
       wands = input->at(0).wands;
     }
-    const bool autoDip = o.autoDip >= 0 && filmGoneSince >= 0 && t - filmGoneSince >= o.autoDip;
+    // The wands dip again by themselves once they are apart: a film dipped between closed tips would only pinch
+    // off at once into a sliver.
+    const bool wandsApart = run.tool.kind == ToolKind::Ring ||
+                            (wands.rightPosition - wands.leftPosition).norm() > 2.0f * run.params.pinchDistance;
+    const bool autoDip = o.autoDip >= 0 && filmGoneSince >= 0 && t - filmGoneSince >= o.autoDip && wandsApart;
     if (keys.reset || keys.dip || autoDip)
       dipNewFilm(keys.reset ? "reset: new film, performance from its start"
                             : (autoDip ? "auto dip: new film" : "dip: new film"),

@@ -113,15 +113,19 @@ std::vector<uint32_t> zipCollapsedLoop(const State& s, const std::vector<uint32_
 // The cap of an open loop: rings of the loop shrunk towards its centroid, each with fewer points, zipped
 // together ring by ring, and a last particle at the centroid. Its triangles touch the loop only along loop
 // edges, so no cap edge can coincide with an edge of the film. New particles are numbered from `first`
-// and their positions appended to `added`.
-std::vector<uint32_t> ringCap(const State& s, const std::vector<uint32_t>& loop, size_t first,
+// and their positions appended to `added`. The rings are at most as many as keep the cap's particles within
+// `mostParticles` (about loop size x rings / 2): a loop much longer than its film is wide (a film dipped between
+// closed wands: a long string around a sliver) would otherwise get a cap of a hundred thousand particles.
+std::vector<uint32_t> ringCap(const State& s, const std::vector<uint32_t>& loop, size_t first, size_t mostParticles,
                               std::vector<Vec3>& added) {
   Vec3 centre = Vec3::Zero();
   for (uint32_t v : loop) centre += s.position.get(v) / static_cast<float>(loop.size());
   float radius = 0.0f;
   for (uint32_t v : loop) radius = std::max(radius, (s.position.get(v) - centre).norm());
   const float spacing = loopSpacing(s, loop);
-  const int rings = std::max(1, static_cast<int>(std::lround(radius / std::max(spacing, 1e-6f))));
+  const long ringsAtLoopSpacing = std::lround(radius / std::max(spacing, 1e-6f));
+  const long ringsWithinBudget = static_cast<long>(2 * mostParticles / loop.size());
+  const int rings = static_cast<int>(std::max(1L, std::min(ringsAtLoopSpacing, ringsWithinBudget)));
   // Point at fraction t (0..1) around the loop, shrunk by `scale` towards the centre.
   auto around = [&](double t, float scale) {
     const double at = t * static_cast<double>(loop.size());
@@ -224,7 +228,7 @@ bool pinchOff(const Params& params, Film& film) {
     } catch (const std::runtime_error&) {  // a zip diagonal is already an edge of the film: non-manifold
     }
   }
-  if (!closed) closed = close(ringCap(s, loop, first, added));
+  if (!closed) closed = close(ringCap(s, loop, first, s.size(), added));  // a cap no larger than the film
   if (!closed->isClosed()) throw std::logic_error("pinch-off: the capped film still has a boundary");
 
   Film result = std::move(film);

@@ -113,6 +113,24 @@ TEST(PinchOff, ClosingTheWandsPinchesTheFilmOffByItself) {
   EXPECT_EQ(sim->film().state.size(), particlesBefore + sim->lastEvents().particlesAdded);
 }
 
+// A film dipped between wands already closed (the live show's automatic dip after a burst, the performer's hands
+// together) hangs as a sliver inside a long string loop, and pinches off at once. Its cap is bounded by the film's
+// own size: at the loop's spacing it was 105,570 new particles on a 9,500-particle film, and the show ran at one
+// frame every few seconds.
+TEST(PinchOff, AFilmDippedBetweenClosedWandsGetsACapNoLargerThanItself) {
+  Params p;
+  p.particlesAtFullSolution = 9500;
+  WandState closed;
+  closed.leftPosition = Vec3(-0.02f, 2.0f, 2.3f);
+  closed.rightPosition = Vec3(0.02f, 2.0f, 2.3f);
+  Simulation sim(p, WandTool{}, closed);
+  const size_t dipped = sim.film().state.size();
+  sim.advanceFrame(closed);
+  ASSERT_TRUE(sim.lastEvents().pinchedOff);
+  EXPECT_TRUE(sim.film().topology.isClosed());
+  EXPECT_LE(sim.film().state.size(), 2 * dipped) << "the cap added more particles than the film has";
+}
+
 // The wand tips are dry sticks: pulled clear of the bubble they let go of, then poked into it, they burst it
 // (the poke crosses the film within one frame: the tip is found inside).
 TEST(PinchOff, AWandTipPokedIntoTheFreeBubbleBurstsIt) {

@@ -207,8 +207,11 @@ size_t contractSlackSprings(const Params& params, Film& film) {
   // The physical model's tension does not use rest lengths (tensionModel 1).
   if (params.tensionModel != 0) return 0;
   const std::vector<float>& rest = film.topology.restLength;
-  return reshapeSpringsOffTheWire(film, [&](size_t k, uint32_t, uint32_t, float length) -> std::optional<float> {
+  const std::vector<float>& thickness = film.state.thickness;
+  const float dipThickness = initialThickness(params);
+  return reshapeSpringsOffTheWire(film, [&](size_t k, uint32_t a, uint32_t b, float length) -> std::optional<float> {
     if (!(length < rest[k])) return std::nullopt;
+    if (std::max(thickness[a], thickness[b]) >= dipThickness) return std::nullopt;
     return length * (1.0f - params.springPrestrain);
   });
 }

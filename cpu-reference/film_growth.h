@@ -46,7 +46,9 @@ size_t yieldStretchedSprings(const Params& params, Film& film);
 // A soap film cannot be compressed: where it is pushed together it contracts and thickens rather than
 // wrinkling (its surface tension, 2 gamma, never falls to zero). Every spring shorter than its rest length (slack:
 // no tension left) gets the rest length of a new film of its length, as taut as when it was made
-// (Params::springPrestrain). The film's liquid stays with its particles, so a contracted region thickens. Springs
+// (Params::springPrestrain), unless one of its ends is already as thick as the film was dipped (a region that keeps
+// being pushed together would otherwise gather into a lump tens of microns thick while the rest thins). The film's
+// liquid stays with its particles, so a contracted region thickens. Springs
 // held by the wire follow the wire's rule; the physical model has constant tension and no rest lengths. Returns how
 // many springs contracted.
 size_t contractSlackSprings(const Params& params, Film& film);

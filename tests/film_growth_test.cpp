@@ -60,7 +60,7 @@ TEST(FilmGrowth, StretchedRungsPayOutToANewFilmsRestLengthAndOthersStay) {
   EXPECT_EQ(payOutFilmAtWire(p, film), 0u) << "paid-out rungs are no longer stretched";
 }
 
-TEST(FilmGrowth, SlackSpringsContractToANewFilmsTautnessAndTheWireAndTautOnesStay) {
+TEST(FilmGrowth, SlackSpringsContractToANewFilmsTautnessAndTheWireTautAndThickOnesStay) {
   Params p;
   p.particlesAtFullSolution = 1500;
   Film film = generateFilm(p, WandTool{}, gestureAt(Gesture::Straight, GestureOptions{}, 0.0));
@@ -70,6 +70,11 @@ TEST(FilmGrowth, SlackSpringsContractToANewFilmsTautnessAndTheWireAndTautOnesSta
     const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
     topo.restLength[k] = 1.2f * (film.state.position.get(a) - film.state.position.get(b)).norm();
   }
+  // A film at the dip's thickness is as thick as contraction may make it: it does not contract.
+  for (float& e : film.state.thickness) e = initialThickness(p);
+  EXPECT_EQ(contractSlackSprings(p, film), 0u);
+  // Stretched to half that (as a drawn film is), it does.
+  for (float& e : film.state.thickness) e = 0.5f * initialThickness(p);
   const Topology before = topo;
   const size_t contracted = contractSlackSprings(p, film);
   size_t slackInside = 0;

@@ -42,16 +42,21 @@ void RealTimePacer::record(int frames, double simMs, double renderMs) {
   if (frames == 0) return;
   const double wallMs = 1000.0 * options_.frameTime * frames;
   const double spent = simMs + renderMs;
-  if (spent > wallMs && sweeps_ > options_.minSweeps)
+  // The image gives way first: a softer picture costs the show less than a softer film, whose free bubble bursts
+  // sooner with fewer sweeps (docs/model.md). The sweeps go down only once the image is at its floor, and come back
+  // first.
+  const bool imageAtFloor = renderScale_ <= options_.minRenderScale;
+  const bool sweepsAtTop = sweeps_ >= options_.sweeps;
+  if (spent > wallMs && imageAtFloor && sweeps_ > options_.minSweeps)
     --sweeps_;
-  else if (spent < 0.7 * wallMs && sweeps_ < options_.sweeps)
+  else if (spent < 0.7 * wallMs && !sweepsAtTop)
     ++sweeps_;
   constexpr double step = 0.25;
   if (++sinceRescale_ < kRescaleEvery) return;
-  if (spent > wallMs && atFloor() && renderScale_ > options_.minRenderScale) {
+  if (spent > wallMs && !imageAtFloor) {
     renderScale_ = std::max(renderScale_ - step, options_.minRenderScale);
     sinceRescale_ = 0;
-  } else if (spent < 0.5 * wallMs && renderScale_ < 1.0) {
+  } else if (spent < 0.5 * wallMs && sweepsAtTop && renderScale_ < 1.0) {
     renderScale_ = std::min(renderScale_ + step, 1.0);
     sinceRescale_ = 0;
   }

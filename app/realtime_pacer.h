@@ -1,8 +1,8 @@
 #pragma once
 // Keeps a simulation on the wall clock (giantbubble live, run --realtime). Each loop iteration asks how many
 // whole frames of h are due since the last one; when the machine cannot keep up, the solver first takes
-// fewer vertex block descent sweeps (down to a floor), then the image is drawn smaller (down to a floor, and
-// scaled up to the window), and only then does the simulation slip: at most maxCatchUp frames are run per
+// a smaller image (down to a floor, scaled up to the window), then fewer vertex block descent sweeps (down to a
+// floor), and only then does the simulation slip: at most maxCatchUp frames are run per
 // iteration and the rest of the lag is dropped (the bubble never runs in slow motion for long, it skips). Figures for
 // the live window and the run summary: real-time factor (simulated seconds per wall second), simulation and render
 // milliseconds.
@@ -31,17 +31,17 @@ class RealTimePacer {
   void resync(Clock::time_point now = Clock::now());
   // Waits until the next frame is due (run --realtime; the live window waits on the display instead).
   void sleepUntilDue();
-  // One loop iteration's cost: `frames` frames simulated in simMs, and renderMs spent drawing. Adjusts the
-  // sweeps for the next iteration: fewer when simulating and drawing took longer than the frames' wall time,
-  // more again when they take under 70% of it.
+  // One loop iteration's cost: `frames` frames simulated in simMs, and renderMs spent drawing. Adjusts the image
+  // (renderScale) and then the sweeps for the next iteration: fewer sweeps when simulating and drawing took longer
+  // than the frames' wall time and the image is at its floor, more again when they take under 70% of it.
   void record(int frames, double simMs, double renderMs);
 
   [[nodiscard]] int sweeps() const { return sweeps_; }
-  // The fraction of the window's width and height to draw at: lowered a step (0.25) at a time when the sweeps are
-  // at their floor and an iteration still takes longer than its frames, raised when it takes under half; at most
-  // one change per kRescaleEvery iterations, since each costs the renderer new targets and pipelines.
+  // The fraction of the window's width and height to draw at: lowered a step (0.25) at a time while an iteration
+  // takes longer than its frames, raised when it takes under half of them with the sweeps back at their top; at
+  // most one change per kRescaleEvery iterations, since each costs the renderer new targets and pipelines.
   [[nodiscard]] double renderScale() const { return renderScale_; }
-  static constexpr int kRescaleEvery = 25;
+  static constexpr int kRescaleEvery = 10;
   [[nodiscard]] bool atFloor() const { return sweeps_ == options_.minSweeps; }
   [[nodiscard]] long droppedFrames() const { return dropped_; }
   [[nodiscard]] long simulatedFrames() const { return simulated_; }

@@ -16,25 +16,32 @@ TEST(RealTimePacer, FramesDueFollowTheWallClockAndTheLagBeyondTheCatchUpIsDroppe
   EXPECT_EQ(pacer.droppedFrames(), 6);
 }
 
-TEST(RealTimePacer, SweepsGoDownFirstThenTheImageShrinksToItsFloorAndComesBack) {
+TEST(RealTimePacer, TheImageShrinksFirstThenTheSweepsGoDownAndBothComeBack) {
   RealTimePacer pacer({0.02, 10, 3, 4, 0.5});
+  constexpr int every = RealTimePacer::kRescaleEvery;
   // Every iteration simulates 2 frames (40 ms of wall time) and takes 100 ms: over budget.
+  for (int k = 0; k < every; ++k) pacer.record(2, 50.0, 50.0);
+  EXPECT_EQ(pacer.renderScale(), 0.75) << "the image gives way first";
+  EXPECT_EQ(pacer.sweeps(), 10) << "the sweeps are kept while the image can shrink";
+  for (int k = 0; k < every; ++k) pacer.record(2, 50.0, 50.0);
+  EXPECT_EQ(pacer.renderScale(), 0.5);
   for (int k = 0; k < 7; ++k) pacer.record(2, 50.0, 50.0);
-  EXPECT_EQ(pacer.sweeps(), 3) << "one sweep fewer per iteration, down to the floor";
-  EXPECT_EQ(pacer.renderScale(), 1.0) << "the image is kept until the sweeps are at their floor";
-  for (int k = 7; k < RealTimePacer::kRescaleEvery; ++k) pacer.record(2, 50.0, 50.0);
-  EXPECT_EQ(pacer.renderScale(), 0.75);
-  for (int k = 0; k < 3 * RealTimePacer::kRescaleEvery; ++k) pacer.record(2, 50.0, 50.0);
+  EXPECT_EQ(pacer.sweeps(), 3) << "then one sweep fewer per iteration, down to the floor";
+  for (int k = 0; k < 3 * every; ++k) pacer.record(2, 50.0, 50.0);
   EXPECT_EQ(pacer.renderScale(), 0.5) << "never below minRenderScale";
+  EXPECT_EQ(pacer.sweeps(), 3) << "never below minSweeps";
   // Now each iteration takes 10 ms of its 40: the sweeps come back first, then the image, a step at a time.
-  for (int k = 0; k < RealTimePacer::kRescaleEvery; ++k) pacer.record(2, 5.0, 5.0);
+  for (int k = 0; k < 7; ++k) pacer.record(2, 5.0, 5.0);
   EXPECT_EQ(pacer.sweeps(), 10);
+  EXPECT_EQ(pacer.renderScale(), 0.5) << "the image waits for the sweeps";
+  for (int k = 0; k < every; ++k) pacer.record(2, 5.0, 5.0);
   EXPECT_EQ(pacer.renderScale(), 0.75);
-  for (int k = 0; k < RealTimePacer::kRescaleEvery; ++k) pacer.record(2, 5.0, 5.0);
+  for (int k = 0; k < every; ++k) pacer.record(2, 5.0, 5.0);
   EXPECT_EQ(pacer.renderScale(), 1.0);
-  // A fixed image (minRenderScale 1, run --realtime) never shrinks.
+  // A fixed image (minRenderScale 1, run --realtime): the sweeps give way at once.
   RealTimePacer fixed({0.02, 10, 3, 1});
-  for (int k = 0; k < 4 * RealTimePacer::kRescaleEvery; ++k) fixed.record(1, 50.0, 50.0);
+  for (int k = 0; k < 7; ++k) fixed.record(1, 50.0, 50.0);
+  EXPECT_EQ(fixed.sweeps(), 3);
   EXPECT_EQ(fixed.renderScale(), 1.0);
 }
 

@@ -29,7 +29,11 @@ Simulation::Simulation(const Params& params, const WandTool& tool, const WandSta
     : Simulation(params, generateFilm(params, tool, wands), wands, std::move(stepper)) {}
 
 Simulation::Simulation(const Params& params, Film film, const WandState& wands, std::unique_ptr<Stepper> stepper)
-    : params_(params), film_(std::move(film)), stepper_(std::move(stepper)), wands_(wands) {
+    : params_(params),
+      film_(std::move(film)),
+      stepper_(std::move(stepper)),
+      wands_(wands),
+      contactHorizon_(params.frameTime) {
   if (const auto errors = validate(params_); !errors.empty()) throw std::invalid_argument(errors.front());
   if (!stepper_) stepper_ = std::make_unique<CpuStepper>();
   CpuStepper::refreshGeometry(params_, film_);
@@ -87,10 +91,12 @@ void Simulation::setFrameTime(float h) {
   if (!(h > 0.0f && h <= 0.1f))
     throw std::invalid_argument("frame time " + std::to_string(h) + " s is not in (0, 0.1]");
   if (h == params_.frameTime) return;
-  const bool longer = h > params_.frameTime;
   params_.frameTime = h;
   chooseSubsteps();
-  if (longer) updateContacts();
+  if (h > contactHorizon_) {  // from now on contacts reach as far as the longest step: not searched again each time
+    contactHorizon_ = h;      // the live loop alternates short and long steps
+    updateContacts();
+  }
 }
 
 void Simulation::advanceFrame(const WandState& next) {
@@ -180,10 +186,10 @@ void Simulation::growFilm(const WandState& wands, float wandSpeed) {
 }
 
 void Simulation::updateContacts() {
-  // Contacts for the next frame: within reach of what two particles can close in one frame, plus 5 mm for what
-  // the frame's forces add to their start velocities.
+  // Contacts for the next frame: within reach of what two particles can close in the longest step taken so far,
+  // plus 5 mm for what the step's forces add to their start velocities.
   constexpr float slack = 0.005f;
-  findContacts(params_, params_.frameTime, slack, film_);
+  findContacts(params_, contactHorizon_, slack, film_);
   stepper_->updateContacts(film_);
 }
 

@@ -82,7 +82,7 @@ class Simulation {
   // The length of the following frames (s), in (0, 0.1]: the live loop takes steps of two frames' time when the
   // machine falls behind the wall clock. The implicit step is stable at any length (the explicit integrator
   // takes as many more substeps); the film's behaviour changes with it (docs/model.md). Contacts are looked for
-  // again when the step grows, so that they reach as far as the longer step can move the film.
+  // again when the step is the longest yet, and from then on reach as far as it can move the film.
   void setFrameTime(float h);
   // Implicit solver sweeps per step from now on (the live loop lowers them when a frame runs over its
   // budget); 0 returns to Params::solverIterations.
@@ -119,6 +119,7 @@ class Simulation {
   int substeps_ = 1;
   int solverIterations_ = 0;  // 0: Params::solverIterations
   float pressure_ = 0;
+  float contactHorizon_;  // the longest step taken (s): what the contact search must reach across
   long stepCount_ = 0;
 };
 

@@ -6,17 +6,8 @@
 # and follow it again once it is back. Prints what it checks and exits non-zero with the reason otherwise.
 set -u
 source "$(dirname "$0")/live_show_on_fake_kinect.sh"
-EXE=$1
-FAKE=$2
-MAKE_RECORDING=$3
-OUT=$4
-rm -rf "$OUT"
-mkdir -p "$OUT"
-cd "$OUT" || exit 1
 
-"$MAKE_RECORDING" frame 1 >/dev/null || fail "could not write the synthetic depth frame"
-GB_FAKE_KINECT_FRAME=$(ls frame/d-*.pgm)
-export GB_FAKE_KINECT_FRAME
+show_the_kinect_one_frame frame
 export GB_FAKE_KINECT_UNPLUGGED_IF=$OUT/unplugged
 
 start_live_show_on_fake_kinect

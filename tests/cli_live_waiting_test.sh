@@ -7,18 +7,9 @@
 # reason otherwise.
 set -u
 source "$(dirname "$0")/live_show_on_fake_kinect.sh"
-EXE=$1
-FAKE=$2
-MAKE_RECORDING=$3
-OUT=$4
-rm -rf "$OUT"
-mkdir -p "$OUT"
-cd "$OUT" || exit 1
 
-# One depth frame of the empty room: the performer walks in only after 100 s.
-"$MAKE_RECORDING" room 1 --nobody-until 100 >/dev/null || fail "could not write the synthetic depth frame"
-GB_FAKE_KINECT_FRAME=$(ls room/d-*.pgm)
-export GB_FAKE_KINECT_FRAME
+# The empty room: the performer walks in only after 100 s.
+show_the_kinect_one_frame room --nobody-until 100
 
 start_live_show_on_fake_kinect
 

@@ -1,12 +1,29 @@
 # Sourced by the live-window tests that run giantbubble live on the stand-in for the live libfreenect
-# (fake_freenect.cpp) under Xvfb. Needs EXE, FAKE and the environment the stand-in reads (GB_FAKE_KINECT_*); the
-# working directory gets log.txt.
+# (fake_freenect.cpp) under Xvfb, with the arguments EXE FAKE_LIBRARY MAKE_RECORDING OUT: it takes them, and the
+# test then works in a fresh OUT (log.txt, the depth frame).
+EXE=$1
+FAKE=$2
+MAKE_RECORDING=$3
+OUT=$4
+rm -rf "$OUT"
+mkdir -p "$OUT"
+cd "$OUT" || exit 1
 
 fail() {
   echo "FAIL: $*"
   cat log.txt
   [ -n "${group:-}" ] && kill -TERM -- "-$group" 2>/dev/null
   exit 1
+}
+
+# The one depth frame the stand-in Kinect shows for ever: make_synthetic_recording's first frame into NAME, with
+# its further options (e.g. --nobody-until SECONDS).
+show_the_kinect_one_frame() {
+  local name=$1
+  shift
+  "$MAKE_RECORDING" "$name" 1 "$@" >/dev/null || fail "could not write the synthetic depth frame"
+  GB_FAKE_KINECT_FRAME=$(ls "$name"/d-*.pgm)
+  export GB_FAKE_KINECT_FRAME
 }
 
 # Starts the show in its own process group (so that it and Xvfb can be stopped as a whole); sets $group.

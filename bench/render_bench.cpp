@@ -3,23 +3,21 @@
 //
 // BM_Render/upload:   one frame rendered from the CPU state (uploaded every frame, the CPU backend's path).
 // BM_Render/inplace:  one frame rendered from the Vulkan stepper's own buffers (no copy).
-// BM_FrameCpuSimulationAndRender: a whole frame as `giantbubble run --render` does it, minus the file output:
-//                     the CPU simulation's frame (all its stable substeps), then the render with the pixels read
-//                     back. BM_FrameOneSubstepAndRender: the same with one substep per frame, the paper's
-//                     scheme (its 18.1 fps counts one step per frame).
+// BM_FrameSimulationAndRender: a whole frame as `giantbubble run --render` does it, minus the file output.
+// BM_PropsMesh, BM_FilmSwirls: the renderer's CPU work per frame, what bounds it on a real GPU.
 #include <benchmark/benchmark.h>
-
 #include <sys/resource.h>
 
 #include <algorithm>
 #include <cstdio>
 #include <memory>
 
+#include "bench_device.h"
+#include "film_swirls.h"
 #include "render_scene.h"
 #include "renderer.h"
 #include "scripted_gestures.h"
 #include "simulation.h"
-#include "bench_device.h"
 #include "vulkan_context.h"
 #include "vulkan_stepper.h"
 
@@ -30,15 +28,14 @@ constexpr int kParticles = 25650;  // Table 1's largest film
 
 using bench::vulkanDevice;
 
-std::unique_ptr<Simulation> largestScene(std::unique_ptr<Stepper> stepper, float frameTime = 0.02f) {
+std::unique_ptr<Simulation> largestScene(std::unique_ptr<Stepper> stepper) {
   Params params;
   params.particlesAtFullSolution = kParticles;
   params.maxSubsteps = 1000000;
-  params.frameTime = frameTime;
   GestureOptions g;
   g.start = 0.0f;
   auto sim = std::make_unique<Simulation>(params, WandTool{}, gestureAt(Gesture::Straight, g, 0.0), std::move(stepper));
-  sim->advanceFrame(gestureAt(Gesture::Straight, g, frameTime));  // air flow and curvature are not all zero
+  sim->advanceFrame(gestureAt(Gesture::Straight, g, 0.02));  // air flow and curvature are not all zero
   return sim;
 }
 
@@ -55,7 +52,8 @@ RenderOptions sized(const benchmark::State& state) {
 double processCpuSeconds() {
   rusage r{};
   getrusage(RUSAGE_SELF, &r);
-  return static_cast<double>(r.ru_utime.tv_sec + r.ru_stime.tv_sec) + 1e-6 * static_cast<double>(r.ru_utime.tv_usec + r.ru_stime.tv_usec);
+  return static_cast<double>(r.ru_utime.tv_sec + r.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(r.ru_utime.tv_usec + r.ru_stime.tv_usec);
 }
 
 void report(benchmark::State& state, const Simulation& sim, double cpuAtStart) {
@@ -99,42 +97,48 @@ void BM_Render(benchmark::State& state, bool inPlace) {
   for (auto _ : state) renderer.render(frame, false);
   report(state, *sim, cpu);
 }
-BENCHMARK_CAPTURE(BM_Render, upload, false)->Args({1280, 720})->Args({1920, 1080})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK_CAPTURE(BM_Render, upload, false)
+    ->Args({1280, 720})
+    ->Args({1920, 1080})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK_CAPTURE(BM_Render, inplace, true)->Args({1280, 720})->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// frameTime decides the substeps: 0.02 s takes the stability bound's count; a frame of one substep is the
-// largest stable step (the paper's real-time scheme, at reduced simulated speed).
-void simulateAndRender(benchmark::State& state, float frameTime) {
+// A whole frame as `giantbubble run --render` does it, minus the file output: the simulation's frame (one
+// implicit step), then the render with the pixels read back.
+void BM_FrameSimulationAndRender(benchmark::State& state) {
   const auto device = vulkanDevice();
   if (!device) return state.SkipWithError("no Vulkan device");
-  auto sim = largestScene(nullptr, frameTime);
+  auto sim = largestScene(nullptr);
   Renderer renderer(device, sized(state), studioEnvironment());
   GestureOptions g;
   g.start = 0.0f;
   const double cpu = processCpuSeconds();
   for (auto _ : state) {
-    sim->advanceFrame(gestureAt(Gesture::Straight, g, sim->time() + frameTime));
+    sim->advanceFrame(gestureAt(Gesture::Straight, g, sim->time() + 0.02));
     const WireFrame wire = wireOf(*sim);
     renderer.render(frameOf(*sim, wire), true);
     benchmark::DoNotOptimize(renderer.readPixels());
   }
   report(state, *sim, cpu);
-  state.counters["substeps"] = sim->substepsPerFrame();
 }
+BENCHMARK(BM_FrameSimulationAndRender)->Args({1280, 720})->Unit(benchmark::kMillisecond)->UseRealTime();
 
-void BM_FrameCpuSimulationAndRender(benchmark::State& state) { simulateAndRender(state, 0.02f); }
-BENCHMARK(BM_FrameCpuSimulationAndRender)->Args({1280, 720})->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(5);
-
-void BM_FrameOneSubstepAndRender(benchmark::State& state) {
-  // The stability bound's substep for this film, found from a normal frame.
-  float substep = 0.0f;
-  {
-    auto probe = largestScene(nullptr);
-    substep = 0.02f / static_cast<float>(probe->substepsPerFrame());
-  }
-  simulateAndRender(state, substep);
+// The renderer's own CPU work per frame, no Vulkan: the props mesh (floor, string, sticks, the rims of holes)
+// and the film's swirl factors. On a real GPU this, not the GPU, bounds the render's frame rate.
+void BM_PropsMesh(benchmark::State& state) {
+  auto sim = largestScene(nullptr);
+  const WireFrame wire = wireOf(*sim);
+  for (auto _ : state) benchmark::DoNotOptimize(buildProps(&wire, &sim->film()).data());
 }
-BENCHMARK(BM_FrameOneSubstepAndRender)->Args({1280, 720})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_PropsMesh)->Unit(benchmark::kMillisecond);
+
+void BM_FilmSwirls(benchmark::State& state) {
+  auto sim = largestScene(nullptr);
+  FilmSwirls swirls;
+  for (auto _ : state) benchmark::DoNotOptimize(swirls.update(sim->film().state).data());
+}
+BENCHMARK(BM_FilmSwirls)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace gb

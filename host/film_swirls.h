@@ -30,7 +30,8 @@ class FilmSwirls {
 
   // The factors for this frame, one per particle of `film` (1 for a dead one). A particle is (re)seeded with
   // its current position as material coordinate when it is new (an index not seen before) or its lifetime went
-  // back (a new film was made in its place).
+  // back (a new film was made in its place). A seeded particle's factor is computed at once, the others' in
+  // turn, one particle in 8 per call: the swirls turn over seconds.
   const std::vector<float>& update(const State& film);
 
   // log of the factor before scaling by sigma: the swirl field at material point x and age t (s); mean 0,
@@ -44,6 +45,7 @@ class FilmSwirls {
   std::vector<Vec3> material_;
   std::vector<float> lastLifetime_;
   std::vector<float> factor_;
+  size_t phase_ = 0;  // which particles (i mod 8) this update refreshes
 };
 
 }  // namespace gb

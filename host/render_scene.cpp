@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <map>
 #include <numbers>
 
 #include "procedural_noise.h"
@@ -162,16 +161,30 @@ OrbitCamera FilmFraming::update(const OrbitCamera& base, const State& s, float d
   return camera;
 }
 
+// Walks each particle's one-ring (the topology's CSR) rather than a map of every edge: an edge (i, j) belongs to
+// as many of i's triangles as hold j, so each particle's count needs only its own few triangles. The map it
+// replaces cost 20 ms a frame at 25,650 particles, more than a real GPU takes to draw the frame.
 std::vector<uint32_t> holeRimEdges(const Film& film) {
-  std::map<std::pair<uint32_t, uint32_t>, int> uses;
-  const std::vector<uint32_t>& tris = film.topology.triangles;
-  for (size_t t = 0; t < tris.size(); t += 3)
-    for (int c = 0; c < 3; ++c) ++uses[std::minmax(tris[t + c], tris[t + (c + 1) % 3])];
+  const Topology& topo = film.topology;
+  const std::vector<uint32_t>& tris = topo.triangles;
+  const std::vector<uint32_t>& wire = topo.boundary;
   std::vector<uint32_t> rim;
-  const std::vector<uint32_t>& wire = film.topology.boundary;
-  for (const auto& [edge, count] : uses)
-    if (count == 1 && !(edge.second < wire.size() && wire[edge.first] && wire[edge.second]))
-      rim.insert(rim.end(), {edge.first, edge.second});
+  std::vector<std::pair<uint32_t, int>> uses;  // i's neighbours j > i and the triangles of i holding edge (i, j)
+  for (uint32_t i = 0; i + 1 < topo.triangleOffset.size(); ++i) {
+    uses.clear();
+    for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k)
+      for (int c = 0; c < 3; ++c) {
+        const uint32_t j = tris[3 * topo.triangleIndex[k] + c];
+        if (j <= i) continue;
+        auto used = std::find_if(uses.begin(), uses.end(), [j](const auto& u) { return u.first == j; });
+        if (used == uses.end())
+          uses.emplace_back(j, 1);
+        else
+          ++used->second;
+      }
+    for (const auto& [j, count] : uses)
+      if (count == 1 && !(wire[i] && wire[j])) rim.insert(rim.end(), {i, j});
+  }
   return rim;
 }
 

@@ -110,6 +110,30 @@ int runPhysicsExperiment(const RunOptions& o) {
 
 namespace {
 
+// Milliseconds since it was made or last asked.
+class PhaseClock {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double ms = std::chrono::duration<double, std::milli>(now - last_).count();
+    last_ = now;
+    return ms;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+// Where the frame's time went, for the summary and stats.json: the simulation's phases, then the run's own work.
+void addFramePhases(RunRecord& record, const FramePhases& sim, double statsMs, double outputsMs, double renderMs) {
+  record.addPhase("step", sim.step);
+  record.addPhase("topology", sim.topology);
+  record.addPhase("contacts", sim.contacts);
+  record.addPhase("stats", statsMs);
+  record.addPhase("outputs", outputsMs);
+  record.addPhase("render", renderMs);
+}
+
 // How long a run lasts: --duration, or a recorded input's own length (at most kMaxRunSeconds, like --duration).
 double runDuration(const RunOptions& o, const WandInput& input) {
   if (!o.durationFromInput || !input.length()) return o.duration;
@@ -232,19 +256,23 @@ int runSimulation(const RunOptions& o) {
     }
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
     pacer.record(1, ms, 0.0);
+    PhaseClock phase;
     last = sim.stats();
     events += describeEvents(sim.lastEvents());
     if (!events.empty() && events.back() == ' ') events.pop_back();
     stats.write(frame, last, sim.substepsPerFrame(), ms, events);
     record.addFrame(last, sim.substepsPerFrame(), ms, events);
     show.frame(sim, last, events);
+    const double statsMs = phase.lap();
     if (o.imageEvery > 0 && frame % o.imageEvery == 0)
       writeThicknessImage(o.outDir / imageName(frame), sim.film(), sim.aerosol(), framing.frame(sim.film()));
-    if (renderer) renderer->frame(frame, sim, wands.wands);
     if (o.plyEvery > 0 && frame % o.plyEvery == 0) {
       writePly(o.outDir / meshName(frame), sim.film());
       if (sim.aerosol().size() > 0) writeAerosolPly(o.outDir / ("aerosol" + meshName(frame).substr(4)), sim.aerosol());
     }
+    const double outputsMs = phase.lap();
+    if (renderer) renderer->frame(frame, sim, wands.wands);
+    addFramePhases(record, sim.lastPhases(), statsMs, outputsMs, renderer ? phase.lap() : 0.0);
     done = frame;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
     if (o.progress) bar.update(frame, sim.time(), static_cast<double>(frame) * sim.substepsPerFrame() / wall);
@@ -276,6 +304,7 @@ int runSimulation(const RunOptions& o) {
   }
   if (exitCode == 3) return exitCode;
   printSummary(first, last, frames, sim.substepsPerFrame(), wall, o.outDir);
+  record.printPhases();
   record.printTable1(o.scene);
   return exitCode;
 }

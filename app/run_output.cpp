@@ -1,5 +1,6 @@
 #include "run_output.h"
 
+#include <algorithm>
 #include <bit>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -133,11 +134,34 @@ void RunRecord::writeJson(const std::filesystem::path& path, const std::string& 
   nlohmann::json events = nlohmann::json::array();
   for (const auto& [time, name] : events_) events.push_back({{"time_s", time}, {"event", name}});
   j["events"] = events;
+  nlohmann::json phases = nlohmann::json::object();
+  for (const auto& [name, sum] : phaseSums_) phases[name] = sum / static_cast<double>(std::max(frames_, 1L));
+  j["phase_ms"] = phases;
   for (const auto& [key, value] : extra_) j[key] = value;
   writeFileAtomically(path, j.dump(2) + '\n');
 }
 
 void RunRecord::note(const std::string& key, const std::string& value) { extra_.emplace_back(key, value); }
+
+void RunRecord::addPhase(const std::string& name, double milliseconds) {
+  auto phase = std::find_if(phaseSums_.begin(), phaseSums_.end(), [&](const auto& p) { return p.first == name; });
+  if (phase == phaseSums_.end())
+    phaseSums_.emplace_back(name, milliseconds);
+  else
+    phase->second += milliseconds;
+}
+
+void RunRecord::printPhases() const {
+  if (frames_ == 0) return;
+  std::string line;
+  for (const auto& [name, sum] : phaseSums_) {
+    char figure[64];
+    std::snprintf(figure, sizeof figure, "%s%s %.1f", line.empty() ? "" : ", ", name.c_str(),
+                  sum / static_cast<double>(frames_));
+    line += figure;
+  }
+  std::printf("%-28s %s\n", "ms per frame by phase", line.c_str());
+}
 
 void RunRecord::printTable1(const std::string& scene) const {
   const double n = static_cast<double>(std::max(filmFrames_, 1L));

@@ -34,6 +34,11 @@ class RunRecord {
   void setRealTimeFactor(double factor) { realTimeFactor_ = factor; }
   // A string field of stats.json beside the figures, e.g. "video_error".
   void note(const std::string& key, const std::string& value);
+  // Adds `milliseconds` of this frame to the phase `name` ("step", "render"...): stats.json's "phase_ms" and the
+  // summary's line give each phase's mean per frame, in the order first added.
+  void addPhase(const std::string& name, double milliseconds);
+  // "ms per frame by phase: step 3.1, contacts 8.0, ..." (nothing before any frame).
+  void printPhases() const;
   // The paper's Table 1 row for this run: example, average particles, average triangles, average frames/s.
   void printTable1(const std::string& scene) const;
 
@@ -45,6 +50,7 @@ class RunRecord {
   FrameStats first_, last_;
   double realTimeFactor_ = 0;
   std::vector<std::pair<double, std::string>> events_;
+  std::vector<std::pair<std::string, double>> phaseSums_;  // ms over all frames
 };
 
 // A frame's topology events as the words of stats.csv and OSC (burst_started burst_finished pinched_off

@@ -1,5 +1,6 @@
 #include "simulation.h"
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -21,6 +22,12 @@ float wandAlignment(const WandState& w) {
 }
 
 Vec3 gravityOf(const Params& p) { return {p.gravityX, p.gravityY, p.gravityZ}; }
+
+using Clock = std::chrono::steady_clock;
+
+double millisecondsBetween(Clock::time_point from, Clock::time_point to) {
+  return std::chrono::duration<double, std::milli>(to - from).count();
+}
 
 }  // namespace
 
@@ -113,8 +120,10 @@ void Simulation::advanceFrame(const WandState& next) {
     substepUniforms_.back().solverIterations = solverIterations_;
   }
   substepUniforms_.back().drainageDt = params_.frameTime;  // the frame's drainage, after its last substep
+  const auto started = Clock::now();
   pressure_ = stepper_->run(substepUniforms_);
   stepper_->store(film_);
+  const auto stepped = Clock::now();
   stepCount_ += substeps_;
   wands_ = next;
   time_ += params_.frameTime;
@@ -136,7 +145,10 @@ void Simulation::advanceFrame(const WandState& next) {
   const bool tipsTogether =
       film_.tool.kind == ToolKind::TwoWands && (next.rightPosition - next.leftPosition).norm() < params_.pinchDistance;
   if (tipsTogether && !film_.topology.isClosed() && !burst_.active()) events_.pinchedOff = pinch();
+  const auto changed = Clock::now();
   updateContacts();
+  phases_ = {millisecondsBetween(started, stepped), millisecondsBetween(stepped, changed),
+             millisecondsBetween(changed, Clock::now())};
   aerosol_.advance(params_, params_.frameTime);
 }
 

@@ -40,6 +40,13 @@ struct FrameStats {
   double dropletMass = 0;      // kg
 };
 
+// Wall time of the last frame's parts (ms): where a frame's time goes (the run's summary, stats.json).
+struct FramePhases {
+  double step = 0;      // the stepper's substeps and the state brought back from it
+  double topology = 0;  // bursting, yield, film growth and pinch-off, with the stepper's reloads
+  double contacts = 0;  // the self-collision search for the next frame, handed to the stepper
+};
+
 class Simulation {
  public:
   // A new film generated on the tool's wire frame at the given wand state. Without a stepper the CPU
@@ -73,6 +80,7 @@ class Simulation {
   [[nodiscard]] const BurstFront& burst() const { return burst_; }
   [[nodiscard]] const Aerosol& aerosol() const { return aerosol_; }
   [[nodiscard]] const TopologyEvents& lastEvents() const { return events_; }
+  [[nodiscard]] const FramePhases& lastPhases() const { return phases_; }
 
   [[nodiscard]] const Film& film() const { return film_; }
   [[nodiscard]] Film& film() { return film_; }
@@ -112,6 +120,7 @@ class Simulation {
   BurstFront burst_;
   Aerosol aerosol_;
   TopologyEvents events_;
+  FramePhases phases_;
   std::vector<StepUniforms> substepUniforms_;  // one frame's substeps, reused
   WandState wands_;
   std::array<bool, 2> wandArmed_{true, true};  // a tip bursts a free bubble it touches once armed

@@ -2,6 +2,7 @@
 
 #include <cstring>
 #include <span>
+#include <stdexcept>
 
 namespace gb {
 
@@ -19,12 +20,15 @@ DeviceBuffer::DeviceBuffer(const VulkanContext& context, vk::DeviceSize bytes, P
   using Memory = vk::MemoryPropertyFlagBits;
   // Prefer memory that is both fast for the device and mappable (CPU drivers, integrated GPUs, resizable
   // BAR); fall back to device-only memory with staging copies.
-  const vk::MemoryPropertyFlags deviceChoices[] = {
-      Memory::eDeviceLocal | Memory::eHostVisible | Memory::eHostCoherent, Memory::eDeviceLocal,
-      Memory::eHostVisible | Memory::eHostCoherent};
+  const vk::MemoryPropertyFlags deviceChoices[] = {Memory::eDeviceLocal | Memory::eHostVisible | Memory::eHostCoherent,
+                                                   Memory::eDeviceLocal, Memory::eHostVisible | Memory::eHostCoherent};
   const vk::MemoryPropertyFlags hostChoices[] = {Memory::eHostVisible | Memory::eHostCoherent};
+  const vk::MemoryPropertyFlags readbackChoices[] = {Memory::eHostVisible | Memory::eHostCoherent | Memory::eHostCached,
+                                                     Memory::eHostVisible | Memory::eHostCoherent};
   const std::span<const vk::MemoryPropertyFlags> choices =
-      placement == Placement::Device ? std::span<const vk::MemoryPropertyFlags>(deviceChoices) : hostChoices;
+      placement == Placement::Device ? std::span<const vk::MemoryPropertyFlags>(deviceChoices)
+      : placement == Placement::Host ? std::span<const vk::MemoryPropertyFlags>(hostChoices)
+                                     : std::span<const vk::MemoryPropertyFlags>(readbackChoices);
   for (const auto wanted : choices) {
     const int type = context.memoryType(needs.memoryTypeBits, wanted);
     if (type < 0) continue;
@@ -49,6 +53,14 @@ void DeviceBuffer::copy(vk::Buffer from, vk::Buffer to, vk::DeviceSize bytes, vk
   context_->submitAndWait(commands);
 }
 
+void DeviceBuffer::recordCopyFrom(const vk::raii::CommandBuffer& commands, const DeviceBuffer& from,
+                                  vk::DeviceSize bytes, vk::DeviceSize offset) const {
+  if (bytes == 0) return;
+  if (bytes > from.size_ || offset + bytes > size_)
+    throw std::out_of_range("DeviceBuffer::recordCopyFrom past the end");
+  commands.copyBuffer(from.handle(), handle(), vk::BufferCopy(0, offset, bytes));
+}
+
 void DeviceBuffer::write(const void* source, vk::DeviceSize bytes, vk::DeviceSize offset) {
   if (bytes == 0) return;
   if (offset + bytes > size_) throw std::out_of_range("DeviceBuffer::write past the end");
@@ -68,7 +80,7 @@ void DeviceBuffer::read(void* destination, vk::DeviceSize bytes, vk::DeviceSize 
     std::memcpy(destination, static_cast<const char*>(mapped_) + offset, bytes);
     return;
   }
-  DeviceBuffer staging(*context_, bytes, Placement::Host);
+  DeviceBuffer staging(*context_, bytes, Placement::Readback);
   copy(handle(), staging.handle(), bytes, offset, 0);
   std::memcpy(destination, staging.mapped_, bytes);
 }

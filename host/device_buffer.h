@@ -12,13 +12,19 @@ namespace gb {
 class DeviceBuffer {
  public:
   DeviceBuffer() = default;
-  // Where the memory lives: fast for the device (mapped too when the device allows), or host memory
-  // the device reads over the bus (staging).
-  enum class Placement { Device, Host };
+  // Where the memory lives: fast for the device (mapped too when the device allows), host memory the device
+  // reads over the bus (staging for uploads), or host memory the CPU reads back fast (cached where the driver
+  // has such memory: reading write-combined or the device's own memory through a mapping runs at uncached speed).
+  enum class Placement { Device, Host, Readback };
   DeviceBuffer(const VulkanContext& context, vk::DeviceSize bytes, Placement placement = Placement::Device);
 
   void write(const void* source, vk::DeviceSize bytes, vk::DeviceSize offset = 0);
   void read(void* destination, vk::DeviceSize bytes, vk::DeviceSize offset = 0) const;
+
+  // Records a copy of `bytes` from the start of `from` to `offset` in this buffer, for a batch of copies in one
+  // submission (the caller submits and waits before reading).
+  void recordCopyFrom(const vk::raii::CommandBuffer& commands, const DeviceBuffer& from, vk::DeviceSize bytes,
+                      vk::DeviceSize offset) const;
 
   [[nodiscard]] vk::Buffer handle() const { return *buffer_; }
   [[nodiscard]] vk::DeviceSize size() const { return size_; }

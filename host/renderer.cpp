@@ -171,7 +171,7 @@ struct Renderer::Impl {
   }
 
   void makeImageBuffers() {  // host memory for the read-back image and the banner's rows
-    readback = DeviceBuffer(*ctx, 4ull * extent.width * extent.height, DeviceBuffer::Placement::Host);
+    readback = DeviceBuffer(*ctx, 4ull * extent.width * extent.height, DeviceBuffer::Placement::Readback);
     bannerPixels = DeviceBuffer(*ctx, 4ull * extent.width * extent.height, DeviceBuffer::Placement::Host);
   }
 

@@ -81,29 +81,30 @@ void writeVec3(DeviceBuffer& buffer, const Vec3Array& a) {
   buffer.write(a.z.data(), bytes, 2 * bytes);
 }
 
-void readVec3(const DeviceBuffer& buffer, Vec3Array& a) {
-  const size_t bytes = a.size() * sizeof(float);
-  buffer.read(a.x.data(), bytes, 0);
-  buffer.read(a.y.data(), bytes, bytes);
-  buffer.read(a.z.data(), bytes, 2 * bytes);
-}
+// Reads back, in turn, the parts a StateReadback copied into its host-cached buffer.
+class StagedReader {
+ public:
+  explicit StagedReader(const DeviceBuffer& staged) : staged_(staged) {}
+  void vec3(Vec3Array& a) {
+    for (std::vector<float>* axis : {&a.x, &a.y, &a.z}) vector(*axis);
+  }
+  template <class T>
+  void vector(std::vector<T>& values) {
+    const vk::DeviceSize bytes = values.size() * sizeof(T);
+    staged_.read(values.data(), bytes, at_);
+    at_ += bytes;
+  }
 
-template <class T>
-void readVector(const DeviceBuffer& buffer, std::vector<T>& values) {
-  buffer.read(values.data(), values.size() * sizeof(T));
-}
+ private:
+  const DeviceBuffer& staged_;
+  vk::DeviceSize at_ = 0;
+};
 
 // The drainage buffer holds the two per-particle arrays of the drainage passes one after the other.
 void writeDrainage(DeviceBuffer& buffer, const State& s) {
   const size_t bytes = s.size() * sizeof(float);
   buffer.write(s.drainOutflow.data(), bytes, 0);
   buffer.write(s.drainWeight.data(), bytes, bytes);
-}
-
-void readDrainage(const DeviceBuffer& buffer, State& s) {
-  const size_t bytes = s.size() * sizeof(float);
-  buffer.read(s.drainOutflow.data(), bytes, 0);
-  buffer.read(s.drainWeight.data(), bytes, bytes);
 }
 
 }  // namespace
@@ -127,6 +128,7 @@ struct VulkanStepper::Impl {
   std::vector<vk::raii::DescriptorSet> sets;  // [0]: air A front, B back; [1]: swapped
   int airParity = 0;                          // which set is current (Jacobi swap of the air transfer)
   bool volumeInA = true;                      // where the last volume reduction left its result
+  DeviceBuffer readback;                      // host-cached copy of the state store() brings back
 
   explicit Impl(std::shared_ptr<const VulkanContext> context) : ctx(std::move(context)) {
     const vk::raii::Device& device = ctx->device;
@@ -470,23 +472,46 @@ void VulkanStepper::updateRestLengths(const Film& film) {
   writeVector(m.buffer(GB_BINDING_REST_LENGTH), film.topology.restLength);
 }
 
+// The state is copied in one submission into host-cached memory and read from there: on a discrete GPU the
+// CPU reads the device's own memory through a mapping (resizable BAR) at uncached speed, which made this the
+// slowest part of a frame on an H100 (docs/performance.md).
 void VulkanStepper::store(Film& film) {
   Impl& m = *impl_;
   State& s = film.state;
   if (s.size() != m.particles) throw std::logic_error("VulkanStepper::store: not the loaded film");
-  readVec3(m.buffer(GB_BINDING_POSITION), s.position);
-  readVec3(m.buffer(GB_BINDING_VELOCITY), s.velocity);
-  readVec3(m.buffer(GB_BINDING_FORCE), s.force);
-  readVec3(m.buffer(GB_BINDING_NORMAL), s.normal);
-  readVec3(m.buffer(GB_BINDING_AIR_INFLOW), s.airInflow);
-  readVec3(m.airFront(), s.airFlow);
-  readVector(m.buffer(GB_BINDING_VORONOI_AREA), s.voronoiArea);
-  readVector(m.buffer(GB_BINDING_THICKNESS), s.thickness);
-  readVector(m.buffer(GB_BINDING_ELASTICITY), s.elasticity);
-  readVector(m.buffer(GB_BINDING_LIFETIME), s.lifetime);
-  readVector(m.buffer(GB_BINDING_LIQUID), s.liquid);
-  readVec3(m.buffer(GB_BINDING_PREVIOUS_POSITION), s.previousPosition);
-  readDrainage(m.buffer(GB_BINDING_DRAINAGE), s);
+  const vk::DeviceSize scalar = s.size() * sizeof(float), vec3 = 3 * scalar;
+  const std::pair<const DeviceBuffer*, vk::DeviceSize> parts[] = {
+      {&m.buffer(GB_BINDING_POSITION), vec3},       {&m.buffer(GB_BINDING_VELOCITY), vec3},
+      {&m.buffer(GB_BINDING_FORCE), vec3},          {&m.buffer(GB_BINDING_NORMAL), vec3},
+      {&m.buffer(GB_BINDING_AIR_INFLOW), vec3},     {&m.airFront(), vec3},
+      {&m.buffer(GB_BINDING_VORONOI_AREA), scalar}, {&m.buffer(GB_BINDING_THICKNESS), scalar},
+      {&m.buffer(GB_BINDING_ELASTICITY), scalar},   {&m.buffer(GB_BINDING_LIFETIME), scalar},
+      {&m.buffer(GB_BINDING_LIQUID), scalar},       {&m.buffer(GB_BINDING_PREVIOUS_POSITION), vec3},
+      {&m.buffer(GB_BINDING_DRAINAGE), 2 * scalar}};  // drainOutflow then drainWeight
+  vk::DeviceSize total = 0;
+  for (const auto& [from, bytes] : parts) total += bytes;
+  if (m.readback.size() < total) m.readback = DeviceBuffer(*m.ctx, total, DeviceBuffer::Placement::Readback);
+  const vk::raii::CommandBuffer& cb = m.commands;
+  cb.reset();
+  cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+  const vk::MemoryBarrier fromSteps(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eTransferRead);
+  cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, fromSteps, {},
+                     {});
+  vk::DeviceSize at = 0;
+  for (const auto& [from, bytes] : parts) {
+    m.readback.recordCopyFrom(cb, *from, bytes, at);
+    at += bytes;
+  }
+  const vk::MemoryBarrier toHost(vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eHostRead);
+  cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, toHost, {}, {});
+  cb.end();
+  m.ctx->submitAndWait(cb);
+  StagedReader read(m.readback);
+  for (Vec3Array* a : {&s.position, &s.velocity, &s.force, &s.normal, &s.airInflow, &s.airFlow}) read.vec3(*a);
+  for (std::vector<float>* a : {&s.voronoiArea, &s.thickness, &s.elasticity, &s.lifetime, &s.liquid}) read.vector(*a);
+  read.vec3(s.previousPosition);
+  read.vector(s.drainOutflow);
+  read.vector(s.drainWeight);
 }
 
 std::shared_ptr<const VulkanContext> VulkanStepper::sharedContext() const { return impl_->ctx; }

@@ -152,7 +152,6 @@ TEST(HoleRims, AnIntactFilmHasNoneAndATornOneHasItsHoleEdge) {
       kept.insert(kept.end(), tri, tri + 3);
   }
   bubble.topology.triangles = kept;
-  buildAdjacency(bubble.topology);  // as every change of the film's triangles does
   EXPECT_EQ(holeRimEdges(bubble).size(), 2 * removed) << "one rim edge per removed triangle around a vertex";
 }
 

@@ -1,7 +1,6 @@
 #include "state.h"
 
 #include <algorithm>
-#include <map>
 #include <stdexcept>
 #include <utility>
 
@@ -52,15 +51,32 @@ namespace {
 using Edge = std::pair<uint32_t, uint32_t>;
 Edge undirected(uint32_t a, uint32_t b) { return a < b ? Edge{a, b} : Edge{b, a}; }
 
-// Counts how many triangles use each undirected edge; 1 means boundary, 2 interior, more is non-manifold.
-std::map<Edge, int> edgeUseCounts(const std::vector<uint32_t>& triangles) {
-  std::map<Edge, int> uses;
+}  // namespace
+
+std::vector<EdgeUse> edgeUses(size_t particleCount, const std::vector<uint32_t>& triangles) {
+  const auto edge = [&](size_t t, int c) { return undirected(triangles[t + c], triangles[t + (c + 1) % 3]); };
+  std::vector<uint32_t> start(particleCount + 1, 0);  // edges filed under their lower end
   for (size_t t = 0; t < triangles.size(); t += 3)
-    for (int c = 0; c < 3; ++c) ++uses[undirected(triangles[t + c], triangles[t + (c + 1) % 3])];
+    for (int c = 0; c < 3; ++c) ++start[edge(t, c).first + 1];
+  for (size_t i = 0; i < particleCount; ++i) start[i + 1] += start[i];
+  std::vector<uint32_t> upper(start[particleCount]), fill(start.begin(), start.end() - 1);
+  for (size_t t = 0; t < triangles.size(); t += 3)
+    for (int c = 0; c < 3; ++c) {
+      const auto [lo, hi] = edge(t, c);
+      upper[fill[lo]++] = hi;
+    }
+  std::vector<EdgeUse> uses;
+  for (uint32_t i = 0; i < particleCount; ++i) {
+    const auto first = upper.begin() + start[i], last = upper.begin() + start[i + 1];
+    std::sort(first, last);  // a particle's few edges
+    for (auto run = first; run != last;) {
+      const auto next = std::upper_bound(run, last, *run);
+      uses.push_back({i, *run, static_cast<int>(next - run)});
+      run = next;
+    }
+  }
   return uses;
 }
-
-}  // namespace
 
 void buildAdjacency(Topology& topo) {
   const size_t n = topo.particleCount();
@@ -92,8 +108,9 @@ void buildAdjacency(Topology& topo) {
   for (uint32_t t = 0; t < topo.triangleCount(); ++t)
     for (int c = 0; c < 3; ++c) topo.triangleIndex[fill[topo.triangles[3 * t + c]]++] = t;
   topo.contacts.assign(n + 1, 0u);  // no contacts until the collision search runs
-  const auto uses = edgeUseCounts(topo.triangles);
-  topo.closed = !uses.empty() && std::none_of(uses.begin(), uses.end(), [](const auto& e) { return e.second == 1; });
+  const std::vector<EdgeUse> uses = edgeUses(n, topo.triangles);
+  topo.closed =
+      !uses.empty() && std::none_of(uses.begin(), uses.end(), [](const EdgeUse& e) { return e.triangles == 1; });
 }
 
 Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, const Vec3Array& positions) {
@@ -102,12 +119,12 @@ Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, co
   topo.boundary.assign(particleCount, 0u);
   for (uint32_t v : topo.triangles)
     if (v >= particleCount) throw std::runtime_error("triangle refers to a particle that does not exist");
-  for (const auto& [edge, count] : edgeUseCounts(topo.triangles)) {
-    if (count > 2) throw std::runtime_error("non-manifold mesh: an edge is shared by more than two triangles");
-    if (count == 1) topo.boundary[edge.first] = topo.boundary[edge.second] = 1u;  // the film's edge: the wire
-    topo.springEnds.push_back(edge.first);
-    topo.springEnds.push_back(edge.second);
-    topo.restLength.push_back((positions.get(edge.first) - positions.get(edge.second)).norm());
+  for (const EdgeUse& e : edgeUses(particleCount, topo.triangles)) {
+    if (e.triangles > 2) throw std::runtime_error("non-manifold mesh: an edge is shared by more than two triangles");
+    if (e.triangles == 1) topo.boundary[e.lower] = topo.boundary[e.upper] = 1u;  // the film's edge: the wire
+    topo.springEnds.push_back(e.lower);
+    topo.springEnds.push_back(e.upper);
+    topo.restLength.push_back((positions.get(e.lower) - positions.get(e.upper)).norm());
   }
   buildAdjacency(topo);
   return topo;
@@ -115,13 +132,17 @@ Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, co
 
 Topology rebuildTopology(const Topology& previous, std::vector<uint32_t> triangles, const Vec3Array& positions,
                          float prestrain) {
-  std::map<Edge, float> rest;
+  std::vector<std::pair<Edge, float>> rest;  // the old springs, sorted by edge for a binary search
+  rest.reserve(previous.springCount());
   for (size_t k = 0; k < previous.springCount(); ++k)
-    rest[undirected(previous.springEnds[2 * k], previous.springEnds[2 * k + 1])] = previous.restLength[k];
+    rest.emplace_back(undirected(previous.springEnds[2 * k], previous.springEnds[2 * k + 1]), previous.restLength[k]);
+  std::sort(rest.begin(), rest.end());
   Topology topo = buildTopology(positions.size(), std::move(triangles), positions);
   for (size_t k = 0; k < topo.springCount(); ++k) {
-    const auto it = rest.find(undirected(topo.springEnds[2 * k], topo.springEnds[2 * k + 1]));
-    topo.restLength[k] = it != rest.end() ? it->second : topo.restLength[k] * (1.0f - prestrain);
+    const Edge edge = undirected(topo.springEnds[2 * k], topo.springEnds[2 * k + 1]);
+    const auto it = std::lower_bound(rest.begin(), rest.end(), edge,
+                                     [](const std::pair<Edge, float>& r, const Edge& e) { return r.first < e; });
+    topo.restLength[k] = it != rest.end() && it->first == edge ? it->second : topo.restLength[k] * (1.0f - prestrain);
   }
   return topo;
 }

@@ -96,6 +96,16 @@ struct Topology {
   [[nodiscard]] bool isClosed() const { return closed; }
 };
 
+// An undirected mesh edge (lower < upper particle index) and how many triangles use it: 1 on the film's edge (the
+// wire, or a hole's rim), 2 inside it, more where the mesh is not a manifold.
+struct EdgeUse {
+  uint32_t lower, upper;
+  int triangles;
+};
+// Every edge of `triangles` (indices below particleCount) once, ordered by (lower, upper). A counting sort by
+// the lower end: linear in the mesh, where a map of every edge cost 20 ms a frame at 25,650 particles.
+std::vector<EdgeUse> edgeUses(size_t particleCount, const std::vector<uint32_t>& triangles);
+
 // Builds springs (one per mesh edge, rest length from the current distance), the CSR one-ring arrays and
 // the boundary flags (particles on an edge used by exactly one triangle: the ones the wire holds) from the
 // triangle list.

@@ -161,31 +161,11 @@ OrbitCamera FilmFraming::update(const OrbitCamera& base, const State& s, float d
   return camera;
 }
 
-// Each triangle's edges filed under their lower end by a counting sort: a rim edge is filed once. The map of
-// every edge this replaces cost 20 ms a frame at 25,650 particles, more than a real GPU takes to draw the frame.
-// The triangle list alone decides (not the topology's one-ring arrays, which a caller editing triangles may not
-// have rebuilt).
 std::vector<uint32_t> holeRimEdges(const Film& film) {
-  const std::vector<uint32_t>& tris = film.topology.triangles;
   const std::vector<uint32_t>& wire = film.topology.boundary;
-  const size_t n = wire.size();
-  const auto edge = [&](size_t t, int c) { return std::minmax(tris[t + c], tris[t + (c + 1) % 3]); };
-  std::vector<uint32_t> start(n + 1, 0);
-  for (size_t t = 0; t < tris.size(); t += 3)
-    for (int c = 0; c < 3; ++c) ++start[edge(t, c).first + 1];
-  for (size_t i = 0; i < n; ++i) start[i + 1] += start[i];
-  std::vector<uint32_t> upper(start[n]), fill(start.begin(), start.end() - 1);
-  for (size_t t = 0; t < tris.size(); t += 3)
-    for (int c = 0; c < 3; ++c) {
-      const auto [lo, hi] = edge(t, c);
-      upper[fill[lo]++] = hi;
-    }
   std::vector<uint32_t> rim;
-  for (uint32_t i = 0; i < n; ++i) {
-    const auto first = upper.begin() + start[i], last = upper.begin() + start[i + 1];
-    for (auto j = first; j != last; ++j)
-      if (std::count(first, last, *j) == 1 && !(wire[i] && wire[*j])) rim.insert(rim.end(), {i, *j});
-  }
+  for (const EdgeUse& e : edgeUses(wire.size(), film.topology.triangles))
+    if (e.triangles == 1 && !(wire[e.lower] && wire[e.upper])) rim.insert(rim.end(), {e.lower, e.upper});
   return rim;
 }
 

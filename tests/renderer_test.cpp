@@ -531,7 +531,9 @@ TEST(Renderer, DISABLED_DefaultPerformancesFilmIsColourfulMidStroke) {
   //     area-weighted median thickness unchanged (1.05 um): Eq. (15)'s per-hop transfer thins only a cap a few
   //     particles deep at the top (docs/model.md); a darker ground (albedo 0.10 against 0.16) 0.080;
   //   - before this change: pitch 0.45 (more ground behind the film) 0.078, with the film x0.7 0.092, x0.5 0.095,
-  //     x0.3 0.081; the level camera framing the bounding sphere 0.034.
+  //     x0.3 0.081; the level camera framing the bounding sphere 0.034;
+  //   - no direct sun on the ground (key light 0, as overcast; behind the film 0.088) 0.091, half the sun 0.078;
+  //   - the physical transmission, 1 - R per channel instead of the renderer's 1 - Y: 0.053 (lower, not higher).
   // No film the model can make mid-stroke reaches 0.1 from this camera in this sky: see docs/rendering.md, "Colour
   // mid-stroke".
   // Run it with --gtest_also_run_disabled_tests.

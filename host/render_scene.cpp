@@ -42,14 +42,15 @@ void addTube(std::vector<float>& mesh, const std::vector<Vec3>& path, float radi
   }
 }
 
-// The ground: a neutral dark grey (an asphalt square, against which a film's reflections show as they do in
-// photographs of giant bubbles), far enough out (80 m, near the far plane) that its fog has
-// turned it into the horizon's haze before it ends, so no seam shows between ground and environment.
+// The ground: a neutral dark grey square (asphalt, against which a film's reflections show as they do in
+// photographs of giant bubbles) 160 m across (its edge near the far plane). Beyond it the environment's ground
+// shows: the default sky paints it as this floor is lit, other environments hide the edge in haze
+// (EnvironmentImage::hazeDistance).
 void addFloor(std::vector<float>& mesh) {
   constexpr float half = 80.0f;
   const Vec3 corners[4] = {{-half, 0, -half}, {half, 0, -half}, {half, 0, half}, {-half, 0, half}};
   for (int corner : {0, 2, 1, 0, 3, 2})
-    addVertex(mesh, corners[corner], Vec3::UnitY(), Vec3(0.16f, 0.16f, 0.155f), GB_MATERIAL_FLOOR);
+    addVertex(mesh, corners[corner], Vec3::UnitY(), groundAlbedo(), GB_MATERIAL_FLOOR);
 }
 
 // The rim of a hole: liquid the retracting film has collected (Taylor-Culick), a thread of water a few
@@ -255,11 +256,11 @@ struct OutdoorSky {
   Vec3 sun = Vec3(0.2f, 0.55f, 0.8f).normalized();  // behind the default three-quarter camera, over its left shoulder
   Vec3 zenith = Vec3(0.13f, 0.27f, 0.62f);
   Vec3 haze = Vec3(0.72f, 0.78f, 0.86f);
-  Vec3 ground = Vec3(0.12f, 0.12f, 0.115f);  // what the floor prop looks like lit, for reflections of the ground
 
+  // Above the horizon; below it skyEnvironment paints the ground.
   [[nodiscard]] Vec3 operator()(const Vec3& d) const {
     const float elevation = std::asin(std::clamp(d.y(), -1.0f, 1.0f));
-    if (elevation < 0.0f) return ground + (haze - ground) * std::exp(elevation / 0.05f);  // ground into haze
+    if (elevation < 0.0f) return Vec3::Zero();
     const float azimuth = std::atan2(d.x(), -d.z());
     const Vec3 around(std::cos(azimuth), std::sin(azimuth), 0.0f);  // seamless in azimuth, for the woods' colour
     // Wooded hills: a ridge line of several scales, 1-6 degrees high, with a tree-scale ragged edge.
@@ -305,11 +306,29 @@ Vec3 horizonRadiance(const EnvironmentImage& env) {
   return count > 0 ? Vec3((sum / count).cast<float>()) : Vec3(Vec3::Zero());
 }
 
+Vec3 groundAlbedo() { return {0.16f, 0.16f, 0.155f}; }
+
 EnvironmentImage skyEnvironment(int width) {
   const OutdoorSky sky;
   EnvironmentImage env = tabulateEnvironment(width, sky);
   env.keyLight = sky.sun;
   env.keyStrength = 1.2f;  // direct sun on a prop: brighter than the sky's mean, as outdoors
+  // Clear air: meteorological visibility V = 20 km is an extinction length of V / 3.912 = 5 km (Koschmieder), so
+  // the ground within the floor's 80 m keeps its contrast. A fog length of metres would lighten the ground behind
+  // a film towards the horizon's haze, which real air does not do at that range.
+  env.hazeDistance = 5000.0f;
+  // Below the horizon: the ground as the floor prop is lit (props.frag: albedo times the sky's mean radiance and
+  // the sun), so the floor meets it without a seam and a film reflects the ground it stands over. At 5 km of
+  // extinction the haze over the ground is confined to a sliver under the horizon, finer than a texel.
+  const Vec3 lit = groundAlbedo().cwiseProduct(hemisphereMeans(env)[0] +
+                                               Vec3::Constant(env.keyStrength * std::max(sky.sun.y(), 0.0f)));
+  for (int row = env.height / 2; row < env.height; ++row)
+    for (int col = 0; col < env.width; ++col) {
+      float* out = &env.rgb[3 * (static_cast<size_t>(row) * env.width + col)];
+      out[0] = lit.x();
+      out[1] = lit.y();
+      out[2] = lit.z();
+    }
   return env;
 }
 

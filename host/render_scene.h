@@ -87,7 +87,14 @@ struct EnvironmentImage {
   std::vector<float> rgb;
   Vec3 keyLight = Vec3(-0.6f, 0.5f, 0.62f).normalized();  // unit, towards the light
   float keyStrength = 0.8f;                               // irradiance on a prop facing it, in radiance units
+  // The ground prop fades into the radiance just below the horizon (horizonRadiance) over this distance (m). An
+  // image whose ground does not match the floor's needs it short, so that no edge shows where the floor ends;
+  // the default sky paints its ground as the floor is lit and keeps clear air's aerial perspective.
+  float hazeDistance = 25.0f;
 };
+
+// Albedo of the ground prop (a neutral dark grey: aged asphalt).
+Vec3 groundAlbedo();
 
 // Mean radiance of the environment over the upper (y > 0) and lower hemisphere, solid-angle weighted.
 std::array<Vec3, 2> hemisphereMeans(const EnvironmentImage& environment);
@@ -98,7 +105,8 @@ Vec3 horizonRadiance(const EnvironmentImage& environment);
 
 // The default environment: an outdoor sky, procedural. A blue sky brightening to a pale haze at the horizon,
 // scattered clouds, a sun (the key light) behind the default camera's left shoulder with its glow, a line of
-// wooded hills on the horizon and a neutral grey ground fading into the haze.
+// wooded hills on the horizon, and below it the ground as the floor prop is lit (groundAlbedo under the sky and
+// the sun), so that the floor meets it without a seam.
 EnvironmentImage skyEnvironment(int width = 1024);
 
 // The built-in studio: a grey-blue room, bright above, dark floor below the horizon, two large softboxes and

@@ -51,9 +51,6 @@ constexpr vk::Format kDepthFormat = vk::Format::eD32Sfloat;
 // The resolve writes linear radiance; the format's sRGB encoding on store is cheaper on lavapipe than the curve in
 // the shader (three pow per pixel), and the bytes read back are sRGB as PNG and video expect.
 constexpr vk::Format kOutputFormat = vk::Format::eR8G8B8A8Srgb;
-// The ground fades into the horizon's haze over this distance (m): aerial perspective, and no visible edge
-// where the floor (80 m out) meets the environment.
-constexpr float kFogDistance = 25.0f;
 
 using Stage = vk::PipelineStageFlagBits;
 using Access = vk::AccessFlagBits;
@@ -139,6 +136,7 @@ struct Renderer::Impl {
   uint32_t propsVertices = 0, dropletCount = 0, bannerRows = 0;
   std::array<Vec3, 2> ambient;  // mean environment radiance above and below the horizon
   Vec3 horizon;                 // just below it
+  float hazeDistance = 0.0f;    // over which the ground fades into it (EnvironmentImage::hazeDistance)
   Vec3 keyLight;
   float keyStrength = 0.0f;
   FilmSwirls swirls;
@@ -151,6 +149,7 @@ struct Renderer::Impl {
     makeSamplersAndTextures(env);
     ambient = hemisphereMeans(env);
     horizon = horizonRadiance(env);
+    hazeDistance = env.hazeDistance;
     keyLight = env.keyLight;
     keyStrength = env.keyStrength;
     makeLayouts();
@@ -467,7 +466,7 @@ struct Renderer::Impl {
     const Vec3 eye = frame.camera.position();
     u.cameraPosition = {eye.x(), eye.y(), eye.z(), 1.0f};
     u.keyLight = {keyLight.x(), keyLight.y(), keyLight.z(), keyStrength};
-    u.horizon = {horizon.x(), horizon.y(), horizon.z(), kFogDistance};
+    u.horizon = {horizon.x(), horizon.y(), horizon.z(), hazeDistance};
     u.skyIrradiance = {ambient[0].x(), ambient[0].y(), ambient[0].z(), 0.0f};
     u.groundIrradiance = {ambient[1].x(), ambient[1].y(), ambient[1].z(), 0.0f};
     u.particles = particles;

@@ -3,8 +3,9 @@
 // Diffuse props lit by the environment (the mean radiance above and below the horizon, blended by the normal)
 // and the key light. The wands and string also reflect the environment faintly; a hole's rim, being water,
 // reflects it strongly (a Fresnel-like rise towards grazing). The ground is plain and has no reflection (it
-// covers half the picture, and a lookup per pixel is what lavapipe pays for); it fades into the horizon's haze
-// with distance, so that it meets the environment without a seam.
+// covers half the picture, and a lookup per pixel is what lavapipe pays for); with distance it fades into the
+// radiance just below the horizon over the environment's haze distance (5 km of clear air for the default sky,
+// whose ground is painted as this floor is lit; 25 m for other images, to hide the floor's edge).
 #include "render_common.glsl"
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 worldNormal;

@@ -161,11 +161,15 @@ TEST(SkyEnvironment, IsBrightAboveNeutralBelowWithTheSunAsKeyLight) {
   EXPECT_GT(means[0].mean(), 0.4f) << "a bright sky";
   EXPECT_GT(means[0].z(), means[0].x()) << "blue";
   EXPECT_LT(means[1].mean(), means[0].mean());
-  // The ground is neutral: channels within 10% of each other.
-  EXPECT_LT(means[1].maxCoeff() / means[1].minCoeff(), 1.1f);
   EXPECT_GT(sky.keyLight.y(), 0.3f) << "the sun is up";
-  const Vec3 horizon = horizonRadiance(sky);
-  EXPECT_GT(horizon.mean(), means[1].mean()) << "the ground fades into a lighter haze";
+  // Below the horizon, the ground as the floor prop is lit (props.frag: its neutral albedo times the sky's mean
+  // radiance and the sun), so the floor meets it without a seam; tolerance: float rounding of the means.
+  const Vec3 lit = groundAlbedo().cwiseProduct(means[0] + Vec3::Constant(sky.keyStrength * sky.keyLight.y()));
+  EXPECT_LT((means[1] - lit).norm(), 1e-4f);
+  EXPECT_LT((horizonRadiance(sky) - lit).norm(), 1e-4f) << "no haze band between the floor's edge and the ground";
+  // Lit by the blue sky it is a little bluer than its albedo, as sunlit ground is, but still grey: channels within
+  // 25% of each other (measured 1.22).
+  EXPECT_LT(means[1].maxCoeff() / means[1].minCoeff(), 1.25f);
 }
 
 }  // namespace

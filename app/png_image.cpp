@@ -14,11 +14,13 @@ void writePng(const std::filesystem::path& path, int width, int height, const st
   image.width = static_cast<png_uint_32>(width);
   image.height = static_cast<png_uint_32>(height);
   image.format = PNG_FORMAT_RGB;
+  // Faster compression, and the single pass below: the default run's outputs fell from 6.6 to 1.4 ms per frame,
+  // the thickness images grew 1.6x. A run writes an image every few frames beside the simulation and renderer.
+  image.flags = PNG_IMAGE_FLAG_FAST;
   // Encoded in memory, then written atomically (output_file.h): a full disk is an error naming the file, and a
-  // reader never sees half a PNG. The first call measures, the second encodes.
-  png_alloc_size_t bytes = 0;
-  if (!png_image_write_to_memory(&image, nullptr, &bytes, 0, rgb.data(), 0, nullptr))
-    throw std::runtime_error("libpng failed encoding " + path.string() + ": " + image.message);
+  // reader never sees half a PNG. One pass into a buffer of libpng's own upper bound (a measuring pass first
+  // would encode every image twice).
+  png_alloc_size_t bytes = PNG_IMAGE_PNG_SIZE_MAX(image);
   std::string encoded(bytes, '\0');
   if (!png_image_write_to_memory(&image, encoded.data(), &bytes, 0, rgb.data(), 0, nullptr))
     throw std::runtime_error("libpng failed encoding " + path.string() + ": " + image.message);

@@ -31,9 +31,9 @@
 #include <vector>
 
 #include "film_checkpoint.h"
-#include "implicit_euler.h"
 #include "scripted_gestures.h"
 #include "simulation.h"
+#include "stages.h"
 
 namespace {
 
@@ -99,17 +99,37 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
+// The tension's energy at the film's positions with the given elasticities (N/m per particle) and rest lengths: the
+// springs of Eq. (3), or in the physical model each triangle's mean 2 gamma times its area (J).
+double tensionEnergy(const Params& p, const Film& film, const std::vector<float>& elasticity,
+                     const std::vector<float>& rest) {
+  const Topology& topo = film.topology;
+  const State& s = film.state;
+  double sum = 0;
+  if (p.tensionModel == 1) {
+    for (size_t t = 0; t < topo.triangleCount(); ++t) {
+      const uint32_t* c = &topo.triangles[3 * t];
+      const Vec3 twiceAreaNormal =
+          (s.position.get(c[1]) - s.position.get(c[0])).cross(s.position.get(c[2]) - s.position.get(c[0]));
+      sum +=
+          (elasticity[c[0]] + elasticity[c[1]] + elasticity[c[2]]) / 3.0 * 0.5 * twiceAreaNormal.cast<double>().norm();
+    }
+    return sum;
+  }
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    const double stretch = (s.position.get(a) - s.position.get(b)).cast<double>().norm() - rest[k];
+    sum += 0.25 * (elasticity[a] + elasticity[b]) * stretch * stretch;
+  }
+  return sum;
+}
+
 // Kinetic + gravity + the tension's energy (springs of Eq. 3, or 2 gamma x area in the physical model), J.
 double mechanicalEnergy(Simulation& sim) {
-  const FrameStats st = sim.stats();
-  const double moving = st.kineticEnergy + st.potentialEnergy;
-  if (sim.params().tensionModel == 0) return moving + st.elasticEnergy;
+  const FrameStats st = sim.stats();  // refreshes the elasticities at the film's positions
   const Film& film = sim.film();
-  double surface = 0;
-  for (size_t t = 0; t < film.topology.triangleCount(); ++t)
-    surface += triangleTension(film.state, &film.topology.triangles[3 * t]) * 0.5 *
-               film.state.triangleNormal.get(t).cast<double>().norm();
-  return moving + surface;
+  return st.kineticEnergy + st.potentialEnergy +
+         tensionEnergy(sim.params(), film, film.state.elasticity, film.topology.restLength);
 }
 
 // The wands: 50 frames of a random straight motion (up to 6 m/s per tip, bouncing off the walls of a 3 m box
@@ -171,23 +191,26 @@ class EnergyLedger {
   void trace(int frame, Simulation& sim) {
     const FrameStats st = sim.stats();  // refreshes the elasticities at the new positions
     const Film& film = sim.film();
+    auto tension = [&](const std::vector<float>& elasticity, const std::vector<float>& rest) {
+      return tensionEnergy(sim.params(), film, elasticity, rest);
+    };
+    const double tensionNow = tension(film.state.elasticity, film.topology.restLength);
     const Topology& topo = film.topology;
     const double moving = st.kineticEnergy + st.potentialEnergy;
     const bool sameSprings = topo.springCount() == rest_.size() && film.state.size() == elasticity_.size() &&
                              contacts_.size() > film.state.size();
     std::printf(
-        "  trace %d: n %zu closed %d burst %d K %.5f G %.5f springs %.5f contacts %.6f (%zu pairs) air %.6f V %.5f",
+        "  trace %d: n %zu closed %d burst %d K %.5f G %.5f tension %.5f contacts %.6f (%zu pairs) air %.6f V %.5f",
         frame, st.particles, int(topo.isClosed()), int(sim.burst().active()), st.kineticEnergy, st.potentialEnergy,
-        st.elasticEnergy, contactEnergy(sim.params(), film, topo.contacts), contactPairs(film), gasEnergy(sim),
-        st.volume);
+        tensionNow, contactEnergy(sim.params(), film, topo.contacts), contactPairs(film), gasEnergy(sim), st.volume);
     const double held = contactEnergy(sim.params(), film, topo.contacts) + gasEnergy(sim);
     if (sameSprings) {  // the step with the contact list it used (found after the frame before), then the new list's
       const double stepped =
-          moving + contactEnergy(sim.params(), film, contacts_) + gasEnergy(sim) + springs(film, elasticity_, rest_);
-      const double listed = moving + held + springs(film, elasticity_, rest_);
-      const double rested = moving + held + springs(film, elasticity_, topo.restLength);
+          moving + contactEnergy(sim.params(), film, contacts_) + gasEnergy(sim) + tension(elasticity_, rest_);
+      const double listed = moving + held + tension(elasticity_, rest_);
+      const double rested = moving + held + tension(elasticity_, topo.restLength);
       std::printf(" | step %+.5f new contact list %+.5f rest-lengths %+.5f elasticity %+.5f", stepped - last_,
-                  listed - stepped, rested - listed, moving + held + st.elasticEnergy - rested);
+                  listed - stepped, rested - listed, moving + held + tensionNow - rested);
     }
     if (sameSprings) printAdmittedPairs(sim.params(), film);
     if (topo.isClosed()) printBoyleMismatch(sim);
@@ -196,21 +219,10 @@ class EnergyLedger {
     elasticity_ = film.state.elasticity;
     rest_ = topo.restLength;
     contacts_ = topo.contacts;
-    last_ = moving + held + st.elasticEnergy;
+    last_ = moving + held + tensionNow;
   }
 
  private:
-  static double springs(const Film& film, const std::vector<float>& elasticity, const std::vector<float>& rest) {
-    const Topology& topo = film.topology;
-    const State& s = film.state;
-    double sum = 0;
-    for (size_t k = 0; k < topo.springCount(); ++k) {
-      const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
-      const double stretch = (s.position.get(a) - s.position.get(b)).cast<double>().norm() - rest[k];
-      sum += 0.25 * (elasticity[a] + elasticity[b]) * stretch * stretch;
-    }
-    return sum;
-  }
   // The contact penalty k_c/2 (d_c - |x_i - x_j|)^2 of the pairs in a contact list (Topology::contacts).
   static double contactEnergy(const Params& p, const Film& film, const std::vector<uint32_t>& c) {
     const State& s = film.state;

@@ -9,17 +9,31 @@
 // Run (minutes: under nice):
 //   nice -n 19 ./build/bench/gb_stress_bench --particles 25650 --frames 10000 [--tension-model 1] [--seed N]
 //   nice -n 19 ./build/bench/gb_stress_bench --particles 100000 --frames 1000
+// Finding a failure's cause without stepping the thousands of frames before it again:
+//   --checkpoint-at F [--checkpoint-file PATH]  writes the film, the wands and their generator after frame F
+//   --resume PATH                                goes on from there (a new Simulation of that film: its contact list
+//                                                and pressure are found again, so the run is close to, not equal to,
+//                                                the uninterrupted one)
+//   --trace-from F --trace-to F                  prints each frame's energy terms and what changed them (EnergyLedger)
+//   --param NAME=VALUE                           changes a parameter (e.g. solverIterations=30, collisionStiffness=0)
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <memory>
 #include <random>
+#include <sstream>
+#include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
-#include "implicit_euler.h"
+#include "film_checkpoint.h"
 #include "scripted_gestures.h"
 #include "simulation.h"
+#include "stages.h"
 
 namespace {
 
@@ -30,12 +44,31 @@ struct Options {
   int frames = 10000;
   int tensionModel = 0;
   unsigned seed = 42;
+  int traceFrom = 0, traceTo = -1;  // frames whose energy terms are printed one by one
+  int checkpointAt = 0;             // write the film after this frame to checkpointFile (0: never)
+  std::string checkpointFile = "stress_checkpoint.bin";
+  std::string resume;                                  // start from this checkpoint instead of a new dip
+  std::vector<std::pair<std::string, double>> params;  // --param NAME=VALUE, applied after the options above
 };
 
 Options parse(int argc, char** argv) {
   Options o;
   for (int k = 1; k + 1 < argc; k += 2) {
     const std::string flag = argv[k];
+    if (flag == "--param") {
+      const std::string assignment = argv[k + 1];
+      const size_t eq = assignment.find('=');
+      if (eq == std::string::npos) {
+        std::fprintf(stderr, "--param wants NAME=VALUE, got %s\n", assignment.c_str());
+        std::exit(2);
+      }
+      o.params.emplace_back(assignment.substr(0, eq), std::strtod(assignment.c_str() + eq + 1, nullptr));
+      continue;
+    }
+    if (flag == "--checkpoint-file" || flag == "--resume") {
+      (flag == "--resume" ? o.resume : o.checkpointFile) = argv[k + 1];
+      continue;
+    }
     const long value = std::strtol(argv[k + 1], nullptr, 10);
     if (flag == "--particles")
       o.particles = static_cast<int>(value);
@@ -45,8 +78,17 @@ Options parse(int argc, char** argv) {
       o.tensionModel = static_cast<int>(value);
     else if (flag == "--seed")
       o.seed = static_cast<unsigned>(value);
+    else if (flag == "--trace-from")
+      o.traceFrom = static_cast<int>(value);
+    else if (flag == "--trace-to")
+      o.traceTo = static_cast<int>(value);
+    else if (flag == "--checkpoint-at")
+      o.checkpointAt = static_cast<int>(value);
     else {
-      std::fprintf(stderr, "unknown option %s (--particles N --frames N --tension-model 0|1 --seed N)\n", flag.c_str());
+      std::fprintf(stderr,
+                   "unknown option %s (--particles N --frames N --tension-model 0|1 --seed N --trace-from F "
+                   "--trace-to F --checkpoint-at F --checkpoint-file PATH --resume PATH --param NAME=VALUE)\n",
+                   flag.c_str());
       std::exit(2);
     }
   }
@@ -57,17 +99,37 @@ Options parse(int argc, char** argv) {
   return o;
 }
 
+// The tension's energy at the film's positions with the given elasticities (N/m per particle) and rest lengths: the
+// springs of Eq. (3), or in the physical model each triangle's mean 2 gamma times its area (J).
+double tensionEnergy(const Params& p, const Film& film, const std::vector<float>& elasticity,
+                     const std::vector<float>& rest) {
+  const Topology& topo = film.topology;
+  const State& s = film.state;
+  double sum = 0;
+  if (p.tensionModel == 1) {
+    for (size_t t = 0; t < topo.triangleCount(); ++t) {
+      const uint32_t* c = &topo.triangles[3 * t];
+      const Vec3 twiceAreaNormal =
+          (s.position.get(c[1]) - s.position.get(c[0])).cross(s.position.get(c[2]) - s.position.get(c[0]));
+      sum +=
+          (elasticity[c[0]] + elasticity[c[1]] + elasticity[c[2]]) / 3.0 * 0.5 * twiceAreaNormal.cast<double>().norm();
+    }
+    return sum;
+  }
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    const double stretch = (s.position.get(a) - s.position.get(b)).cast<double>().norm() - rest[k];
+    sum += 0.25 * (elasticity[a] + elasticity[b]) * stretch * stretch;
+  }
+  return sum;
+}
+
 // Kinetic + gravity + the tension's energy (springs of Eq. 3, or 2 gamma x area in the physical model), J.
 double mechanicalEnergy(Simulation& sim) {
-  const FrameStats st = sim.stats();
-  const double moving = st.kineticEnergy + st.potentialEnergy;
-  if (sim.params().tensionModel == 0) return moving + st.elasticEnergy;
+  const FrameStats st = sim.stats();  // refreshes the elasticities at the film's positions
   const Film& film = sim.film();
-  double surface = 0;
-  for (size_t t = 0; t < film.topology.triangleCount(); ++t)
-    surface += triangleTension(film.state, &film.topology.triangles[3 * t]) * 0.5 *
-               film.state.triangleNormal.get(t).cast<double>().norm();
-  return moving + surface;
+  return st.kineticEnergy + st.potentialEnergy +
+         tensionEnergy(sim.params(), film, film.state.elasticity, film.topology.restLength);
 }
 
 // The wands: 50 frames of a random straight motion (up to 6 m/s per tip, bouncing off the walls of a 3 m box
@@ -94,6 +156,21 @@ class RandomWands {
     wands_ = n;
     return wands_;
   }
+  // The generator and the tips' velocities as text, and back (checkpoints); the tips' positions are the film's
+  // wands.
+  [[nodiscard]] std::string save() const {
+    std::ostringstream out;
+    out << rng_;
+    for (const Vec3& v : velocity_) out << ' ' << v.x() << ' ' << v.y() << ' ' << v.z();
+    return out.str();
+  }
+  void restore(const std::string& saved, const WandState& wands) {
+    std::istringstream in(saved);
+    in >> rng_;
+    for (Vec3& v : velocity_) in >> v.x() >> v.y() >> v.z();
+    if (!in) throw std::runtime_error("the checkpoint's wand generator state is unreadable");
+    wands_ = wands;
+  }
 
  private:
   Vec3 randomVelocity() {
@@ -103,6 +180,132 @@ class RandomWands {
   std::mt19937 rng_;
   WandState wands_;
   Vec3 velocity_[2] = {Vec3::Zero(), Vec3::Zero()};
+};
+
+// Diagnostics (--trace-from/--trace-to): each frame's change of the film's energy split by its cause. The step's own
+// change is taken with the stiffness (elasticity) and rest lengths the step used, those of the frame before; what
+// the rest-length rules between frames (yield, contraction, payout) and the new elasticities then add at the new
+// positions is printed apart, with the contact penalty's energy and the free bubble's air (Boyle) energy.
+class EnergyLedger {
+ public:
+  void trace(int frame, Simulation& sim) {
+    const FrameStats st = sim.stats();  // refreshes the elasticities at the new positions
+    const Film& film = sim.film();
+    auto tension = [&](const std::vector<float>& elasticity, const std::vector<float>& rest) {
+      return tensionEnergy(sim.params(), film, elasticity, rest);
+    };
+    const double tensionNow = tension(film.state.elasticity, film.topology.restLength);
+    const Topology& topo = film.topology;
+    const double moving = st.kineticEnergy + st.potentialEnergy;
+    const bool sameSprings = topo.springCount() == rest_.size() && film.state.size() == elasticity_.size() &&
+                             contacts_.size() > film.state.size();
+    std::printf(
+        "  trace %d: n %zu closed %d burst %d K %.5f G %.5f tension %.5f contacts %.6f (%zu pairs) air %.6f V %.5f",
+        frame, st.particles, int(topo.isClosed()), int(sim.burst().active()), st.kineticEnergy, st.potentialEnergy,
+        tensionNow, contactEnergy(sim.params(), film, topo.contacts), contactPairs(film), gasEnergy(sim), st.volume);
+    const double held = contactEnergy(sim.params(), film, topo.contacts) + gasEnergy(sim);
+    if (sameSprings) {  // the step with the contact list it used (found after the frame before), then the new list's
+      const double stepped =
+          moving + contactEnergy(sim.params(), film, contacts_) + gasEnergy(sim) + tension(elasticity_, rest_);
+      const double listed = moving + held + tension(elasticity_, rest_);
+      const double rested = moving + held + tension(elasticity_, topo.restLength);
+      std::printf(" | step %+.5f new contact list %+.5f rest-lengths %+.5f elasticity %+.5f", stepped - last_,
+                  listed - stepped, rested - listed, moving + held + tensionNow - rested);
+    }
+    if (sameSprings) printAdmittedPairs(sim.params(), film);
+    if (topo.isClosed()) printBoyleMismatch(sim);
+    std::printf("\n");
+    std::fflush(stdout);
+    elasticity_ = film.state.elasticity;
+    rest_ = topo.restLength;
+    contacts_ = topo.contacts;
+    last_ = moving + held + tensionNow;
+  }
+
+ private:
+  // The contact penalty k_c/2 (d_c - |x_i - x_j|)^2 of the pairs in a contact list (Topology::contacts).
+  static double contactEnergy(const Params& p, const Film& film, const std::vector<uint32_t>& c) {
+    const State& s = film.state;
+    if (c.size() < s.size() + 1) return 0;
+    const size_t base = s.size() + 1;
+    double sum = 0;
+    for (size_t i = 0; i < s.size(); ++i)
+      for (uint32_t k = c[i]; k < c[i + 1]; ++k) {
+        const uint32_t j = c[base + k];
+        const double len = (s.position.get(i) - s.position.get(j)).cast<double>().norm();
+        if (j > i && len < p.collisionDistance)
+          sum += 0.5 * p.collisionStiffness * std::pow(p.collisionDistance - len, 2);
+      }
+    return sum;
+  }
+  // The pairs the new contact list holds and the last one did not, already closer than the collision distance (they
+  // bring their penalty energy with them), and how many of those are within two springs of each other along the
+  // film (the same sheet, not a fold).
+  void printAdmittedPairs(const Params& p, const Film& film) const {
+    const Topology& topo = film.topology;
+    const State& s = film.state;
+    const size_t base = s.size() + 1;
+    size_t admitted = 0, nearOnSheet = 0;
+    double energy = 0;
+    for (uint32_t i = 0; i < s.size(); ++i) {
+      const auto oldFirst = contacts_.begin() + base + contacts_[i],
+                 oldLast = contacts_.begin() + base + contacts_[i + 1];
+      for (uint32_t k = topo.contacts[i]; k < topo.contacts[i + 1]; ++k) {
+        const uint32_t j = topo.contacts[base + k];
+        if (j < i || std::binary_search(oldFirst, oldLast, j)) continue;
+        const float len = (s.position.get(i) - s.position.get(j)).norm();
+        if (!(len < p.collisionDistance)) continue;
+        ++admitted;
+        energy += 0.5 * p.collisionStiffness * std::pow(p.collisionDistance - len, 2);
+        bool near = false;
+        for (uint32_t a = topo.springOffset[i]; a < topo.springOffset[i + 1] && !near; ++a) {
+          const uint32_t m = topo.springNeighbour[a];
+          for (uint32_t b = topo.springOffset[m]; b < topo.springOffset[m + 1] && !near; ++b)
+            near = topo.springNeighbour[b] == j;
+        }
+        nearOnSheet += near;
+      }
+    }
+    std::printf(" | admitted overlapping %zu pairs (%.5f J), %zu of them two springs apart", admitted, energy,
+                nearOnSheet);
+  }
+  // Boyle's excess pressure on a closed film pushes each particle along its unit normal times its Voronoi area
+  // (boyleForce); the gradient of the volume is a third of its triangles' area-weighted normals, which sum to zero
+  // over a closed film. Prints the net force of the first and the power the difference does at this frame's
+  // velocities (W).
+  static void printBoyleMismatch(Simulation& sim) {
+    const Film& film = sim.film();
+    const State& s = film.state;
+    const Topology& topo = film.topology;
+    const double excess = sim.lastPressure() - sim.params().pressureCoefficient;
+    Eigen::Vector3d net = Eigen::Vector3d::Zero(), netGradient = Eigen::Vector3d::Zero();
+    double power = 0, powerGradient = 0;
+    for (size_t i = 0; i < s.size(); ++i) {
+      if (!s.alive[i]) continue;
+      Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
+      for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k)
+        gradient += s.triangleNormal.get(topo.triangleIndex[k]).cast<double>() / 6.0;
+      const Eigen::Vector3d used = s.voronoiArea[i] * s.normal.get(i).cast<double>();
+      const Eigen::Vector3d v = s.velocity.get(i).cast<double>();
+      net += excess * used;
+      netGradient += excess * gradient;
+      power += excess * used.dot(v);
+      powerGradient += excess * gradient.dot(v);
+    }
+    std::printf(" | boyle dP %.3f net %.4f N (%.4f %.4f %.4f) gradient net %.2e power %+.5f W vs %+.5f W", excess,
+                net.norm(), net.x(), net.y(), net.z(), netGradient.norm(), power, powerGradient);
+  }
+  static double gasEnergy(Simulation& sim) {
+    const Film& film = sim.film();
+    return film.topology.isClosed() ? boyleGasEnergy(sim.params(), film.referenceVolume, sim.stats().volume) : 0.0;
+  }
+  static size_t contactPairs(const Film& film) {
+    const size_t listed = film.topology.contacts.size(), heads = film.state.size() + 1;
+    return listed > heads ? (listed - heads) / 2 : 0;
+  }
+  std::vector<float> elasticity_, rest_;
+  std::vector<uint32_t> contacts_;
+  double last_ = 0;
 };
 
 bool allFinite(const State& s) {
@@ -118,16 +321,34 @@ int main(int argc, char** argv) {
   Params p;
   p.particlesAtFullSolution = o.particles;
   p.tensionModel = o.tensionModel;
+  try {
+    for (const auto& [name, value] : o.params) setParameter(p, name, value);
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 2;
+  }
   RandomWands wands(o.seed, gestureAt(Gesture::Straight, GestureOptions{}, 0.0));
-  Simulation sim(p, WandTool{}, gestureAt(Gesture::Straight, GestureOptions{}, 0.0));
-  std::printf("stress: %zu particles, %s tension, %d frames of random wand motion (seed %u)\n", sim.film().state.size(),
-              o.tensionModel ? "physical" : "springs", o.frames, o.seed);
+  std::unique_ptr<Simulation> simulation;
+  int firstFrame = 1;
+  if (o.resume.empty()) {
+    simulation = std::make_unique<Simulation>(p, WandTool{}, wands.current());
+  } else {  // a new Simulation of the saved film: its burst, aerosol and wand arming start afresh
+    FilmCheckpoint c = readCheckpoint(o.resume);
+    wands.restore(c.randomWands, c.wands);
+    firstFrame = c.frame + 1;
+    simulation = std::make_unique<Simulation>(p, std::move(c.film), c.wands);
+    simulation->setWandsArmed(c.wandsArmed);
+  }
+  Simulation& sim = *simulation;
+  std::printf("stress: %zu particles, %s tension, frames %d to %d of random wand motion (seed %u)\n",
+              sim.film().state.size(), o.tensionModel ? "physical" : "springs", firstFrame, o.frames, o.seed);
   std::fflush(stdout);
   int pokes = 0, pinches = 0, dips = 0, restsChecked = 0, failures = 0;
   double worstGrowth = -1e30, restStart = 0;
   bool restStarted = false;
+  EnergyLedger ledger;
   const auto start = std::chrono::steady_clock::now();
-  for (int f = 1; f <= o.frames; ++f) {
+  for (int f = firstFrame; f <= o.frames; ++f) {
     try {
       sim.advanceFrame(wands.next(f, p.frameTime));
     } catch (const SimulationUnstable& e) {
@@ -145,6 +366,9 @@ int main(int argc, char** argv) {
       ++dips;
       restStarted = false;
     }
+    if (f >= o.traceFrom && f <= o.traceTo) ledger.trace(f, sim);
+    if (f == o.checkpointAt)
+      writeCheckpoint(o.checkpointFile, {sim.film(), wands.current(), sim.wandsArmed(), f, wands.save()});
     if (!allFinite(sim.film().state)) {
       std::printf("FAIL frame %d: a non-finite particle\n", f);
       return 1;

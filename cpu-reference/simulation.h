@@ -77,6 +77,11 @@ class Simulation {
   // Dips the wands again: a new film on the frame at `wands` (after a burst, or to start over).
   void dip(const WandState& wands);
 
+  // Whether each wand tip (left, right) bursts a free bubble it touches (pinch() disarms both until they are pulled
+  // clear): kept by checkpoints of a long run (bench/film_checkpoint.h), which rebuild the Simulation from its film.
+  [[nodiscard]] std::array<bool, 2> wandsArmed() const { return wandArmed_; }
+  void setWandsArmed(std::array<bool, 2> armed) { wandArmed_ = armed; }
+
   [[nodiscard]] const BurstFront& burst() const { return burst_; }
   [[nodiscard]] const Aerosol& aerosol() const { return aerosol_; }
   [[nodiscard]] const TopologyEvents& lastEvents() const { return events_; }

@@ -144,6 +144,12 @@ float boylePressure(const Params& p, float referenceVolume, float currentVolume)
   return currentVolume > 0 ? p.pressureCoefficient * referenceVolume / currentVolume : p.pressureCoefficient;
 }
 
+double boyleGasEnergy(const Params& p, double referenceVolume, double currentVolume) {
+  if (!(referenceVolume > 0 && currentVolume > 0)) return 0.0;
+  return p.pressureCoefficient *
+         (referenceVolume * std::log(referenceVolume / currentVolume) + (currentVolume - referenceVolume));
+}
+
 Vec3 areaTensionForce(const Topology& topo, const State& s, size_t i) {
   Vec3 f = Vec3::Zero();
   for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {

@@ -112,6 +112,12 @@ void computeExternalForces(const Params& p, const StepUniforms& u, float pressur
 
 // Eq. (11), Boyle's law: P_cur = P_0 V_0 / V_cur.
 float boylePressure(const Params& p, float referenceVolume, float currentVolume);
+// The energy the bubble's air stores at volume V against the outside air, the work Boyle's excess pressure does
+// when the bubble returns to V_0: -integral from V_0 to V of (P_cur - P_0) dV' = P_0 V_0 ln(V_0 / V) + P_0 (V - V_0),
+// zero at V_0 and positive either side (J). The implicit step's objective holds it (implicit_euler.h): a
+// compressed bubble's air pushes the film out, its energy going into the film's motion and tension. CPU
+// diagnostics only (FrameStats), in double: the two terms cancel to a small difference.
+double boyleGasEnergy(const Params& p, double referenceVolume, double currentVolume);
 
 // ---- Stage 7: semi-implicit Euler, Eqs. (12)-(13) --------------------------------------------------------
 // Interior particles integrate their force and stop at the floor (y = 0), keeping their sliding velocity;

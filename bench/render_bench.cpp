@@ -31,7 +31,6 @@ using bench::vulkanDevice;
 std::unique_ptr<Simulation> largestScene(std::unique_ptr<Stepper> stepper) {
   Params params;
   params.particlesAtFullSolution = kParticles;
-  params.maxSubsteps = 1000000;
   GestureOptions g;
   g.start = 0.0f;
   auto sim = std::make_unique<Simulation>(params, WandTool{}, gestureAt(Gesture::Straight, g, 0.0), std::move(stepper));

@@ -223,7 +223,8 @@ class EnergyLedger {
   }
 
  private:
-  // The contact penalty k_c/2 (d_c - |x_i - x_j|)^2 of the pairs in a contact list (Topology::contacts).
+  // The contact penalty k_c/2 (d_c - |x_i - x_j|)^2 of the pairs in a contact list (Topology::contacts), d_c the
+  // pair's rest distance.
   static double contactEnergy(const Params& p, const Film& film, const std::vector<uint32_t>& c) {
     const State& s = film.state;
     if (c.size() < s.size() + 1) return 0;
@@ -233,14 +234,14 @@ class EnergyLedger {
       for (uint32_t k = c[i]; k < c[i + 1]; ++k) {
         const uint32_t j = c[base + k];
         const double len = (s.position.get(i) - s.position.get(j)).cast<double>().norm();
-        if (j > i && len < p.collisionDistance)
-          sum += 0.5 * p.collisionStiffness * std::pow(p.collisionDistance - len, 2);
+        const double rest = contactRestDistance(c, s.size(), k);
+        if (j > i && len < rest) sum += 0.5 * p.collisionStiffness * std::pow(rest - len, 2);
       }
     return sum;
   }
-  // The pairs the new contact list holds and the last one did not, already closer than the collision distance (they
-  // bring their penalty energy with them), and how many of those are within two springs of each other along the
-  // film (the same sheet, not a fold).
+  // The pairs the new contact list holds and the last one did not, already closer than the collision distance, the
+  // penalty energy they bring (none since they enter at their separation: contactRestDistanceAfter), and how many of
+  // those are within two springs of each other along the film (the same sheet, not a fold).
   void printAdmittedPairs(const Params& p, const Film& film) const {
     const Topology& topo = film.topology;
     const State& s = film.state;
@@ -256,7 +257,8 @@ class EnergyLedger {
         const float len = (s.position.get(i) - s.position.get(j)).norm();
         if (!(len < p.collisionDistance)) continue;
         ++admitted;
-        energy += 0.5 * p.collisionStiffness * std::pow(p.collisionDistance - len, 2);
+        const float rest = contactRestDistance(topo.contacts, s.size(), k);
+        energy += 0.5 * p.collisionStiffness * std::pow(std::max(0.0f, rest - len), 2);
         bool near = false;
         for (uint32_t a = topo.springOffset[i]; a < topo.springOffset[i + 1] && !near; ++a) {
           const uint32_t m = topo.springNeighbour[a];

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -94,9 +95,25 @@ std::vector<float> speedsAboutTheMean(const Film& film) {
   return speed;
 }
 
+// The rest distance pair (i, j) had in the last list, or 0 when it was not listed.
+float previousRestDistance(const ContactHistory& history, uint32_t i, uint32_t j) {
+  const std::vector<uint32_t>& c = history.contacts;
+  const size_t n = history.particles;
+  if (i >= n || j >= n || c.size() < n + 1) return 0.0f;
+  const auto first = c.begin() + static_cast<ptrdiff_t>(n + 1 + c[i]),
+             last = c.begin() + static_cast<ptrdiff_t>(n + 1 + c[i + 1]);
+  const auto found = std::lower_bound(first, last, j);
+  if (found == last || *found != j) return 0.0f;
+  return contactRestDistance(c, n, static_cast<uint32_t>(found - c.begin() - static_cast<ptrdiff_t>(n + 1)));
+}
+
 }  // namespace
 
-size_t findContacts(const Params& p, float frameTime, float slack, Film& film) {
+float contactRestDistanceAfter(const Params& p, float previousRest, float separation) {
+  return std::min(p.collisionDistance, std::max(previousRest, separation));
+}
+
+size_t findContacts(const Params& p, float frameTime, float slack, Film& film, const ContactHistory& history) {
   const State& s = film.state;
   Topology& topo = film.topology;
   const size_t n = s.size();
@@ -156,10 +173,19 @@ size_t findContacts(const Params& p, float frameTime, float slack, Film& film) {
     total += lower[i].size() + lists[i].size();
   }
   packed[n] = static_cast<uint32_t>(total);
+  packed.reserve(n + 1 + 2 * total);
   for (size_t i = 0; i < n; ++i) {
     packed.insert(packed.end(), lower[i].begin(), lower[i].end());
     packed.insert(packed.end(), lists[i].begin(), lists[i].end());
   }
+  packed.resize(n + 1 + 2 * total);
+  for (uint32_t i = 0; i < n; ++i)
+    for (uint32_t k = packed[i]; k < packed[i + 1]; ++k) {
+      const uint32_t j = packed[n + 1 + k];
+      const float separation = (s.position.get(i) - s.position.get(j)).norm();
+      const float rest = contactRestDistanceAfter(p, previousRestDistance(history, i, j), separation);
+      packed[n + 1 + total + k] = std::bit_cast<uint32_t>(rest);
+    }
   topo.contacts = std::move(packed);
   return total / 2;
 }

@@ -9,14 +9,31 @@
 
 namespace gb {
 
+// The contact list the last search left (Topology::contacts) and the particle count it was made for. Particles
+// keep their indices while the film grows at the wire, pinches off and bursts (new ones are appended, dead ones
+// stay), so a pair still listed keeps its rest distance; a new dip starts an empty history.
+struct ContactHistory {
+  std::vector<uint32_t> contacts;
+  size_t particles = 0;
+};
+
+// A listed pair's rest distance: the collision distance, or the pair's separation when it enters the list
+// already closer. A pair then brings no penalty energy with it: pushed out to the full distance at once, the
+// overlaps a new list admits (a crumpled film's own wrinkles folding across the 45-degree test, sheets that
+// closed faster than the search's margin) made energy from nothing, 0.3-0.45 J a frame in the 25,650-particle
+// stress run (docs/performance.md). It grows back as the pair separates and never shrinks while the pair stays
+// listed, so a new list never raises the penalty energy and the step's own approach is resisted as before.
+float contactRestDistanceAfter(const Params& params, float previousRest, float separation);
+
 // Fills film.topology.contacts: for every living particle, the living particles that may come within
 // collisionDistance of it during the next frame of frameTime and that are not its one-ring neighbours and lie
 // across the film from it (their separation makes an angle under 45 degrees with one of the two normals, so
-// neighbours along the same sheet are left out). A pair may close by h (|v_i - mean| + |v_j - mean|) at its
-// start velocities, plus slack for what the frame's forces add; the margin is capped at kMaxContactMargin. The
-// list is symmetric and sorted. Returns the number of pairs.
+// neighbours along the same sheet are left out), each pair with its rest distance (contactRestDistanceAfter, with
+// the rest distance it had in `history`). A pair may close by h (|v_i - mean| + |v_j - mean|) at its start
+// velocities, plus slack for what the frame's forces add; the margin is capped at kMaxContactMargin. The list is
+// symmetric and sorted. Returns the number of pairs.
 constexpr float kMaxContactMargin = 0.05f;  // m: a film faster than 2.5 m/s relative to itself bursts anyway
-size_t findContacts(const Params& params, float frameTime, float slack, Film& film);
+size_t findContacts(const Params& params, float frameTime, float slack, Film& film, const ContactHistory& history = {});
 
 // The impact of two film particles meeting at approach speed v (the closing speed along their separation):
 // the film Weber number m_A v^2 / E, the dynamic pressure of the approach over the film's tension, with m_A

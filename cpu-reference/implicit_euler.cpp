@@ -84,7 +84,7 @@ void addInternal(const Params& p, float h, const Topology& topo, const State& s,
       addAreaTension(triangleTension(s, tri), x, s.position.get(tri[(c + 1) % 3]), s.position.get(tri[(c + 2) % 3]), b);
     }
   }
-  // Contacts: penalty k_c/2 (d_c - |x - xj|)^2 inside the collision distance (its transverse Hessian term is
+  // Contacts: penalty k_c/2 (d_c - |x - xj|)^2 inside the pair's rest distance d_c (its transverse Hessian term is
   // negative and dropped), damped while the two approach. The partner is taken where inertia carries it,
   // x_t + h v_t, not where the sweep has moved it: contacts then need no colouring of their own, the colouring
   // changes only with the mesh, and the sweep's result does not depend on which contacts were found.
@@ -93,10 +93,10 @@ void addInternal(const Params& p, float h, const Topology& topo, const State& s,
     const uint32_t j = topo.contacts[base + k];
     const Vec3 xj = s.previousPosition.get(j) + h * s.velocity.get(j);
     const Vec3 d = x - xj;
-    const float len = d.norm();
-    if (!(len > 0 && len < p.collisionDistance)) continue;
+    const float len = d.norm(), rest = contactRestDistance(topo.contacts, s.size(), k);
+    if (!(len > 0 && len < rest)) continue;
     const Vec3 away = d / len;
-    b.gradient -= p.collisionStiffness * (p.collisionDistance - len) * away;
+    b.gradient -= p.collisionStiffness * (rest - len) * away;
     b.hessian += p.collisionStiffness * outer(away);
     const Vec3 relative = dx - (xj - s.previousPosition.get(j));
     if (relative.dot(away) < 0) b.hessian += addDampingGradient(p.collisionDamping, h, away, relative, b) * outer(away);

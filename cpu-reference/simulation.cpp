@@ -201,7 +201,8 @@ void Simulation::updateContacts() {
   // Contacts for the next frame: within reach of what two particles can close in the longest step taken so far,
   // plus 5 mm for what the step's forces add to their start velocities.
   constexpr float slack = 0.005f;
-  findContacts(params_, contactHorizon_, slack, film_);
+  findContacts(params_, contactHorizon_, slack, film_, contactHistory_);
+  contactHistory_ = {film_.topology.contacts, film_.state.size()};
   stepper_->updateContacts(film_);
 }
 
@@ -243,6 +244,7 @@ bool Simulation::pinch() {
 
 void Simulation::dip(const WandState& wands) {
   film_ = generateFilm(params_, film_.tool, wands);
+  contactHistory_ = {};  // the new film's particles are not the old one's
   CpuStepper::refreshGeometry(params_, film_);
   burst_ = BurstFront{};
   wands_ = wands;

@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "bursting.h"
+#include "collision.h"
 #include "cpu_stepper.h"
 #include "film.h"
 #include "pinch_off.h"
@@ -133,7 +134,8 @@ class Simulation {
   int substeps_ = 1;
   int solverIterations_ = 0;  // 0: Params::solverIterations
   float pressure_ = 0;
-  float contactHorizon_;  // the longest step taken (s): what the contact search must reach across
+  float contactHorizon_;           // the longest step taken (s): what the contact search must reach across
+  ContactHistory contactHistory_;  // the last contact list, for the pairs' rest distances (collision.h)
   long stepCount_ = 0;
 };
 

@@ -78,10 +78,10 @@ double particleObjective(const Params& p, const StepUniforms& u, const Topology&
   for (uint32_t k = topo.contacts[i]; k < topo.contacts[i + 1]; ++k) {
     const uint32_t j = topo.contacts[base + k];
     const Vec3 xj = s.previousPosition.get(j) + u.dt * s.velocity.get(j), d = x - xj;
-    const float len = d.norm();
-    if (!(len > 0 && len < p.collisionDistance)) continue;
+    const float len = d.norm(), rest = contactRestDistance(topo.contacts, s.size(), k);
+    if (!(len > 0 && len < rest)) continue;
     const Vec3 away = d / len;
-    e += 0.5 * p.collisionStiffness * std::pow(p.collisionDistance - len, 2);
+    e += 0.5 * p.collisionStiffness * std::pow(rest - len, 2);
     const double approach = std::min(0.0, dot(dx - (xj - s.previousPosition.get(j)), away));
     e += p.collisionDamping / (2 * h) * approach * approach;
   }

@@ -182,17 +182,17 @@ Vec3 internalForce(const Params& p, const Topology& topo, const State& s, size_t
     if (!physical) f += stiffness * (len - topo.restLength[topo.springIndex[k]]) * dir;  // Eq. (3)
     f += p.springDamping * (s.velocity.get(j) - vi).dot(dir) * dir;                      // Algorithm 1, line 5
   }
-  // Self-collision: contacts closer than the collision distance repel along their separation and damp their
+  // Self-collision: contacts closer than their rest distance (collision.h) repel along their separation and damp their
   // approach; the tangential motion is free, so colliding sheets slip (Section 8).
   const uint32_t base = static_cast<uint32_t>(s.size()) + 1;
   for (uint32_t k = topo.contacts[i]; k < topo.contacts[i + 1]; ++k) {
     const uint32_t j = topo.contacts[base + k];
     const Vec3 d = xi - s.position.get(j);
-    const float len = d.norm();
-    if (!(len > 0 && len < p.collisionDistance)) continue;
+    const float len = d.norm(), rest = contactRestDistance(topo.contacts, s.size(), k);
+    if (!(len > 0 && len < rest)) continue;
     const Vec3 away = d / len;
     const float approach = (vi - s.velocity.get(j)).dot(away);
-    f += p.collisionStiffness * (p.collisionDistance - len) * away;
+    f += p.collisionStiffness * (rest - len) * away;
     if (approach < 0) f -= p.collisionDamping * approach * away;
   }
   return f;

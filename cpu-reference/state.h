@@ -3,6 +3,7 @@
 // mirrors with one storage buffer per attribute. float32 throughout (ARCHITECTURE.md).
 
 #include <Eigen/Dense>
+#include <bit>
 #include <cstdint>
 #include <vector>
 
@@ -83,8 +84,10 @@ struct Topology {
   [[nodiscard]] size_t triangleCount() const { return triangles.size() / 3; }
   [[nodiscard]] size_t springCount() const { return restLength.size(); }
   [[nodiscard]] size_t particleCount() const { return boundary.size(); }
-  // Self-collision candidates of each particle for the current frame, as one packed CSR array:
-  // contacts[i] .. contacts[i + 1] index the neighbours stored from contacts[n + 1] on (collision.h).
+  // Self-collision candidates of each particle for the current frame, as one packed array (collision.h):
+  // contacts[i] .. contacts[i + 1] index the partners stored from contacts[n + 1] on, and after the last
+  // partner (from contacts[n + 1 + contacts[n]] on) each pair's rest distance as float bits, in the same order.
+  // One array on both backends: the device's 32 bindings are all in use.
   std::vector<uint32_t> contacts;
   // Graph colouring of the particles the implicit solver moves (colouring.h): colour c holds
   // colourOrder[colourOffset[c] .. colourOffset[c + 1]); no two particles joined by a spring or a contact
@@ -95,6 +98,12 @@ struct Topology {
                         // apply; a burst tears it open again. Set by buildAdjacency.
   [[nodiscard]] bool isClosed() const { return closed; }
 };
+
+// The rest distance of the k-th partner entry of a packed contact list for n particles (Topology::contacts): the
+// contact penalty pushes the pair apart while it is closer than this.
+inline float contactRestDistance(const std::vector<uint32_t>& contacts, size_t n, uint32_t k) {
+  return std::bit_cast<float>(contacts[n + 1 + contacts[n] + k]);
+}
 
 // An undirected mesh edge (lower < upper particle index) and how many triangles use it: 1 on the film's edge (the
 // wire, or a hole's rim), 2 inside it, more where the mesh is not a manifold.

@@ -57,6 +57,9 @@ layout(std430, binding = GB_BINDING_COLOUR_ORDER) readonly buffer ColourOrderBuf
     buf[2u * pc.particles + (i)] = value_.z; \
   }
 
+// contactRestDistance: the rest distance of the k-th partner entry, stored after the partners (C++ twin).
+float contactRestDistance(uint k) { return uintBitsToFloat(contacts[pc.particles + 1u + contacts[pc.particles] + k]); }
+
 // framePoint of cpu-reference/wire_frame.cpp.
 vec3 framePoint(StepUniformsBlock u, float param) {
   const float pi = 3.14159265358979323846;

@@ -35,16 +35,16 @@ vec3 internalForce(uint i) {
     if (!physical) f += stiffness * (len - restLength[springIndex[k]]) * dir;  // Eq. (3)
     f += params.springDamping * dot(LOAD3(velocity, j) - vi, dir) * dir;        // Algorithm 1, line 5
   }
-  // Self-collision contacts (packed CSR: offsets, then neighbours from pc.particles + 1).
+  // Self-collision contacts (packed: offsets, neighbours from pc.particles + 1, then their rest distances).
   const uint base = pc.particles + 1u;
   for (uint k = contacts[i]; k < contacts[i + 1u]; ++k) {
     const uint j = contacts[base + k];
     const vec3 d = xi - LOAD3(position, j);
-    const float len = length(d);
-    if (!(len > 0.0 && len < params.collisionDistance)) continue;
+    const float len = length(d), rest = contactRestDistance(k);
+    if (!(len > 0.0 && len < rest)) continue;
     const vec3 away = d / len;
     const float approach = dot(vi - LOAD3(velocity, j), away);
-    f += params.collisionStiffness * (params.collisionDistance - len) * away;
+    f += params.collisionStiffness * (rest - len) * away;
     if (approach < 0.0) f -= params.collisionDamping * approach * away;
   }
   return f;

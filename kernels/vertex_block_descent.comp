@@ -69,10 +69,10 @@ void addInternal(float h, uint i) {
     const uint j = contacts[base + k];
     const vec3 xj = LOAD3(previousPosition, j) + h * LOAD3(velocity, j);
     const vec3 d = x - xj;
-    const float len = length(d);
-    if (!(len > 0.0 && len < params.collisionDistance)) continue;
+    const float len = length(d), rest = contactRestDistance(k);
+    if (!(len > 0.0 && len < rest)) continue;
     const vec3 away = d / len;
-    gradient -= params.collisionStiffness * (params.collisionDistance - len) * away;
+    gradient -= params.collisionStiffness * (rest - len) * away;
     hessian += params.collisionStiffness * outerProduct(away, away);
     const vec3 relative = dx - (xj - LOAD3(previousPosition, j));
     if (dot(relative, away) < 0.0)

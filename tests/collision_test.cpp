@@ -1,7 +1,8 @@
 // Self-collision: film sheets pushed together repel and slip instead of passing through each other.
+#include "collision.h"
+
 #include <gtest/gtest.h>
 
-#include "collision.h"
 #include "simulation.h"
 #include "test_films.h"
 
@@ -34,6 +35,59 @@ TEST(Collision, ContactsAreSymmetricAcrossTheSheetsAndLeaveTheOneRingOut) {
       EXPECT_NE(i < half, j < half) << "contact " << i << "-" << j << " lies along one sheet";
       EXPECT_TRUE(std::binary_search(c.begin() + n + 1 + c[j], c.begin() + n + 1 + c[j + 1], i)) << "asymmetric";
     }
+}
+
+// The rest distance pair (i, j) had in a history, 0 when it was not listed there.
+float restDistanceIn(const ContactHistory& history, uint32_t i, uint32_t j) {
+  const std::vector<uint32_t>& c = history.contacts;
+  const size_t n = history.particles;
+  for (uint32_t k = n ? c[i] : 0; n && k < c[i + 1]; ++k)
+    if (c[n + 1 + k] == j) return contactRestDistance(c, n, k);
+  return 0.0f;
+}
+
+// Checks every listed pair's rest distance: the collision distance, or the largest separation since the pair was
+// listed. Returns how many pairs rest farther apart than they are by more than `kept`.
+size_t expectRestDistances(const Params& p, const Film& film, const ContactHistory& history, float kept) {
+  const size_t n = film.state.size();
+  const std::vector<uint32_t>& c = film.topology.contacts;
+  EXPECT_EQ(c.size(), n + 1 + 2 * size_t{c[n]}) << "a rest distance for every partner entry";
+  size_t farther = 0;
+  for (uint32_t i = 0; i < n; ++i)
+    for (uint32_t k = c[i]; k < c[i + 1]; ++k) {
+      const uint32_t j = c[n + 1 + k];
+      const float separation = (film.state.position.get(i) - film.state.position.get(j)).norm();
+      const float rest = contactRestDistance(c, n, k);
+      EXPECT_EQ(rest, std::min(p.collisionDistance, std::max(restDistanceIn(history, i, j), separation)))
+          << "pair " << i << "-" << j;
+      farther += rest > separation + kept;
+    }
+  return farther;
+}
+
+void moveSecondSheet(Film& film, float dz) {
+  for (size_t i = film.state.size() / 2; i < film.state.size(); ++i) film.state.position.z[i] += dz;
+}
+
+TEST(Collision, APairListedAlreadyCloseEntersAtItsSeparationAndKeepsTheLargestSinceThen) {
+  const Params p = twoSheetParams();
+  Film film = test::makeTwoSheets(p, 0.01f, 0.0f);  // 1 cm apart: inside the 2 cm collision distance
+  ASSERT_GT(findContacts(p, 0.0f, 0.01f, film), 100u);
+  // Entering already closer: at the pair's separation, so the new list holds no penalty energy.
+  EXPECT_EQ(expectRestDistances(p, film, {}, 0.0f), 0u);
+  ContactHistory history{film.topology.contacts, film.state.size()};
+
+  moveSecondSheet(film, 0.005f);  // apart to 1.5 cm: the rest distances follow the separations out
+  findContacts(p, 0.0f, 0.01f, film, history);
+  EXPECT_EQ(expectRestDistances(p, film, history, 0.0f), 0u);
+  history = {film.topology.contacts, film.state.size()};
+
+  moveSecondSheet(film, -0.008f);  // together to 0.7 cm: pairs still listed keep what they had and push apart
+  findContacts(p, 0.0f, 0.01f, film, history);
+  EXPECT_GT(expectRestDistances(p, film, history, 0.007f), 100u) << "the pairs must keep their 1.5 cm";
+
+  findContacts(p, 0.0f, 0.01f, film);  // no history (a new dip): from the present separations again
+  EXPECT_EQ(expectRestDistances(p, film, {}, 0.0f), 0u);
 }
 
 TEST(Collision, TwoSheetsPushedTogetherDoNotPassThroughEachOther) {

@@ -34,6 +34,63 @@ bool inFilm(const Film& film, uint32_t i) {
   return film.state.alive[i] && film.topology.triangleOffset[i + 1] > film.topology.triangleOffset[i];
 }
 
+// A pair lies across the film when its separation makes less than 45 degrees with either normal.
+constexpr float kAcrossCosineSquared = 0.5f;
+constexpr float kAcrossCosine = 0.70710678f;
+
+// What a bucket's particles look like as a piece of sheet: their bounding box, their mean normal (each normal
+// turned to agree with the first: a normal's sign does not matter to the across test), how far any of their
+// normals is from it, and the range of their heights along it. Most of a film's buckets hold a nearly flat piece
+// of one sheet, whose particles lie along the film from any particle outside the bucket: sheetHasNoPartnerOf
+// proves that from these figures, without a distance test per particle.
+struct BucketSheet {
+  Vec3 lower = Vec3::Constant(std::numeric_limits<float>::infinity());
+  Vec3 upper = Vec3::Constant(-std::numeric_limits<float>::infinity());
+  Vec3 normal = Vec3::Zero();
+  float normalSpread = 0.0f;  // max over the bucket of min(|n_j - normal|, |n_j + normal|)
+  float heightMin = std::numeric_limits<float>::infinity();
+  float heightMax = -std::numeric_limits<float>::infinity();
+};
+
+BucketSheet summariseSheet(const std::vector<Vec3>& position, const std::vector<Vec3>& normal, size_t begin,
+                           size_t end) {
+  BucketSheet b;
+  for (size_t k = begin; k < end; ++k) {
+    b.lower = b.lower.cwiseMin(position[k]);
+    b.upper = b.upper.cwiseMax(position[k]);
+    b.normal += normal[k].dot(normal[begin]) < 0 ? Vec3(-normal[k]) : normal[k];
+  }
+  const float length = b.normal.norm();
+  if (!(length > 0)) {
+    b.normalSpread = std::numeric_limits<float>::infinity();  // no direction: nothing can be proved
+    return b;
+  }
+  b.normal /= length;
+  for (size_t k = begin; k < end; ++k) {
+    b.normalSpread = std::max(b.normalSpread, std::min((normal[k] - b.normal).norm(), (normal[k] + b.normal).norm()));
+    const float height = b.normal.dot(position[k]);
+    b.heightMin = std::min(b.heightMin, height);
+    b.heightMax = std::max(b.heightMax, height);
+  }
+  return b;
+}
+
+// True when no particle of the bucket can lie across the film from particle x (normal n): for every particle j
+// there, |m . d| <= H (H its height range seen from x, m the bucket's normal) and |n_j . d| <= |m . d| + e |d|
+// (e the spread of its normals), so |n_j . d| <= sqrt(1/2) |d| wherever |d| >= H / (sqrt(1/2) - e), and the same
+// with n's own distance from m for |n . d|. The bucket's box keeps every |d| above its distance from x. A
+// conservative proof: the lists are exactly those of testing every particle (tested against a brute-force search).
+bool sheetHasNoPartnerOf(const BucketSheet& b, const Vec3& x, const Vec3& n) {
+  const float tilt = std::max(b.normalSpread, std::min((n - b.normal).norm(), (n + b.normal).norm()));
+  if (!(tilt < kAcrossCosine)) return false;
+  const float height = b.normal.dot(x);
+  // 10 um for the float rounding of heights of particles metres from the origin.
+  constexpr float kRounding = 1e-5f;
+  const float offPlane = std::max(b.heightMax - height, height - b.heightMin) + kRounding;
+  const Vec3 outside = (b.lower - x).cwiseMax(x - b.upper).cwiseMax(0.0f);
+  return outside.norm() * (kAcrossCosine - tilt) > offPlane;
+}
+
 // Particles bucketed by a hash of their grid cell, counting-sorted into one flat array: the same lookups as a
 // map of cells without a heap allocation per cell. Different cells may share a bucket; the distance test
 // in findContacts sorts them out.
@@ -45,6 +102,10 @@ struct CellTable {
   std::vector<Vec3> position;
   std::vector<Vec3> normal;
   std::vector<float> speed;  // about the film's mean velocity
+  // Each occupied bucket's sheet: bucket b's is sheet[sheetIndex[b]] (the occupied buckets are few: a bucket
+  // holds a cell of tens to thousands of particles).
+  std::vector<uint32_t> sheetIndex;
+  std::vector<BucketSheet> sheet;
   uint64_t mask = 0;
 
   [[nodiscard]] uint32_t bucketOf(const Cell& c) const {
@@ -75,6 +136,12 @@ CellTable bucketParticles(const Film& film, const std::vector<float>& speed, flo
     table.speed[k] = speed[table.particle[k]];
     table.position[k] = s.position.get(table.particle[k]);
     table.normal[k] = s.normal.get(table.particle[k]);
+  }
+  table.sheetIndex.assign(buckets, 0u);
+  for (size_t b = 0; b < buckets; ++b) {
+    if (table.offset[b] == table.offset[b + 1]) continue;
+    table.sheetIndex[b] = static_cast<uint32_t>(table.sheet.size());
+    table.sheet.push_back(summariseSheet(table.position, table.normal, table.offset[b], table.offset[b + 1]));
   }
   return table;
 }
@@ -127,7 +194,6 @@ size_t findContacts(const Params& p, float frameTime, float slack, Film& film, c
   if (reach > 0 && p.collisionStiffness > 0) {
     const CellTable table = bucketParticles(film, speed, reach);
     const float reachSquared = reach * reach;
-    constexpr float acrossCosineSquared = 0.5f;  // 45 degrees
     // Each particle lists its partners of higher index from the read-only table (each pair once, half the
     // distance tests): parallel, and the same lists in any order.
 #pragma omp parallel for schedule(dynamic, 256)
@@ -139,6 +205,9 @@ size_t findContacts(const Params& p, float frameTime, float slack, Film& film, c
         for (int dy = -1; dy <= 1; ++dy)
           for (int dz = -1; dz <= 1; ++dz) {
             const uint32_t bucket = table.bucketOf({c[0] + dx, c[1] + dy, c[2] + dz});
+            if (table.offset[bucket] == table.offset[bucket + 1] ||
+                sheetHasNoPartnerOf(table.sheet[table.sheetIndex[bucket]], xi, ni))
+              continue;
             const auto bucketEnd = table.particle.begin() + table.offset[bucket + 1];
             const auto higher = std::upper_bound(table.particle.begin() + table.offset[bucket], bucketEnd, i);
             for (auto k = static_cast<size_t>(higher - table.particle.begin()); k < table.offset[bucket + 1]; ++k) {
@@ -151,8 +220,8 @@ size_t findContacts(const Params& p, float frameTime, float slack, Film& film, c
               const float pairReach = p.collisionDistance + margin(speed[i] + table.speed[k]);
               if (!(lengthSquared < pairReach * pairReach)) continue;
               const float alongI = ni.dot(d), alongJ = table.normal[k].dot(d);
-              const bool across = alongI * alongI > acrossCosineSquared * lengthSquared ||
-                                  alongJ * alongJ > acrossCosineSquared * lengthSquared;
+              const bool across = alongI * alongI > kAcrossCosineSquared * lengthSquared ||
+                                  alongJ * alongJ > kAcrossCosineSquared * lengthSquared;
               if (across && !isOneRingNeighbour(topo, i, j)) lists[i].push_back(j);
             }
           }
@@ -179,6 +248,7 @@ size_t findContacts(const Params& p, float frameTime, float slack, Film& film, c
     packed.insert(packed.end(), lists[i].begin(), lists[i].end());
   }
   packed.resize(n + 1 + 2 * total);
+#pragma omp parallel for schedule(dynamic, 256)
   for (uint32_t i = 0; i < n; ++i)
     for (uint32_t k = packed[i]; k < packed[i + 1]; ++k) {
       const uint32_t j = packed[n + 1 + k];

@@ -422,8 +422,9 @@ TEST(Renderer, DefaultCameraFramesTheGiantBubbleLarge) {
   // default performance's peak film area. Covered: a pixel the film changes by more than 8 levels when drawn in
   // the thickness colouring (mostly opaque sheets, alpha 0.75). The interference colouring cannot measure
   // coverage: a clear film over a background about as bright as what it reflects changes a pixel by a level or
-  // two. Measured when written: 20.0% (a round bubble whose outline spans 0.55 of this 3:2 image's height covers
-  // 16%; the level camera framing the bounding sphere before it: 9.7%).
+  // two. Measured: 20.5% from the default camera looking up at 0.15 rad (20.0% from 0.3 rad down before it; a round
+  // bubble whose outline spans 0.55 of this 3:2 image's height covers 16%; the level camera framing the bounding
+  // sphere before those: 9.7%).
   GB_REQUIRE_VULKAN(device);
   const DefaultPerformanceFrames& frames = defaultPerformanceFrames();
   Renderer renderer(device, smallImage(Colouring::Thickness), neutralSky());

@@ -324,6 +324,8 @@ struct ForestEdge {
   float halfLength = 160.0f;  // m, half the frontage; the crowns taper over the last `taper`
   float taper = 50.0f;
   float crownSpacing = 7.0f;  // m between trees along the edge
+  // Heights (m) of the shortest tree's crown, the tallest's with its leaves, and the leaves' raggedness.
+  static constexpr float kShortest = 14.0f, kTallest = 21.35f, kLeaves = 0.35f;
 
   explicit ForestEdge(const Vec3& towards) : facing(Vec3(towards.x(), 0.0f, towards.z()).normalized()) {}
 
@@ -335,17 +337,17 @@ struct ForestEdge {
     for (int32_t k = cell - 1; k <= cell + 1; ++k) {
       const float centre = crownSpacing * (static_cast<float>(k) + 0.2f + 0.6f * noise::latticeValue(k, 0, 0, 11u));
       const float radius = crownSpacing * (0.55f + 0.3f * noise::latticeValue(k, 1, 0, 11u));
-      const float height = 14.0f + 7.0f * noise::latticeValue(k, 2, 0, 11u);
+      const float height = kShortest + (kTallest - kShortest - kLeaves) * noise::latticeValue(k, 2, 0, 11u);
       const float u = (s - centre) / radius;
       if (std::abs(u) < 1.0f) top = std::max(top, height - radius + radius * std::sqrt(1.0f - u * u));
     }
-    top += 0.35f * noise::fractal3(Vec3(s / 0.8f, 0.0f, 0.0f), 2, 12u);
+    top += kLeaves * noise::fractal3(Vec3(s / 0.8f, 0.0f, 0.0f), 2, 12u);
     return top * smoothstep(halfLength, halfLength - taper, std::abs(s));
   }
 
-  // How much of direction d the wood covers (0-1: the tree line blended over about `texel` radians, the angular
-  // size of an environment texel) and the relative brightness of its foliage there (sunlit clumps, gaps in shade,
-  // the understory darker towards the ground).
+  // How much of direction d the wood covers (0-1: the tree line blended over 2.5 texels of `texel` radians, the
+  // angular size of an environment texel) and the relative brightness of its foliage there (sunlit clumps, gaps in
+  // shade, the understory darker towards the ground).
   struct Look {
     float cover = 0.0f;
     float brightness = 0.0f;
@@ -356,11 +358,12 @@ struct ForestEdge {
     const float range = distance / ahead;  // along d to the edge's plane
     const float height = range * d.y();
     const float along = range * d.dot(Vec3::UnitY().cross(facing));
-    if (std::abs(along) > halfLength) return {};
+    const float blur = 1.25f * range * texel;
+    if (std::abs(along) > halfLength || height > kTallest + blur) return {};  // the sky above the tallest crown
     // The edge is blended over 2.5 texels across the outline (the height above it divided by the slope's secant):
     // a blend in height alone would leave the steep sides of the crowns hard, and a blend over a single texel is
     // magnified by the bilinear lookup into stair steps a texel wide.
-    const float top = crownTop(along), blur = 1.25f * range * texel, step = 0.05f;
+    const float top = crownTop(along), step = 0.05f;
     const float slope = (crownTop(along + step) - crownTop(along - step)) / (2.0f * step);
     const float across = (height - top) / std::sqrt(1.0f + slope * slope);
     Look l;

@@ -95,20 +95,36 @@ Eigen::Matrix4f OrbitCamera::viewProjection(float aspect) const {
   return proj * view;
 }
 
+float FilmFraming::pitchAbove(const OrbitCamera& base, const Vec3& target, float distance) const {
+  const float lowest = std::clamp((options_.minEyeHeight - target.y()) / std::max(distance, 1e-3f), -1.0f, 1.0f);
+  return std::max(base.pitch, std::asin(lowest));
+}
+
 float FilmFraming::framingDistance(const OrbitCamera& base, const State& s, const Vec3& centre) const {
-  OrbitCamera probe = base;
-  probe.target = centre;
-  probe.distance = 1.0f;
-  const Vec3 back = probe.position() - centre;                      // unit, towards the camera
   const Vec3 right(std::cos(base.yaw), 0.0f, -std::sin(base.yaw));  // up x back, normalised, from the yaw alone
-  const Vec3 up = back.cross(right);
+  // Unit, towards the camera at distance d (its pitch may depend on d: pitchAbove).
+  const auto backAt = [&](float d) {
+    OrbitCamera probe = base;
+    probe.target = centre;
+    probe.pitch = pitchAbove(base, centre, d);
+    probe.distance = 1.0f;
+    return Vec3(probe.position() - centre);
+  };
   // The outline's extent on the image at distance d, as fractions of the image's height and width: each particle
   // at (x, y) across and z towards the camera from the centre is seen at tan = x / (d - z).
   const float tanHalfY = std::tan(0.5f * base.fovY), tanHalfX = options_.aspect * tanHalfY;
-  float nearest = 0.0f;
+  // The bisection starts just beyond the nearest particle, so that every particle is in front of the camera. Where
+  // the pitch changes with the distance, nearest in any direction.
+  const Vec3 farBack = backAt(1e4f);
+  float nearest = 0.0f, radius = 0.0f;
   for (size_t i = 0; i < s.size(); ++i)
-    if (s.alive[i]) nearest = std::max(nearest, (s.position.get(i) - centre).dot(back));
+    if (s.alive[i]) {
+      nearest = std::max(nearest, (s.position.get(i) - centre).dot(farBack));
+      radius = std::max(radius, (s.position.get(i) - centre).norm());
+    }
+  if (pitchAbove(base, centre, nearest + 0.05f) > base.pitch) nearest = radius;
   const auto tooLarge = [&](float d) {
+    const Vec3 back = backAt(d), up = back.cross(right);
     float loX = 0, hiX = 0, loY = 0, hiY = 0;
     for (size_t i = 0; i < s.size(); ++i) {
       if (!s.alive[i]) continue;
@@ -159,6 +175,7 @@ OrbitCamera FilmFraming::update(const OrbitCamera& base, const State& s, float d
   started_ = true;
   camera.target = target_;
   camera.distance = distance_;
+  camera.pitch = pitchAbove(base, target_, distance_);
   return camera;
 }
 
@@ -220,6 +237,14 @@ std::array<Vec3, 2> hemisphereMeans(const EnvironmentImage& env) {
 
 namespace {
 
+// The direction (unit, world) of the centre of texel (row, col) of an equirectangular environment: the
+// parameterisation of environment() in kernels/render_common.glsl, u = 0.5 + atan(x, -z) / 2 pi, v = polar / pi.
+Vec3 texelDirection(const EnvironmentImage& env, int row, int col) {
+  const float polar = kPi * (static_cast<float>(row) + 0.5f) / static_cast<float>(env.height);
+  const float azimuth = 2 * kPi * ((static_cast<float>(col) + 0.5f) / static_cast<float>(env.width) - 0.5f);
+  return {std::sin(polar) * std::sin(azimuth), std::cos(polar), -std::sin(polar) * std::cos(azimuth)};
+}
+
 // An environment of `width` x width / 2 texels whose radiance in direction d is radiance(d); the texel
 // parameterisation of environment() in kernels/render_common.glsl: u = 0.5 + atan(x, -z) / 2 pi, v = polar / pi.
 template <class Radiance>
@@ -230,11 +255,8 @@ EnvironmentImage tabulateEnvironment(int width, const Radiance& radiance) {
   env.rgb.resize(static_cast<size_t>(env.width) * env.height * 3);
 #pragma omp parallel for
   for (int row = 0; row < env.height; ++row) {
-    const float polar = kPi * (static_cast<float>(row) + 0.5f) / static_cast<float>(env.height);
     for (int col = 0; col < env.width; ++col) {
-      const float azimuth = 2 * kPi * ((static_cast<float>(col) + 0.5f) / static_cast<float>(env.width) - 0.5f);
-      const Vec3 d(std::sin(polar) * std::sin(azimuth), std::cos(polar), -std::sin(polar) * std::cos(azimuth));
-      const Vec3 c = radiance(d);
+      const Vec3 c = radiance(texelDirection(env, row, col));
       float* out = &env.rgb[3 * (static_cast<size_t>(row) * env.width + col)];
       out[0] = c.x();
       out[1] = c.y();
@@ -290,6 +312,100 @@ struct OutdoorSky {
   }
 };
 
+// The edge of a wood behind the stage, where a giant-bubble performer is placed so that the audience (and the
+// default camera) sees the film against dark foliage rather than sunlit ground or bright sky, as giant bubbles are
+// usually photographed: a film shows its interference colour by what it reflects over what is behind it. A straight
+// edge `distance` from the stage, square to the default camera's view, of broadleaf trees whose rounded crowns stand
+// 14-21 m high, tapering away at the ends of its frontage. Seen from the stage (the environment is at infinity) it
+// rises to about 30 degrees straight ahead and sinks towards the horizon to the sides.
+struct ForestEdge {
+  Vec3 facing;                // horizontal, unit: from the stage towards the wood
+  float distance = 30.0f;     // m, from the stage to the edge
+  float halfLength = 160.0f;  // m, half the frontage; the crowns taper over the last `taper`
+  float taper = 50.0f;
+  float crownSpacing = 7.0f;  // m between trees along the edge
+  // Heights (m) of the shortest tree's crown, the tallest's with its leaves, and the leaves' raggedness.
+  static constexpr float kShortest = 14.0f, kTallest = 21.35f, kLeaves = 0.35f;
+
+  explicit ForestEdge(const Vec3& towards) : facing(Vec3(towards.x(), 0.0f, towards.z()).normalized()) {}
+
+  // Height of the tree line (m) at `s` metres along the edge: the highest of the rounded crowns around s, one
+  // per `crownSpacing` with its own jittered centre, radius and height, and a leafy raggedness.
+  [[nodiscard]] float crownTop(float s) const {
+    const auto cell = static_cast<int32_t>(std::floor(s / crownSpacing));
+    float top = 0.0f;
+    for (int32_t k = cell - 1; k <= cell + 1; ++k) {
+      const float centre = crownSpacing * (static_cast<float>(k) + 0.2f + 0.6f * noise::latticeValue(k, 0, 0, 11u));
+      const float radius = crownSpacing * (0.55f + 0.3f * noise::latticeValue(k, 1, 0, 11u));
+      const float height = kShortest + (kTallest - kShortest - kLeaves) * noise::latticeValue(k, 2, 0, 11u);
+      const float u = (s - centre) / radius;
+      if (std::abs(u) < 1.0f) top = std::max(top, height - radius + radius * std::sqrt(1.0f - u * u));
+    }
+    top += kLeaves * noise::fractal3(Vec3(s / 0.8f, 0.0f, 0.0f), 2, 12u);
+    return top * smoothstep(halfLength, halfLength - taper, std::abs(s));
+  }
+
+  // How much of direction d the wood covers (0-1: the tree line blended over 2.5 texels of `texel` radians, the
+  // angular size of an environment texel) and the relative brightness of its foliage there (sunlit clumps, gaps in
+  // shade, the understory darker towards the ground).
+  struct Look {
+    float cover = 0.0f;
+    float brightness = 0.0f;
+  };
+  [[nodiscard]] Look look(const Vec3& d, float texel) const {
+    const float ahead = d.dot(facing);
+    if (ahead <= 1e-3f || d.y() < 0.0f) return {};
+    const float range = distance / ahead;  // along d to the edge's plane
+    const float height = range * d.y();
+    const float along = range * d.dot(Vec3::UnitY().cross(facing));
+    const float blur = 1.25f * range * texel;
+    if (std::abs(along) > halfLength || height > kTallest + blur) return {};  // the sky above the tallest crown
+    // The edge is blended over 2.5 texels across the outline (the height above it divided by the slope's secant):
+    // a blend in height alone would leave the steep sides of the crowns hard, and a blend over a single texel is
+    // magnified by the bilinear lookup into stair steps a texel wide.
+    const float top = crownTop(along), step = 0.05f;
+    const float slope = (crownTop(along + step) - crownTop(along - step)) / (2.0f * step);
+    const float across = (height - top) / std::sqrt(1.0f + slope * slope);
+    Look l;
+    l.cover = smoothstep(blur, -blur, across);
+    const float clumps = noise::fractal3(Vec3(along / 2.5f, height / 2.5f, 7.0f), 3, 13u);
+    l.brightness = (0.75f + 0.45f * clumps) * (0.35f + 0.65f * smoothstep(0.0f, 8.0f, height));
+    return l;
+  }
+};
+
+// A broadleaf canopy reflects about 4% of visible light, a little more in the green: green leaves reflect 5-10%
+// of it, and the crowns' own shadows and the gaps between them halve that. (Their shortwave albedo of 0.15-0.20,
+// Oke, "Boundary Layer Climates", 1987, is mostly near-infrared, which the eye does not see.)
+Vec3 canopyAlbedo() { return {0.032f, 0.052f, 0.026f}; }
+
+// Radiance of a diffuse surface of `albedo` facing `normal`, lit as props.frag lights the props: the sky's and the
+// ground's mean radiance blended by the normal, and the key light.
+Vec3 litAsAProp(const Vec3& albedo, const Vec3& normal, const Vec3& skyMean, const Vec3& groundMean,
+                const EnvironmentImage& env) {
+  const float up = 0.5f + 0.5f * normal.y();
+  const Vec3 ambient = groundMean + (skyMean - groundMean) * up;
+  return albedo.cwiseProduct(ambient + Vec3::Constant(env.keyStrength * std::max(normal.dot(env.keyLight), 0.0f)));
+}
+
+// Paints `forest` over the upper half of `env`, its foliage lit by the open sky's mean radiance, the ground's, and
+// the sun on its face.
+void paintForest(EnvironmentImage& env, const ForestEdge& forest, const Vec3& groundMean) {
+  const Vec3 skyMean = hemisphereMeans(env)[0];
+  const Vec3 foliage = litAsAProp(canopyAlbedo(), -forest.facing, skyMean, groundMean, env);
+  const float texel = 2.0f * kPi / static_cast<float>(env.width);
+#pragma omp parallel for
+  for (int row = 0; row < env.height / 2; ++row) {
+    for (int col = 0; col < env.width; ++col) {
+      const ForestEdge::Look l = forest.look(texelDirection(env, row, col), texel);
+      if (l.cover <= 0.0f) continue;
+      float* out = &env.rgb[3 * (static_cast<size_t>(row) * env.width + col)];
+      const Vec3 c = l.brightness * foliage;
+      for (int k = 0; k < 3; ++k) out[k] += l.cover * (c[k] - out[k]);
+    }
+  }
+}
+
 }  // namespace
 
 Vec3 horizonRadiance(const EnvironmentImage& env) {
@@ -320,8 +436,15 @@ EnvironmentImage skyEnvironment(int width) {
   // Below the horizon: the ground as the floor prop is lit (props.frag: albedo times the sky's mean radiance and
   // the sun), so the floor meets it without a seam and a film reflects the ground it stands over. At 5 km of
   // extinction the haze over the ground is confined to a sliver under the horizon, finer than a texel.
-  const Vec3 lit = groundAlbedo().cwiseProduct(hemisphereMeans(env)[0] +
-                                               Vec3::Constant(env.keyStrength * std::max(sky.sun.y(), 0.0f)));
+  const auto litGround = [&] {
+    const Vec3 skyMean = hemisphereMeans(env)[0];
+    return litAsAProp(groundAlbedo(), Vec3::UnitY(), skyMean, skyMean, env);
+  };
+  // The wood behind the stage, straight ahead of the default three-quarter camera; it hides some of the sky, so the
+  // ground is lit by the sky's mean with the wood in it.
+  const OrbitCamera defaultCamera;
+  paintForest(env, ForestEdge(defaultCamera.target - defaultCamera.position()), litGround());
+  const Vec3 lit = litGround();
   for (int row = env.height / 2; row < env.height; ++row)
     for (int col = 0; col < env.width; ++col) {
       float* out = &env.rgb[3 * (static_cast<size_t>(row) * env.width + col)];

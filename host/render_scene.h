@@ -19,7 +19,8 @@ struct OrbitCamera {
   float distance = 3.2f;                 // from the target (m)
   float yaw = 0.8f;                      // about the vertical, radians; 0 looks along -z (the front, along the
                                          // default stroke); 0.8: a three-quarter view that sees the bulge side-on
-  float pitch = 0.3f;                    // above the horizontal, radians
+  float pitch = -0.15f;                  // above the horizontal, radians; -0.15: from below, as a photographer
+                                         // crouching before the stage sees the film against the wood behind it
   float fovY = 0.75f;                    // vertical field of view, radians
 
   [[nodiscard]] Vec3 position() const;
@@ -28,11 +29,12 @@ struct OrbitCamera {
 };
 
 // A camera that keeps the film framed as it grows and drifts: it looks from the base camera's direction (yaw,
-// pitch, field of view) at the centre of the living particles' bounding box, from the distance at which the
-// film's outline on the image spans `heightFraction` of the image height (and at most `widthFraction` of its
-// width), both eased towards with time constant `easing` so that the picture does not jump when the film changes
-// shape. The centre is led by its own (eased) velocity times `easing`, so that a film drifting at a steady speed
-// stays centred instead of trailing the easing's lag (speed x easing: 0.85 m at the default stroke's 1.7 m/s).
+// pitch, field of view; the pitch raised where a film low down would put the eye under minEyeHeight) at the centre of
+// the living particles' bounding box, from the distance at which the film's outline on the image spans `heightFraction`
+// of the image height (and at most `widthFraction` of its width), both eased towards with time constant `easing` so
+// that the picture does not jump when the film changes shape. The centre is led by its own (eased) velocity times
+// `easing`, so that a film drifting at a steady speed stays centred instead of trailing the easing's lag (speed x
+// easing: 0.85 m at the default stroke's 1.7 m/s).
 class FilmFraming {
  public:
   struct Options {
@@ -43,6 +45,8 @@ class FilmFraming {
     float minDistance = 1.0f;      // m: a tiny film (or a closing one) does not pull the camera into it
     float maxDrift = 5.0f;         // m/s: the centre moving faster in a frame has jumped (a burst, a new film),
                                    // not drifted, and is led only at this speed
+    float minEyeHeight = 0.5f;     // m above the ground (y = 0): a camera looking up at a film low down is
+                                   // pitched less, never put under the floor
   };
   FilmFraming() = default;
   explicit FilmFraming(const Options& options) : options_(options) {}
@@ -54,6 +58,9 @@ class FilmFraming {
   // Distance from `centre` along the base camera's direction at which the living particles' outline spans the
   // options' fractions of the image.
   [[nodiscard]] float framingDistance(const OrbitCamera& base, const State& film, const Vec3& centre) const;
+  // The base camera's pitch, raised where needed so that the eye, `distance` from `target`, stays minEyeHeight
+  // above the ground.
+  [[nodiscard]] float pitchAbove(const OrbitCamera& base, const Vec3& target, float distance) const;
 
   Options options_;
   bool started_ = false;
@@ -105,8 +112,10 @@ Vec3 horizonRadiance(const EnvironmentImage& environment);
 
 // The default environment: an outdoor sky, procedural. A blue sky brightening to a pale haze at the horizon,
 // scattered clouds, a sun (the key light) behind the default camera's left shoulder with its glow, a line of
-// wooded hills on the horizon, and below it the ground as the floor prop is lit (groundAlbedo under the sky and
-// the sun), so that the floor meets it without a seam.
+// wooded hills on the horizon, the sunlit edge of a wood 30 m behind the stage (straight ahead of the default
+// camera, rising to about 30 degrees: the dark backdrop the film is seen against), and below the horizon the
+// ground as the floor prop is lit (groundAlbedo under the sky and the sun), so that the floor meets it without a
+// seam.
 EnvironmentImage skyEnvironment(int width = 1024);
 
 // The built-in studio: a grey-blue room, bright above, dark floor below the horizon, two large softboxes and

@@ -4,7 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 
 #include "film_swirls.h"
@@ -170,6 +172,61 @@ TEST(SkyEnvironment, IsBrightAboveNeutralBelowWithTheSunAsKeyLight) {
   // Lit by the blue sky it is a little bluer than its albedo, as sunlit ground is, but still grey: channels within
   // 25% of each other (measured 1.22).
   EXPECT_LT(means[1].maxCoeff() / means[1].minCoeff(), 1.25f);
+}
+
+TEST(FilmFraming, LooksUpAtAFilmFromAboveTheFloorNeverUnderIt) {
+  // The default camera looks up at the film (negative pitch). A bubble sinking to the floor would take the eye
+  // under it: the pitch is raised instead so that the eye stays minEyeHeight above the ground, and the framing
+  // still spans 0.55 of the image height (within 0.01, as above).
+  const Params params;
+  const Film low = generateSphere(params, Vec3(0.0f, 0.45f, 0.0f), 0.4f, 3);
+  FilmFraming framing;
+  const OrbitCamera base;
+  ASSERT_LT(base.pitch, 0.0f) << "the default camera looks up";
+  const OrbitCamera camera = framing.update(base, low.state, 0.02f);
+  EXPECT_NEAR(camera.position().y(), FilmFraming::Options{}.minEyeHeight, 1e-3f);
+  EXPECT_GT(camera.pitch, base.pitch);
+  EXPECT_NEAR(heightFractionOnScreen(camera, low.state), 0.55f, 0.01f);
+  // High up the base pitch is kept.
+  const Film high = generateSphere(params, Vec3(0.0f, 1.5f, 0.0f), 0.4f, 3);
+  FilmFraming again;
+  EXPECT_FLOAT_EQ(again.update(base, high.state, 0.02f).pitch, base.pitch);
+}
+
+// Luminance of the environment's texel in direction d (nearest texel; the parameterisation of texelDirection).
+float luminanceToward(const EnvironmentImage& env, const Vec3& d) {
+  const float u = 0.5f + std::atan2(d.x(), -d.z()) / (2.0f * std::numbers::pi_v<float>);
+  const float v = std::acos(std::clamp(d.y(), -1.0f, 1.0f)) / std::numbers::pi_v<float>;
+  const int col = std::clamp(static_cast<int>(u * static_cast<float>(env.width)), 0, env.width - 1);
+  const int row = std::clamp(static_cast<int>(v * static_cast<float>(env.height)), 0, env.height - 1);
+  const float* c = &env.rgb[3 * (static_cast<size_t>(row) * static_cast<size_t>(env.width) + col)];
+  return 0.2126f * c[0] + 0.7152f * c[1] + 0.0722f * c[2];
+}
+
+TEST(SkyEnvironment, AWoodStandsBehindTheStageDarkerThanTheSunlitGround) {
+  // Ahead of the default camera, up to 20 degrees (where the film is seen from it), the wood: at most half as bright
+  // as the sunlit ground below the horizon (a canopy reflects about 4% of visible light, the ground 16%; measured
+  // 0.05-0.25 of it, printed: sunlit clumps, shaded gaps, the understory darker near the ground); above it, at 45
+  // degrees, the blue sky again, brighter than the ground; behind the camera no wood: sky and distant hills, more
+  // than twice as bright as the wood.
+  const EnvironmentImage sky = skyEnvironment(1024);
+  const OrbitCamera camera;
+  const Vec3 ahead = Vec3(camera.target - camera.position()).cwiseProduct(Vec3(1, 0, 1)).normalized();
+  const auto toward = [&](const Vec3& horizontal, float elevationDegrees) {
+    const float e = elevationDegrees * std::numbers::pi_v<float> / 180.0f;
+    return luminanceToward(sky, std::cos(e) * horizontal + std::sin(e) * Vec3::UnitY());
+  };
+  const float ground = toward(ahead, -10.0f);
+  const Vec3 right = ahead.cross(Vec3::UnitY());
+  for (float side : {-0.5f, 0.0f, 0.5f})  // across the picture: tan 0.5 is 27 degrees to either side
+    for (float elevation : {1.0f, 5.0f, 10.0f, 15.0f, 20.0f}) {
+      const Vec3 h = (ahead + side * right).normalized();
+      std::printf("side %+.1f, %2.0f degrees up: %.2f of the ground's luminance\n", side, elevation,
+                  toward(h, elevation) / ground);
+      EXPECT_LT(toward(h, elevation), 0.5f * ground) << "side " << side << ", " << elevation << " degrees up";
+    }
+  EXPECT_GT(toward(ahead, 45.0f), ground) << "the sky above the trees";
+  EXPECT_GT(toward(-ahead, 10.0f), 2.0f * toward(ahead, 10.0f)) << "open land behind the camera";
 }
 
 }  // namespace

@@ -67,8 +67,14 @@ PerformanceRecord performDefaultScene() {
 
 TEST(GiantBubble, DefaultPerformanceBlowsReleasesAndBurstsABubble) {
   const PerformanceRecord r = performDefaultScene();
-  // Measured when written: area 0.63 -> 3.9 m^2, volume 0.55 m^3, pinch-off at 1.86 s, burst where it thinned at
-  // 5.0 s, fastest film particle 3.5 m/s against the wands' 1.9 m/s.
+  std::printf(
+      "area %.2f -> %.2f m^2, volume %.2f m^3, pinch-off at %.2f s, burst (%s) at %.2f s, fastest film particle %.1f "
+      "m/s against the wands' %.1f m/s, roundness a second after pinch-off %.2f\n",
+      r.firstArea, r.peakArea, r.peakVolume, r.pinchTime, r.burstCause.c_str(), r.burstTime,
+      r.peakFilmSpeedOutsideBursts, r.peakWandSpeed, r.roundnessOneSecondLater);
+  // Measured at the end of session 7: area 0.63 -> 3.89 m^2, volume 0.55 m^3, pinch-off at 1.86 s, burst by the
+  // floor at 5.80 s (5.0 s, where it thinned, before contact pairs entered the list at their separation), fastest
+  // film particle 3.5 m/s against the wands' 2.2 m/s, roundness a second after pinch-off 1.19.
   EXPECT_GE(r.peakArea, 3.0 * r.firstArea) << "the bag is not giant: peak area " << r.peakArea << " m^2";
   EXPECT_GE(r.peakVolume, 0.5) << "peak volume " << r.peakVolume << " m^3";
   ASSERT_GE(r.pinchTime, 0.0) << "the wands closed but the film never pinched off";

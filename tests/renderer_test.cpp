@@ -67,6 +67,24 @@ PixelError compare(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b)
   return e;
 }
 
+// Largest channel difference between the two pictures each averaged over 3x3 pixels: an edge or a sub-pixel
+// droplet that another rasteriser draws a pixel over, or spreads over two pixels instead of one, keeps its light
+// in the average and differs little, while a wrong colour over a patch of 3x3 pixels or more differs in full.
+double largestDifferenceOf3x3Averages(const std::vector<uint8_t>& a, const std::vector<uint8_t>& b, int width) {
+  const int height = static_cast<int>(a.size() / 3) / width;
+  double largest = 0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < 3; ++c) {
+        int sum = 0, count = 0;
+        for (int ny = std::max(0, y - 1); ny <= std::min(height - 1, y + 1); ++ny)
+          for (int nx = std::max(0, x - 1); nx <= std::min(width - 1, x + 1); ++nx, ++count)
+            sum += int(a[3 * (ny * width + nx) + c]) - int(b[3 * (ny * width + nx) + c]);
+        largest = std::max(largest, std::abs(static_cast<double>(sum)) / count);
+      }
+  return largest;
+}
+
 TEST(Renderer, KnownSceneMatchesReference) {
   GB_REQUIRE_VULKAN(device);
   const test::KnownScene scene = test::makeKnownScene();
@@ -84,16 +102,21 @@ TEST(Renderer, KnownSceneMatchesReference) {
   ASSERT_EQ(expected.width, kWidth);
   ASSERT_EQ(expected.height, kHeight);
   const PixelError e = compare(pixels, expected.rgb);
-  std::printf("against the reference: mean %.3f levels, max %d, %.4f%% of pixels over 8 levels\n", e.mean, e.max,
-              100 * e.fractionOver8);
-  // Tolerances: the same driver gives the same picture bit for bit; another LLVM or Mesa version may round the
-  // half-float targets and the transcendental functions differently (a level or two) and move a few triangle-edge
-  // or droplet pixels. A mean over 1 level, or more than 0.5% of pixels off by over 8 levels, is a changed picture;
-  // the max is bounded at 96 levels so that a moved edge passes but a wrong colour where the film is does not
-  // hide among the few.
+  const double averagedMax = largestDifferenceOf3x3Averages(pixels, expected.rgb, kWidth);
+  std::printf(
+      "against the reference: mean %.3f levels, max %d (%.1f over 3x3 averages), %.4f%% of pixels over 8 "
+      "levels\n",
+      e.mean, e.max, averagedMax, 100 * e.fractionOver8);
+  // Tolerances: the same driver gives the same picture bit for bit; another LLVM or Mesa version, or a real GPU,
+  // may round the half-float targets and the transcendental functions differently (a level or two) and move a
+  // few triangle-edge or droplet pixels. A mean over 1 level, or more than 0.5% of pixels off by over 8 levels, is
+  // a changed picture. The largest difference is bounded at 64 levels over 3x3 averages, so that moved edges and
+  // droplets pass (an NVIDIA H100 drew the droplets a pixel over or split across two: 139 levels pixel for pixel,
+  // 36 averaged) while a wrong colour over any patch of the film does not hide among them. (Pixel for pixel, on
+  // lavapipe alone, the bound was 96 levels.)
   EXPECT_LT(e.mean, 1.0);
   EXPECT_LT(e.fractionOver8, 0.005);
-  EXPECT_LE(e.max, 96);
+  EXPECT_LE(averagedMax, 64.0);
   EXPECT_EQ(device->validationErrors(), 0u);
 }
 

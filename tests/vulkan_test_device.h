@@ -18,13 +18,28 @@ inline bool underCi() {
   return ci && std::string(ci) == "true";
 }
 
+// The one device every test of the process shares, created on first use.
+inline std::shared_ptr<const VulkanContext>& sharedVulkanDevice() {
+  static std::shared_ptr<const VulkanContext> device;
+  return device;
+}
+
+// Releases the shared device when the tests are over, before static destructors run: a real GPU's driver
+// tears its own state down at exit (the NVIDIA driver crashed the test process there when the device was
+// destroyed after it), while lavapipe did not mind either order.
+class ReleaseVulkanDeviceAfterTests : public ::testing::Environment {
+ public:
+  void TearDown() override { sharedVulkanDevice().reset(); }
+};
+
 // Shared by every test of the process; created once with the validation layer on when it is installed.
 inline std::shared_ptr<const VulkanContext> vulkanDevice(std::string& whyNot) {
-  static std::shared_ptr<const VulkanContext> device;
+  std::shared_ptr<const VulkanContext>& device = sharedVulkanDevice();
   static std::string reason;
   static bool tried = false;
   if (!tried) {
     tried = true;
+    ::testing::AddGlobalTestEnvironment(new ReleaseVulkanDeviceAfterTests);
     setenv("GIANTBUBBLE_VULKAN_VALIDATION", "1", 0);
     try {
       device = std::make_shared<const VulkanContext>();
@@ -41,11 +56,11 @@ inline std::shared_ptr<const VulkanContext> vulkanDevice(std::string& whyNot) {
 }  // namespace gb::test
 
 // Gets the device into `var`, or fails (CI) / skips loudly (elsewhere).
-#define GB_REQUIRE_VULKAN(var)                                                                          \
-  std::string gbWhyNot_;                                                                                \
-  const auto var = ::gb::test::vulkanDevice(gbWhyNot_);                                                 \
-  if (!var) {                                                                                           \
-    if (::gb::test::underCi()) FAIL() << "CI=true but no Vulkan device: " << gbWhyNot_;                 \
+#define GB_REQUIRE_VULKAN(var)                                                                            \
+  std::string gbWhyNot_;                                                                                  \
+  const auto var = ::gb::test::vulkanDevice(gbWhyNot_);                                                   \
+  if (!var) {                                                                                             \
+    if (::gb::test::underCi()) FAIL() << "CI=true but no Vulkan device: " << gbWhyNot_;                   \
     std::fprintf(stderr, "\n*** SKIPPING Vulkan test: no Vulkan device (%s) ***\n\n", gbWhyNot_.c_str()); \
-    GTEST_SKIP() << "no Vulkan device: " << gbWhyNot_;                                                  \
+    GTEST_SKIP() << "no Vulkan device: " << gbWhyNot_;                                                    \
   }

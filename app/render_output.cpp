@@ -210,8 +210,7 @@ void RunRenderer::frame(long index, Simulation& sim, const WandState& wands) {
                                  ? framing_.update(options_.camera, sim.film().state, sim.params().frameTime)
                                  : options_.camera;
   if (!png && !video_) return;
-  const Vec3 gravity(sim.params().gravityX, sim.params().gravityY, sim.params().gravityZ);
-  const WireFrame wire = makeWireFrame(sim.film().tool, wands, sim.film().stringLength, gravity);
+  const WireFrame wire = sim.wireFrame(wands);
   DeviceFilm deviceFilm;
   renderer_->render(renderFrameOf(sim, wands, wire, camera, readInPlace_, deviceFilm));
   const std::vector<uint8_t> rgb = renderer_->readPixels();

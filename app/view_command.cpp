@@ -340,8 +340,7 @@ int runView(ViewOptions o) try {
     // The window's blit scales the image to the window (dynamic resolution).
     renderer.resize(std::max(16, static_cast<int>(std::lround(image.width * pacer.renderScale()))),
                     std::max(16, static_cast<int>(std::lround(image.height * pacer.renderScale()))));
-    const Vec3 gravity(run.params.gravityX, run.params.gravityY, run.params.gravityZ);
-    const WireFrame wire = makeWireFrame(sim->film().tool, wands, sim->film().stringLength, gravity);
+    const WireFrame wire = sim->wireFrame(wands);
     DeviceFilm deviceFilm;
     window.present(renderer, renderFrameOf(*sim, wands, wire, window.camera(), readInPlace, deviceFilm));
     const auto now = std::chrono::steady_clock::now();

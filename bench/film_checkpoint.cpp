@@ -39,6 +39,7 @@ void forEachField(F& c, Visit&& visit) {
   visit(t.closed);
   visit(c.film.tool);
   visit(c.film.stringLength);
+  visit(c.film.loopHang);
   visit(c.film.referenceVolume);
   visit(c.film.volumeOrigin);
   visit(c.film.wireLiquid);

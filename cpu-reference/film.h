@@ -12,6 +12,8 @@ struct Film {
   Topology topology;
   WandTool tool;
   float stringLength = 0.0f;         // two wands: length of the hanging bottom string, fixed while the film lives
+  Vec3 loopHang = Vec3::Zero();      // two wands: the way the loop hangs now (its frame's `down`, see swingLoop);
+                                     // zero: straight towards gravity
   float referenceVolume = 0.0f;      // V_0 of Eq. (11) once the film is a closed bubble (m^3)
   Vec3 volumeOrigin = Vec3::Zero();  // closed bubble: apex of the volume's cone decomposition, fixed at
                                      // closure so that no backend needs to read the state back for it

@@ -59,7 +59,8 @@ InteriorPoints hexLatticeInside(const std::vector<Point2>& polygon, float spacin
   const float cell = spacing;
   const int gx = static_cast<int>((hi.x() - lo.x()) / cell) + 3, gy = static_cast<int>((hi.y() - lo.y()) / cell) + 3;
   auto cellOf = [&](const Point2& p) {
-    return std::array<int, 2>{static_cast<int>((p.x() - lo.x()) / cell) + 1, static_cast<int>((p.y() - lo.y()) / cell) + 1};
+    return std::array<int, 2>{static_cast<int>((p.x() - lo.x()) / cell) + 1,
+                              static_cast<int>((p.y() - lo.y()) / cell) + 1};
   };
   std::vector<std::vector<uint32_t>> buckets(static_cast<size_t>(gx) * gy);
   const size_t n = polygon.size();
@@ -242,8 +243,10 @@ Film generateFilm(const Params& params, const WandTool& tool, const WandState& w
   film.stringLength = hangingStringLength(halfWidth, tool.loopDepth * params.solution);
   const WireFrame frame = makeWireFrame(tool, wands, film.stringLength, gravity);
   if (frame.area() <= 1e-6f) throw std::invalid_argument("film generation: the wire frame encloses no area");
+  film.loopHang = frame.down;
 
-  const auto target = static_cast<size_t>(std::lround(static_cast<double>(params.solution) * params.particlesAtFullSolution));
+  const auto target =
+      static_cast<size_t>(std::lround(static_cast<double>(params.solution) * params.particlesAtFullSolution));
   const PlanarLayout layout = layoutWithCount(frame, std::max<size_t>(target, 16));
 
   State& s = film.state;
@@ -269,12 +272,12 @@ Film generateSphere(const Params& params, const Vec3& center, float radius, int 
   if (subdivisions < 0 || subdivisions > 9) throw std::invalid_argument("sphere subdivisions must be in [0, 9]");
   // Icosahedron, counter-clockwise seen from outside, then each triangle split in four on the sphere.
   const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
-  std::vector<Vec3> v = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
-                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<Vec3> v = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
   for (Vec3& p : v) p.normalize();
-  std::vector<uint32_t> tri = {0, 11, 5, 0, 5, 1, 0, 1, 7, 0, 7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4,
-                               11, 10, 2, 10, 7, 6, 7, 1, 8, 3, 9, 4, 3, 4, 2, 3, 2, 6, 3, 6, 8,
-                               3, 8, 9, 4, 9, 5, 2, 4, 11, 6, 2, 10, 8, 6, 7, 9, 8, 1};
+  std::vector<uint32_t> tri = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+                               4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
+                               6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
   for (int level = 0; level < subdivisions; ++level) {
     std::map<std::pair<uint32_t, uint32_t>, uint32_t> midpoints;
     auto midpoint = [&](uint32_t a, uint32_t b) {
@@ -302,7 +305,8 @@ Film generateSphere(const Params& params, const Vec3& center, float radius, int 
 
 Film generateTube(const Params& params, const Vec3& center, float radius, float separation, int around) {
   if (const auto errors = validate(params); !errors.empty()) throw std::invalid_argument(errors.front());
-  if (around < 6 || !(radius > 0) || !(separation > 0)) throw std::invalid_argument("tube: needs radius, separation > 0 and 6 or more particles around");
+  if (around < 6 || !(radius > 0) || !(separation > 0))
+    throw std::invalid_argument("tube: needs radius, separation > 0 and 6 or more particles around");
   const float spacing = 2.0f * std::numbers::pi_v<float> * radius / static_cast<float>(around);
   const int rows = std::max(2, static_cast<int>(std::lround(separation / (0.866f * spacing))));
   Film film;
@@ -312,7 +316,8 @@ Film generateTube(const Params& params, const Vec3& center, float radius, float 
   for (int row = 0; row <= rows; ++row)
     for (int k = 0; k < around; ++k) {
       // Alternate rows are turned half a step, so the triangles come out nearly equilateral.
-      const float phi = 2.0f * std::numbers::pi_v<float> * (static_cast<float>(k) + 0.5f * static_cast<float>(row % 2)) / static_cast<float>(around);
+      const float phi = 2.0f * std::numbers::pi_v<float> *
+                        (static_cast<float>(k) + 0.5f * static_cast<float>(row % 2)) / static_cast<float>(around);
       const float z = -0.5f * separation + separation * static_cast<float>(row) / static_cast<float>(rows);
       film.state.position.set(index(row, k), center + Vec3(radius * std::cos(phi), radius * std::sin(phi), z));
     }
@@ -322,8 +327,10 @@ Film generateTube(const Params& params, const Vec3& center, float radius, float 
       const bool shifted = row % 2 == 1;  // this row's point k sits between the next row's k and k + 1
       const uint32_t a = index(row, k), b = index(row, k + 1);
       const uint32_t c = index(row + 1, k), d = index(row + 1, k + 1);
-      if (shifted) triangles.insert(triangles.end(), {a, b, d, a, d, c});
-      else triangles.insert(triangles.end(), {a, b, c, b, d, c});
+      if (shifted)
+        triangles.insert(triangles.end(), {a, b, d, a, d, c});
+      else
+        triangles.insert(triangles.end(), {a, b, c, b, d, c});
     }
   film.topology = buildTopology(film.state.size(), std::move(triangles), film.state.position);
   for (size_t i = 0; i < film.state.size(); ++i)

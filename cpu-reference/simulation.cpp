@@ -71,7 +71,25 @@ void Simulation::chooseSubsteps() {
   substeps_ = std::max(1, static_cast<int>(needed));
 }
 
+Vec3 Simulation::loopHang() const { return film_.loopHang.norm() > 0 ? film_.loopHang : gravityOf(params_); }
+
+WireFrame Simulation::frameHanging(const WandState& wands, const Vec3& hang) const {
+  return makeWireFrame(film_.tool, wands, film_.stringLength, hang);
+}
+
+// The way the loop hangs once the tips reach `next`: swung towards gravity at Params::loopSwingRate at most.
+Vec3 Simulation::loopHangAfter(const WandState& next) const {
+  if (film_.tool.kind != ToolKind::TwoWands) return loopHang();
+  const Vec3 axis = frameHanging(next, loopHang()).axis;
+  return swingLoop(loopHang(), axis, gravityOf(params_), params_.loopSwingRate * params_.frameTime);
+}
+
 StepUniforms Simulation::uniformsFor(const WandState& a, const WandState& b, float dt) const {
+  return uniformsBetween(a, b, dt, loopHang(), loopHang());
+}
+
+StepUniforms Simulation::uniformsBetween(const WandState& a, const WandState& b, float dt, const Vec3& hangA,
+                                         const Vec3& hangB) const {
   StepUniforms u;
   u.dt = dt;
   u.wands = a;
@@ -84,10 +102,10 @@ StepUniforms Simulation::uniformsFor(const WandState& a, const WandState& b, flo
   }
   u.leftInflowWeight = 1.0f;
   u.wandAlignment = wandAlignment(u.wands);
-  const WireFrame frameNow = makeWireFrame(film_.tool, a, film_.stringLength, gravityOf(params_));
+  const WireFrame frameNow = frameHanging(a, hangA);
   u.frameArea = frameNow.area();
   u.airVolume = frameNow.height() * u.frameArea;  // Eq. (6)
-  u.frameNext = makeWireFrame(film_.tool, b, film_.stringLength, gravityOf(params_));
+  u.frameNext = frameHanging(b, hangB);
   u.closed = film_.topology.isClosed() ? 1u : 0u;
   u.volumeOrigin = u.closed ? film_.volumeOrigin : frameNow.center;
   u.referenceVolume = film_.referenceVolume;
@@ -112,11 +130,14 @@ void Simulation::advanceFrame(const WandState& next) {
   const float wandSpeed =
       std::max((next.leftPosition - wands_.leftPosition).norm(), (next.rightPosition - wands_.rightPosition).norm()) /
       params_.frameTime;
+  const Vec3 hangNow = loopHang(), hangNext = loopHangAfter(next);
+  const auto hangAt = [&](float t) { return Vec3(((1 - t) * hangNow + t * hangNext).normalized()); };
   substepUniforms_.clear();
   for (int k = 0; k < substeps_; ++k) {
     const float t0 = static_cast<float>(k) / static_cast<float>(substeps_);
     const float t1 = static_cast<float>(k + 1) / static_cast<float>(substeps_);
-    substepUniforms_.push_back(uniformsFor(interpolate(wands_, next, t0), interpolate(wands_, next, t1), dt));
+    substepUniforms_.push_back(
+        uniformsBetween(interpolate(wands_, next, t0), interpolate(wands_, next, t1), dt, hangAt(t0), hangAt(t1)));
     substepUniforms_.back().solverIterations = solverIterations_;
   }
   substepUniforms_.back().drainageDt = params_.frameTime;  // the frame's drainage, after its last substep
@@ -126,6 +147,7 @@ void Simulation::advanceFrame(const WandState& next) {
   const auto stepped = Clock::now();
   stepCount_ += substeps_;
   wands_ = next;
+  film_.loopHang = hangNext;
   time_ += params_.frameTime;
   checkStable();
   burstOnWandTouch();
@@ -185,7 +207,7 @@ void Simulation::burstOnFloorTouch() {
 }
 
 void Simulation::growFilm(const WandState& wands, float wandSpeed) {
-  const WireFrame frame = makeWireFrame(film_.tool, wands, film_.stringLength, gravityOf(params_));
+  const WireFrame frame = wireFrame(wands);
   const GrowthEvent grew = growFilmAtWire(params_, frame, wandSpeed, film_);
   if (grew.particlesAdded == 0) {
     if (grew.restLengthsChanged > 0) stepper_->updateRestLengths(film_);
@@ -297,8 +319,7 @@ FrameStats Simulation::stats() {
     const double stretch = (s.position.get(a) - s.position.get(b)).cast<double>().norm() - topo.restLength[k];
     st.elasticEnergy += 0.25 * (s.elasticity[a] + s.elasticity[b]) * stretch * stretch;
   }
-  const Vec3 origin =
-      topo.isClosed() ? centroid(s) : makeWireFrame(film_.tool, wands_, film_.stringLength, gravityOf(params_)).center;
+  const Vec3 origin = topo.isClosed() ? centroid(s) : wireFrame(wands_).center;
   st.triangles = topo.triangleCount();
   for (size_t t = 0; t < topo.triangleCount(); ++t) {
     const uint32_t* tri = &topo.triangles[3 * t];

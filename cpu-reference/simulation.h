@@ -110,8 +110,16 @@ class Simulation {
 
   // The uniforms of a step of length dt from wand state a to b (exposed for tests and the GPU backend).
   [[nodiscard]] StepUniforms uniformsFor(const WandState& a, const WandState& b, float dt) const;
+  // The tool's wire frame for these wand tips, its loop hanging the way the film's loop hangs now (for drawing
+  // and for the film's outputs).
+  [[nodiscard]] WireFrame wireFrame(const WandState& wands) const { return frameHanging(wands, loopHang()); }
 
  private:
+  [[nodiscard]] Vec3 loopHang() const;
+  [[nodiscard]] WireFrame frameHanging(const WandState& wands, const Vec3& hang) const;
+  [[nodiscard]] StepUniforms uniformsBetween(const WandState& a, const WandState& b, float dt, const Vec3& hangA,
+                                             const Vec3& hangB) const;
+  [[nodiscard]] Vec3 loopHangAfter(const WandState& next) const;
   void chooseSubsteps();
   void growFilm(const WandState& wands, float wandSpeed);
   void burstOnHardImpact();

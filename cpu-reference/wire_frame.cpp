@@ -57,10 +57,21 @@ Vec3 perpendicularTowards(const Vec3& axis, const Vec3& preferred) {
 
 }  // namespace
 
-WireFrame makeWireFrame(const WandTool& tool, const WandState& wands, float stringLength, const Vec3& gravity) {
+Vec3 swingLoop(const Vec3& previousDown, const Vec3& axis, const Vec3& gravity, float maxTurn) {
+  const Vec3 current = perpendicularTowards(axis, previousDown);
+  const Vec3 pull = gravity - gravity.dot(axis) * axis;  // gravity's part that turns the loop about the span
+  if (!(pull.norm() > 1e-3f * gravity.norm())) return current;
+  const Vec3 target = pull.normalized();
+  const float angle = std::atan2(current.cross(target).dot(axis), current.dot(target));  // signed, about axis
+  if (std::abs(angle) <= maxTurn) return target;
+  const float turn = std::copysign(maxTurn, angle);
+  return (std::cos(turn) * current + std::sin(turn) * axis.cross(current)).normalized();
+}
+
+WireFrame makeWireFrame(const WandTool& tool, const WandState& wands, float stringLength, const Vec3& hangTowards) {
   WireFrame f;
   f.kind = tool.kind;
-  const Vec3 down = gravity.norm() > 0 ? Vec3(gravity.normalized()) : Vec3(-Vec3::UnitY());
+  const Vec3 down = hangTowards.norm() > 0 ? Vec3(hangTowards.normalized()) : Vec3(-Vec3::UnitY());
   if (tool.kind == ToolKind::Ring) {
     // The ring faces the world z axis and is centred on the right hand.
     f.center = wands.rightPosition;

@@ -54,8 +54,17 @@ float hangingStringLength(float halfWidth, float depth);
 float hangingDepth(float halfWidth, float stringLength);
 
 // The frame of the tool for the given wand tips. stringLength is the two-wand loop's bottom string
-// (fixed per film); gravity decides which way the string hangs.
-WireFrame makeWireFrame(const WandTool& tool, const WandState& wands, float stringLength, const Vec3& gravity);
+// (fixed per film); the loop hangs in the plane of the tips and `hangTowards` (gravity for a new film, then the
+// film's Film::loopHang, which swingLoop keeps continuous).
+WireFrame makeWireFrame(const WandTool& tool, const WandState& wands, float stringLength, const Vec3& hangTowards);
+
+// The way a two-wand loop hangs (its frame's `down`) once the tips have moved so that `axis` joins them: the way
+// it hung before (`previousDown`), carried onto the new span and turned about it towards gravity by at most
+// `maxTurn` radians. Hanging straight towards gravity has no continuous answer: as one tip passes over the other
+// the span turns through the vertical, gravity's pull about it vanishes and then points the other way, and the
+// loop would turn over in one frame (its bottom string, 0.3-0.8 m down, swung at 18 m/s in the stress run of
+// docs/performance.md). A hanging string swings over instead, at a pendulum's pace: Params::loopSwingRate.
+Vec3 swingLoop(const Vec3& previousDown, const Vec3& axis, const Vec3& gravity, float maxTurn);
 
 // Frame coordinates of n points evenly spaced by arc length over u in [u0, u1) (dense sampling, then
 // inversion of the cumulative length), and the arc length between two frame coordinates.

@@ -56,6 +56,8 @@ struct Params {
 
   // --- Pinch-off ---
   float pinchDistance GB_DEFAULT(0.1f);  // wand tips closer than this close the film into a free bubble (m)
+  float loopSwingRate GB_DEFAULT(6.0f);  // two wands: the fastest the hanging loop turns about the tips' span (rad/s),
+                                         // about the swing of a 0.8 m string pendulum (wire_frame.h, swingLoop)
 
   // --- Soap solution control (Section 7) ---
   float solution GB_DEFAULT(1.0f);               // remaining soap solution, 1 = full dip (0, 1]

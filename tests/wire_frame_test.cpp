@@ -1,8 +1,10 @@
+#include "wire_frame.h"
+
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <numbers>
-
-#include "wire_frame.h"
 
 namespace gb {
 namespace {
@@ -45,6 +47,37 @@ TEST(WireFrame, RingIsCentredOnTheRightHand) {
   const WireFrame f = makeWireFrame(tool, w, 0.0f, Vec3(0, -9.81f, 0));
   for (float u : {0.0f, 0.2f, 0.5f, 0.9f}) EXPECT_NEAR((framePoint(f, u) - w.rightPosition).norm(), 0.3f, 1e-6f);
   EXPECT_NEAR(f.area(), kPi * 0.09f, 1e-6f);
+}
+
+// One tip passes over the other in the x-y plane: the span turns through the vertical in 0.4 s, frames of 0.02 s.
+// Gravity projected off the span turns over (180 degrees) in the frame where the span passes the vertical; the
+// swung loop never turns more than rate x h in a frame (1e-4 rad: float rounding of the rotation) and hangs
+// straight towards gravity again once the swing has had time (a half turn at 6 rad/s takes 0.52 s).
+TEST(WireFrame, TheLoopSwingsOverAtABoundedRateWhenOneTipPassesAboveTheOther) {
+  const Vec3 gravity(0, -9.81f, 0);
+  const float h = 0.02f, maxTurn = 6.0f * h;
+  const auto spanAt = [&](int frame) {
+    const float angle = 0.25f * kPi + 0.5f * kPi * std::min(1.0f, static_cast<float>(frame) / 20.0f);  // 45 -> 135 deg
+    return Vec3(std::cos(angle), std::sin(angle), 0.0f);
+  };
+  const auto towardsGravity = [&](const Vec3& axis) { return Vec3((gravity - gravity.dot(axis) * axis).normalized()); };
+  Vec3 down = towardsGravity(spanAt(0));
+  float largestGravityTurn = 0, largestSwingTurn = 0;
+  for (int frame = 1; frame <= 60; ++frame) {
+    const Vec3 axis = spanAt(frame);
+    const Vec3 swung = swingLoop(down, axis, gravity, maxTurn);
+    EXPECT_NEAR(swung.dot(axis), 0.0f, 1e-6f);
+    EXPECT_NEAR(swung.norm(), 1.0f, 1e-6f);
+    largestSwingTurn = std::max(largestSwingTurn, std::acos(std::clamp(swung.dot(down), -1.0f, 1.0f)));
+    largestGravityTurn =
+        std::max(largestGravityTurn,
+                 std::acos(std::clamp(towardsGravity(axis).dot(towardsGravity(spanAt(frame - 1))), -1.0f, 1.0f)));
+    down = swung;
+  }
+  EXPECT_GT(largestGravityTurn, 0.9f * kPi);  // the stateless rule turns over in one frame
+  // The swing is bounded per frame, plus what the span's own turn (pi/40 per frame) carries the loop along.
+  EXPECT_LT(largestSwingTurn, maxTurn + 0.5f * kPi / 20.0f + 1e-4f);
+  EXPECT_GT(down.dot(towardsGravity(spanAt(60))), 1.0f - 1e-5f);  // hanging down again 0.8 s after the pass
 }
 
 TEST(WireFrame, InterpolatesWandStates) {

@@ -10,30 +10,59 @@ namespace {
 
 constexpr float kTrustRegion = 0.25f;  // largest move per sweep, in shortest one-ring springs
 
-using Mat3 = Eigen::Matrix3f;
+// A particle's block while its terms are summed: the symmetric Hessian as its six distinct entries in locals,
+// so that the sum stays in registers. (Summing 3x3 matrices built per term went through the stack, and the
+// store-to-load stalls of those temporaries took half of the sweep's time: docs/performance.md, session 8.)
+// Entry (r, c) gets scale (d_r d_c) per term, the same float operations as an outer-product matrix, so the sum
+// equals the matrix sum bit for bit.
+struct BlockSum {
+  Vec3 gradient = Vec3::Zero();
+  float xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
+  float shortestSpring = std::numeric_limits<float>::infinity();
 
-// Outer product d d^T.
-Mat3 outer(const Vec3& d) { return d * d.transpose(); }
+  // hessian += scale d d^T
+  void addOuter(float scale, const Vec3& d) {
+    xx += scale * (d.x() * d.x());
+    xy += scale * (d.x() * d.y());
+    xz += scale * (d.x() * d.z());
+    yy += scale * (d.y() * d.y());
+    yz += scale * (d.y() * d.z());
+    zz += scale * (d.z() * d.z());
+  }
+  // hessian += scale I
+  void addIsotropic(float scale) {
+    xx += scale;
+    yy += scale;
+    zz += scale;
+  }
+  [[nodiscard]] VertexBlock block() const {
+    VertexBlock b;
+    b.gradient = gradient;
+    b.hessian << xx, xy, xz, xy, yy, yz, xz, yz, zz;
+    b.shortestSpring = shortestSpring;
+    return b;
+  }
+};
 
 // Damping along a direction, dissipation c/(2h) ((dx_i - dx_j) . dir)^2 with dx the displacement over the
 // step: the implicit form of the damping force c ((v_j - v_i) . dir) dir. Its Hessian c/h dir dir^T is
 // returned for the caller to add with the other terms along dir.
-float addDampingGradient(float coefficient, float h, const Vec3& dir, const Vec3& relativeDisplacement,
-                         VertexBlock& b) {
+inline float addDampingGradient(float coefficient, float h, const Vec3& dir, const Vec3& relativeDisplacement,
+                                BlockSum& b) {
   b.gradient += coefficient / h * relativeDisplacement.dot(dir) * dir;
   return coefficient / h;
 }
 
 // Physical model: tension x area of triangle (x, xj, xl), counter-clockwise. grad_x A = 1/2 n x (xl - xj);
 // the Hessian of A in x alone is |xl - xj|^2 / (4 A) n n^T, positive semi-definite.
-void addAreaTension(float tension, const Vec3& x, const Vec3& xj, const Vec3& xl, VertexBlock& b) {
+void addAreaTension(float tension, const Vec3& x, const Vec3& xj, const Vec3& xl, BlockSum& b) {
   const Vec3 twiceAreaNormal = (xj - x).cross(xl - x);
   const float twiceArea = twiceAreaNormal.norm();
   if (!(twiceArea > 0)) return;
   const Vec3 n = twiceAreaNormal / twiceArea;
   const Vec3 edge = xl - xj;
   b.gradient += tension * 0.5f * n.cross(edge);
-  b.hessian += tension * edge.squaredNorm() / (2.0f * twiceArea) * outer(n);
+  b.addOuter(tension * edge.squaredNorm() / (2.0f * twiceArea), n);
 }
 
 }  // namespace
@@ -51,7 +80,7 @@ float triangleTension(const State& s, const uint32_t* corners) {
 namespace {
 
 // The internal energies and dissipations of particle i at its current position x.
-void addInternal(const Params& p, float h, const Topology& topo, const State& s, size_t i, VertexBlock& b) {
+void addInternal(const Params& p, float h, const Topology& topo, const State& s, size_t i, BlockSum& b) {
   const Vec3 x = s.position.get(i), dx = x - s.previousPosition.get(i);
   const bool physical = p.tensionModel == 1;
   float isotropic = 0.0f;  // Hessian terms proportional to the identity, added once at the end
@@ -74,9 +103,9 @@ void addInternal(const Params& p, float h, const Topology& topo, const State& s,
       isotropic += transverse;
       along += stiffness - transverse;
     }
-    b.hessian += along * outer(dir);
+    b.addOuter(along, dir);
   }
-  b.hessian.diagonal().array() += isotropic;
+  b.addIsotropic(isotropic);
   if (physical) {
     for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
       const uint32_t* tri = &topo.triangles[3 * topo.triangleIndex[k]];
@@ -97,9 +126,9 @@ void addInternal(const Params& p, float h, const Topology& topo, const State& s,
     if (!(len > 0 && len < rest)) continue;
     const Vec3 away = d / len;
     b.gradient -= p.collisionStiffness * (rest - len) * away;
-    b.hessian += p.collisionStiffness * outer(away);
+    b.addOuter(p.collisionStiffness, away);
     const Vec3 relative = dx - (xj - s.previousPosition.get(j));
-    if (relative.dot(away) < 0) b.hessian += addDampingGradient(p.collisionDamping, h, away, relative, b) * outer(away);
+    if (relative.dot(away) < 0) b.addOuter(addDampingGradient(p.collisionDamping, h, away, relative, b), away);
   }
 }
 
@@ -145,17 +174,17 @@ VertexBlock objectiveBlock(const Params& p, const StepUniforms& u, const Bubble&
   const Vec3 x = s.position.get(i), xt = s.previousPosition.get(i);
   const Vec3 y = xt + h * s.velocity.get(i) + (h * h / m) * s.force.get(i);
   const float inertia = m / (h * h), drag = p.airDrag * s.voronoiArea[i] / h;
-  VertexBlock b;
+  BlockSum b;
   b.gradient = inertia * (x - y) + drag * (x - xt);
-  b.hessian = (inertia + drag) * Mat3::Identity();
+  b.addIsotropic(inertia + drag);
   addInternal(p, h, topo, s, i, b);
-  const Vec3 n = s.normal.get(i);  // the normal of the step's start
-  b.hessian += addDampingGradient(airCoupling(p, u, s, i), h, n, x - xt, b) * outer(n);  // moving with the air
+  const Vec3 n = s.normal.get(i);                                               // the normal of the step's start
+  b.addOuter(addDampingGradient(airCoupling(p, u, s, i), h, n, x - xt, b), n);  // moving with the air
   if (u.closed) {  // Boyle's pressure at the iterate's volume, along the normal of the step's start
     b.gradient -= boyleForce(p, bubble.pressure, s, i);
-    b.hessian += breathingStiffness(bubble, s.voronoiArea[i]) * outer(n);
+    b.addOuter(breathingStiffness(bubble, s.voronoiArea[i]), n);
   }
-  return b;
+  return b.block();
 }
 
 Vec3 trustedNewtonStep(const VertexBlock& b) {

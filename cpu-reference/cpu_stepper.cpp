@@ -93,16 +93,18 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
         forEach(n, [&](size_t i) { predictImplicitStep(u, topo, s, i); });
         break;
       case Stage::VertexBlockDescent:  // colours in order; a colour's particles are independent of each other
+        layOutSweepRuns(params_, topo, s, sweepRuns_);
         for (int sweep = 0; sweep < solverSweeps(params_, u); ++sweep) {
           Bubble bubble;
           if (u.closed) {  // Boyle's pressure at this iterate's volume
             bubble.volume = lastVolume_ = volume(*film_, u.volumeOrigin);
             bubble.pressure = currentPressure(u);
           }
-          for (size_t c = 0; c + 1 < topo.colourOffset.size(); ++c) {
-            const uint32_t first = topo.colourOffset[c];
-            forEach(topo.colourOffset[c + 1] - first,
-                    [&](size_t k) { solveVertexBlock(params_, u, bubble, topo, s, topo.colourOrder[first + k]); });
+          for (size_t c = 0; c + 1 < sweepRuns_.colourRuns.size(); ++c) {
+            const uint32_t first = sweepRuns_.colourRuns[c];
+            forEach(sweepRuns_.colourRuns[c + 1] - first, [&](size_t r) {
+              solveVertexBlockRun(params_, u, bubble, topo, s, sweepRuns_, first + static_cast<uint32_t>(r));
+            });
           }
         }
         break;

@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "implicit_euler.h"
 #include "stepper.h"
 
 namespace gb {
@@ -32,6 +33,7 @@ class CpuStepper final : public Stepper {
   Film* film_ = nullptr;
   std::vector<float> triangleVolumes_;  // scratch for the volume reduction, reused every step
   float lastVolume_ = 0.0f;             // result of the last Volume stage, read by Forces
+  SweepRuns sweepRuns_;                 // the implicit step's one-rings, laid out again every step
 };
 
 }  // namespace gb

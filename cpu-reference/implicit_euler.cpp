@@ -4,65 +4,128 @@
 #include <cmath>
 #include <limits>
 
+#include "float_lanes.h"
+
 namespace gb {
 
 namespace {
 
 constexpr float kTrustRegion = 0.25f;  // largest move per sweep, in shortest one-ring springs
 
-// A particle's block while its terms are summed: the symmetric Hessian as its six distinct entries in locals,
-// so that the sum stays in registers. (Summing 3x3 matrices built per term went through the stack, and the
-// store-to-load stalls of those temporaries took half of the sweep's time: docs/performance.md, session 8.)
-// Entry (r, c) gets scale (d_r d_c) per term, the same float operations as an outer-product matrix, so the sum
-// equals the matrix sum bit for bit.
-struct BlockSum {
-  Vec3 gradient = Vec3::Zero();
-  float xx = 0, xy = 0, xz = 0, yy = 0, yz = 0, zz = 0;
-  float shortestSpring = std::numeric_limits<float>::infinity();
+// The block's terms are written once, as templates on the float type F (float_lanes.h): float sums one
+// particle's block (objectiveBlock), Float4 four particles' of one colour in the lanes of a register
+// (solveVertexBlocks, the CPU stepper's sweeps). A lane's terms are the float ones operation for operation; a
+// term a lane does not have (a shorter one-ring, a degenerate spring or triangle, a contact out of range) adds
+// +0 there.
+template <class F>
+using Vec = Vec3Of<F>;
+template <class F>
+using Particles = std::array<uint32_t, kLanes<F>>;  // the particle of each lane
 
-  // hessian += scale d d^T
-  void addOuter(float scale, const Vec3& d) {
-    xx += scale * (d.x() * d.x());
-    xy += scale * (d.x() * d.y());
-    xz += scale * (d.x() * d.z());
-    yy += scale * (d.y() * d.y());
-    yz += scale * (d.y() * d.z());
-    zz += scale * (d.z() * d.z());
+Vec<float> lanesOf(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+Vec3 eigenOf(const Vec<float>& v) { return {v.x, v.y, v.z}; }
+
+template <class F, class Index>
+inline Vec<F> gatherVec(const Vec3Array& a, const Index& i) {
+  return {fromLanes<F>([&](int l) { return a.x[i[l]]; }), fromLanes<F>([&](int l) { return a.y[i[l]]; }),
+          fromLanes<F>([&](int l) { return a.z[i[l]]; })};
+}
+
+// A block while its terms are summed: the symmetric Hessian as its six distinct entries in locals, so that the
+// sum stays in registers. (Summing 3x3 matrices built per term went through the stack, and the store-to-load
+// stalls of those temporaries took half of the sweep's time: docs/performance.md, session 8.) Entry (r, c) gets
+// scale (d_r d_c) per term, the same float operations as an outer-product matrix, so the sum equals the
+// matrix sum bit for bit.
+template <class F>
+struct BlockSum {
+  Vec<F> gradient{F(0.0f), F(0.0f), F(0.0f)};
+  F xx = F(0.0f), xy = F(0.0f), xz = F(0.0f), yy = F(0.0f), yz = F(0.0f), zz = F(0.0f);
+  F shortestSpring = F(std::numeric_limits<float>::infinity());
+
+  // gradient += g in the lanes of m
+  void addGradient(MaskOf<F> m, const Vec<F>& g) { gradient = gradient + masked(m, g); }
+  void subtractGradient(MaskOf<F> m, const Vec<F>& g) { gradient = gradient - masked(m, g); }
+  // hessian += scale d d^T in the lanes of m
+  void addOuter(MaskOf<F> m, F scale, const Vec<F>& d) {
+    xx = xx + masked(m, scale * (d.x * d.x));
+    xy = xy + masked(m, scale * (d.x * d.y));
+    xz = xz + masked(m, scale * (d.x * d.z));
+    yy = yy + masked(m, scale * (d.y * d.y));
+    yz = yz + masked(m, scale * (d.y * d.z));
+    zz = zz + masked(m, scale * (d.z * d.z));
   }
   // hessian += scale I
-  void addIsotropic(float scale) {
-    xx += scale;
-    yy += scale;
-    zz += scale;
-  }
-  [[nodiscard]] VertexBlock block() const {
-    VertexBlock b;
-    b.gradient = gradient;
-    b.hessian << xx, xy, xz, xy, yy, yz, xz, yz, zz;
-    b.shortestSpring = shortestSpring;
-    return b;
+  void addIsotropic(F scale) {
+    xx = xx + scale;
+    yy = yy + scale;
+    zz = zz + scale;
   }
 };
+
+VertexBlock blockOf(const BlockSum<float>& b) {
+  VertexBlock v;
+  v.gradient = eigenOf(b.gradient);
+  v.hessian << b.xx, b.xy, b.xz, b.xy, b.yy, b.yz, b.xz, b.yz, b.zz;
+  v.shortestSpring = b.shortestSpring;
+  return v;
+}
+
+// Four one-particle sums in the lanes of one, and lane l back out.
+BlockSum<Float4> inLanes(const std::array<BlockSum<float>, 4>& b) {
+  const auto pack = [&](auto member) { return Float4::of(b[0].*member, b[1].*member, b[2].*member, b[3].*member); };
+  BlockSum<Float4> r;
+  r.gradient = {Float4::of(b[0].gradient.x, b[1].gradient.x, b[2].gradient.x, b[3].gradient.x),
+                Float4::of(b[0].gradient.y, b[1].gradient.y, b[2].gradient.y, b[3].gradient.y),
+                Float4::of(b[0].gradient.z, b[1].gradient.z, b[2].gradient.z, b[3].gradient.z)};
+  r.xx = pack(&BlockSum<float>::xx);
+  r.xy = pack(&BlockSum<float>::xy);
+  r.xz = pack(&BlockSum<float>::xz);
+  r.yy = pack(&BlockSum<float>::yy);
+  r.yz = pack(&BlockSum<float>::yz);
+  r.zz = pack(&BlockSum<float>::zz);
+  r.shortestSpring = pack(&BlockSum<float>::shortestSpring);
+  return r;
+}
+BlockSum<float> laneOf(const BlockSum<Float4>& b, int l) {
+  BlockSum<float> r;
+  r.gradient = {b.gradient.x.lane(l), b.gradient.y.lane(l), b.gradient.z.lane(l)};
+  r.xx = b.xx.lane(l);
+  r.xy = b.xy.lane(l);
+  r.xz = b.xz.lane(l);
+  r.yy = b.yy.lane(l);
+  r.yz = b.yz.lane(l);
+  r.zz = b.zz.lane(l);
+  r.shortestSpring = b.shortestSpring.lane(l);
+  return r;
+}
 
 // Damping along a direction, dissipation c/(2h) ((dx_i - dx_j) . dir)^2 with dx the displacement over the
 // step: the implicit form of the damping force c ((v_j - v_i) . dir) dir. Its Hessian c/h dir dir^T is
 // returned for the caller to add with the other terms along dir.
-inline float addDampingGradient(float coefficient, float h, const Vec3& dir, const Vec3& relativeDisplacement,
-                                BlockSum& b) {
-  b.gradient += coefficient / h * relativeDisplacement.dot(dir) * dir;
+template <class F>
+F addDampingGradient(MaskOf<F> m, F coefficient, F h, const Vec<F>& dir, const Vec<F>& relativeDisplacement,
+                     BlockSum<F>& b) {
+  b.addGradient(m, (coefficient / h * dot(relativeDisplacement, dir)) * dir);
   return coefficient / h;
 }
 
 // Physical model: tension x area of triangle (x, xj, xl), counter-clockwise. grad_x A = 1/2 n x (xl - xj);
 // the Hessian of A in x alone is |xl - xj|^2 / (4 A) n n^T, positive semi-definite.
-void addAreaTension(float tension, const Vec3& x, const Vec3& xj, const Vec3& xl, BlockSum& b) {
-  const Vec3 twiceAreaNormal = (xj - x).cross(xl - x);
-  const float twiceArea = twiceAreaNormal.norm();
-  if (!(twiceArea > 0)) return;
-  const Vec3 n = twiceAreaNormal / twiceArea;
-  const Vec3 edge = xl - xj;
-  b.gradient += tension * 0.5f * n.cross(edge);
-  b.addOuter(tension * edge.squaredNorm() / (2.0f * twiceArea), n);
+template <class F>
+void addAreaTension(MaskOf<F> live, F tension, const Vec<F>& x, const Vec<F>& xj, const Vec<F>& xl, BlockSum<F>& b) {
+  const Vec<F> twiceAreaNormal = cross(xj - x, xl - x);
+  const F twiceArea = norm(twiceAreaNormal);
+  const MaskOf<F> m = live && twiceArea > F(0.0f);
+  if (none(m)) return;
+  const Vec<F> n = twiceAreaNormal / twiceArea;
+  const Vec<F> edge = xl - xj;
+  b.addGradient(m, (tension * F(0.5f)) * cross(n, edge));
+  b.addOuter(m, tension * dot(edge, edge) / (F(2.0f) * twiceArea), n);
+}
+
+template <class F>
+F transverseStiffnessOf(F stiffness, F rest, F length) {
+  return stiffness * max(F(0.0f), F(1.0f) - rest / length);
 }
 
 }  // namespace
@@ -70,7 +133,7 @@ void addAreaTension(float tension, const Vec3& x, const Vec3& xj, const Vec3& xl
 float springStiffness(const State& s, size_t i, size_t j) { return 0.5f * (s.elasticity[i] + s.elasticity[j]); }
 
 float transverseStiffness(float stiffness, float rest, float length) {
-  return stiffness * std::max(0.0f, 1.0f - rest / length);
+  return transverseStiffnessOf(stiffness, rest, length);
 }
 
 float triangleTension(const State& s, const uint32_t* corners) {
@@ -79,38 +142,122 @@ float triangleTension(const State& s, const uint32_t* corners) {
 
 namespace {
 
-// The internal energies and dissipations of particle i at its current position x.
-void addInternal(const Params& p, float h, const Topology& topo, const State& s, size_t i, BlockSum& b) {
-  const Vec3 x = s.position.get(i), dx = x - s.previousPosition.get(i);
+// The k-th entry of each lane's range [offset[i], offset[i + 1]) of a CSR list, and which lanes have one. A lane
+// without one reads the longest range's entry instead (a valid index whenever the loop runs; its terms are
+// masked off).
+template <class F>
+struct Ranges {
+  Particles<F> first{}, count{};
+  uint32_t longest = 0, fallback = 0;
+  Ranges(const std::vector<uint32_t>& offset, const Particles<F>& i, const std::array<bool, kLanes<F>>& active) {
+    for (int l = 0; l < kLanes<F>; ++l) {
+      first[l] = offset[i[l]];
+      count[l] = active[l] ? offset[i[l] + 1] - first[l] : 0;
+      if (count[l] > longest) longest = count[l], fallback = first[l];
+    }
+  }
+  [[nodiscard]] MaskOf<F> has(uint32_t k) const {
+    return maskFromLanes<F>([&](int l) { return k < count[l]; });
+  }
+  [[nodiscard]] uint32_t entry(int l, uint32_t k) const { return k < count[l] ? first[l] + k : fallback + k; }
+};
+
+// The corners of a triangle after its corner i, counter-clockwise.
+struct CornersAfter {
+  uint32_t next, last;
+};
+CornersAfter cornersAfter(const uint32_t* tri, uint32_t i) {
+  const uint32_t c = tri[0] == i ? 0u : (tri[1] == i ? 1u : 2u);
+  return {tri[(c + 1) % 3], tri[(c + 2) % 3]};
+}
+
+// One particle's one-ring read from the topology's lists (objectiveBlock).
+struct ListedRing {
+  const Topology& topo;
+  const State& s;
+  uint32_t i;
+  [[nodiscard]] uint32_t springs() const { return topo.springOffset[i + 1] - topo.springOffset[i]; }
+  [[nodiscard]] bool hasSpring(uint32_t) const { return true; }
+  [[nodiscard]] Particles<float> springNeighbour(uint32_t k) const {
+    return {topo.springNeighbour[topo.springOffset[i] + k]};
+  }
+  [[nodiscard]] float springStiffness(uint32_t k) const { return gb::springStiffness(s, i, springNeighbour(k)[0]); }
+  [[nodiscard]] float springRest(uint32_t k) const {
+    return topo.restLength[topo.springIndex[topo.springOffset[i] + k]];
+  }
+  [[nodiscard]] uint32_t triangles() const { return topo.triangleOffset[i + 1] - topo.triangleOffset[i]; }
+  [[nodiscard]] bool hasTriangle(uint32_t) const { return true; }
+  // The tension of i's k-th triangle, and its corners after i counter-clockwise.
+  float triangle(uint32_t k, Particles<float>& next, Particles<float>& last) const {
+    const uint32_t* tri = &topo.triangles[3 * topo.triangleIndex[topo.triangleOffset[i] + k]];
+    const CornersAfter corners = cornersAfter(tri, i);
+    next = {corners.next};
+    last = {corners.last};
+    return triangleTension(s, tri);
+  }
+};
+
+// Four particles' one-rings read from a run of SweepRuns (solveVertexBlocks).
+struct RunRing {
+  const SweepRuns& runs;
+  uint32_t run;
+  [[nodiscard]] uint32_t springs() const { return runs.springSlot[run + 1] - runs.springSlot[run]; }
+  [[nodiscard]] Mask4 hasSpring(uint32_t k) const { return Mask4::below(&runs.springCount[4 * run], k); }
+  [[nodiscard]] const uint32_t* springNeighbour(uint32_t k) const {
+    return &runs.springNeighbour[4 * (runs.springSlot[run] + k)];
+  }
+  [[nodiscard]] Float4 springStiffness(uint32_t k) const {
+    return Float4::load(&runs.springStiffness[4 * (runs.springSlot[run] + k)]);
+  }
+  [[nodiscard]] Float4 springRest(uint32_t k) const {
+    return Float4::load(&runs.springRest[4 * (runs.springSlot[run] + k)]);
+  }
+  [[nodiscard]] uint32_t triangles() const { return runs.triangleSlot[run + 1] - runs.triangleSlot[run]; }
+  [[nodiscard]] Mask4 hasTriangle(uint32_t k) const { return Mask4::below(&runs.triangleCount[4 * run], k); }
+  Float4 triangle(uint32_t k, const uint32_t*& next, const uint32_t*& last) const {
+    const size_t slot = 4 * (runs.triangleSlot[run] + k);
+    next = &runs.cornerNext[slot];
+    last = &runs.cornerLast[slot];
+    return Float4::load(&runs.triangleTension[slot]);
+  }
+};
+
+// The internal energies and dissipations of the lanes' particles i at their current positions, their one-rings
+// read from ring.
+template <class F, class Ring>
+void addInternal(const Params& p, float h, const Topology& topo, const State& s, const Particles<F>& i,
+                 const std::array<bool, kLanes<F>>& active, const Ring& ring, BlockSum<F>& b) {
+  const Vec<F> x = gatherVec<F>(s.position, i), dx = x - gatherVec<F>(s.previousPosition, i);
   const bool physical = p.tensionModel == 1;
-  float isotropic = 0.0f;  // Hessian terms proportional to the identity, added once at the end
-  for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
-    const uint32_t j = topo.springNeighbour[k];
-    const Vec3 xj = s.position.get(j);
-    const Vec3 d = xj - x;
-    const float len = d.norm();
-    if (!(len > 0)) continue;
-    const Vec3 dir = d / len;
-    b.shortestSpring = std::min(b.shortestSpring, len);
-    float along = addDampingGradient(p.springDamping, h, dir, dx - (xj - s.previousPosition.get(j)), b);
+  F isotropic = F(0.0f);  // Hessian terms proportional to the identity, added once at the end
+  for (uint32_t k = 0; k < ring.springs(); ++k) {
+    const auto j = ring.springNeighbour(k);
+    const Vec<F> xj = gatherVec<F>(s.position, j);
+    const Vec<F> d = xj - x;
+    const F len = norm(d);
+    const MaskOf<F> m = ring.hasSpring(k) && len > F(0.0f);
+    if (none(m)) continue;
+    const Vec<F> dir = d / len;
+    b.shortestSpring = select(m, min(b.shortestSpring, len), b.shortestSpring);
+    F along = addDampingGradient(m, F(p.springDamping), F(h), dir, dx - (xj - gatherVec<F>(s.previousPosition, j)), b);
     if (!physical) {
       // The spring of Eq. (3), energy k/2 (len - l0)^2; Hessian k dir dir^T + k (1 - l0/len) (I - dir dir^T),
       // projected onto the positive semi-definite cone by dropping the transverse term of a compressed spring.
-      const float stiffness = springStiffness(s, i, j);
-      const float rest = topo.restLength[topo.springIndex[k]];
-      b.gradient -= stiffness * (len - rest) * dir;
-      const float transverse = transverseStiffness(stiffness, rest, len);
-      isotropic += transverse;
-      along += stiffness - transverse;
+      const F stiffness = ring.springStiffness(k), rest = ring.springRest(k);
+      b.subtractGradient(m, (stiffness * (len - rest)) * dir);
+      const F transverse = transverseStiffnessOf(stiffness, rest, len);
+      isotropic = isotropic + masked(m, transverse);
+      along = along + (stiffness - transverse);
     }
-    b.addOuter(along, dir);
+    b.addOuter(m, along, dir);
   }
   b.addIsotropic(isotropic);
   if (physical) {
-    for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
-      const uint32_t* tri = &topo.triangles[3 * topo.triangleIndex[k]];
-      const uint32_t c = tri[0] == i ? 0u : (tri[1] == i ? 1u : 2u);
-      addAreaTension(triangleTension(s, tri), x, s.position.get(tri[(c + 1) % 3]), s.position.get(tri[(c + 2) % 3]), b);
+    for (uint32_t k = 0; k < ring.triangles(); ++k) {
+      std::conditional_t<kLanes<F> == 1, Particles<float>, const uint32_t*> next, last;
+      const F tension = ring.triangle(k, next, last);
+      addAreaTension(ring.hasTriangle(k), tension, x, gatherVec<F>(s.position, next), gatherVec<F>(s.position, last),
+                     b);
     }
   }
   // Contacts: penalty k_c/2 (d_c - |x - xj|)^2 inside the pair's rest distance d_c (its transverse Hessian term is
@@ -118,18 +265,58 @@ void addInternal(const Params& p, float h, const Topology& topo, const State& s,
   // x_t + h v_t, not where the sweep has moved it: contacts then need no colouring of their own, the colouring
   // changes only with the mesh, and the sweep's result does not depend on which contacts were found.
   const uint32_t base = static_cast<uint32_t>(s.size()) + 1;
-  for (uint32_t k = topo.contacts[i]; k < topo.contacts[i + 1]; ++k) {
-    const uint32_t j = topo.contacts[base + k];
-    const Vec3 xj = s.previousPosition.get(j) + h * s.velocity.get(j);
-    const Vec3 d = x - xj;
-    const float len = d.norm(), rest = contactRestDistance(topo.contacts, s.size(), k);
-    if (!(len > 0 && len < rest)) continue;
-    const Vec3 away = d / len;
-    b.gradient -= p.collisionStiffness * (rest - len) * away;
-    b.addOuter(p.collisionStiffness, away);
-    const Vec3 relative = dx - (xj - s.previousPosition.get(j));
-    if (relative.dot(away) < 0) b.addOuter(addDampingGradient(p.collisionDamping, h, away, relative, b), away);
+  const Ranges<F> contacts(topo.contacts, i, active);
+  const F stiffness = F(p.collisionStiffness);
+  for (uint32_t k = 0; k < contacts.longest; ++k) {
+    Particles<F> j;
+    for (int l = 0; l < kLanes<F>; ++l) j[l] = topo.contacts[base + contacts.entry(l, k)];
+    const Vec<F> xtj = gatherVec<F>(s.previousPosition, j);
+    const Vec<F> xj = xtj + F(h) * gatherVec<F>(s.velocity, j);
+    const Vec<F> d = x - xj;
+    const F len = norm(d);
+    const F rest =
+        fromLanes<F>([&](int l) { return contactRestDistance(topo.contacts, s.size(), contacts.entry(l, k)); });
+    const MaskOf<F> m = contacts.has(k) && len > F(0.0f) && len < rest;
+    if (none(m)) continue;
+    const Vec<F> away = d / len;
+    b.subtractGradient(m, (stiffness * (rest - len)) * away);
+    b.addOuter(m, stiffness, away);
+    const Vec<F> relative = dx - (xj - xtj);
+    const MaskOf<F> approaching = m && dot(relative, away) < F(0.0f);
+    if (!none(approaching))
+      b.addOuter(approaching, addDampingGradient(approaching, F(p.collisionDamping), F(h), away, relative, b), away);
   }
+}
+
+// The terms of particle i's block before and after the internal ones: inertia and still-air drag, then the
+// coupling to the moving air and a closed bubble's gas.
+BlockSum<float> inertialBlock(const Params& p, float h, const State& s, size_t i) {
+  const float m = s.mass[i];
+  const Vec3 x = s.position.get(i), xt = s.previousPosition.get(i);
+  const Vec3 y = xt + h * s.velocity.get(i) + (h * h / m) * s.force.get(i);
+  const float inertia = m / (h * h), drag = p.airDrag * s.voronoiArea[i] / h;
+  BlockSum<float> b;
+  b.gradient = lanesOf(inertia * (x - y) + drag * (x - xt));
+  b.addIsotropic(inertia + drag);
+  return b;
+}
+
+void addAirAndGas(const Params& p, const StepUniforms& u, const Bubble& bubble, const State& s, size_t i,
+                  BlockSum<float>& b) {
+  const Vec<float> n = lanesOf(s.normal.get(i));  // the normal of the step's start
+  const Vec<float> dx = lanesOf(s.position.get(i) - s.previousPosition.get(i));
+  b.addOuter(true, addDampingGradient(true, airCoupling(p, u, s, i), u.dt, n, dx, b), n);  // moving with the air
+  if (u.closed) {  // Boyle's pressure at the iterate's volume, along the normal of the step's start
+    b.subtractGradient(true, lanesOf(boyleForce(p, bubble.pressure, s, i)));
+    b.addOuter(true, breathingStiffness(bubble, s.voronoiArea[i]), n);
+  }
+}
+
+// Moves particle i by -step (then onto the floor); a non-finite step is left unapplied for the stability check
+// to report.
+void applyStep(State& s, size_t i, const Vec3& step) {
+  if (!step.allFinite()) return;
+  s.position.set(i, aboveFloor(s.position.get(i) - step));
 }
 
 }  // namespace
@@ -170,21 +357,11 @@ void predictImplicitStep(const StepUniforms& u, const Topology& topo, State& s, 
 
 VertexBlock objectiveBlock(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo,
                            const State& s, size_t i) {
-  const float h = u.dt, m = s.mass[i];
-  const Vec3 x = s.position.get(i), xt = s.previousPosition.get(i);
-  const Vec3 y = xt + h * s.velocity.get(i) + (h * h / m) * s.force.get(i);
-  const float inertia = m / (h * h), drag = p.airDrag * s.voronoiArea[i] / h;
-  BlockSum b;
-  b.gradient = inertia * (x - y) + drag * (x - xt);
-  b.addIsotropic(inertia + drag);
-  addInternal(p, h, topo, s, i, b);
-  const Vec3 n = s.normal.get(i);                                               // the normal of the step's start
-  b.addOuter(addDampingGradient(airCoupling(p, u, s, i), h, n, x - xt, b), n);  // moving with the air
-  if (u.closed) {  // Boyle's pressure at the iterate's volume, along the normal of the step's start
-    b.gradient -= boyleForce(p, bubble.pressure, s, i);
-    b.addOuter(breathingStiffness(bubble, s.voronoiArea[i]), n);
-  }
-  return b.block();
+  BlockSum<float> b = inertialBlock(p, u.dt, s, i);
+  addInternal<float>(p, u.dt, topo, s, {static_cast<uint32_t>(i)}, {true},
+                     ListedRing{topo, s, static_cast<uint32_t>(i)}, b);
+  addAirAndGas(p, u, bubble, s, i, b);
+  return blockOf(b);
 }
 
 Vec3 trustedNewtonStep(const VertexBlock& b) {
@@ -210,9 +387,87 @@ Vec3 aboveFloor(Vec3 x) {
 void solveVertexBlock(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, State& s,
                       size_t i) {
   if (!s.alive[i]) return;  // died in a burst since the colouring was made
-  const Vec3 step = trustedNewtonStep(objectiveBlock(p, u, bubble, topo, s, i));
-  if (!step.allFinite()) return;
-  s.position.set(i, aboveFloor(s.position.get(i) - step));
+  applyStep(s, i, trustedNewtonStep(objectiveBlock(p, u, bubble, topo, s, i)));
+}
+
+void layOutSweepRuns(const Params& p, const Topology& topo, const State& s, SweepRuns& runs) {
+  const bool physical = p.tensionModel == 1;
+  runs.colourRuns.assign(1, 0);
+  for (size_t c = 0; c + 1 < topo.colourOffset.size(); ++c)
+    runs.colourRuns.push_back(runs.colourRuns.back() + (topo.colourOffset[c + 1] - topo.colourOffset[c] + 3) / 4);
+  const size_t count = runs.colourRuns.back();
+  for (auto* v : {&runs.particle, &runs.solved, &runs.springCount, &runs.triangleCount}) v->resize(4 * count);
+  runs.springSlot.assign(1, 0);
+  runs.triangleSlot.assign(1, 0);
+  for (size_t c = 0; c + 1 < runs.colourRuns.size(); ++c)
+    for (uint32_t r = runs.colourRuns[c]; r < runs.colourRuns[c + 1]; ++r) {
+      const uint32_t first = topo.colourOffset[c] + 4 * (r - runs.colourRuns[c]);
+      uint32_t springs = 0, triangles = 0;
+      for (uint32_t l = 0; l < 4; ++l) {
+        const bool inColour = first + l < topo.colourOffset[c + 1];
+        const uint32_t i = topo.colourOrder[inColour ? first + l : first];
+        const bool solved = inColour && s.alive[i];
+        runs.particle[4 * r + l] = i;
+        runs.solved[4 * r + l] = solved;
+        runs.springCount[4 * r + l] = solved ? topo.springOffset[i + 1] - topo.springOffset[i] : 0;
+        runs.triangleCount[4 * r + l] = solved && physical ? topo.triangleOffset[i + 1] - topo.triangleOffset[i] : 0;
+        springs = std::max(springs, runs.springCount[4 * r + l]);
+        triangles = std::max(triangles, runs.triangleCount[4 * r + l]);
+      }
+      runs.springSlot.push_back(runs.springSlot.back() + springs);
+      runs.triangleSlot.push_back(runs.triangleSlot.back() + triangles);
+    }
+  const size_t springSlots = 4 * size_t{runs.springSlot.back()}, triangleSlots = 4 * size_t{runs.triangleSlot.back()};
+  runs.springNeighbour.resize(springSlots);
+  runs.springStiffness.assign(springSlots, 0.0f);
+  runs.springRest.assign(springSlots, 0.0f);
+  runs.cornerNext.resize(triangleSlots);
+  runs.cornerLast.resize(triangleSlots);
+  runs.triangleTension.assign(triangleSlots, 0.0f);
+  for (uint32_t r = 0; r < count; ++r)
+    for (uint32_t l = 0; l < 4; ++l) {
+      const uint32_t i = runs.particle[4 * r + l], filler = runs.particle[4 * r];
+      for (uint32_t k = 0; k < runs.springSlot[r + 1] - runs.springSlot[r]; ++k) {
+        const size_t slot = 4 * size_t{runs.springSlot[r] + k} + l;
+        const bool has = k < runs.springCount[4 * r + l];
+        const uint32_t entry = topo.springOffset[i] + k, j = has ? topo.springNeighbour[entry] : filler;
+        runs.springNeighbour[slot] = j;
+        if (has && !physical) {
+          runs.springStiffness[slot] = springStiffness(s, i, j);
+          runs.springRest[slot] = topo.restLength[topo.springIndex[entry]];
+        }
+      }
+      for (uint32_t k = 0; k < runs.triangleSlot[r + 1] - runs.triangleSlot[r]; ++k) {
+        const size_t slot = 4 * size_t{runs.triangleSlot[r] + k} + l;
+        runs.cornerNext[slot] = runs.cornerLast[slot] = filler;
+        if (k >= runs.triangleCount[4 * r + l]) continue;
+        const uint32_t* tri = &topo.triangles[3 * topo.triangleIndex[topo.triangleOffset[i] + k]];
+        const CornersAfter corners = cornersAfter(tri, i);
+        runs.cornerNext[slot] = corners.next;
+        runs.cornerLast[slot] = corners.last;
+        runs.triangleTension[slot] = triangleTension(s, tri);
+      }
+    }
+}
+
+void solveVertexBlockRun(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, State& s,
+                         const SweepRuns& runs, uint32_t run) {
+  Particles<Float4> i{};
+  std::array<bool, 4> solved{};
+  std::array<BlockSum<float>, 4> start;
+  for (uint32_t l = 0; l < 4; ++l) {
+    i[l] = runs.particle[4 * run + l];
+    solved[l] = runs.solved[4 * run + l] != 0;
+    if (solved[l]) start[l] = inertialBlock(p, u.dt, s, i[l]);
+  }
+  BlockSum<Float4> lanes = inLanes(start);
+  addInternal<Float4>(p, u.dt, topo, s, i, solved, RunRing{runs, run}, lanes);
+  for (int l = 0; l < 4; ++l) {  // the lanes' particles share no term, so each moves on its own
+    if (!solved[l]) continue;
+    BlockSum<float> b = laneOf(lanes, l);
+    addAirAndGas(p, u, bubble, s, i[l], b);
+    applyStep(s, i[l], trustedNewtonStep(blockOf(b)));
+  }
 }
 
 double implicitResidual(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo,

@@ -93,7 +93,7 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
         forEach(n, [&](size_t i) { predictImplicitStep(u, topo, s, i); });
         break;
       case Stage::VertexBlockDescent:  // colours in order; a colour's particles are independent of each other
-        layOutSweepRuns(params_, topo, s, sweepRuns_);
+        layOutSweepRuns(params_, u, topo, s, sweepRuns_);
         for (int sweep = 0; sweep < solverSweeps(params_, u); ++sweep) {
           Bubble bubble;
           if (u.closed) {  // Boyle's pressure at this iterate's volume

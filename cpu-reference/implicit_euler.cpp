@@ -123,6 +123,30 @@ void addAreaTension(MaskOf<F> live, F tension, const Vec<F>& x, const Vec<F>& xj
   b.addOuter(m, tension * dot(edge, edge) / (F(2.0f) * twiceArea), n);
 }
 
+// a x = b by the adjugate, a given by rows.
+template <class F>
+Vec<F> solveByAdjugate(const std::array<std::array<F, 3>, 3>& a, const Vec<F>& b) {
+  const F c00 = a[1][1] * a[2][2] - a[1][2] * a[2][1], c01 = a[0][2] * a[2][1] - a[0][1] * a[2][2],
+          c02 = a[0][1] * a[1][2] - a[0][2] * a[1][1];
+  const F c10 = a[1][2] * a[2][0] - a[1][0] * a[2][2], c11 = a[0][0] * a[2][2] - a[0][2] * a[2][0],
+          c12 = a[0][2] * a[1][0] - a[0][0] * a[1][2];
+  const F c20 = a[1][0] * a[2][1] - a[1][1] * a[2][0], c21 = a[0][1] * a[2][0] - a[0][0] * a[2][1],
+          c22 = a[0][0] * a[1][1] - a[0][1] * a[1][0];
+  const F det = a[0][0] * c00 + a[0][1] * c10 + a[0][2] * c20;
+  return Vec<F>{c00 * b.x + c01 * b.y + c02 * b.z, c10 * b.x + c11 * b.y + c12 * b.z,
+                c20 * b.x + c21 * b.y + c22 * b.z} /
+         det;
+}
+
+// A sweep moves a particle at most kTrustRegion of its shortest spring. The area energy of the physical model
+// has no curvature in the film's plane (A is linear in a corner's height), so there the Newton step is only held
+// by the film's small inertia and would fold triangles over. (A step within the limit is multiplied by 1, exactly.)
+template <class F>
+Vec<F> withinTrustRegionOf(const Vec<F>& step, F shortestSpring) {
+  const F limit = F(kTrustRegion) * shortestSpring, length = norm(step);
+  return select(length > limit, limit / length, F(1.0f)) * step;
+}
+
 template <class F>
 F transverseStiffnessOf(F stiffness, F rest, F length) {
   return stiffness * max(F(0.0f), F(1.0f) - rest / length);
@@ -226,8 +250,8 @@ struct RunRing {
 // read from ring.
 template <class F, class Ring>
 void addInternal(const Params& p, float h, const Topology& topo, const State& s, const Particles<F>& i,
-                 const std::array<bool, kLanes<F>>& active, const Ring& ring, BlockSum<F>& b) {
-  const Vec<F> x = gatherVec<F>(s.position, i), dx = x - gatherVec<F>(s.previousPosition, i);
+                 const std::array<bool, kLanes<F>>& active, const Ring& ring, const Vec<F>& x, const Vec<F>& dx,
+                 BlockSum<F>& b) {
   const bool physical = p.tensionModel == 1;
   F isotropic = F(0.0f);  // Hessian terms proportional to the identity, added once at the end
   for (uint32_t k = 0; k < ring.springs(); ++k) {
@@ -288,28 +312,44 @@ void addInternal(const Params& p, float h, const Topology& topo, const State& s,
   }
 }
 
-// The terms of particle i's block before and after the internal ones: inertia and still-air drag, then the
-// coupling to the moving air and a closed bubble's gas.
-BlockSum<float> inertialBlock(const Params& p, float h, const State& s, size_t i) {
+// The terms of a block before and after the internal ones: inertia and still-air drag, then the coupling to the
+// moving air (its coefficient airCoupling) along the normal n of the step's start.
+// What the inertia and drag terms need of a particle, fixed over the step: the target y = x_t + h v_t + h^2 f / m
+// of implicit_euler.h, x_t, m / h^2, and the still-air drag coefficient / h.
+template <class F>
+struct InertialTerms {
+  Vec<F> target, start;
+  F inertia, drag;
+};
+InertialTerms<float> inertialTerms(const Params& p, float h, const State& s, size_t i) {
   const float m = s.mass[i];
-  const Vec3 x = s.position.get(i), xt = s.previousPosition.get(i);
-  const Vec3 y = xt + h * s.velocity.get(i) + (h * h / m) * s.force.get(i);
-  const float inertia = m / (h * h), drag = p.airDrag * s.voronoiArea[i] / h;
-  BlockSum<float> b;
-  b.gradient = lanesOf(inertia * (x - y) + drag * (x - xt));
-  b.addIsotropic(inertia + drag);
-  return b;
+  const Vec3 xt = s.previousPosition.get(i);
+  return {lanesOf(xt + h * s.velocity.get(i) + (h * h / m) * s.force.get(i)), lanesOf(xt), m / (h * h),
+          p.airDrag * s.voronoiArea[i] / h};
 }
 
-void addAirAndGas(const Params& p, const StepUniforms& u, const Bubble& bubble, const State& s, size_t i,
-                  BlockSum<float>& b) {
-  const Vec<float> n = lanesOf(s.normal.get(i));  // the normal of the step's start
-  const Vec<float> dx = lanesOf(s.position.get(i) - s.previousPosition.get(i));
-  b.addOuter(true, addDampingGradient(true, airCoupling(p, u, s, i), u.dt, n, dx, b), n);  // moving with the air
-  if (u.closed) {  // Boyle's pressure at the iterate's volume, along the normal of the step's start
-    b.subtractGradient(true, lanesOf(boyleForce(p, bubble.pressure, s, i)));
-    b.addOuter(true, breathingStiffness(bubble, s.voronoiArea[i]), n);
-  }
+template <class F>
+BlockSum<F> inertialBlock(const InertialTerms<F>& t, const Vec<F>& x) {
+  BlockSum<F> b;
+  b.gradient = t.inertia * (x - t.target) + t.drag * (x - t.start);
+  b.addIsotropic(t.inertia + t.drag);
+  return b;
+}
+template <class F>
+void addAirCoupling(MaskOf<F> m, F coupling, F h, const Vec<F>& n, const Vec<F>& dx, BlockSum<F>& b) {
+  b.addOuter(m, addDampingGradient(m, coupling, h, n, dx, b), n);
+}
+// A closed bubble's gas: Boyle's pressure at the iterate's volume, along the normal of the step's start.
+void addGas(const Params& p, const Bubble& bubble, const State& s, size_t i, BlockSum<float>& b) {
+  b.subtractGradient(true, lanesOf(boyleForce(p, bubble.pressure, s, i)));
+  b.addOuter(true, breathingStiffness(bubble, s.voronoiArea[i]), lanesOf(s.normal.get(i)));
+}
+
+// The Newton step H^-1 g of a block by the adjugate (solveLinear3's operations on the symmetric entries),
+// shortened to the trust region (withinTrustRegion's).
+template <class F>
+Vec<F> solveSymmetric(const BlockSum<F>& b) {
+  return solveByAdjugate<F>({{{b.xx, b.xy, b.xz}, {b.xy, b.yy, b.yz}, {b.xz, b.yz, b.zz}}}, b.gradient);
 }
 
 // Moves particle i by -step (then onto the floor); a non-finite step is left unapplied for the stability check
@@ -322,16 +362,8 @@ void applyStep(State& s, size_t i, const Vec3& step) {
 }  // namespace
 
 Vec3 solveLinear3(const Eigen::Matrix3f& a, const Vec3& b) {
-  const float c00 = a(1, 1) * a(2, 2) - a(1, 2) * a(2, 1), c01 = a(0, 2) * a(2, 1) - a(0, 1) * a(2, 2),
-              c02 = a(0, 1) * a(1, 2) - a(0, 2) * a(1, 1);
-  const float c10 = a(1, 2) * a(2, 0) - a(1, 0) * a(2, 2), c11 = a(0, 0) * a(2, 2) - a(0, 2) * a(2, 0),
-              c12 = a(0, 2) * a(1, 0) - a(0, 0) * a(1, 2);
-  const float c20 = a(1, 0) * a(2, 1) - a(1, 1) * a(2, 0), c21 = a(0, 1) * a(2, 0) - a(0, 0) * a(2, 1),
-              c22 = a(0, 0) * a(1, 1) - a(0, 1) * a(1, 0);
-  const float det = a(0, 0) * c00 + a(0, 1) * c10 + a(0, 2) * c20;
-  return Vec3(c00 * b.x() + c01 * b.y() + c02 * b.z(), c10 * b.x() + c11 * b.y() + c12 * b.z(),
-              c20 * b.x() + c21 * b.y() + c22 * b.z()) /
-         det;
+  return eigenOf(solveByAdjugate<float>(
+      {{{a(0, 0), a(0, 1), a(0, 2)}, {a(1, 0), a(1, 1), a(1, 2)}, {a(2, 0), a(2, 1), a(2, 2)}}}, lanesOf(b)));
 }
 
 float breathingStiffness(const Bubble& bubble, float area) {
@@ -357,10 +389,13 @@ void predictImplicitStep(const StepUniforms& u, const Topology& topo, State& s, 
 
 VertexBlock objectiveBlock(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo,
                            const State& s, size_t i) {
-  BlockSum<float> b = inertialBlock(p, u.dt, s, i);
+  const InertialTerms<float> t = inertialTerms(p, u.dt, s, i);
+  const Vec<float> x = lanesOf(s.position.get(i)), dx = x - t.start;
+  BlockSum<float> b = inertialBlock(t, x);
   addInternal<float>(p, u.dt, topo, s, {static_cast<uint32_t>(i)}, {true},
-                     ListedRing{topo, s, static_cast<uint32_t>(i)}, b);
-  addAirAndGas(p, u, bubble, s, i, b);
+                     ListedRing{topo, s, static_cast<uint32_t>(i)}, x, dx, b);
+  addAirCoupling(true, airCoupling(p, u, s, i), u.dt, lanesOf(s.normal.get(i)), dx, b);
+  if (u.closed) addGas(p, bubble, s, i, b);
   return blockOf(b);
 }
 
@@ -371,12 +406,7 @@ Vec3 trustedNewtonStep(const VertexBlock& b) {
 }
 
 Vec3 withinTrustRegion(Vec3 step, float shortestSpring) {
-  // A sweep moves a particle at most kTrustRegion of its shortest spring. The area energy of the physical
-  // model has no curvature in the film's plane (A is linear in a corner's height), so there the Newton step is
-  // only held by the film's small inertia and would fold triangles over.
-  const float limit = kTrustRegion * shortestSpring, length = step.norm();
-  if (length > limit) step *= limit / length;
-  return step;
+  return eigenOf(withinTrustRegionOf(lanesOf(step), shortestSpring));
 }
 
 Vec3 aboveFloor(Vec3 x) {
@@ -390,13 +420,15 @@ void solveVertexBlock(const Params& p, const StepUniforms& u, const Bubble& bubb
   applyStep(s, i, trustedNewtonStep(objectiveBlock(p, u, bubble, topo, s, i)));
 }
 
-void layOutSweepRuns(const Params& p, const Topology& topo, const State& s, SweepRuns& runs) {
+void layOutSweepRuns(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, SweepRuns& runs) {
   const bool physical = p.tensionModel == 1;
   runs.colourRuns.assign(1, 0);
   for (size_t c = 0; c + 1 < topo.colourOffset.size(); ++c)
     runs.colourRuns.push_back(runs.colourRuns.back() + (topo.colourOffset[c + 1] - topo.colourOffset[c] + 3) / 4);
   const size_t count = runs.colourRuns.back();
   for (auto* v : {&runs.particle, &runs.solved, &runs.springCount, &runs.triangleCount}) v->resize(4 * count);
+  for (auto* v : {&runs.target, &runs.start, &runs.normal}) v->resize(4 * count);
+  for (auto* v : {&runs.inertia, &runs.drag, &runs.airCoupling}) v->assign(4 * count, 0.0f);
   runs.springSlot.assign(1, 0);
   runs.triangleSlot.assign(1, 0);
   for (size_t c = 0; c + 1 < runs.colourRuns.size(); ++c)
@@ -409,6 +441,15 @@ void layOutSweepRuns(const Params& p, const Topology& topo, const State& s, Swee
         const bool solved = inColour && s.alive[i];
         runs.particle[4 * r + l] = i;
         runs.solved[4 * r + l] = solved;
+        if (solved) {
+          const InertialTerms<float> t = inertialTerms(p, u.dt, s, i);
+          runs.target.set(4 * r + l, eigenOf(t.target));
+          runs.start.set(4 * r + l, eigenOf(t.start));
+          runs.normal.set(4 * r + l, s.normal.get(i));
+          runs.inertia[4 * r + l] = t.inertia;
+          runs.drag[4 * r + l] = t.drag;
+          runs.airCoupling[4 * r + l] = airCoupling(p, u, s, i);
+        }
         runs.springCount[4 * r + l] = solved ? topo.springOffset[i + 1] - topo.springOffset[i] : 0;
         runs.triangleCount[4 * r + l] = solved && physical ? topo.triangleOffset[i + 1] - topo.triangleOffset[i] : 0;
         springs = std::max(springs, runs.springCount[4 * r + l]);
@@ -452,22 +493,34 @@ void layOutSweepRuns(const Params& p, const Topology& topo, const State& s, Swee
 
 void solveVertexBlockRun(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, State& s,
                          const SweepRuns& runs, uint32_t run) {
+  const size_t at = 4 * size_t{run};
+  const auto lanes = [&](const Vec3Array& a) {
+    return Vec<Float4>{Float4::load(&a.x[at]), Float4::load(&a.y[at]), Float4::load(&a.z[at])};
+  };
   Particles<Float4> i{};
   std::array<bool, 4> solved{};
-  std::array<BlockSum<float>, 4> start;
   for (uint32_t l = 0; l < 4; ++l) {
-    i[l] = runs.particle[4 * run + l];
-    solved[l] = runs.solved[4 * run + l] != 0;
-    if (solved[l]) start[l] = inertialBlock(p, u.dt, s, i[l]);
+    i[l] = runs.particle[at + l];
+    solved[l] = runs.solved[at + l] != 0;
   }
-  BlockSum<Float4> lanes = inLanes(start);
-  addInternal<Float4>(p, u.dt, topo, s, i, solved, RunRing{runs, run}, lanes);
-  for (int l = 0; l < 4; ++l) {  // the lanes' particles share no term, so each moves on its own
-    if (!solved[l]) continue;
-    BlockSum<float> b = laneOf(lanes, l);
-    addAirAndGas(p, u, bubble, s, i[l], b);
-    applyStep(s, i[l], trustedNewtonStep(blockOf(b)));
+  const InertialTerms<Float4> t{lanes(runs.target), lanes(runs.start), Float4::load(&runs.inertia[at]),
+                                Float4::load(&runs.drag[at])};
+  const Vec<Float4> x = gatherVec<Float4>(s.position, i), dx = x - t.start;
+  BlockSum<Float4> b = inertialBlock(t, x);
+  addInternal<Float4>(p, u.dt, topo, s, i, solved, RunRing{runs, run}, x, dx, b);
+  addAirCoupling(Mask4::of(solved[0], solved[1], solved[2], solved[3]), Float4::load(&runs.airCoupling[at]),
+                 Float4(u.dt), lanes(runs.normal), dx, b);
+  if (u.closed) {  // the gas, lane by lane (a closed bubble's sweeps only)
+    std::array<BlockSum<float>, 4> each;
+    for (int l = 0; l < 4; ++l) {
+      each[l] = laneOf(b, l);
+      if (solved[l]) addGas(p, bubble, s, i[l], each[l]);
+    }
+    b = inLanes(each);
   }
+  const Vec<Float4> step = withinTrustRegionOf(solveSymmetric(b), b.shortestSpring);
+  for (int l = 0; l < 4; ++l)  // the lanes' particles share no term, so each moves on its own
+    if (solved[l]) applyStep(s, i[l], Vec3(step.x.lane(l), step.y.lane(l), step.z.lane(l)));
 }
 
 double implicitResidual(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo,

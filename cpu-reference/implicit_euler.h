@@ -91,6 +91,10 @@ struct SweepRuns {
   // Four per run: the particles (a lane past the colour's end repeats lane 0's), whether each is solved
   // (living, not past the end), and how many springs and triangles of its one-ring are in the run's slots.
   std::vector<uint32_t> particle, solved, springCount, triangleCount;
+  // Four per run, fixed over the step: each solved particle's target y, x_t, the normal n of the step's start,
+  // m / h^2, the still-air drag / h and airCoupling (zeros in a lane not solved).
+  Vec3Array target, start, normal;
+  std::vector<float> inertia, drag, airCoupling;
   std::vector<uint32_t> springSlot, triangleSlot;  // run r's slots are [slot[r], slot[r + 1])
   // Four per slot; a lane without a spring (triangle) there holds lane 0's particle and zeros, masked off.
   std::vector<uint32_t> springNeighbour;
@@ -98,7 +102,7 @@ struct SweepRuns {
   std::vector<uint32_t> cornerNext, cornerLast;    // the triangle's corners after i, counter-clockwise
   std::vector<float> triangleTension;              // triangleTension (physical model only)
 };
-void layOutSweepRuns(const Params& p, const Topology& topo, const State& s, SweepRuns& runs);
+void layOutSweepRuns(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, SweepRuns& runs);
 
 // solveVertexBlock for the four particles of run r of SweepRuns, each particle's result the same bit for bit.
 void solveVertexBlockRun(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, State& s,

@@ -24,6 +24,9 @@ class CpuStepper final : public Stepper {
 
  private:
   float step(const StepUniforms& u);
+  // Stage vertex_block_descent: the sweeps of the implicit step, colour after colour, a colour's particles in
+  // parallel (implicit_euler.h).
+  void sweep(const StepUniforms& u);
   // Boyle's pressure of a closed film at the last volume (Eq. 11), P_0 for an open film.
   [[nodiscard]] float currentPressure(const StepUniforms& u) const;
   template <class Body>

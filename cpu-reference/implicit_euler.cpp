@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 #include "float_lanes.h"
 
@@ -420,75 +421,100 @@ void solveVertexBlock(const Params& p, const StepUniforms& u, const Bubble& bubb
   applyStep(s, i, trustedNewtonStep(objectiveBlock(p, u, bubble, topo, s, i)));
 }
 
-void layOutSweepRuns(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, SweepRuns& runs) {
+namespace {
+
+// Lane `lane` (4 r + l) of the runs: particle i, whether it is solved, its step constants and one-ring sizes.
+void layOutLane(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, uint32_t i, bool inColour,
+                size_t lane, SweepRuns& runs) {
+  const bool solved = inColour && s.alive[i];
+  runs.particle[lane] = i;
+  runs.solved[lane] = solved;
+  const InertialTerms<float> t =
+      solved ? inertialTerms(p, u.dt, s, i) : InertialTerms<float>{{0, 0, 0}, {0, 0, 0}, 0.0f, 0.0f};
+  runs.target.set(lane, eigenOf(t.target));
+  runs.start.set(lane, eigenOf(t.start));
+  runs.normal.set(lane, solved ? s.normal.get(i) : Vec3::Zero());
+  runs.inertia[lane] = t.inertia;
+  runs.drag[lane] = t.drag;
+  runs.airCoupling[lane] = solved ? airCoupling(p, u, s, i) : 0.0f;
+  runs.springCount[lane] = solved ? topo.springOffset[i + 1] - topo.springOffset[i] : 0;
+  runs.triangleCount[lane] = solved && p.tensionModel == 1 ? topo.triangleOffset[i + 1] - topo.triangleOffset[i] : 0;
+}
+
+// The spring and triangle slots of run r.
+void layOutSlots(const Params& p, const Topology& topo, const State& s, uint32_t r, SweepRuns& runs) {
   const bool physical = p.tensionModel == 1;
-  runs.colourRuns.assign(1, 0);
-  for (size_t c = 0; c + 1 < topo.colourOffset.size(); ++c)
-    runs.colourRuns.push_back(runs.colourRuns.back() + (topo.colourOffset[c + 1] - topo.colourOffset[c] + 3) / 4);
-  const size_t count = runs.colourRuns.back();
-  for (auto* v : {&runs.particle, &runs.solved, &runs.springCount, &runs.triangleCount}) v->resize(4 * count);
-  for (auto* v : {&runs.target, &runs.start, &runs.normal}) v->resize(4 * count);
-  for (auto* v : {&runs.inertia, &runs.drag, &runs.airCoupling}) v->assign(4 * count, 0.0f);
-  runs.springSlot.assign(1, 0);
-  runs.triangleSlot.assign(1, 0);
-  for (size_t c = 0; c + 1 < runs.colourRuns.size(); ++c)
-    for (uint32_t r = runs.colourRuns[c]; r < runs.colourRuns[c + 1]; ++r) {
-      const uint32_t first = topo.colourOffset[c] + 4 * (r - runs.colourRuns[c]);
-      uint32_t springs = 0, triangles = 0;
-      for (uint32_t l = 0; l < 4; ++l) {
-        const bool inColour = first + l < topo.colourOffset[c + 1];
-        const uint32_t i = topo.colourOrder[inColour ? first + l : first];
-        const bool solved = inColour && s.alive[i];
-        runs.particle[4 * r + l] = i;
-        runs.solved[4 * r + l] = solved;
-        if (solved) {
-          const InertialTerms<float> t = inertialTerms(p, u.dt, s, i);
-          runs.target.set(4 * r + l, eigenOf(t.target));
-          runs.start.set(4 * r + l, eigenOf(t.start));
-          runs.normal.set(4 * r + l, s.normal.get(i));
-          runs.inertia[4 * r + l] = t.inertia;
-          runs.drag[4 * r + l] = t.drag;
-          runs.airCoupling[4 * r + l] = airCoupling(p, u, s, i);
-        }
-        runs.springCount[4 * r + l] = solved ? topo.springOffset[i + 1] - topo.springOffset[i] : 0;
-        runs.triangleCount[4 * r + l] = solved && physical ? topo.triangleOffset[i + 1] - topo.triangleOffset[i] : 0;
-        springs = std::max(springs, runs.springCount[4 * r + l]);
-        triangles = std::max(triangles, runs.triangleCount[4 * r + l]);
-      }
-      runs.springSlot.push_back(runs.springSlot.back() + springs);
-      runs.triangleSlot.push_back(runs.triangleSlot.back() + triangles);
+  const uint32_t filler = runs.particle[4 * r];
+  for (uint32_t l = 0; l < 4; ++l) {
+    const uint32_t i = runs.particle[4 * r + l];
+    for (uint32_t k = 0; k < runs.springSlot[r + 1] - runs.springSlot[r]; ++k) {
+      const size_t slot = 4 * size_t{runs.springSlot[r] + k} + l;
+      const bool has = k < runs.springCount[4 * r + l];
+      const uint32_t entry = topo.springOffset[i] + k, j = has ? topo.springNeighbour[entry] : filler;
+      runs.springNeighbour[slot] = j;
+      runs.springStiffness[slot] = has && !physical ? springStiffness(s, i, j) : 0.0f;
+      runs.springRest[slot] = has && !physical ? topo.restLength[topo.springIndex[entry]] : 0.0f;
     }
-  const size_t springSlots = 4 * size_t{runs.springSlot.back()}, triangleSlots = 4 * size_t{runs.triangleSlot.back()};
-  runs.springNeighbour.resize(springSlots);
-  runs.springStiffness.assign(springSlots, 0.0f);
-  runs.springRest.assign(springSlots, 0.0f);
-  runs.cornerNext.resize(triangleSlots);
-  runs.cornerLast.resize(triangleSlots);
-  runs.triangleTension.assign(triangleSlots, 0.0f);
-  for (uint32_t r = 0; r < count; ++r)
-    for (uint32_t l = 0; l < 4; ++l) {
-      const uint32_t i = runs.particle[4 * r + l], filler = runs.particle[4 * r];
-      for (uint32_t k = 0; k < runs.springSlot[r + 1] - runs.springSlot[r]; ++k) {
-        const size_t slot = 4 * size_t{runs.springSlot[r] + k} + l;
-        const bool has = k < runs.springCount[4 * r + l];
-        const uint32_t entry = topo.springOffset[i] + k, j = has ? topo.springNeighbour[entry] : filler;
-        runs.springNeighbour[slot] = j;
-        if (has && !physical) {
-          runs.springStiffness[slot] = springStiffness(s, i, j);
-          runs.springRest[slot] = topo.restLength[topo.springIndex[entry]];
-        }
-      }
-      for (uint32_t k = 0; k < runs.triangleSlot[r + 1] - runs.triangleSlot[r]; ++k) {
-        const size_t slot = 4 * size_t{runs.triangleSlot[r] + k} + l;
-        runs.cornerNext[slot] = runs.cornerLast[slot] = filler;
-        if (k >= runs.triangleCount[4 * r + l]) continue;
+    for (uint32_t k = 0; k < runs.triangleSlot[r + 1] - runs.triangleSlot[r]; ++k) {
+      const size_t slot = 4 * size_t{runs.triangleSlot[r] + k} + l;
+      CornersAfter corners{filler, filler};
+      float tension = 0.0f;
+      if (k < runs.triangleCount[4 * r + l]) {
         const uint32_t* tri = &topo.triangles[3 * topo.triangleIndex[topo.triangleOffset[i] + k]];
-        const CornersAfter corners = cornersAfter(tri, i);
-        runs.cornerNext[slot] = corners.next;
-        runs.cornerLast[slot] = corners.last;
-        runs.triangleTension[slot] = triangleTension(s, tri);
+        corners = cornersAfter(tri, i);
+        tension = triangleTension(s, tri);
       }
+      runs.cornerNext[slot] = corners.next;
+      runs.cornerLast[slot] = corners.last;
+      runs.triangleTension[slot] = tension;
     }
+  }
+}
+
+}  // namespace
+
+void layOutSweepRuns(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, SweepRuns& runs) {
+  runs.colourRuns.assign(1, 0);
+  std::vector<uint32_t>& first = runs.scratchFirst;  // each run's first entry in colourOrder, and its colour's end
+  std::vector<uint32_t>& end = runs.scratchEnd;
+  first.clear();
+  end.clear();
+  for (size_t c = 0; c + 1 < topo.colourOffset.size(); ++c) {
+    for (uint32_t k = topo.colourOffset[c]; k < topo.colourOffset[c + 1]; k += 4) {
+      first.push_back(k);
+      end.push_back(topo.colourOffset[c + 1]);
+    }
+    runs.colourRuns.push_back(static_cast<uint32_t>(first.size()));
+  }
+  const auto count = static_cast<long>(first.size());
+  for (auto* v : {&runs.particle, &runs.solved, &runs.springCount, &runs.triangleCount}) v->resize(4 * first.size());
+  for (auto* v : {&runs.target, &runs.start, &runs.normal}) v->resize(4 * first.size());
+  for (auto* v : {&runs.inertia, &runs.drag, &runs.airCoupling}) v->resize(4 * first.size());
+  runs.springSlot.resize(first.size() + 1);
+  runs.triangleSlot.resize(first.size() + 1);
+#pragma omp parallel for schedule(static)
+  for (long r = 0; r < count; ++r) {
+    uint32_t springs = 0, triangles = 0;  // the run's slots: its longest one-ring's springs and triangles
+    for (uint32_t l = 0; l < 4; ++l) {
+      const bool inColour = first[r] + l < end[r];
+      const size_t lane = 4 * static_cast<size_t>(r) + l;
+      layOutLane(p, u, topo, s, topo.colourOrder[inColour ? first[r] + l : first[r]], inColour, lane, runs);
+      springs = std::max(springs, runs.springCount[lane]);
+      triangles = std::max(triangles, runs.triangleCount[lane]);
+    }
+    runs.springSlot[r + 1] = springs;
+    runs.triangleSlot[r + 1] = triangles;
+  }
+  runs.springSlot[0] = runs.triangleSlot[0] = 0;
+  std::partial_sum(runs.springSlot.begin(), runs.springSlot.end(), runs.springSlot.begin());
+  std::partial_sum(runs.triangleSlot.begin(), runs.triangleSlot.end(), runs.triangleSlot.begin());
+  const size_t springSlots = 4 * size_t{runs.springSlot.back()}, triangleSlots = 4 * size_t{runs.triangleSlot.back()};
+  for (auto* v : {&runs.springNeighbour, &runs.cornerNext, &runs.cornerLast})
+    v->resize(v == &runs.springNeighbour ? springSlots : triangleSlots);
+  for (auto* v : {&runs.springStiffness, &runs.springRest, &runs.triangleTension})
+    v->resize(v == &runs.triangleTension ? triangleSlots : springSlots);
+#pragma omp parallel for schedule(static)
+  for (long r = 0; r < count; ++r) layOutSlots(p, topo, s, static_cast<uint32_t>(r), runs);
 }
 
 void solveVertexBlockRun(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, State& s,

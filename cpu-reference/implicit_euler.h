@@ -101,6 +101,7 @@ struct SweepRuns {
   std::vector<float> springStiffness, springRest;  // springStiffness, restLength (springs model only)
   std::vector<uint32_t> cornerNext, cornerLast;    // the triangle's corners after i, counter-clockwise
   std::vector<float> triangleTension;              // triangleTension (physical model only)
+  std::vector<uint32_t> scratchFirst, scratchEnd;  // layOutSweepRuns' own, kept to reuse their memory
 };
 void layOutSweepRuns(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, SweepRuns& runs);
 

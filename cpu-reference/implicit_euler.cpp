@@ -15,7 +15,7 @@ constexpr float kTrustRegion = 0.25f;  // largest move per sweep, in shortest on
 
 // The block's terms are written once, as templates on the float type F (float_lanes.h): float sums one
 // particle's block (objectiveBlock), Float4 four particles' of one colour in the lanes of a register
-// (solveVertexBlocks, the CPU stepper's sweeps). A lane's terms are the float ones operation for operation; a
+// (solveVertexBlockRun, the CPU stepper's sweeps). A lane's terms are the float ones operation for operation; a
 // term a lane does not have (a shorter one-ring, a degenerate spring or triangle, a contact out of range) adds
 // +0 there.
 template <class F>
@@ -33,8 +33,8 @@ inline Vec<F> gatherVec(const Vec3Array& a, const Index& i) {
 }
 
 // A block while its terms are summed: the symmetric Hessian as its six distinct entries in locals, so that the
-// sum stays in registers. (Summing 3x3 matrices built per term went through the stack, and the store-to-load
-// stalls of those temporaries took half of the sweep's time: docs/performance.md, session 8.) Entry (r, c) gets
+// sum stays in registers. (Summing 3x3 matrices built per term went through the stack, and reading those
+// temporaries back was the sweep's largest cost: docs/performance.md, session 8.) Entry (r, c) gets
 // scale (d_r d_c) per term, the same float operations as an outer-product matrix, so the sum equals the
 // matrix sum bit for bit.
 template <class F>
@@ -222,7 +222,7 @@ struct ListedRing {
   }
 };
 
-// Four particles' one-rings read from a run of SweepRuns (solveVertexBlocks).
+// Four particles' one-rings read from a run of SweepRuns (solveVertexBlockRun).
 struct RunRing {
   const SweepRuns& runs;
   uint32_t run;
@@ -313,8 +313,6 @@ void addInternal(const Params& p, float h, const Topology& topo, const State& s,
   }
 }
 
-// The terms of a block before and after the internal ones: inertia and still-air drag, then the coupling to the
-// moving air (its coefficient airCoupling) along the normal n of the step's start.
 // What the inertia and drag terms need of a particle, fixed over the step: the target y = x_t + h v_t + h^2 f / m
 // of implicit_euler.h, x_t, m / h^2, and the still-air drag coefficient / h.
 template <class F>
@@ -329,6 +327,8 @@ InertialTerms<float> inertialTerms(const Params& p, float h, const State& s, siz
           p.airDrag * s.voronoiArea[i] / h};
 }
 
+// The terms of a block before and after the internal ones: inertia and still-air drag, then the coupling to the
+// moving air (its coefficient airCoupling) along the normal n of the step's start.
 template <class F>
 BlockSum<F> inertialBlock(const InertialTerms<F>& t, const Vec<F>& x) {
   BlockSum<F> b;
@@ -346,8 +346,7 @@ void addGas(const Params& p, const Bubble& bubble, const State& s, size_t i, Blo
   b.addOuter(true, breathingStiffness(bubble, s.voronoiArea[i]), lanesOf(s.normal.get(i)));
 }
 
-// The Newton step H^-1 g of a block by the adjugate (solveLinear3's operations on the symmetric entries),
-// shortened to the trust region (withinTrustRegion's).
+// The Newton step H^-1 g of a block by the adjugate (solveLinear3's operations on the symmetric entries).
 template <class F>
 Vec<F> solveSymmetric(const BlockSum<F>& b) {
   return solveByAdjugate<F>({{{b.xx, b.xy, b.xz}, {b.xy, b.yy, b.yz}, {b.xz, b.yz, b.zz}}}, b.gradient);

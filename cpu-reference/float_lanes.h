@@ -3,7 +3,9 @@
 // particles of one colour at once with these (implicit_euler.cpp). Every operation is the IEEE one of plain
 // float code (add, subtract, multiply, divide, square root, compare; nothing fused or approximate), so a
 // lane's result is the same bit for bit as the same formula in float: written once as a template on the
-// float type, a formula gives the same numbers for one particle and for four.
+// float type, a formula gives the same numbers for one particle and for four. (This also needs the compiler
+// not to contract a * b + c into a fused operation in either; it does not in ISO C++ mode without FMA flags,
+// the project's build, and ImplicitStep.TheLanesSolveEveryParticleAsSolveVertexBlockDoes would see it.)
 //
 // SSE2 where the compiler targets it (every x86-64), else four plain floats.
 

@@ -2,13 +2,18 @@
 // and for 1,000,000 particles): the straight stroke is started at once and run for a few frames so the wands
 // move, then the program times (1) the stepper alone, one implicit step of h = 0.02 s at a time on the moving
 // wands' uniforms, and (2) whole frames (Simulation::advanceFrame: the step plus the per-frame contact search,
-// film growth and burst checks). Per-stage milliseconds of the stepper come from its host timer.
+// film growth and burst checks). Per-stage milliseconds of the stepper come from its host timer. Each part also
+// prints the calling thread's CPU milliseconds per step (frame), least and median: with OMP_NUM_THREADS=1 that is
+// the whole CPU cost, which a busy machine changes far less than the wall clock.
 //
 // Run: ./build/bench/gb_step_rate_bench [--particles N] [--tension-model 0|1] [--frames N] [--sweeps N]
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <string>
+#include <vector>
 
 #include "scripted_gestures.h"
 #include "simulation.h"
@@ -19,6 +24,29 @@ using namespace gb;
 using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+double threadCpuMilliseconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return 1e3 * static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_nsec);
+}
+
+// Runs body `count` times; returns the calling thread's CPU milliseconds of each run, sorted.
+template <class Body>
+std::vector<double> cpuMillisecondsOf(int count, Body&& body) {
+  std::vector<double> ms;
+  for (int k = 0; k < count; ++k) {
+    const double start = threadCpuMilliseconds();
+    body();
+    ms.push_back(threadCpuMilliseconds() - start);
+  }
+  std::sort(ms.begin(), ms.end());
+  return ms;
+}
+
+void printCpu(const char* per, const std::vector<double>& ms) {
+  std::printf("  main thread's CPU ms per %s: least %.2f, median %.2f\n", per, ms.front(), ms[ms.size() / 2]);
+}
 
 }  // namespace
 
@@ -63,7 +91,7 @@ int main(int argc, char** argv) {
   stepper.resetStageTimes();
   stepper.enableTiming(true);
   t0 = Clock::now();
-  for (int k = 0; k < frames; ++k) stepper.run(std::span(&u, 1));
+  const std::vector<double> stepCpu = cpuMillisecondsOf(frames, [&] { stepper.run(std::span(&u, 1)); });
   const double stepSeconds = secondsSince(t0);
   stepper.enableTiming(false);
   std::printf("stepper alone: %.2f frames/s (%.1f ms per step); ms per step by stage:", frames / stepSeconds,
@@ -72,10 +100,12 @@ int main(int argc, char** argv) {
     if (stepper.stageTimes()[s] > 0)
       std::printf(" %s %.2f", stageName(static_cast<Stage>(s)), stepper.stageTimes()[s] / frames);
   std::printf("\n");
+  printCpu("step", stepCpu);
 
   t0 = Clock::now();
-  for (int k = 0; k < frames; ++k) sim.advanceFrame(wandsAt(++frame));
+  const std::vector<double> frameCpu = cpuMillisecondsOf(frames, [&] { sim.advanceFrame(wandsAt(++frame)); });
   const double frameSeconds = secondsSince(t0);
   std::printf("whole frames: %.2f frames/s (%.1f ms per frame)\n", frames / frameSeconds, 1e3 * frameSeconds / frames);
+  printCpu("frame", frameCpu);
   return 0;
 }

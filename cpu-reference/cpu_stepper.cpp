@@ -92,19 +92,8 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
       case Stage::ImplicitPredict:
         forEach(n, [&](size_t i) { predictImplicitStep(u, topo, s, i); });
         break;
-      case Stage::VertexBlockDescent:  // colours in order; a colour's particles are independent of each other
-        for (int sweep = 0; sweep < solverSweeps(params_, u); ++sweep) {
-          Bubble bubble;
-          if (u.closed) {  // Boyle's pressure at this iterate's volume
-            bubble.volume = lastVolume_ = volume(*film_, u.volumeOrigin);
-            bubble.pressure = currentPressure(u);
-          }
-          for (size_t c = 0; c + 1 < topo.colourOffset.size(); ++c) {
-            const uint32_t first = topo.colourOffset[c];
-            forEach(topo.colourOffset[c + 1] - first,
-                    [&](size_t k) { solveVertexBlock(params_, u, bubble, topo, s, topo.colourOrder[first + k]); });
-          }
-        }
+      case Stage::VertexBlockDescent:
+        sweep(u);
         break;
       case Stage::ImplicitVelocity:
         forEach(n, [&](size_t i) { finishImplicitStep(u, s, i); });
@@ -119,6 +108,33 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
   });
   if (stage == Stage::Volume) lastVolume_ = result;
   return result;
+}
+
+void CpuStepper::sweep(const StepUniforms& u) {
+  State& s = film_->state;
+  const Topology& topo = film_->topology;
+  layOutSweepRuns(params_, u, topo, s, sweepRuns_);
+  const SweepRuns& runs = sweepRuns_;
+  const int sweeps = solverSweeps(params_, u);
+  Bubble bubble;
+  // One parallel region for all the sweeps: the colours still wait for each other (the barrier closing each
+  // omp for), but the threads are woken once per step, not once per colour and sweep.
+#pragma omp parallel
+  for (int sweep = 0; sweep < sweeps; ++sweep) {
+    if (u.closed) {
+#pragma omp single
+      {  // Boyle's pressure at this iterate's volume (the volume's own loop runs on this one thread)
+        bubble.volume = lastVolume_ = volume(*film_, u.volumeOrigin);
+        bubble.pressure = currentPressure(u);
+      }
+    }
+    for (size_t c = 0; c + 1 < runs.colourRuns.size(); ++c) {  // colours in order
+      const auto first = static_cast<long>(runs.colourRuns[c]), last = static_cast<long>(runs.colourRuns[c + 1]);
+#pragma omp for schedule(static)
+      for (long r = first; r < last; ++r)
+        solveVertexBlockRun(params_, u, bubble, topo, s, runs, static_cast<uint32_t>(r));
+    }
+  }
 }
 
 float CpuStepper::currentPressure(const StepUniforms& u) const {

@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "implicit_euler.h"
 #include "stepper.h"
 
 namespace gb {
@@ -23,6 +24,9 @@ class CpuStepper final : public Stepper {
 
  private:
   float step(const StepUniforms& u);
+  // Stage vertex_block_descent: the sweeps of the implicit step, colour after colour, a colour's particles in
+  // parallel (implicit_euler.h).
+  void sweep(const StepUniforms& u);
   // Boyle's pressure of a closed film at the last volume (Eq. 11), P_0 for an open film.
   [[nodiscard]] float currentPressure(const StepUniforms& u) const;
   template <class Body>
@@ -32,6 +36,7 @@ class CpuStepper final : public Stepper {
   Film* film_ = nullptr;
   std::vector<float> triangleVolumes_;  // scratch for the volume reduction, reused every step
   float lastVolume_ = 0.0f;             // result of the last Volume stage, read by Forces
+  SweepRuns sweepRuns_;                 // the implicit step's one-rings, laid out again every step
 };
 
 }  // namespace gb

@@ -17,6 +17,7 @@
 // acts as numerical damping (docs/model.md measures it).
 
 #include <limits>
+#include <vector>
 
 #include "stages.h"
 
@@ -79,6 +80,34 @@ void predictImplicitStep(const StepUniforms& u, const Topology& topo, State& s, 
 // restricted to x_i, then the floor. Reads the external force of the external_forces stage and x_t.
 void solveVertexBlock(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, State& s,
                       size_t i);
+
+// The CPU stepper's sweeps take the particles of a colour four at a time, in the lanes of a vector register
+// (float_lanes.h), with their one-rings laid out once per step as below: slot k of a run holds the k-th
+// spring (triangle) of each of its four particles side by side, so that a sweep reads four neighbours'
+// indices with one load, and what the sweeps would recompute unchanged (a spring's stiffness, a triangle's
+// tension: the elasticity is frozen over the step; the corners after i) is there already.
+struct SweepRuns {
+  std::vector<uint32_t> colourRuns;  // colour c's runs are [colourRuns[c], colourRuns[c + 1])
+  // Four per run: the particles (a lane past the colour's end repeats lane 0's), whether each is solved
+  // (living, not past the end), and how many springs and triangles of its one-ring are in the run's slots.
+  std::vector<uint32_t> particle, solved, springCount, triangleCount;
+  // Four per run, fixed over the step: each solved particle's target y, x_t, the normal n of the step's start,
+  // m / h^2, the still-air drag / h and airCoupling (zeros in a lane not solved).
+  Vec3Array target, start, normal;
+  std::vector<float> inertia, drag, airCoupling;
+  std::vector<uint32_t> springSlot, triangleSlot;  // run r's slots are [slot[r], slot[r + 1])
+  // Four per slot; a lane without a spring (triangle) there holds lane 0's particle and zeros, masked off.
+  std::vector<uint32_t> springNeighbour;
+  std::vector<float> springStiffness, springRest;  // springStiffness, restLength (springs model only)
+  std::vector<uint32_t> cornerNext, cornerLast;    // the triangle's corners after i, counter-clockwise
+  std::vector<float> triangleTension;              // triangleTension (physical model only)
+  std::vector<uint32_t> scratchFirst, scratchEnd;  // layOutSweepRuns' own, kept to reuse their memory
+};
+void layOutSweepRuns(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, SweepRuns& runs);
+
+// solveVertexBlock for the four particles of run r of SweepRuns, each particle's result the same bit for bit.
+void solveVertexBlockRun(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, State& s,
+                         const SweepRuns& runs, uint32_t run);
 
 // Diagnostic (CPU, double): the norm of the objective's gradient over the solved particles, in N: zero when
 // the step is solved exactly (docs/model.md's convergence figures, tests).

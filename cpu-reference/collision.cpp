@@ -53,9 +53,10 @@ struct BucketSheet {
   Vec3 sortDirection = Vec3::UnitX();  // along which the bucket's particles are sorted (sortDirectionOf)
 };
 
-// A unit direction across the box's two longest sides, turned off both axes by an irrational slope (sqrt 2 - 1): a
-// film's particles sit on a lattice whose rows often follow an axis, and a slab about a particle across a row or
-// column would hold the whole row; across this direction it holds only the particles within its width.
+// A unit direction in the plane of the box's two longest sides, turned off both axes by an irrational slope
+// (sqrt 2 - 1): a film's particles sit on a lattice whose rows often follow an axis, and sorted along an axis, the
+// slab about a particle would hold a whole column of the lattice; sorted along this direction it holds only the
+// particles within its width.
 Vec3 sortDirectionOf(const Vec3& extent) {
   int longest = 0;
   extent.maxCoeff(&longest);
@@ -101,7 +102,8 @@ BucketSheet summariseSheet(const std::vector<Vec3>& position, const std::vector<
 // origin, which also keeps sqrt(1/2) |d| - |n_j . d| >= 10 um beyond the radius, far above the float error of the
 // search's own across test on a separation of centimetres.
 float partnerRadius(const BucketSheet& b, const Vec3& x, const Vec3& n) {
-  const float tilt = std::max(b.normalSpread, std::min((n - b.normal).norm(), (n + b.normal).norm()));
+  const float tilt =
+      std::max(b.normalSpread, std::sqrt(std::min((n - b.normal).squaredNorm(), (n + b.normal).squaredNorm())));
   if (!(tilt < kAcrossCosine)) return std::numeric_limits<float>::infinity();
   const float height = b.normal.dot(x);
   constexpr float kRounding = 1e-5f;
@@ -138,14 +140,17 @@ struct CellTable {
 // power of two: a table that stays in cache on a large flat film, with few cells sharing a bucket.
 size_t bucketCount(const Film& film, float cellSize) {
   const State& s = film.state;
-  Vec3 lower = Vec3::Constant(std::numeric_limits<float>::infinity()), upper = -lower;
+  constexpr float kInfinity = std::numeric_limits<float>::infinity();
+  float lx = kInfinity, ly = kInfinity, lz = kInfinity, ux = -kInfinity, uy = -kInfinity, uz = -kInfinity;
   size_t living = 0;
-  for (uint32_t i = 0; i < s.size(); ++i)
-    if (inFilm(film, i)) {
-      lower = lower.cwiseMin(s.position.get(i));
-      upper = upper.cwiseMax(s.position.get(i));
+#pragma omp parallel for schedule(static) reduction(min : lx, ly, lz) reduction(max : ux, uy, uz) reduction(+ : living)
+  for (size_t i = 0; i < s.size(); ++i)
+    if (inFilm(film, static_cast<uint32_t>(i))) {
+      lx = std::min(lx, s.position.x[i]), ly = std::min(ly, s.position.y[i]), lz = std::min(lz, s.position.z[i]);
+      ux = std::max(ux, s.position.x[i]), uy = std::max(uy, s.position.y[i]), uz = std::max(uz, s.position.z[i]);
       ++living;
     }
+  const Vec3 lower(lx, ly, lz), upper(ux, uy, uz);
   double cells = static_cast<double>(living);
   if (living) {
     const Cell first = cellOf(lower, cellSize), last = cellOf(upper, cellSize);
@@ -188,9 +193,12 @@ CellTable bucketParticles(const Film& film, const std::vector<float>& speed, flo
   const size_t buckets = bucketCount(film, cellSize);
   table.mask = buckets - 1;
   std::vector<uint32_t> bucket(n, 0u);
+#pragma omp parallel for schedule(static)
+  for (size_t i = 0; i < n; ++i)
+    if (inFilm(film, static_cast<uint32_t>(i))) bucket[i] = table.bucketOf(cellOf(s.position.get(i), cellSize));
   table.offset.assign(buckets + 1, 0u);
   for (uint32_t i = 0; i < n; ++i)
-    if (inFilm(film, i)) ++table.offset[(bucket[i] = table.bucketOf(cellOf(s.position.get(i), cellSize))) + 1];
+    if (inFilm(film, i)) ++table.offset[bucket[i] + 1];
   for (size_t b = 0; b < buckets; ++b) table.offset[b + 1] += table.offset[b];
   table.particle.resize(table.offset[buckets]);
   std::vector<uint32_t> fill(table.offset.begin(), table.offset.end() - 1);
@@ -259,20 +267,25 @@ struct PartnerRule {
     if (outside.squaredNorm() > widened(reach) * widened(reach)) return;
     const float radius = widened(std::min(reach, partnerRadius(sheet, xi, ni)));
     if (outside.squaredNorm() > radius * radius) return;
-    // |u . d| <= |d| for the unit sort direction u: every partner lies in the slab 2 radius wide about xi.
+    // |u . d| <= |d| for the unit sort direction u: every partner lies in the slab 2 radius wide about xi. The
+    // table's arrays and the rule's figures are read into locals: the appends to `partners` could otherwise
+    // alias them and force a reload per candidate.
     const float* along = table.along.data();
-    const float centre = sheet.sortDirection.dot(xi);
-    const float reachSquared = reach * reach;
+    const Vec3* position = table.position.data();
+    const Vec3* normal = table.normal.data();
+    const float* speed = table.speed.data();
+    const float centre = sheet.sortDirection.dot(xi), speedI = speed[at];
+    const float reachSquared = reach * reach, distance = p.collisionDistance, time = frameTime, extra = slack;
     for (auto k = static_cast<size_t>(std::lower_bound(along + begin, along + end, centre - radius) - along);
          k < end && along[k] <= centre + radius; ++k) {
       // Squared lengths throughout: most candidates are the film's own in-plane neighbours, rejected here
       // without a square root.
-      const Vec3 d = table.position[k] - xi;
+      const Vec3 d = position[k] - xi;
       const float lengthSquared = d.squaredNorm();
       if (!(lengthSquared < reachSquared) || lengthSquared <= 0) continue;
-      const float pairReach = p.collisionDistance + contactMargin(frameTime, slack, table.speed[at] + table.speed[k]);
+      const float pairReach = distance + contactMargin(time, extra, speedI + speed[k]);
       if (!(lengthSquared < pairReach * pairReach)) continue;
-      const float alongI = ni.dot(d), alongJ = table.normal[k].dot(d);
+      const float alongI = ni.dot(d), alongJ = normal[k].dot(d);
       const bool across = alongI * alongI > kAcrossCosineSquared * lengthSquared ||
                           alongJ * alongJ > kAcrossCosineSquared * lengthSquared;
       if (across && !isOneRingNeighbour(topo, i, table.particle[k])) partners.push_back(table.particle[k]);
@@ -291,8 +304,9 @@ std::vector<float> speedsAboutTheMean(const Film& film) {
     }
   const Vec3 mean = living ? Vec3(sum / static_cast<float>(living)) : Vec3::Zero();
   std::vector<float> speed(s.size(), 0.0f);
-  for (uint32_t i = 0; i < s.size(); ++i)
-    if (inFilm(film, i)) speed[i] = (s.velocity.get(i) - mean).norm();
+#pragma omp parallel for schedule(static)
+  for (size_t i = 0; i < s.size(); ++i)
+    if (inFilm(film, static_cast<uint32_t>(i))) speed[i] = (s.velocity.get(i) - mean).norm();
   return speed;
 }
 

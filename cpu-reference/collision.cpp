@@ -51,6 +51,9 @@ struct BucketSheet {
   float heightMin = std::numeric_limits<float>::infinity();
   float heightMax = -std::numeric_limits<float>::infinity();
   Vec3 sortDirection = Vec3::UnitX();  // along which the bucket's particles are sorted (sortDirectionOf)
+  // Its height range over sqrt(1/2) - its spread: the partner radius seen from one of its own particles with its
+  // mean normal; infinite when nothing can be proved. It only chooses which side of a pair searches (searchedFrom).
+  float ownRadius = std::numeric_limits<float>::infinity();
 };
 
 // A unit direction in the plane of the box's two longest sides, turned off both axes by an irrational slope
@@ -83,11 +86,15 @@ BucketSheet summariseSheet(const std::vector<Vec3>& position, const std::vector<
   }
   b.normal /= length;
   for (size_t k = begin; k < end; ++k) {
-    b.normalSpread = std::max(b.normalSpread, std::min((normal[k] - b.normal).norm(), (normal[k] + b.normal).norm()));
+    b.normalSpread =
+        std::max(b.normalSpread, std::min((normal[k] - b.normal).squaredNorm(), (normal[k] + b.normal).squaredNorm()));
     const float height = b.normal.dot(position[k]);
     b.heightMin = std::min(b.heightMin, height);
     b.heightMax = std::max(b.heightMax, height);
   }
+  b.normalSpread = std::sqrt(b.normalSpread);  // the largest squared distance, rooted once
+  b.ownRadius = (b.heightMax - b.heightMin) / (kAcrossCosine - b.normalSpread);
+  if (!(b.normalSpread < kAcrossCosine && b.ownRadius >= 0)) b.ownRadius = std::numeric_limits<float>::infinity();
   return b;
 }
 
@@ -245,17 +252,29 @@ float contactMargin(float frameTime, float slack, float speeds) {
   return std::min(kMaxContactMargin, frameTime * speeds + slack);
 }
 
+// Whether the pairs between the particles of buckets `home` and b are listed from home's (else from b's): from the
+// bucket whose neighbour has the smaller intrinsic partner radius (ties by index), so that a flat cell beside a
+// folded one is searched from the fold, where its radius skips most of it, and not the other way round. Both
+// buckets answer alike, so every pair is listed exactly once.
+bool searchedFrom(const CellTable& table, uint32_t home, uint32_t b) {
+  const float radiusHome = table.sheet[table.sheetIndex[home]].ownRadius;
+  const float radiusB = table.sheet[table.sheetIndex[b]].ownRadius;
+  return radiusB < radiusHome || (radiusB == radiusHome && b > home);
+}
+
 // The pair rule of findContacts (collision.h) for the particles of the table.
 struct PartnerRule {
   const Params& p;
   const Topology& topo;
   float frameTime, slack, reach;
 
-  // Appends to `partners` the partners among bucket b's particles of table entry `at` that come after it in the
-  // table: each pair is listed once, by the first of its two entries, and the particles of the buckets before
-  // `at`'s are never read.
-  void listPartnersIn(const CellTable& table, uint32_t b, size_t at, std::vector<uint32_t>& partners) const {
-    const size_t begin = std::max<size_t>(table.offset[b], at + 1), end = table.offset[b + 1];
+  // Appends to `partners` the partners of table entry `at` (in bucket `home`) among bucket b's particles that it
+  // lists: each pair is listed once, within a bucket by its first entry in the table, between two buckets by the
+  // particles of the one whose neighbour is the flatter (searchedFrom), where the partner radius reads less.
+  void listPartnersIn(const CellTable& table, uint32_t home, uint32_t b, size_t at,
+                      std::vector<uint32_t>& partners) const {
+    if (b != home && !searchedFrom(table, home, b)) return;
+    const size_t begin = b == home ? at + 1 : table.offset[b], end = table.offset[b + 1];
     if (begin >= end) return;
     const uint32_t i = table.particle[at];
     const Vec3 xi = table.position[at], ni = table.normal[at];
@@ -276,8 +295,13 @@ struct PartnerRule {
     const float* speed = table.speed.data();
     const float centre = sheet.sortDirection.dot(xi), speedI = speed[at];
     const float reachSquared = reach * reach, distance = p.collisionDistance, time = frameTime, extra = slack;
-    for (auto k = static_cast<size_t>(std::lower_bound(along + begin, along + end, centre - radius) - along);
-         k < end && along[k] <= centre + radius; ++k) {
+    // No search where the slab starts before the bucket (always after `at` in its own bucket, and in most buckets
+    // of a curved or folded sheet, whose radius is the reach).
+    const float lowest = centre - radius;
+    const size_t first = along[begin] >= lowest
+                             ? begin
+                             : static_cast<size_t>(std::lower_bound(along + begin, along + end, lowest) - along);
+    for (size_t k = first; k < end && along[k] <= centre + radius; ++k) {
       // Squared lengths throughout: most candidates are the film's own in-plane neighbours, rejected here
       // without a square root.
       const Vec3 d = position[k] - xi;
@@ -341,8 +365,8 @@ size_t findContacts(const Params& p, float frameTime, float slack, Film& film, c
   if (reach > 0 && p.collisionStiffness > 0) {
     const CellTable table = bucketParticles(film, speed, reach);
     const PartnerRule rule{p, topo, frameTime, slack, reach};
-    // Each particle lists its partners that come after it in the table (each pair once, half the distance tests)
-    // from the read-only table: parallel over the buckets, and the same lists in any order. The particles of a cell
+    // Each particle lists the partners it owns (each pair once, half the distance tests; listPartnersIn) from the
+    // read-only table: parallel over the buckets, and the same lists in any order. The particles of a cell
     // share the buckets about it, looked up once per run of particles of one cell.
 #pragma omp parallel for schedule(dynamic, 1)
     for (size_t o = 0; o < table.occupied.size(); ++o) {
@@ -354,7 +378,7 @@ size_t findContacts(const Params& p, float frameTime, float slack, Film& film, c
         const Cell c = cellOf(table.position[k], reach);
         if (k == table.offset[b] || c != cell) count = bucketsAround(table, cell = c, around);
         std::vector<uint32_t>& partners = lists[table.particle[k]];
-        for (size_t a = 0; a < count; ++a) rule.listPartnersIn(table, around[a], k, partners);
+        for (size_t a = 0; a < count; ++a) rule.listPartnersIn(table, b, around[a], k, partners);
       }
     }
   }

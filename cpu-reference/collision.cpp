@@ -34,6 +34,10 @@ bool inFilm(const Film& film, uint32_t i) {
   return film.state.alive[i] && film.topology.triangleOffset[i + 1] > film.topology.triangleOffset[i];
 }
 
+// Passes over every particle that are cheap per particle run in parallel only on films this large: on a small film
+// the threads' start and join cost more than the pass (and a busy core can hold the join for a whole time slice).
+constexpr size_t kParallelPass = size_t{1} << 16;
+
 // A pair lies across the film when its separation makes less than 45 degrees with either normal.
 constexpr float kAcrossCosineSquared = 0.5f;
 constexpr float kAcrossCosine = 0.70710678f;
@@ -150,7 +154,8 @@ size_t bucketCount(const Film& film, float cellSize) {
   constexpr float kInfinity = std::numeric_limits<float>::infinity();
   float lx = kInfinity, ly = kInfinity, lz = kInfinity, ux = -kInfinity, uy = -kInfinity, uz = -kInfinity;
   size_t living = 0;
-#pragma omp parallel for schedule(static) reduction(min : lx, ly, lz) reduction(max : ux, uy, uz) reduction(+ : living)
+#pragma omp parallel for schedule(static) if (s.size() >= kParallelPass) reduction(min : lx, ly, lz) \
+    reduction(max : ux, uy, uz) reduction(+ : living)
   for (size_t i = 0; i < s.size(); ++i)
     if (inFilm(film, static_cast<uint32_t>(i))) {
       lx = std::min(lx, s.position.x[i]), ly = std::min(ly, s.position.y[i]), lz = std::min(lz, s.position.z[i]);
@@ -200,7 +205,7 @@ CellTable bucketParticles(const Film& film, const std::vector<float>& speed, flo
   const size_t buckets = bucketCount(film, cellSize);
   table.mask = buckets - 1;
   std::vector<uint32_t> bucket(n, 0u);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= kParallelPass)
   for (size_t i = 0; i < n; ++i)
     if (inFilm(film, static_cast<uint32_t>(i))) bucket[i] = table.bucketOf(cellOf(s.position.get(i), cellSize));
   table.offset.assign(buckets + 1, 0u);
@@ -328,7 +333,7 @@ std::vector<float> speedsAboutTheMean(const Film& film) {
     }
   const Vec3 mean = living ? Vec3(sum / static_cast<float>(living)) : Vec3::Zero();
   std::vector<float> speed(s.size(), 0.0f);
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (s.size() >= kParallelPass)
   for (size_t i = 0; i < s.size(); ++i)
     if (inFilm(film, static_cast<uint32_t>(i))) speed[i] = (s.velocity.get(i) - mean).norm();
   return speed;
@@ -400,15 +405,15 @@ size_t findContacts(const Params& p, float frameTime, float slack, Film& film, c
     }
   auto row = [&](size_t i) { return packed.begin() + static_cast<ptrdiff_t>(n + 1 + packed[i]); };
 #pragma omp parallel for schedule(dynamic, 256)
-  for (size_t i = 0; i < n; ++i) std::sort(row(i), row(i + 1));
-#pragma omp parallel for schedule(dynamic, 256)
-  for (uint32_t i = 0; i < n; ++i)
+  for (uint32_t i = 0; i < n; ++i) {
+    std::sort(row(i), row(i + 1));
     for (uint32_t k = packed[i]; k < packed[i + 1]; ++k) {
       const uint32_t j = packed[n + 1 + k];
       const float separation = (s.position.get(i) - s.position.get(j)).norm();
       const float rest = contactRestDistanceAfter(p, previousRestDistance(history, i, j), separation);
       packed[n + 1 + total + k] = std::bit_cast<uint32_t>(rest);
     }
+  }
   topo.contacts = std::move(packed);
   return total / 2;
 }

@@ -34,8 +34,9 @@ bool inFilm(const Film& film, uint32_t i) {
   return film.state.alive[i] && film.topology.triangleOffset[i + 1] > film.topology.triangleOffset[i];
 }
 
-// Passes over every particle that are cheap per particle run in parallel only on films this large: on a small film
-// the threads' start and join cost more than the pass (and a busy core can hold the join for a whole time slice).
+// Passes over every particle that are cheap per particle (the table's, the speeds') run in parallel only on films
+// this large: on a small film the threads' start and join cost more than the pass, and a busy core can hold the
+// join for a whole time slice.
 constexpr size_t kParallelPass = size_t{1} << 16;
 
 // A pair lies across the film when its separation makes less than 45 degrees with either normal.
@@ -227,7 +228,7 @@ CellTable bucketParticles(const Film& film, const std::vector<float>& speed, flo
     table.occupied.push_back(b);
   }
   table.sheet.resize(table.occupied.size());
-#pragma omp parallel for schedule(dynamic, 1)
+#pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelPass)
   for (size_t o = 0; o < table.occupied.size(); ++o) {
     const uint32_t b = table.occupied[o];
     sortBucketAlongItsSheet(s, speed, table.offset[b], table.offset[b + 1], table.sheet[o], table);

@@ -59,7 +59,6 @@ struct BucketSheet {
   // Its height range over sqrt(1/2) - its spread: the partner radius seen from one of its own particles with its
   // mean normal; infinite when nothing can be proved. It only chooses which side of a pair searches (searchedFrom).
   float ownRadius = std::numeric_limits<float>::infinity();
-  bool sorted = false;  // whether the bucket's particles are sorted along sortDirection (sortBucketAlongItsSheet)
 };
 
 // A unit direction in the plane of the box's two longest sides, turned off both axes by an irrational slope
@@ -177,30 +176,18 @@ size_t bucketCount(const Film& film, float cellSize) {
   return buckets;
 }
 
-// Fills the table's entries [begin, end) of one bucket: their positions, normals, speeds and coordinates along the
-// sort direction, and the bucket's sheet; a bucket of kSortedBucket particles or more is sorted along its sort
-// direction (ties by id keep the table the same on every run). A particle at NaN (no partner of anyone) sorts last.
-constexpr size_t kSortedBucket = 64;  // below it, reading the whole bucket costs less than sorting it
-
+// Fills the table's entries [begin, end) of one bucket: their positions, normals and speeds, the bucket's sheet,
+// and the order along its sort direction (ties by id keep the table the same on every run).
 void sortBucketAlongItsSheet(const State& s, const std::vector<float>& speed, size_t begin, size_t end,
                              BucketSheet& sheet, CellTable& table) {
   for (size_t k = begin; k < end; ++k) {
     table.position[k] = s.position.get(table.particle[k]);
     table.normal[k] = s.normal.get(table.particle[k]);
-    table.speed[k] = speed[table.particle[k]];
   }
   sheet = summariseSheet(table.position, table.normal, begin, end);
-  auto along = [&](const Vec3& x) {
-    const float a = sheet.sortDirection.dot(x);
-    return std::isnan(a) ? std::numeric_limits<float>::infinity() : a;
-  };
-  sheet.sorted = end - begin >= kSortedBucket;
-  if (!sheet.sorted) {
-    for (size_t k = begin; k < end; ++k) table.along[k] = along(table.position[k]);
-    return;
-  }
   std::vector<std::pair<float, uint32_t>> order(end - begin);
-  for (size_t k = begin; k < end; ++k) order[k - begin] = {along(table.position[k]), table.particle[k]};
+  for (size_t k = begin; k < end; ++k)
+    order[k - begin] = {sheet.sortDirection.dot(table.position[k]), table.particle[k]};
   std::sort(order.begin(), order.end());
   for (size_t k = begin; k < end; ++k) {
     const uint32_t i = order[k - begin].second;
@@ -314,15 +301,13 @@ struct PartnerRule {
     const float* speed = table.speed.data();
     const float centre = sheet.sortDirection.dot(xi), speedI = speed[at];
     const float reachSquared = reach * reach, distance = p.collisionDistance, time = frameTime, extra = slack;
-    // A bucket too small to be sorted is read whole; no search where the slab starts before the bucket (always
-    // after `at` in its own bucket, and in most buckets of a curved or folded sheet, whose radius is the reach).
-    constexpr float kInfinity = std::numeric_limits<float>::infinity();
-    const float lowest = sheet.sorted ? centre - radius : -kInfinity;
-    const float highest = sheet.sorted ? centre + radius : kInfinity;
+    // No search where the slab starts before the bucket (always after `at` in its own bucket, and in most buckets
+    // of a curved or folded sheet, whose radius is the reach).
+    const float lowest = centre - radius;
     const size_t first = along[begin] >= lowest
                              ? begin
                              : static_cast<size_t>(std::lower_bound(along + begin, along + end, lowest) - along);
-    for (size_t k = first; k < end && along[k] <= highest; ++k) {
+    for (size_t k = first; k < end && along[k] <= centre + radius; ++k) {
       // Squared lengths throughout: most candidates are the film's own in-plane neighbours, rejected here
       // without a square root.
       const Vec3 d = position[k] - xi;

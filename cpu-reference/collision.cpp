@@ -186,8 +186,11 @@ void sortBucketAlongItsSheet(const State& s, const std::vector<float>& speed, si
   }
   sheet = summariseSheet(table.position, table.normal, begin, end);
   std::vector<std::pair<float, uint32_t>> order(end - begin);
-  for (size_t k = begin; k < end; ++k)
-    order[k - begin] = {sheet.sortDirection.dot(table.position[k]), table.particle[k]};
+  for (size_t k = begin; k < end; ++k) {
+    // A particle at NaN (no one's partner) sorts last: NaN keys would break the sort's ordering.
+    const float along = sheet.sortDirection.dot(table.position[k]);
+    order[k - begin] = {std::isnan(along) ? std::numeric_limits<float>::infinity() : along, table.particle[k]};
+  }
   std::sort(order.begin(), order.end());
   for (size_t k = begin; k < end; ++k) {
     const uint32_t i = order[k - begin].second;

@@ -239,16 +239,26 @@ CellTable bucketParticles(const Film& film, const std::vector<float>& speed, flo
   return table;
 }
 
-// The distinct occupied buckets of the 27 cells about cell c, where every partner of a particle in c lies;
-// returns their number.
-size_t bucketsAround(const CellTable& table, const Cell& c, std::array<uint32_t, 27>& around) {
+// Whether the pairs between the particles of buckets `home` and b are listed from home's (else from b's): from the
+// bucket whose neighbour has the smaller intrinsic partner radius (ties by index), so that a flat cell beside a
+// folded one is searched from the fold, where its radius skips most of it, and not the other way round. Both
+// buckets answer alike, so every pair is listed exactly once.
+bool searchedFrom(const CellTable& table, uint32_t home, uint32_t b) {
+  const float radiusHome = table.sheet[table.sheetIndex[home]].ownRadius;
+  const float radiusB = table.sheet[table.sheetIndex[b]].ownRadius;
+  return radiusB < radiusHome || (radiusB == radiusHome && b > home);
+}
+
+// The distinct occupied buckets of the 27 cells about cell c (in bucket `home`) that its particles search: home
+// and those searched from it (searchedFrom). Every partner of a particle in c lies in the 27; returns their number.
+size_t bucketsAround(const CellTable& table, uint32_t home, const Cell& c, std::array<uint32_t, 27>& around) {
   size_t count = 0;
   for (int dx = -1; dx <= 1; ++dx)
     for (int dy = -1; dy <= 1; ++dy)
       for (int dz = -1; dz <= 1; ++dz) {
         const uint32_t b = table.bucketOf({c[0] + dx, c[1] + dy, c[2] + dz});
         // Two of the 27 cells can share a bucket (a hash collision): each bucket is searched once.
-        if (table.offset[b] != table.offset[b + 1] &&
+        if (table.offset[b] != table.offset[b + 1] && (b == home || searchedFrom(table, home, b)) &&
             std::find(around.begin(), around.begin() + count, b) == around.begin() + static_cast<ptrdiff_t>(count))
           around[count++] = b;
       }
@@ -261,16 +271,6 @@ float contactMargin(float frameTime, float slack, float speeds) {
   return std::min(kMaxContactMargin, frameTime * speeds + slack);
 }
 
-// Whether the pairs between the particles of buckets `home` and b are listed from home's (else from b's): from the
-// bucket whose neighbour has the smaller intrinsic partner radius (ties by index), so that a flat cell beside a
-// folded one is searched from the fold, where its radius skips most of it, and not the other way round. Both
-// buckets answer alike, so every pair is listed exactly once.
-bool searchedFrom(const CellTable& table, uint32_t home, uint32_t b) {
-  const float radiusHome = table.sheet[table.sheetIndex[home]].ownRadius;
-  const float radiusB = table.sheet[table.sheetIndex[b]].ownRadius;
-  return radiusB < radiusHome || (radiusB == radiusHome && b > home);
-}
-
 // The pair rule of findContacts (collision.h) for the particles of the table.
 struct PartnerRule {
   const Params& p;
@@ -279,10 +279,10 @@ struct PartnerRule {
 
   // Appends to `partners` the partners of table entry `at` (in bucket `home`) among bucket b's particles that it
   // lists: each pair is listed once, within a bucket by its first entry in the table, between two buckets by the
-  // particles of the one whose neighbour is the flatter (searchedFrom), where the partner radius reads less.
+  // particles of the one whose neighbour is the flatter (searchedFrom, applied by bucketsAround), where the partner
+  // radius reads less.
   void listPartnersIn(const CellTable& table, uint32_t home, uint32_t b, size_t at,
                       std::vector<uint32_t>& partners) const {
-    if (b != home && !searchedFrom(table, home, b)) return;
     const size_t begin = b == home ? at + 1 : table.offset[b], end = table.offset[b + 1];
     if (begin >= end) return;
     const uint32_t i = table.particle[at];
@@ -385,7 +385,7 @@ size_t findContacts(const Params& p, float frameTime, float slack, Film& film, c
       Cell cell{};
       for (size_t k = table.offset[b]; k < table.offset[b + 1]; ++k) {
         const Cell c = cellOf(table.position[k], reach);
-        if (k == table.offset[b] || c != cell) count = bucketsAround(table, cell = c, around);
+        if (k == table.offset[b] || c != cell) count = bucketsAround(table, b, cell = c, around);
         std::vector<uint32_t>& partners = lists[table.particle[k]];
         for (size_t a = 0; a < count; ++a) rule.listPartnersIn(table, b, around[a], k, partners);
       }

@@ -34,6 +34,11 @@ bool inFilm(const Film& film, uint32_t i) {
   return film.state.alive[i] && film.topology.triangleOffset[i + 1] > film.topology.triangleOffset[i];
 }
 
+// Passes over every particle that are cheap per particle (the table's, the speeds') run in parallel only on films
+// this large: on a small film the threads' start and join cost more than the pass, and a busy core can hold the
+// join for a whole time slice.
+constexpr size_t kParallelPass = size_t{1} << 16;
+
 // A pair lies across the film when its separation makes less than 45 degrees with either normal.
 constexpr float kAcrossCosineSquared = 0.5f;
 constexpr float kAcrossCosine = 0.70710678f;
@@ -41,7 +46,7 @@ constexpr float kAcrossCosine = 0.70710678f;
 // What a bucket's particles look like as a piece of sheet: their bounding box, their mean normal (each normal
 // turned to agree with the first: a normal's sign does not matter to the across test), how far any of their
 // normals is from it, and the range of their heights along it. Most of a film's buckets hold a nearly flat piece
-// of one sheet, whose particles lie along the film from any particle outside the bucket: sheetHasNoPartnerOf
+// of one sheet, whose particles lie along the film from any particle farther than partnerRadius: the search
 // proves that from these figures, without a distance test per particle.
 struct BucketSheet {
   Vec3 lower = Vec3::Constant(std::numeric_limits<float>::infinity());
@@ -50,7 +55,25 @@ struct BucketSheet {
   float normalSpread = 0.0f;  // max over the bucket of min(|n_j - normal|, |n_j + normal|)
   float heightMin = std::numeric_limits<float>::infinity();
   float heightMax = -std::numeric_limits<float>::infinity();
+  Vec3 sortDirection = Vec3::UnitX();  // along which the bucket's particles are sorted (sortDirectionOf)
+  // Its height range over sqrt(1/2) - its spread: the partner radius seen from one of its own particles with its
+  // mean normal; infinite when nothing can be proved. It only chooses which side of a pair searches (searchedFrom).
+  float ownRadius = std::numeric_limits<float>::infinity();
 };
+
+// A unit direction in the plane of the box's two longest sides, turned off both axes by an irrational slope
+// (sqrt 2 - 1): a film's particles sit on a lattice whose rows often follow an axis, and sorted along an axis, the
+// slab about a particle would hold a whole column of the lattice; sorted along this direction it holds only the
+// particles within its width.
+Vec3 sortDirectionOf(const Vec3& extent) {
+  int longest = 0;
+  extent.maxCoeff(&longest);
+  const int second = extent[(longest + 1) % 3] >= extent[(longest + 2) % 3] ? (longest + 1) % 3 : (longest + 2) % 3;
+  Vec3 direction = Vec3::Zero();
+  direction[longest] = 1.0f;
+  direction[second] = 0.41421356f;
+  return direction.normalized();
+}
 
 BucketSheet summariseSheet(const std::vector<Vec3>& position, const std::vector<Vec3>& normal, size_t begin,
                            size_t end) {
@@ -60,6 +83,7 @@ BucketSheet summariseSheet(const std::vector<Vec3>& position, const std::vector<
     b.upper = b.upper.cwiseMax(position[k]);
     b.normal += normal[k].dot(normal[begin]) < 0 ? Vec3(-normal[k]) : normal[k];
   }
+  b.sortDirection = sortDirectionOf(b.upper - b.lower);
   const float length = b.normal.norm();
   if (!(length > 0)) {
     b.normalSpread = std::numeric_limits<float>::infinity();  // no direction: nothing can be proved
@@ -67,43 +91,54 @@ BucketSheet summariseSheet(const std::vector<Vec3>& position, const std::vector<
   }
   b.normal /= length;
   for (size_t k = begin; k < end; ++k) {
-    b.normalSpread = std::max(b.normalSpread, std::min((normal[k] - b.normal).norm(), (normal[k] + b.normal).norm()));
+    b.normalSpread =
+        std::max(b.normalSpread, std::min((normal[k] - b.normal).squaredNorm(), (normal[k] + b.normal).squaredNorm()));
     const float height = b.normal.dot(position[k]);
     b.heightMin = std::min(b.heightMin, height);
     b.heightMax = std::max(b.heightMax, height);
   }
+  b.normalSpread = std::sqrt(b.normalSpread);  // the largest squared distance, rooted once
+  b.ownRadius = (b.heightMax - b.heightMin) / (kAcrossCosine - b.normalSpread);
+  if (!(b.normalSpread < kAcrossCosine && b.ownRadius >= 0)) b.ownRadius = std::numeric_limits<float>::infinity();
   return b;
 }
 
-// True when no particle of the bucket can lie across the film from particle x (normal n): for every particle j
-// there, |m . d| <= H (H its height range seen from x, m the bucket's normal) and |n_j . d| <= |m . d| + e |d|
-// (e the spread of its normals), so |n_j . d| <= sqrt(1/2) |d| wherever |d| >= H / (sqrt(1/2) - e), and the same
-// with n's own distance from m for |n . d|. The bucket's box keeps every |d| above its distance from x. A
-// conservative proof: the lists are exactly those of testing every particle (tested against a brute-force search).
-bool sheetHasNoPartnerOf(const BucketSheet& b, const Vec3& x, const Vec3& n) {
-  const float tilt = std::max(b.normalSpread, std::min((n - b.normal).norm(), (n + b.normal).norm()));
-  if (!(tilt < kAcrossCosine)) return false;
+// A distance from particle x (normal n) beyond which no particle of the bucket lies across the film from it
+// (infinite when nothing can be proved). For every particle j there, with d = x_j - x, m the bucket's normal and H
+// the bucket's height range along m seen from x (max(heightMax - m.x, m.x - heightMin)):
+//   |m . d| <= H and |n_j . d| <= |m . d| + |n_j -+ m| |d| <= H + e |d|   (e the spread of the bucket's normals),
+// and the same with t = |n -+ m| for |n . d|. With tilt = max(e, t) < sqrt(1/2), a partner needs
+// sqrt(1/2) |d| < max(|n_j . d|, |n . d|) <= H + tilt |d|, so |d| < H / (sqrt(1/2) - tilt). Nothing assumes x lies
+// outside the bucket: in its own cell of a nearly flat sheet (H of micrometres) a particle's partners can only be
+// its closest neighbours or none. H carries 10 um for the float rounding of heights of particles metres from the
+// origin, which also keeps sqrt(1/2) |d| - |n_j . d| >= 10 um beyond the radius, far above the float error of the
+// search's own across test on a separation of centimetres.
+float partnerRadius(const BucketSheet& b, const Vec3& x, const Vec3& n) {
+  const float tilt =
+      std::max(b.normalSpread, std::sqrt(std::min((n - b.normal).squaredNorm(), (n + b.normal).squaredNorm())));
+  if (!(tilt < kAcrossCosine)) return std::numeric_limits<float>::infinity();
   const float height = b.normal.dot(x);
-  // 10 um for the float rounding of heights of particles metres from the origin.
   constexpr float kRounding = 1e-5f;
   const float offPlane = std::max(b.heightMax - height, height - b.heightMin) + kRounding;
-  const Vec3 outside = (b.lower - x).cwiseMax(x - b.upper).cwiseMax(0.0f);
-  return outside.norm() * (kAcrossCosine - tilt) > offPlane;
+  return offPlane / (kAcrossCosine - tilt);
 }
 
 // Particles bucketed by a hash of their grid cell, counting-sorted into one flat array: the same lookups as a
 // map of cells without a heap allocation per cell. Different cells may share a bucket; the distance test
-// in findContacts sorts them out.
+// in findContacts sorts them out. Within a bucket the particles are sorted along the bucket's sort direction, so
+// that a search within a radius r of a particle reads only the slab of the bucket 2 r wide about it.
 struct CellTable {
   std::vector<uint32_t> offset;    // bucket b holds particle[offset[b] .. offset[b + 1])
-  std::vector<uint32_t> particle;  // particle ids, ascending within each bucket
+  std::vector<uint32_t> particle;  // particle ids, sorted along their bucket's sort direction
   // Their positions and normals in the same order: the search streams through these instead of
   // gathering from the state's arrays, which is most of its time on a large film.
   std::vector<Vec3> position;
   std::vector<Vec3> normal;
   std::vector<float> speed;  // about the film's mean velocity
-  // Each occupied bucket's sheet: bucket b's is sheet[sheetIndex[b]] (the occupied buckets are few: a bucket
-  // holds a cell of tens to thousands of particles).
+  std::vector<float> along;  // the coordinate along the bucket's sort direction, ascending within each bucket
+  // The occupied buckets in ascending order, and each one's sheet: bucket occupied[o]'s is sheet[o], and
+  // bucket b's is sheet[sheetIndex[b]] (a bucket holds a cell of tens to thousands of particles).
+  std::vector<uint32_t> occupied;
   std::vector<uint32_t> sheetIndex;
   std::vector<BucketSheet> sheet;
   uint64_t mask = 0;
@@ -113,17 +148,73 @@ struct CellTable {
   }
 };
 
+// Twice the number of cells the film can occupy (its particles, or the cells of its bounding box if fewer), as a
+// power of two: a table that stays in cache on a large flat film, with few cells sharing a bucket.
+size_t bucketCount(const Film& film, float cellSize) {
+  const State& s = film.state;
+  constexpr float kInfinity = std::numeric_limits<float>::infinity();
+  float lx = kInfinity, ly = kInfinity, lz = kInfinity, ux = -kInfinity, uy = -kInfinity, uz = -kInfinity;
+  size_t living = 0;
+#pragma omp parallel for schedule(static) if (s.size() >= kParallelPass) reduction(min : lx, ly, lz) \
+    reduction(max : ux, uy, uz) reduction(+ : living)
+  for (size_t i = 0; i < s.size(); ++i)
+    if (inFilm(film, static_cast<uint32_t>(i))) {
+      lx = std::min(lx, s.position.x[i]), ly = std::min(ly, s.position.y[i]), lz = std::min(lz, s.position.z[i]);
+      ux = std::max(ux, s.position.x[i]), uy = std::max(uy, s.position.y[i]), uz = std::max(uz, s.position.z[i]);
+      ++living;
+    }
+  const Vec3 lower(lx, ly, lz), upper(ux, uy, uz);
+  double cells = static_cast<double>(living);
+  if (living) {
+    const Cell first = cellOf(lower, cellSize), last = cellOf(upper, cellSize);
+    double boxCells = 1;
+    for (int a = 0; a < 3; ++a) boxCells *= static_cast<double>(last[a]) - first[a] + 1;
+    cells = std::min(cells, boxCells);
+  }
+  size_t buckets = 1;
+  while (static_cast<double>(buckets) < 2 * cells) buckets *= 2;
+  return buckets;
+}
+
+// Fills the table's entries [begin, end) of one bucket: their positions, normals and speeds, the bucket's sheet,
+// and the order along its sort direction (ties by id keep the table the same on every run).
+void sortBucketAlongItsSheet(const State& s, const std::vector<float>& speed, size_t begin, size_t end,
+                             BucketSheet& sheet, CellTable& table) {
+  for (size_t k = begin; k < end; ++k) {
+    table.position[k] = s.position.get(table.particle[k]);
+    table.normal[k] = s.normal.get(table.particle[k]);
+  }
+  sheet = summariseSheet(table.position, table.normal, begin, end);
+  std::vector<std::pair<float, uint32_t>> order(end - begin);
+  for (size_t k = begin; k < end; ++k) {
+    // A particle at NaN (no one's partner) sorts last: NaN keys would break the sort's ordering.
+    const float along = sheet.sortDirection.dot(table.position[k]);
+    order[k - begin] = {std::isnan(along) ? std::numeric_limits<float>::infinity() : along, table.particle[k]};
+  }
+  std::sort(order.begin(), order.end());
+  for (size_t k = begin; k < end; ++k) {
+    const uint32_t i = order[k - begin].second;
+    table.particle[k] = i;
+    table.along[k] = order[k - begin].first;
+    table.position[k] = s.position.get(i);
+    table.normal[k] = s.normal.get(i);
+    table.speed[k] = speed[i];
+  }
+}
+
 CellTable bucketParticles(const Film& film, const std::vector<float>& speed, float cellSize) {
   const State& s = film.state;
   const size_t n = s.size();
   CellTable table;
-  size_t buckets = 1;
-  while (buckets < 2 * n) buckets *= 2;
+  const size_t buckets = bucketCount(film, cellSize);
   table.mask = buckets - 1;
   std::vector<uint32_t> bucket(n, 0u);
+#pragma omp parallel for schedule(static) if (n >= kParallelPass)
+  for (size_t i = 0; i < n; ++i)
+    if (inFilm(film, static_cast<uint32_t>(i))) bucket[i] = table.bucketOf(cellOf(s.position.get(i), cellSize));
   table.offset.assign(buckets + 1, 0u);
   for (uint32_t i = 0; i < n; ++i)
-    if (inFilm(film, i)) ++table.offset[(bucket[i] = table.bucketOf(cellOf(s.position.get(i), cellSize))) + 1];
+    if (inFilm(film, i)) ++table.offset[bucket[i] + 1];
   for (size_t b = 0; b < buckets; ++b) table.offset[b + 1] += table.offset[b];
   table.particle.resize(table.offset[buckets]);
   std::vector<uint32_t> fill(table.offset.begin(), table.offset.end() - 1);
@@ -132,19 +223,108 @@ CellTable bucketParticles(const Film& film, const std::vector<float>& speed, flo
   table.position.resize(table.particle.size());
   table.normal.resize(table.particle.size());
   table.speed.resize(table.particle.size());
-  for (size_t k = 0; k < table.particle.size(); ++k) {
-    table.speed[k] = speed[table.particle[k]];
-    table.position[k] = s.position.get(table.particle[k]);
-    table.normal[k] = s.normal.get(table.particle[k]);
-  }
+  table.along.resize(table.particle.size());
   table.sheetIndex.assign(buckets, 0u);
-  for (size_t b = 0; b < buckets; ++b) {
+  for (uint32_t b = 0; b < buckets; ++b) {
     if (table.offset[b] == table.offset[b + 1]) continue;
-    table.sheetIndex[b] = static_cast<uint32_t>(table.sheet.size());
-    table.sheet.push_back(summariseSheet(table.position, table.normal, table.offset[b], table.offset[b + 1]));
+    table.sheetIndex[b] = static_cast<uint32_t>(table.occupied.size());
+    table.occupied.push_back(b);
+  }
+  table.sheet.resize(table.occupied.size());
+#pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelPass)
+  for (size_t o = 0; o < table.occupied.size(); ++o) {
+    const uint32_t b = table.occupied[o];
+    sortBucketAlongItsSheet(s, speed, table.offset[b], table.offset[b + 1], table.sheet[o], table);
   }
   return table;
 }
+
+// Whether the pairs between the particles of buckets `home` and b are listed from home's (else from b's): from the
+// bucket whose neighbour has the smaller intrinsic partner radius (ties by index), so that a flat cell beside a
+// folded one is searched from the fold, where its radius skips most of it, and not the other way round. Both
+// buckets answer alike, so every pair is listed exactly once.
+bool searchedFrom(const CellTable& table, uint32_t home, uint32_t b) {
+  const float radiusHome = table.sheet[table.sheetIndex[home]].ownRadius;
+  const float radiusB = table.sheet[table.sheetIndex[b]].ownRadius;
+  return radiusB < radiusHome || (radiusB == radiusHome && b > home);
+}
+
+// The distinct occupied buckets of the 27 cells about cell c (in bucket `home`) that its particles search: home
+// and those searched from it (searchedFrom). Every partner of a particle in c lies in the 27; returns their number.
+size_t bucketsAround(const CellTable& table, uint32_t home, const Cell& c, std::array<uint32_t, 27>& around) {
+  size_t count = 0;
+  for (int dx = -1; dx <= 1; ++dx)
+    for (int dy = -1; dy <= 1; ++dy)
+      for (int dz = -1; dz <= 1; ++dz) {
+        const uint32_t b = table.bucketOf({c[0] + dx, c[1] + dy, c[2] + dz});
+        // Two of the 27 cells can share a bucket (a hash collision): each bucket is searched once.
+        if (table.offset[b] != table.offset[b + 1] && (b == home || searchedFrom(table, home, b)) &&
+            std::find(around.begin(), around.begin() + count, b) == around.begin() + static_cast<ptrdiff_t>(count))
+          around[count++] = b;
+      }
+  return count;
+}
+
+// How much closer than the collision distance a pair is searched for, at `speeds` the sum of the pair's speeds
+// about the film's mean velocity (findContacts, collision.h).
+float contactMargin(float frameTime, float slack, float speeds) {
+  return std::min(kMaxContactMargin, frameTime * speeds + slack);
+}
+
+// The pair rule of findContacts (collision.h) for the particles of the table.
+struct PartnerRule {
+  const Params& p;
+  const Topology& topo;
+  float frameTime, slack, reach;
+
+  // Appends to `partners` the partners of table entry `at` (in bucket `home`) among bucket b's particles that it
+  // lists: each pair is listed once, within a bucket by its first entry in the table, between two buckets by the
+  // particles of the one whose neighbour is the flatter (searchedFrom, applied by bucketsAround), where the partner
+  // radius reads less.
+  void listPartnersIn(const CellTable& table, uint32_t home, uint32_t b, size_t at,
+                      std::vector<uint32_t>& partners) const {
+    const size_t begin = b == home ? at + 1 : table.offset[b], end = table.offset[b + 1];
+    if (begin >= end) return;
+    const uint32_t i = table.particle[at];
+    const Vec3 xi = table.position[at], ni = table.normal[at];
+    const BucketSheet& sheet = table.sheet[table.sheetIndex[b]];
+    const Vec3 outside = (sheet.lower - xi).cwiseMax(xi - sheet.upper).cwiseMax(0.0f);
+    // A thousandth and 10 um more than the reach and the partner radius for the float rounding of the
+    // coordinates compared below.
+    auto widened = [](float r) { return r * 1.001f + 1e-5f; };
+    if (outside.squaredNorm() > widened(reach) * widened(reach)) return;
+    const float radius = widened(std::min(reach, partnerRadius(sheet, xi, ni)));
+    if (outside.squaredNorm() > radius * radius) return;
+    // |u . d| <= |d| for the unit sort direction u: every partner lies in the slab 2 radius wide about xi. The
+    // table's arrays and the rule's figures are read into locals: the appends to `partners` could otherwise
+    // alias them and force a reload per candidate.
+    const float* along = table.along.data();
+    const Vec3* position = table.position.data();
+    const Vec3* normal = table.normal.data();
+    const float* speed = table.speed.data();
+    const float centre = sheet.sortDirection.dot(xi), speedI = speed[at];
+    const float reachSquared = reach * reach, distance = p.collisionDistance, time = frameTime, extra = slack;
+    // No search where the slab starts before the bucket (always after `at` in its own bucket, and in most buckets
+    // of a curved or folded sheet, whose radius is the reach).
+    const float lowest = centre - radius;
+    const size_t first = along[begin] >= lowest
+                             ? begin
+                             : static_cast<size_t>(std::lower_bound(along + begin, along + end, lowest) - along);
+    for (size_t k = first; k < end && along[k] <= centre + radius; ++k) {
+      // Squared lengths throughout: most candidates are the film's own in-plane neighbours, rejected here
+      // without a square root.
+      const Vec3 d = position[k] - xi;
+      const float lengthSquared = d.squaredNorm();
+      if (!(lengthSquared < reachSquared) || lengthSquared <= 0) continue;
+      const float pairReach = distance + contactMargin(time, extra, speedI + speed[k]);
+      if (!(lengthSquared < pairReach * pairReach)) continue;
+      const float alongI = ni.dot(d), alongJ = normal[k].dot(d);
+      const bool across = alongI * alongI > kAcrossCosineSquared * lengthSquared ||
+                          alongJ * alongJ > kAcrossCosineSquared * lengthSquared;
+      if (across && !isOneRingNeighbour(topo, i, table.particle[k])) partners.push_back(table.particle[k]);
+    }
+  }
+};
 
 std::vector<float> speedsAboutTheMean(const Film& film) {
   const State& s = film.state;
@@ -157,8 +337,9 @@ std::vector<float> speedsAboutTheMean(const Film& film) {
     }
   const Vec3 mean = living ? Vec3(sum / static_cast<float>(living)) : Vec3::Zero();
   std::vector<float> speed(s.size(), 0.0f);
-  for (uint32_t i = 0; i < s.size(); ++i)
-    if (inFilm(film, i)) speed[i] = (s.velocity.get(i) - mean).norm();
+#pragma omp parallel for schedule(static) if (s.size() >= kParallelPass)
+  for (size_t i = 0; i < s.size(); ++i)
+    if (inFilm(film, static_cast<uint32_t>(i))) speed[i] = (s.velocity.get(i) - mean).norm();
   return speed;
 }
 
@@ -187,75 +368,56 @@ size_t findContacts(const Params& p, float frameTime, float slack, Film& film, c
   // Two particles close at most |v_i - v_j| <= |v_i - mean| + |v_j - mean| in a frame: a bubble flying as a whole
   // needs no wider search than one at rest, and each pair only its own reach.
   const std::vector<float> speed = speedsAboutTheMean(film);
-  auto margin = [&](float speeds) { return std::min(kMaxContactMargin, frameTime * speeds + slack); };
   const float fastest = n ? *std::max_element(speed.begin(), speed.end()) : 0.0f;
-  const float reach = p.collisionDistance + margin(2.0f * fastest);
+  const float reach = p.collisionDistance + contactMargin(frameTime, slack, 2.0f * fastest);
   std::vector<std::vector<uint32_t>> lists(n);
   if (reach > 0 && p.collisionStiffness > 0) {
     const CellTable table = bucketParticles(film, speed, reach);
-    const float reachSquared = reach * reach;
-    // Each particle lists its partners of higher index from the read-only table (each pair once, half the
-    // distance tests): parallel, and the same lists in any order.
-#pragma omp parallel for schedule(dynamic, 256)
-    for (uint32_t i = 0; i < n; ++i) {
-      if (!inFilm(film, i)) continue;
-      const Vec3 xi = s.position.get(i), ni = s.normal.get(i);
-      const Cell c = cellOf(xi, reach);
-      for (int dx = -1; dx <= 1; ++dx)
-        for (int dy = -1; dy <= 1; ++dy)
-          for (int dz = -1; dz <= 1; ++dz) {
-            const uint32_t bucket = table.bucketOf({c[0] + dx, c[1] + dy, c[2] + dz});
-            if (table.offset[bucket] == table.offset[bucket + 1] ||
-                sheetHasNoPartnerOf(table.sheet[table.sheetIndex[bucket]], xi, ni))
-              continue;
-            const auto bucketEnd = table.particle.begin() + table.offset[bucket + 1];
-            const auto higher = std::upper_bound(table.particle.begin() + table.offset[bucket], bucketEnd, i);
-            for (auto k = static_cast<size_t>(higher - table.particle.begin()); k < table.offset[bucket + 1]; ++k) {
-              const uint32_t j = table.particle[k];
-              // Squared lengths throughout: most candidates are the film's own in-plane neighbours,
-              // rejected here without a square root.
-              const Vec3 d = table.position[k] - xi;
-              const float lengthSquared = d.squaredNorm();
-              if (!(lengthSquared < reachSquared) || lengthSquared <= 0) continue;
-              const float pairReach = p.collisionDistance + margin(speed[i] + table.speed[k]);
-              if (!(lengthSquared < pairReach * pairReach)) continue;
-              const float alongI = ni.dot(d), alongJ = table.normal[k].dot(d);
-              const bool across = alongI * alongI > kAcrossCosineSquared * lengthSquared ||
-                                  alongJ * alongJ > kAcrossCosineSquared * lengthSquared;
-              if (across && !isOneRingNeighbour(topo, i, j)) lists[i].push_back(j);
-            }
-          }
-      // Two of the 27 cells can share a bucket (a hash collision): sorting and removing repeats keeps the
-      // lists the same however the table falls.
-      std::sort(lists[i].begin(), lists[i].end());
-      lists[i].erase(std::unique(lists[i].begin(), lists[i].end()), lists[i].end());
+    const PartnerRule rule{p, topo, frameTime, slack, reach};
+    // Each particle lists the partners it owns (each pair once, half the distance tests; listPartnersIn) from the
+    // read-only table: parallel over the buckets, and the same lists in any order. The particles of a cell
+    // share the buckets about it, looked up once per run of particles of one cell.
+#pragma omp parallel for schedule(dynamic, 1)
+    for (size_t o = 0; o < table.occupied.size(); ++o) {
+      const uint32_t b = table.occupied[o];
+      std::array<uint32_t, 27> around{};
+      size_t count = 0;
+      Cell cell{};
+      for (size_t k = table.offset[b]; k < table.offset[b + 1]; ++k) {
+        const Cell c = cellOf(table.position[k], reach);
+        if (k == table.offset[b] || c != cell) count = bucketsAround(table, b, cell = c, around);
+        std::vector<uint32_t>& partners = lists[table.particle[k]];
+        for (size_t a = 0; a < count; ++a) rule.listPartnersIn(table, b, around[a], k, partners);
+      }
     }
   }
-  // Each particle's partners of lower index, in ascending order because i ascends.
-  std::vector<std::vector<uint32_t>> lower(n);
-  for (uint32_t i = 0; i < n; ++i)
-    for (uint32_t j : lists[i]) lower[j].push_back(i);
+  // Each pair was listed by one of its two particles: each particle's row holds the partners it listed and those
+  // that listed it, sorted.
   std::vector<uint32_t> packed(n + 1, 0u);
-  size_t total = 0;
-  for (size_t i = 0; i < n; ++i) {
-    packed[i] = static_cast<uint32_t>(total);
-    total += lower[i].size() + lists[i].size();
+  for (uint32_t i = 0; i < n; ++i) {
+    packed[i + 1] += static_cast<uint32_t>(lists[i].size());
+    for (uint32_t j : lists[i]) ++packed[j + 1];
   }
-  packed[n] = static_cast<uint32_t>(total);
-  packed.reserve(n + 1 + 2 * total);
-  for (size_t i = 0; i < n; ++i) {
-    packed.insert(packed.end(), lower[i].begin(), lower[i].end());
-    packed.insert(packed.end(), lists[i].begin(), lists[i].end());
-  }
+  for (size_t i = 0; i < n; ++i) packed[i + 1] += packed[i];
+  const size_t total = packed[n];
   packed.resize(n + 1 + 2 * total);
-#pragma omp parallel for schedule(dynamic, 256)
+  std::vector<uint32_t> fill(packed.begin(), packed.begin() + static_cast<ptrdiff_t>(n));
   for (uint32_t i = 0; i < n; ++i)
+    for (uint32_t j : lists[i]) {
+      packed[n + 1 + fill[i]++] = j;
+      packed[n + 1 + fill[j]++] = i;
+    }
+  auto row = [&](size_t i) { return packed.begin() + static_cast<ptrdiff_t>(n + 1 + packed[i]); };
+#pragma omp parallel for schedule(dynamic, 256)
+  for (uint32_t i = 0; i < n; ++i) {
+    std::sort(row(i), row(i + 1));
     for (uint32_t k = packed[i]; k < packed[i + 1]; ++k) {
       const uint32_t j = packed[n + 1 + k];
       const float separation = (s.position.get(i) - s.position.get(j)).norm();
       const float rest = contactRestDistanceAfter(p, previousRestDistance(history, i, j), separation);
       packed[n + 1 + total + k] = std::bit_cast<uint32_t>(rest);
     }
+  }
   topo.contacts = std::move(packed);
   return total / 2;
 }

@@ -145,6 +145,20 @@ Film foldedFilm(const Params& p, float angle, unsigned seed) {
   return film;
 }
 
+// Two sheets `gap` apart, the second shifted by `shift` along x, the whole turned by `angle` (radians) about
+// (1, 2, 3): a pair across them lies sqrt(gap^2 + shift^2) apart.
+Film shiftedSheets(const Params& p, float gap, float shift, float angle) {
+  Film film = test::makeTwoSheets(p, gap, 0.0f);
+  const size_t n = film.state.size();
+  const Eigen::AngleAxisf turn(angle, Vec3(1, 2, 3).normalized());
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3 x = film.state.position.get(i) + (i < n / 2 ? Vec3::Zero() : Vec3(shift, 0, 0));
+    film.state.position.set(i, turn * x);
+  }
+  CpuStepper::refreshGeometry(p, film);
+  return film;
+}
+
 // findContacts' lists against testing every pair; returns the number of pairs.
 size_t expectTheSearchListsEveryPair(const Params& p, Film& film, const char* name) {
   const size_t pairs = findContacts(p, p.frameTime, 0.005f, film);
@@ -164,12 +178,22 @@ size_t expectTheSearchListsEveryPair(const Params& p, Film& film, const char* na
 }
 
 TEST(Collision, TheSearchListsExactlyThePairsThatTestingEveryPairFinds) {
-  // The search skips whole buckets it proves hold no partner (sheetHasNoPartnerOf): its lists must be exactly
-  // those of testing every pair, on sheets that meet, on a fold, and on the default performance's film as it is
-  // drawn and after it pinched off into a crumpled free bubble (tens of thousands of pairs).
+  // The search reads each bucket only within the radius it proves holds every partner (partnerRadius), and skips
+  // the buckets beyond it: its lists must be exactly those of testing every pair, on sheets that meet, on sheets
+  // sharing their cells, on a fold, and on the default performance's film as it is drawn and after it pinched off
+  // into a crumpled free bubble (tens of thousands of pairs).
   const Params sheets = twoSheetParams();
   Film apart = test::makeTwoSheets(sheets, 0.022f, 0.8f);
   EXPECT_GT(expectTheSearchListsEveryPair(sheets, apart, "two sheets 2.2 cm apart, one moving"), 100u);
+  // Within a nearly flat cell a partner can only lie within the partner radius H / (sqrt(1/2) - tilt) (collision.cpp
+  // partnerRadius): sheets 1 mm apart share their cells (H = 1 mm), and the second, shifted by 0.98 mm, puts each
+  // particle's partner 1.40 mm away, inside the 1.414 mm that 45 degrees allows and at 98% of the 1.43 mm radius the
+  // search reads; a radius without the 1 / sqrt(1/2) would lose every pair. Once along the axes, once turned so
+  // that the cells cut the sheets obliquely.
+  for (float angle : {0.0f, 0.7f}) {
+    Film close = shiftedSheets(sheets, 0.001f, 0.00098f, angle);
+    EXPECT_GT(expectTheSearchListsEveryPair(sheets, close, "sheets 1 mm apart, shifted 0.98 mm"), 500u);
+  }
   Film folded = foldedFilm(Params{}, 170.0f * 3.14159265f / 180.0f, 1);
   EXPECT_GT(expectTheSearchListsEveryPair(Params{}, folded, "the default film folded"), 1000u);
 

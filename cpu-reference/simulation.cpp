@@ -102,8 +102,7 @@ WireFrame Simulation::frameHanging(const WandState& wands, const Vec3& hang) con
 // The way the loop hangs once the tips reach `next`: swung towards gravity at Params::loopSwingRate at most.
 Vec3 Simulation::loopHangAfter(const WandState& next) const {
   if (film_.tool.kind != ToolKind::TwoWands) return loopHang();
-  const Vec3 axis = frameHanging(next, loopHang()).axis;
-  return swingLoop(loopHang(), axis, gravityOf(params_), params_.loopSwingRate * params_.frameTime);
+  return swingLoop(loopHang(), spanAxis(next), gravityOf(params_), params_.loopSwingRate * params_.frameTime);
 }
 
 StepUniforms Simulation::uniformsFor(const WandState& a, const WandState& b, float dt) const {

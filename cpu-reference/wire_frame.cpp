@@ -57,6 +57,12 @@ Vec3 perpendicularTowards(const Vec3& axis, const Vec3& preferred) {
 
 }  // namespace
 
+Vec3 spanAxis(const WandState& wands) {
+  const Vec3 span = wands.rightPosition - wands.leftPosition;
+  const float width = span.norm();
+  return width > 1e-6f ? Vec3(span / width) : Vec3(Vec3::UnitX());
+}
+
 Vec3 swingLoop(const Vec3& previousDown, const Vec3& axis, const Vec3& gravity, float maxTurn) {
   const Vec3 current = perpendicularTowards(axis, previousDown);
   const Vec3 pull = gravity - gravity.dot(axis) * axis;  // gravity's part that turns the loop about the span
@@ -80,10 +86,9 @@ WireFrame makeWireFrame(const WandTool& tool, const WandState& wands, float stri
     f.halfWidth = f.depth = tool.ringRadius;
     return f;
   }
-  const Vec3 span = wands.rightPosition - wands.leftPosition;
-  const float width = span.norm();
+  const float width = (wands.rightPosition - wands.leftPosition).norm();
   f.center = 0.5f * (wands.leftPosition + wands.rightPosition);
-  f.axis = width > 1e-6f ? Vec3(span / width) : Vec3(Vec3::UnitX());
+  f.axis = spanAxis(wands);
   f.down = perpendicularTowards(f.axis, down);
   f.halfWidth = 0.5f * width;
   f.depth = hangingDepth(f.halfWidth, stringLength);

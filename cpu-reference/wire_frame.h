@@ -58,6 +58,9 @@ float hangingDepth(float halfWidth, float stringLength);
 // film's Film::loopHang, which swingLoop keeps continuous).
 WireFrame makeWireFrame(const WandTool& tool, const WandState& wands, float stringLength, const Vec3& hangTowards);
 
+// The unit direction from the left wand tip to the right one (the two-wand frame's `axis`); x when they meet.
+Vec3 spanAxis(const WandState& wands);
+
 // The way a two-wand loop hangs (its frame's `down`) once the tips have moved so that `axis` joins them: the way
 // it hung before (`previousDown`), carried onto the new span and turned about it towards gravity by at most
 // `maxTurn` radians. Hanging straight towards gravity has no continuous answer: as one tip passes over the other

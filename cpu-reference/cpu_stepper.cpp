@@ -35,6 +35,7 @@ void CpuStepper::load(const Params& params, Film& film) {
   params_ = params;
   film_ = &film;
   ensureColouring(film.state.alive, film.topology);
+  ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
 }
 
 float CpuStepper::volume(const Film& film, const Vec3& origin) {
@@ -92,6 +93,9 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
       case Stage::ImplicitPredict:
         forEach(n, [&](size_t i) { predictImplicitStep(u, topo, s, i); });
         break;
+      case Stage::CoarseCorrection:
+        correctCoarsely(u);
+        break;
       case Stage::VertexBlockDescent:
         sweep(u);
         break;
@@ -111,16 +115,23 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
 }
 
 void CpuStepper::sweep(const StepUniforms& u) {
+  layOutSweepRuns(params_, u, film_->topology, film_->state, sweepRuns_);
+  const int sweeps = solverSweeps(params_, u), before = coarseSweepsBefore(params_, u);
+  if (before < 0) return runSweeps(u, 0, sweeps);
+  runSweeps(u, 0, before);
+  runStage(Stage::CoarseCorrection, u);
+  runSweeps(u, before, sweeps);
+}
+
+void CpuStepper::runSweeps(const StepUniforms& u, int from, int to) {
   State& s = film_->state;
   const Topology& topo = film_->topology;
-  layOutSweepRuns(params_, u, topo, s, sweepRuns_);
   const SweepRuns& runs = sweepRuns_;
-  const int sweeps = solverSweeps(params_, u);
   Bubble bubble;
-  // One parallel region for all the sweeps: the colours still wait for each other (the barrier closing each
-  // omp for), but the threads are woken once per step, not once per colour and sweep.
+  // One parallel region for the sweeps: the colours still wait for each other (the barrier closing each
+  // omp for), but the threads are woken once, not once per colour and sweep.
 #pragma omp parallel
-  for (int sweep = 0; sweep < sweeps; ++sweep) {
+  for (int sweep = from; sweep < to; ++sweep) {
     if (u.closed) {
 #pragma omp single
       {  // Boyle's pressure at this iterate's volume (the volume's own loop runs on this one thread)
@@ -135,6 +146,21 @@ void CpuStepper::sweep(const StepUniforms& u) {
         solveVertexBlockRun(params_, u, bubble, topo, s, runs, static_cast<uint32_t>(r));
     }
   }
+}
+
+void CpuStepper::correctCoarsely(const StepUniforms& u) {
+  State& s = film_->state;
+  const Topology& topo = film_->topology;
+  Bubble bubble;
+  if (u.closed) {  // Boyle's pressure at this iterate's volume, as a sweep takes it
+    bubble.volume = lastVolume_ = volume(*film_, u.volumeOrigin);
+    bubble.pressure = currentPressure(u);
+  }
+  fitCoarseSystem(topo, coarse_);
+  forEach(coarse_.shortestSpring.size(),
+          [&](size_t patch) { assembleCoarseRow(params_, u, bubble, topo, s, patch, coarse_); });
+  solveCoarseSystem(topo, params_.coarseIterations, coarse_);
+  forEach(s.size(), [&](size_t i) { applyCoarseCorrection(topo, coarse_, s, i); });
 }
 
 float CpuStepper::currentPressure(const StepUniforms& u) const {

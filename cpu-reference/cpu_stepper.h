@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "coarse_correction.h"
 #include "implicit_euler.h"
 #include "stepper.h"
 
@@ -27,6 +28,10 @@ class CpuStepper final : public Stepper {
   // Stage vertex_block_descent: the sweeps of the implicit step, colour after colour, a colour's particles in
   // parallel (implicit_euler.h).
   void sweep(const StepUniforms& u);
+  // Sweeps from..to-1 of the step, in one parallel region.
+  void runSweeps(const StepUniforms& u, int from, int to);
+  // Stage coarse_correction: the patch system assembled, solved and applied (coarse_correction.h).
+  void correctCoarsely(const StepUniforms& u);
   // Boyle's pressure of a closed film at the last volume (Eq. 11), P_0 for an open film.
   [[nodiscard]] float currentPressure(const StepUniforms& u) const;
   template <class Body>
@@ -37,6 +42,7 @@ class CpuStepper final : public Stepper {
   std::vector<float> triangleVolumes_;  // scratch for the volume reduction, reused every step
   float lastVolume_ = 0.0f;             // result of the last Volume stage, read by Forces
   SweepRuns sweepRuns_;                 // the implicit step's one-rings, laid out again every step
+  CoarseSystem coarse_;                 // the implicit step's patch system, assembled again every step
 };
 
 }  // namespace gb

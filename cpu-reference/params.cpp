@@ -26,6 +26,8 @@ void requireRange(std::vector<std::string>& errors, const char* name, T value, T
 constexpr std::array kFields = {GB_REAL(frameTime, 1e-5, 0.1, " s"),
                                 GB_INTEGER(integrator, 0, 1),
                                 GB_INTEGER(solverIterations, 1, 1000),
+                                GB_INTEGER(coarseIterations, 0, 1000),
+                                GB_INTEGER(coarsePatchRings, 1, 100),
                                 GB_INTEGER(implicitSubsteps, 1, 1000),
                                 GB_REAL(stabilitySafety, 0.01, 1.0, ""),
                                 GB_INTEGER(maxSubsteps, 1, 1000000),

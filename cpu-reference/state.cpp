@@ -82,6 +82,7 @@ void buildAdjacency(Topology& topo) {
   const size_t n = topo.particleCount();
   topo.colourOffset.clear();  // the springs changed: the solver's colouring is made anew (colouring.h)
   topo.colourOrder.clear();
+  topo.patchOffset.clear();  // and so are the coarse correction's patches (coarse_correction.h)
   // Spring CSR: counting sort by particle, springs in increasing id within each particle.
   topo.springOffset.assign(n + 1, 0);
   for (size_t s = 0; s < topo.springCount(); ++s) {

@@ -94,6 +94,12 @@ struct Topology {
   // share a colour, so each colour's particles can be solved in parallel in any order.
   std::vector<uint32_t> colourOffset;
   std::vector<uint32_t> colourOrder;
+  // Patches of the implicit step's coarse correction (coarse_correction.h): patchOf[i] is particle i's patch
+  // (kNoPatch: not solved); patch I holds patchMembers[patchOffset[I] .. patchOffset[I + 1]) in increasing index,
+  // and its row of the patch system the patches patchRow[patchRowOffset[I] .. patchRowOffset[I + 1]) in increasing
+  // order (itself and those its particles' springs reach).
+  std::vector<uint32_t> patchOf, patchOffset, patchMembers, patchRowOffset, patchRow;
+  int patchRings = 0;   // the rings the patches were grouped with (Params::coarsePatchRings)
   bool closed = false;  // no edge is used by one triangle only: a bubble. Eqs. (10)-(11)
                         // apply; a burst tears it open again. Set by buildAdjacency.
   [[nodiscard]] bool isClosed() const { return closed; }

@@ -10,6 +10,9 @@ bool always(const Params&, const StepUniforms&) { return true; }
 bool closedFilm(const Params&, const StepUniforms& u) { return u.closed != 0; }
 bool explicitStep(const Params& p, const StepUniforms&) { return p.integrator == 0; }
 bool implicitStep(const Params& p, const StepUniforms&) { return p.integrator != 0; }
+// The coarse correction runs inside vertex_block_descent, between its smoothing sweeps (coarse_correction.h),
+// never as a row of its own.
+bool insideTheSweeps(const Params&, const StepUniforms&) { return false; }
 bool drainsThisStep(const Params&, const StepUniforms& u) { return u.drainageDt > 0; }
 
 constexpr std::array kStages = {
@@ -26,6 +29,7 @@ constexpr std::array kStages = {
               "the solver reads x_t, the placed wire and the first guess"},
     StageSpec{Stage::VertexBlockDescent, "vertex_block_descent", implicitStep,
               "the velocity reads the solved positions"},
+    StageSpec{Stage::CoarseCorrection, "coarse_correction", insideTheSweeps, nullptr},
     StageSpec{Stage::ImplicitVelocity, "implicit_velocity", implicitStep,
               "drainage and the next step read the new positions and velocities"},
     StageSpec{Stage::Drainage, "drainage", drainsThisStep, "the next step's film state reads the new liquid"},

@@ -23,7 +23,10 @@ enum class Stage : int {
   Integrate,           // explicit integrator: Eqs. (12)-(13)
   ExternalForces,      // implicit integrator: the forces kept explicit (gravity, air, Boyle pressure)
   ImplicitPredict,     // implicit integrator: x_t kept, wire placed, first guess
-  VertexBlockDescent,  // implicit integrator: solverIterations sweeps over the colours
+  VertexBlockDescent,  // implicit integrator: solverIterations sweeps over the colours, the coarse correction
+                       // after the first half of them (coarseSweepsBefore)
+  CoarseCorrection,    // implicit integrator: the iterate corrected by rigid moves of patches (coarse_correction.h);
+                       // recorded inside vertex_block_descent, run alone only by tests and benchmarks
   ImplicitVelocity,    // implicit integrator: v = (x - x_t) / h
   Drainage,
   Count

@@ -3,6 +3,7 @@
 #include <array>
 #include <vector>
 
+#include "coarse_correction.h"
 #include "colouring.h"
 #include "device_buffer.h"
 #include "implicit_euler.h"
@@ -20,7 +21,7 @@ using kernels::Kernel;
 // gives the same declarations.
 static_assert(sizeof(StepUniformsBlock) == 176 && offsetof(StepUniformsBlock, dt) == 128 &&
               offsetof(StepUniformsBlock, frameKind) == 156 && offsetof(StepUniformsBlock, closed) == 160);
-static_assert(sizeof(PushBlock) == 24);
+static_assert(sizeof(PushBlock) == 32);
 static_assert(alignof(Params) == 4 && sizeof(Params) % 4 == 0,
               "Params must stay a block of 4-byte scalars, whose std430 layout is the C layout");
 
@@ -107,6 +108,18 @@ void writeDrainage(DeviceBuffer& buffer, const State& s) {
   buffer.write(s.drainWeight.data(), bytes, bytes);
 }
 
+// The solver's list buffer: colour order, then the patch lists (kernels/coarse.glsl); at least one entry.
+size_t solverListEntries(const Topology& t) {
+  return std::max<size_t>(1, t.colourOrder.size() + t.patchOf.size() + t.patchOffset.size() + t.patchMembers.size() +
+                                 t.patchRowOffset.size() + t.patchRow.size());
+}
+
+// The reduce buffer: the tree sum's two halves, then the coarse correction's patch system (kernels/coarse.glsl).
+size_t reduceFloats(const Topology& t) {
+  const size_t patches = t.patchOffset.empty() ? 0 : t.patchOffset.size() - 1;
+  return 2 * std::max<size_t>(t.triangleCount(), 1) + 9 * t.patchRow.size() + 21 * patches;
+}
+
 }  // namespace
 
 struct VulkanStepper::Impl {
@@ -123,6 +136,7 @@ struct VulkanStepper::Impl {
   std::array<DeviceBuffer, GB_BINDING_COUNT> buffers;  // indexed by binding; AIR_FLOW/NEXT are the two air
                                                        // buffers of descriptor set 0
   std::vector<uint32_t> colourOffset;                  // the implicit solver's colours (Topology::colourOffset)
+  uint32_t patches = 0, solverParticles = 0;           // the coarse correction's P and M (kernels/coarse.glsl)
   size_t stepsCapacity = 0;
   vk::raii::DescriptorPool pool{nullptr};
   std::vector<vk::raii::DescriptorSet> sets;  // [0]: air A front, B back; [1]: swapped
@@ -175,10 +189,23 @@ struct VulkanStepper::Impl {
     writeVector(buffer(GB_BINDING_SPRING_NEIGHBOUR), t.springNeighbour);
     writeVector(buffer(GB_BINDING_TRIANGLE_OFFSET), t.triangleOffset);
     writeVector(buffer(GB_BINDING_TRIANGLE_INDEX), t.triangleIndex);
+    writeSolverLists(t);
     writeContacts(t);
   }
 
-  // The contacts and the colouring made with them (colouring.h): they change together, every frame.
+  // The implicit solver's colours and the coarse correction's patches (kernels/coarse.glsl), made with the mesh.
+  void writeSolverLists(const Topology& t) {
+    std::vector<uint32_t> lists = t.colourOrder;
+    for (const std::vector<uint32_t>* list :
+         {&t.patchOf, &t.patchOffset, &t.patchMembers, &t.patchRowOffset, &t.patchRow})
+      lists.insert(lists.end(), list->begin(), list->end());
+    writeVector(buffer(GB_BINDING_COLOUR_ORDER), lists);
+    colourOffset = t.colourOffset;
+    patches = static_cast<uint32_t>(t.patchOffset.size() - 1);
+    solverParticles = static_cast<uint32_t>(t.colourOrder.size());
+  }
+
+  // The self-collision contacts, found anew every frame.
   void writeContacts(const Topology& t) {
     const size_t bytes = t.contacts.size() * sizeof(uint32_t);
     if (bytes > buffer(GB_BINDING_CONTACTS).size()) {  // grow geometrically: contacts come and go
@@ -186,8 +213,6 @@ struct VulkanStepper::Impl {
       writeDescriptorSets();
     }
     writeVector(buffer(GB_BINDING_CONTACTS), t.contacts);
-    writeVector(buffer(GB_BINDING_COLOUR_ORDER), t.colourOrder);
-    colourOffset = t.colourOffset;
   }
 
   void writeDescriptorSets() {
@@ -211,7 +236,7 @@ struct VulkanStepper::Impl {
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipelines[static_cast<size_t>(kernel)]);
     const vk::DescriptorSet set = *sets[static_cast<size_t>(airParity)];
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipelineLayout, 0, set, {});
-    const PushBlock push{count, particles, stepIndex, flags, triangles, first};
+    const PushBlock push{count, particles, stepIndex, flags, triangles, first, patches, solverParticles};
     cb.pushConstants<PushBlock>(*pipelineLayout, vk::ShaderStageFlagBits::eCompute, 0, push);
     cb.dispatch(ceilDiv(count, workgroup), 1, 1);
   }
@@ -258,9 +283,14 @@ struct VulkanStepper::Impl {
       case Stage::ImplicitPredict:
         dispatch(cb, Kernel::ImplicitPredict, particles, stepIndex);
         break;
-      case Stage::VertexBlockDescent:
+      case Stage::VertexBlockDescent: {
+        const int coarseAfter = coarseSweepsBefore(params, u);
         for (int sweep = 0; sweep < solverSweeps(params, u); ++sweep) {
           if (sweep > 0) computeToComputeBarrier(cb);  // the volume and the next colours read the last positions
+          if (sweep == coarseAfter) {
+            recordStage(cb, Stage::CoarseCorrection, u, stepIndex);
+            computeToComputeBarrier(cb);  // the sweeps read the corrected positions
+          }
           if (u.closed) recordStage(cb, Stage::Volume, u, stepIndex);  // this iterate's volume; ends with a barrier
           for (size_t c = 0; c + 1 < colourOffset.size(); ++c) {
             if (c > 0) computeToComputeBarrier(cb);  // the next colour reads this one's positions
@@ -269,6 +299,15 @@ struct VulkanStepper::Impl {
                      first);
           }
         }
+        break;
+      }
+      case Stage::CoarseCorrection:
+        if (u.closed) recordStage(cb, Stage::Volume, u, stepIndex);  // this iterate's volume; ends with a barrier
+        dispatch(cb, Kernel::CoarseAssemble, patches, stepIndex, volumeInA ? 1u : 0u);
+        computeToComputeBarrier(cb);                      // the solve reads every patch's row
+        dispatch(cb, Kernel::CoarseSolve, 1, stepIndex);  // one workgroup: its invocations share the patches
+        computeToComputeBarrier(cb);                      // every particle reads its patch's solution
+        dispatch(cb, Kernel::CoarseApply, particles, stepIndex);
         break;
       case Stage::ImplicitVelocity:
         dispatch(cb, Kernel::ImplicitVelocity, particles, stepIndex);
@@ -320,6 +359,7 @@ std::string VulkanStepper::name() const {
 void VulkanStepper::load(const Params& params, Film& film) {
   Impl& m = *impl_;
   ensureColouring(film.state.alive, film.topology);
+  ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
   const State& s = film.state;
   const Topology& t = film.topology;
   m.params = params;
@@ -337,7 +377,7 @@ void VulkanStepper::load(const Params& params, Film& film) {
     make(b, n * sizeof(float));
   make(GB_BINDING_PREVIOUS_POSITION, 3 * n * sizeof(float));
   make(GB_BINDING_DRAINAGE, 2 * n * sizeof(float));
-  make(GB_BINDING_COLOUR_ORDER, std::max<size_t>(n, 1) * sizeof(uint32_t));
+  make(GB_BINDING_COLOUR_ORDER, solverListEntries(t) * sizeof(uint32_t));
   make(GB_BINDING_TRIANGLES, t.triangles.size() * sizeof(uint32_t));
   make(GB_BINDING_REST_LENGTH, t.restLength.size() * sizeof(float));
   make(GB_BINDING_SPRING_OFFSET, t.springOffset.size() * sizeof(uint32_t));
@@ -348,7 +388,7 @@ void VulkanStepper::load(const Params& params, Film& film) {
   make(GB_BINDING_CONTACTS, t.contacts.size() * sizeof(uint32_t));
   make(GB_BINDING_TRIANGLE_NORMAL, 3 * t.triangleCount() * sizeof(float));
   make(GB_BINDING_CORNER_AREA, 3 * t.triangleCount() * sizeof(float));
-  make(GB_BINDING_REDUCE, 2 * std::max<size_t>(m.triangles, 1) * sizeof(float));
+  make(GB_BINDING_REDUCE, reduceFloats(t) * sizeof(float));
   m.stepsCapacity = 0;
   make(GB_BINDING_STEPS, sizeof(StepUniformsBlock));
 
@@ -445,6 +485,7 @@ void VulkanStepper::updateContacts(const Film& film) { impl_->writeContacts(film
 void VulkanStepper::updateTopology(const Params& params, Film& film) {
   Impl& m = *impl_;
   ensureColouring(film.state.alive, film.topology);
+  ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
   const Topology& t = film.topology;
   auto fits = [&](int binding, size_t count, size_t elementBytes) {
     return count * elementBytes <= m.buffer(binding).size();
@@ -455,7 +496,9 @@ void VulkanStepper::updateTopology(const Params& params, Film& film) {
                            fits(GB_BINDING_SPRING_INDEX, t.springIndex.size(), sizeof(uint32_t)) &&
                            fits(GB_BINDING_SPRING_NEIGHBOUR, t.springNeighbour.size(), sizeof(uint32_t)) &&
                            fits(GB_BINDING_TRIANGLE_INDEX, t.triangleIndex.size(), sizeof(uint32_t)) &&
-                           fits(GB_BINDING_CONTACTS, t.contacts.size(), sizeof(uint32_t));
+                           fits(GB_BINDING_CONTACTS, t.contacts.size(), sizeof(uint32_t)) &&
+                           fits(GB_BINDING_COLOUR_ORDER, solverListEntries(t), sizeof(uint32_t)) &&
+                           fits(GB_BINDING_REDUCE, reduceFloats(t), sizeof(float));
   if (!fitsBuffers) {
     load(params, film);
     return;

@@ -16,6 +16,11 @@ struct Params {
   int integrator GB_DEFAULT(1);            // 1: implicit Euler solved by vertex block descent (one step per frame);
                                            // 0: the paper's semi-implicit Euler, Eqs. (12)-(13), in stable substeps
   int solverIterations GB_DEFAULT(6);      // vertex block descent sweeps per implicit step
+  int coarseIterations GB_DEFAULT(0);      // conjugate-gradient iterations of the step's coarse correction (patch
+                                           // system, coarse_correction.h) halfway through the sweeps; 0: none. Off by
+                                           // default: the default performance is tuned to the sweeps alone
+                                           // (docs/model.md "Coarse correction")
+  int coarsePatchRings GB_DEFAULT(4);      // a coarse-correction patch: the particles within this many springs
   int implicitSubsteps GB_DEFAULT(1);      // implicit steps per frame (a scene may ask for more; stability never does)
   float stabilitySafety GB_DEFAULT(0.5f);  // fraction of the explicit stability limit taken as the substep (0, 1]
   int maxSubsteps GB_DEFAULT(4000);        // refuse films whose stability limit needs more substeps per frame

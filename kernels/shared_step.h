@@ -36,14 +36,16 @@ struct StepUniformsBlock {
   uint pad2;
 };
 
-// Push constants of every stage (24 bytes of the 128 guaranteed).
+// Push constants of every stage (32 bytes of the 128 guaranteed).
 struct PushBlock {
-  uint count;        // elements of the dispatch: particles, triangles, reduction inputs, or a colour's particles
-  uint particles;    // particle count, the stride between the x, y and z blocks of a vector attribute
-  uint stepIndex;    // which StepUniformsBlock of the batch
-  uint reduceFlags;  // tree_sum: 1 reads half A writes half B, 0 the reverse; forces: 1 if the volume is in A
-  uint triangles;    // triangle count, the stride of the per-triangle vector blocks and of the reduce halves
-  uint first;        // vertex_block_descent: where the colour's particles start in colourOrder
+  uint count;            // elements of the dispatch: particles, triangles, reduction inputs, or a colour's particles
+  uint particles;        // particle count, the stride between the x, y and z blocks of a vector attribute
+  uint stepIndex;        // which StepUniformsBlock of the batch
+  uint reduceFlags;      // tree_sum: 1 reads half A writes half B, 0 the reverse; forces: 1 if the volume is in A
+  uint triangles;        // triangle count, the stride of the per-triangle vector blocks and of the reduce halves
+  uint first;            // vertex_block_descent: where the colour's particles start in colourOrder
+  uint patches;          // coarse correction: the patch count P (Topology::patchOffset)
+  uint solverParticles;  // the solver's particle count M (Topology::colourOrder), where the patch lists start
 };
 
 #ifdef __cplusplus
@@ -77,11 +79,16 @@ struct PushBlock {
 #define GB_BINDING_TRIANGLE_OFFSET 22
 #define GB_BINDING_TRIANGLE_INDEX 23
 #define GB_BINDING_BOUNDARY 24
-#define GB_BINDING_REDUCE 25    // two halves of `triangles` floats, A then B: the tree sum's ping-pong
+#define GB_BINDING_REDUCE \
+  25                            // two halves of `triangles` floats, A then B: the tree sum's ping-pong; then the
+                                // coarse correction's patch system (kernels/coarse.glsl)
 #define GB_BINDING_DRAINAGE 26  // drainOutflow then drainWeight, `particles` floats each
 #define GB_BINDING_TRIANGLE_NORMAL 27
 #define GB_BINDING_CORNER_AREA 28
 #define GB_BINDING_CONTACTS 29
 #define GB_BINDING_PREVIOUS_POSITION 30  // x_t of the implicit step
-#define GB_BINDING_COLOUR_ORDER 31       // the implicit solver's particles, colour by colour
-#define GB_BINDING_COUNT 32              // lavapipe's limit of storage buffers per stage: pack before adding
+#define GB_BINDING_COLOUR_ORDER \
+  31                         // the implicit solver's lists: its particles colour by colour (M), then
+                             // the coarse correction's patchOf (particles), patchOffset (P + 1),
+                             // patchMembers (M), patchRowOffset (P + 1), patchRow (kernels/coarse.glsl)
+#define GB_BINDING_COUNT 32  // lavapipe's limit of storage buffers per stage: pack before adding

@@ -147,7 +147,11 @@ double filmEnergy(Simulation& sim) {
   return energy;
 }
 
-class RandomAbuse : public ::testing::TestWithParam<int> {};
+struct AbuseCase {
+  int tensionModel;
+  int coarseIterations;  // the coarse correction's (0: off, the default)
+};
+class RandomAbuse : public ::testing::TestWithParam<AbuseCase> {};
 
 // 1,000 frames of random wand motion (up to 6 m/s) at h = 0.02 s, with pokes, pinch-offs and re-dips: no
 // instability stop, no NaN; and while the wands rest (no work done on the film) its mechanical energy never
@@ -156,8 +160,9 @@ class RandomAbuse : public ::testing::TestWithParam<int> {};
 TEST_P(RandomAbuse, ThousandFramesNeverBlowUp) {
   Params p;
   p.particlesAtFullSolution = 1000;
-  p.tensionModel = GetParam();
-  std::mt19937 rng(42 + GetParam());
+  p.tensionModel = GetParam().tensionModel;
+  p.coarseIterations = GetParam().coarseIterations;
+  std::mt19937 rng(42 + GetParam().tensionModel);
   std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
   WandState wands = gestureAt(Gesture::Straight, GestureOptions{}, 0.0);
   Simulation sim(p, WandTool{}, wands);
@@ -223,8 +228,12 @@ TEST_P(RandomAbuse, ThousandFramesNeverBlowUp) {
   EXPECT_GE(restsChecked, 3);
 }
 
-INSTANTIATE_TEST_SUITE_P(ImplicitStep, RandomAbuse, ::testing::Values(0, 1),
-                         [](const auto& test) { return test.param ? "physical" : "springs"; });
+INSTANTIATE_TEST_SUITE_P(ImplicitStep, RandomAbuse,
+                         ::testing::Values(AbuseCase{0, 0}, AbuseCase{1, 0}, AbuseCase{0, 20}, AbuseCase{1, 20}),
+                         [](const auto& test) {
+                           return std::string(test.param.tensionModel ? "physical" : "springs") +
+                                  (test.param.coarseIterations ? "_coarse" : "");
+                         });
 
 // The implicit step against the explicit reference on the default stroke: the swept volume and the area the
 // stroke adds agree within 10% of their peaks at every frame of the stroke.

@@ -261,6 +261,47 @@ TEST(VulkanEquivalence, EveryImplicitPassAloneMatchesTheCpuReference) {
   EXPECT_EQ(device->validationErrors(), 0u);
 }
 
+// The coarse correction alone (its three kernels: the patch system's rows, its conjugate gradients in one
+// workgroup, the moves), on the film the step has predicted, for both tension models. It moves each patch by
+// ~1e-4 m: like a sweep, the result is a position whose rounding dominates, so it gets the same 8 ulp(|x|).
+TEST(VulkanEquivalence, TheCoarseCorrectionAloneMatchesTheCpuReference) {
+  GB_REQUIRE_VULKAN(device);
+  const MovingFilm input;
+  for (int model : {0, 1}) {
+    Params p = input.params;
+    p.tensionModel = model;
+    p.coarseIterations = 20;
+    Film before = input.film;
+    CpuStepper prepare;
+    prepare.load(p, before);
+    for (const StageSpec& spec : stepStages()) {
+      if (spec.stage == Stage::VertexBlockDescent) break;
+      if (spec.runs(p, input.uniforms)) prepare.runStage(spec.stage, input.uniforms);
+    }
+    Film cpuFilm = before, gpuFilm = before;
+    CpuStepper cpu;
+    VulkanStepper gpu(device);
+    cpu.load(p, cpuFilm);
+    gpu.load(p, gpuFilm);
+    cpu.runStage(Stage::CoarseCorrection, input.uniforms);
+    gpu.runStage(Stage::CoarseCorrection, input.uniforms);
+    gpu.store(gpuFilm);
+    std::vector<double> positionScale(before.state.size());
+    double moved = 0;
+    for (size_t i = 0; i < positionScale.size(); ++i) {
+      positionScale[i] = before.state.position.get(i).norm();
+      moved =
+          std::max(moved, static_cast<double>((cpuFilm.state.position.get(i) - before.state.position.get(i)).norm()));
+    }
+    const double ratio = worstUlpRatio(cpuFilm.state.position, gpuFilm.state.position, positionScale, 8);
+    std::printf("stage coarse_correction (%s) position worst error %.2f x (8 ulp(x)); largest move %.2e m\n",
+                model ? "physical" : "springs", ratio, moved);
+    EXPECT_LT(ratio, 1.0);
+    EXPECT_GT(moved, 1e-6) << "the correction must move the film for the comparison to mean something";
+  }
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
 TEST(VulkanEquivalence, VolumeReductionAndBubblePressureMatch) {
   GB_REQUIRE_VULKAN(device);
   Params p;
@@ -294,6 +335,7 @@ TEST(VulkanEquivalence, VolumeReductionAndBubblePressureMatch) {
 struct SceneCase {
   const char* name;
   bool bubble;
+  int coarseIterations = 0;  // the coarse correction's (0: off, the default)
 };
 
 class VulkanScene : public ::testing::TestWithParam<SceneCase> {};
@@ -309,6 +351,7 @@ TEST_P(VulkanScene, FiveHundredStepsStayWithinAMillimetre) {
   Params p;
   p.particlesAtFullSolution = 2000;
   p.solutionReserve = 0.0f;
+  p.coarseIterations = GetParam().coarseIterations;
   GestureOptions g;
   g.start = 0.0f;
   auto makeSim = [&](std::unique_ptr<Stepper> stepper) {
@@ -348,7 +391,9 @@ TEST_P(VulkanScene, FiveHundredStepsStayWithinAMillimetre) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, VulkanScene,
-                         ::testing::Values(SceneCase{"two_wand_stroke", false}, SceneCase{"wobbling_bubble", true}),
+                         ::testing::Values(SceneCase{"two_wand_stroke", false}, SceneCase{"wobbling_bubble", true},
+                                           SceneCase{"two_wand_stroke_coarse", false, 20},
+                                           SceneCase{"wobbling_bubble_coarse", true, 20}),
                          [](const auto& test) { return std::string(test.param.name); });
 
 // A topology event (a burst in the paper's ring-per-frame mode, whose front depends on the mesh only)

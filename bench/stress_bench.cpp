@@ -316,6 +316,14 @@ bool allFinite(const State& s) {
   return true;
 }
 
+// The largest relative energy change over the rests checked, as a percentage, or "none" before the first rest.
+std::string largestChange(int restsChecked, double worstGrowth) {
+  if (restsChecked == 0) return "none";
+  char text[32];
+  std::snprintf(text, sizeof text, "%+.2f%%", 100 * worstGrowth);
+  return text;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -400,16 +408,20 @@ int main(int argc, char** argv) {
     if (f % 500 == 0) {  // a long run's figures so far, in case it is stopped
       std::printf(
           "  frame %d: %.1f ms per frame; %d pokes, %d pinch-offs, %d dips, %d rests checked, largest energy "
-          "change over a rest %+.2f%%\n",
-          f, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / f, pokes,
-          pinches, dips, restsChecked, 100 * worstGrowth);
+          "change over a rest %s\n",
+          f,
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() /
+              (f - firstFrame + 1),
+          pokes, pinches, dips, restsChecked, largestChange(restsChecked, worstGrowth).c_str());
       std::fflush(stdout);
     }
   }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const int stepped = o.frames - firstFrame + 1;
   std::printf(
-      "%d frames in %.0f s (%.1f ms per frame): %d pokes, %d pinch-offs, %d dips, %d rests checked, largest "
-      "energy change over a rest %+.2f%%, %d failures\n",
-      o.frames, seconds, 1e3 * seconds / o.frames, pokes, pinches, dips, restsChecked, 100 * worstGrowth, failures);
+      "frames %d to %d in %.0f s (%.1f ms per frame): %d pokes, %d pinch-offs, %d dips, %d rests checked, largest "
+      "energy change over a rest %s, %d failures\n",
+      firstFrame, o.frames, seconds, 1e3 * seconds / std::max(stepped, 1), pokes, pinches, dips, restsChecked,
+      largestChange(restsChecked, worstGrowth).c_str(), failures);
   return failures ? 1 : 0;
 }

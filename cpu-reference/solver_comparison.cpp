@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "coarse_correction.h"
+
 namespace gb {
 
 namespace {
@@ -235,42 +237,19 @@ void ImplicitSolve::hessianProduct(const Vec3Array& v, Vec3Array& out) const {
   const State& s = film_.state;
   const Topology& topo = film_.topology;
   const float h = uniforms_.dt;
-  const bool physical = params_.tensionModel == 1;
   forEachSolved(solved_, [&](size_t i) {
     // The diagonal block (inertia, drag, air coupling, contacts, and the one-ring's own terms), then the
-    // off-diagonal blocks of the springs and triangles; v is zero on the particles that are not solved.
+    // off-diagonal blocks of the springs and triangles (coarse_correction.h); v is zero on the particles that are
+    // not solved.
     Vec3 sum = blocks_[i].hessian * v.get(i);
-    const Vec3 x = start_.get(i);
-    for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
-      const uint32_t j = topo.springNeighbour[k];
-      const Vec3 d = start_.get(j) - x, vj = v.get(j);
-      const float len = d.norm();
-      if (!(len > 0)) continue;
-      const Vec3 dir = d / len;
-      float along = params_.springDamping / h, transverse = 0.0f;
-      if (!physical) {
-        const float stiffness = springStiffness(s, i, j);
-        transverse = transverseStiffness(stiffness, topo.restLength[topo.springIndex[k]], len);
-        along += stiffness - transverse;
-      }
-      sum -= along * dir.dot(vj) * dir + transverse * vj;
-    }
-    if (physical) {
-      // Gauss-Newton Hessian of T |c| / 2, c = (x1 - x0) x (x2 - x0): T / (2 |c|) J_i^T (I - n n^T) J_l with
-      // J_l v = e_l x v, e_l = x_{l+2} - x_{l+1}; the diagonal l = i is in the block already.
+    for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k)
+      sum += springCouplingBlock(params_, h, topo, s, start_, i, k) * v.get(topo.springNeighbour[k]);
+    if (params_.tensionModel == 1) {
       for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
         const uint32_t* tri = &topo.triangles[3 * topo.triangleIndex[k]];
         const uint32_t c = tri[0] == i ? 0u : (tri[1] == i ? 1u : 2u);
-        const Vec3 x0 = start_.get(tri[0]), x1 = start_.get(tri[1]), x2 = start_.get(tri[2]);
-        const Vec3 normal = (x1 - x0).cross(x2 - x0);
-        const float twiceArea = normal.norm();
-        if (!(twiceArea > 0)) continue;
-        const Vec3 edges[3] = {x2 - x1, x0 - x2, x1 - x0}, n = normal / twiceArea;
-        Vec3 change = Vec3::Zero();  // of c by the other two corners
         for (uint32_t l = 0; l < 3; ++l)
-          if (l != c) change += edges[l].cross(v.get(tri[l]));
-        change -= n.dot(change) * n;
-        sum += triangleTension(s, tri) / (2.0f * twiceArea) * change.cross(edges[c]);
+          if (l != c) sum += triangleCouplingBlock(s, start_, tri, c, l) * v.get(tri[l]);
       }
     }
     out.set(i, sum);

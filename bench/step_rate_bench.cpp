@@ -6,7 +6,7 @@
 // prints the calling thread's CPU milliseconds per step (frame), least and median: with OMP_NUM_THREADS=1 that is
 // the whole CPU cost, which a busy machine changes far less than the wall clock.
 //
-// Run: ./build/bench/gb_step_rate_bench [--particles N] [--tension-model 0|1] [--frames N] [--sweeps N]
+// Run: ./build/bench/gb_step_rate_bench [--particles N] [--tension-model 0|1] [--frames N] [--sweeps N] [--coarse N]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -64,8 +64,10 @@ int main(int argc, char** argv) {
       frames = value;
     else if (flag == "--sweeps")
       p.solverIterations = value;
+    else if (flag == "--coarse")
+      p.coarseIterations = value;
     else {
-      std::fprintf(stderr, "unknown option %s (--particles N --tension-model 0|1 --frames N --sweeps N)\n",
+      std::fprintf(stderr, "unknown option %s (--particles N --tension-model 0|1 --frames N --sweeps N --coarse N)\n",
                    flag.c_str());
       return 2;
     }

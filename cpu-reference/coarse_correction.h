@@ -35,7 +35,8 @@ int coarseSweepsBefore(const Params& p, const StepUniforms& u);
 // the most springs with. Fills Topology's patch lists (state.h); wire and dead particles get kNoPatch.
 void groupIntoPatches(const std::vector<uint32_t>& alive, int rings, Topology& topo);
 
-// Groups the film's particles unless its topology already has patches of that many rings.
+// Groups the film's particles unless its topology already has patches of that many rings. The steppers call it
+// when a film is loaded with the correction on (Params::coarseIterations > 0); with it off there are no patches.
 void ensurePatches(const std::vector<uint32_t>& alive, int rings, Topology& topo);
 
 // The off-diagonal blocks d^2 J / dx_i dx_j of the step's projected Hessian (implicit_euler.h) at positions x:

@@ -35,7 +35,7 @@ void CpuStepper::load(const Params& params, Film& film) {
   params_ = params;
   film_ = &film;
   ensureColouring(film.state.alive, film.topology);
-  ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
+  if (params.coarseIterations > 0) ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
 }
 
 float CpuStepper::volume(const Film& film, const Vec3& origin) {
@@ -151,6 +151,7 @@ void CpuStepper::runSweeps(const StepUniforms& u, int from, int to) {
 void CpuStepper::correctCoarsely(const StepUniforms& u) {
   State& s = film_->state;
   const Topology& topo = film_->topology;
+  if (topo.patchOffset.empty()) return;  // the correction is off: no patches were made
   Bubble bubble;
   if (u.closed) {  // Boyle's pressure at this iterate's volume, as a sweep takes it
     bubble.volume = lastVolume_ = volume(*film_, u.volumeOrigin);

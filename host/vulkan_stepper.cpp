@@ -201,7 +201,7 @@ struct VulkanStepper::Impl {
       lists.insert(lists.end(), list->begin(), list->end());
     writeVector(buffer(GB_BINDING_COLOUR_ORDER), lists);
     colourOffset = t.colourOffset;
-    patches = static_cast<uint32_t>(t.patchOffset.size() - 1);
+    patches = t.patchOffset.empty() ? 0u : static_cast<uint32_t>(t.patchOffset.size() - 1);
     solverParticles = static_cast<uint32_t>(t.colourOrder.size());
   }
 
@@ -302,6 +302,7 @@ struct VulkanStepper::Impl {
         break;
       }
       case Stage::CoarseCorrection:
+        if (patches == 0) break;  // the correction is off (no patches were made), or there is nothing to solve
         if (u.closed) recordStage(cb, Stage::Volume, u, stepIndex);  // this iterate's volume; ends with a barrier
         dispatch(cb, Kernel::CoarseAssemble, patches, stepIndex, volumeInA ? 1u : 0u);
         computeToComputeBarrier(cb);                      // the solve reads every patch's row
@@ -359,7 +360,7 @@ std::string VulkanStepper::name() const {
 void VulkanStepper::load(const Params& params, Film& film) {
   Impl& m = *impl_;
   ensureColouring(film.state.alive, film.topology);
-  ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
+  if (params.coarseIterations > 0) ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
   const State& s = film.state;
   const Topology& t = film.topology;
   m.params = params;
@@ -485,7 +486,7 @@ void VulkanStepper::updateContacts(const Film& film) { impl_->writeContacts(film
 void VulkanStepper::updateTopology(const Params& params, Film& film) {
   Impl& m = *impl_;
   ensureColouring(film.state.alive, film.topology);
-  ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
+  if (params.coarseIterations > 0) ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
   const Topology& t = film.topology;
   auto fits = [&](int binding, size_t count, size_t elementBytes) {
     return count * elementBytes <= m.buffer(binding).size();

@@ -12,7 +12,7 @@ void main() {
   if (i >= pc.count) return;
   const uint ownPatch = PATCH_OF(i);
   if (ownPatch == kNoPatch || alive[i] == 0u) return;
-  const float kPatchTrustScale = 4.0;  // a patch moves at most one shortest spring (the C++ twin says why)
+  const float kPatchTrustScale = 2.0;  // a patch moves at most half its shortest spring (the C++ twin says why)
   const vec3 move = withinTrustRegion(loadCoarse(kSolution, ownPatch), kPatchTrustScale * COARSE_SHORTEST(ownPatch));
   if (any(isnan(move)) || any(isinf(move))) return;
   vec3 next = LOAD3(position, i) + move;

@@ -102,12 +102,6 @@ uint32_t rowSlot(const Topology& topo, uint32_t row, uint32_t column) {
   return static_cast<uint32_t>(std::lower_bound(first, last, column) - topo.patchRow.begin());
 }
 
-Eigen::Matrix3f skew(const Vec3& v) {
-  Eigen::Matrix3f m;
-  m << 0.0f, -v.z(), v.y(), v.z(), 0.0f, -v.x(), -v.y(), v.x(), 0.0f;
-  return m;
-}
-
 }  // namespace
 
 int coarseSweepsBefore(const Params& p, const StepUniforms& u) {
@@ -161,14 +155,18 @@ Eigen::Matrix3f springCouplingBlock(const Params& p, float h, const Topology& to
 
 Eigen::Matrix3f triangleCouplingBlock(const State& s, const Vec3Array& x, const uint32_t* tri, uint32_t c, uint32_t l) {
   // Gauss-Newton Hessian of T |n| / 2, n = (x1 - x0) x (x2 - x0): T / (2 |n|) J_c^T (I - n n^T / |n|^2) J_l with
-  // J_l v = e_l x v, e_l = x_{l+2} - x_{l+1} the edge facing corner l.
+  // J_l v = e_l x v, e_l = x_{l+2} - x_{l+1} the edge facing corner l. J_c^T P J_l = -[e_c]x P [e_l]x, and
+  // [a]x (I - n n^T) [b]x = b a^T - (a . b) I + (a x n)(b x n)^T for a unit n: two outer products instead of two
+  // 3x3 products.
   const Vec3 x0 = x.get(tri[0]), x1 = x.get(tri[1]), x2 = x.get(tri[2]);
   const Vec3 normal = (x1 - x0).cross(x2 - x0);
   const float twiceArea = normal.norm();
   if (!(twiceArea > 0)) return Eigen::Matrix3f::Zero();
   const Vec3 edges[3] = {x2 - x1, x0 - x2, x1 - x0}, n = normal / twiceArea;
-  const Eigen::Matrix3f inPlane = Eigen::Matrix3f::Identity() - n * n.transpose();
-  return -(triangleTension(s, tri) / (2.0f * twiceArea)) * skew(edges[c]) * inPlane * skew(edges[l]);
+  const Vec3 a = edges[c], b = edges[l];
+  const Eigen::Matrix3f sandwich =
+      b * a.transpose() - a.dot(b) * Eigen::Matrix3f::Identity() + a.cross(n) * b.cross(n).transpose();
+  return -(triangleTension(s, tri) / (2.0f * twiceArea)) * sandwich;
 }
 
 void fitCoarseSystem(const Topology& topo, CoarseSystem& system) {

@@ -24,9 +24,8 @@ mat3 springCouplingBlock(float h, uint i, uint k) {
   return -(along * outerProduct(dir, dir) + transverse * mat3(1.0));
 }
 
-mat3 skew(vec3 v) { return mat3(0.0, v.z, -v.y, -v.z, 0.0, v.x, v.y, -v.x, 0.0); }
-
-// triangleCouplingBlock: the off-diagonal block between corners c and l of triangle t (physical model).
+// triangleCouplingBlock: the off-diagonal block between corners c and l of triangle t (physical model), by the
+// C++ twin's closed form.
 mat3 triangleCouplingBlock(uint t, uint c, uint l) {
   const vec3 x0 = LOAD3(position, triangles[3u * t]), x1 = LOAD3(position, triangles[3u * t + 1u]),
              x2 = LOAD3(position, triangles[3u * t + 2u]);
@@ -34,10 +33,11 @@ mat3 triangleCouplingBlock(uint t, uint c, uint l) {
   const float twiceArea = length(normal);
   if (!(twiceArea > 0.0)) return mat3(0.0);
   const vec3 edges[3] = vec3[3](x2 - x1, x0 - x2, x1 - x0), n = normal / twiceArea;
-  const mat3 inPlane = mat3(1.0) - outerProduct(n, n);
+  const vec3 a = edges[c], b = edges[l];
+  const mat3 sandwich = outerProduct(b, a) - dot(a, b) * mat3(1.0) + outerProduct(cross(a, n), cross(b, n));
   const float tension =
       (elasticity[triangles[3u * t]] + elasticity[triangles[3u * t + 1u]] + elasticity[triangles[3u * t + 2u]]) / 3.0;
-  return -(tension / (2.0 * twiceArea)) * skew(edges[c]) * inPlane * skew(edges[l]);
+  return -(tension / (2.0 * twiceArea)) * sandwich;
 }
 
 void addToBlock(uint slot, mat3 m) {

@@ -59,7 +59,7 @@ uint32_t bestNeighbour(const Topology& topo, const std::vector<uint32_t>& member
 }
 
 // Numbers the patches 0, 1, ... in the order of their lowest particle and lays out their member and row lists.
-void layOutPatches(const std::vector<uint32_t>& alive, Topology& topo) {
+void layOutPatches(Topology& topo) {
   const size_t n = topo.particleCount();
   std::vector<uint32_t> renumber(n, kNoPatch);
   uint32_t patches = 0;
@@ -92,7 +92,6 @@ void layOutPatches(const std::vector<uint32_t>& alive, Topology& topo) {
     topo.patchRow.insert(topo.patchRow.end(), row.begin(), row.end());
     topo.patchRowOffset.push_back(static_cast<uint32_t>(topo.patchRow.size()));
   }
-  (void)alive;
 }
 
 // The slot of patch `column` in patch `row`'s row of the patch system.
@@ -129,7 +128,7 @@ void groupIntoPatches(const std::vector<uint32_t>& alive, int rings, Topology& t
     members[into].insert(members[into].end(), members[p].begin(), members[p].end());
     members[p].clear();
   }
-  layOutPatches(alive, topo);
+  layOutPatches(topo);
   topo.patchRings = rings;
 }
 

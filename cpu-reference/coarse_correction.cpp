@@ -4,6 +4,8 @@
 #include <cmath>
 #include <deque>
 
+#include "colouring.h"
+
 namespace gb {
 
 namespace {
@@ -13,10 +15,6 @@ namespace {
 // the step's pull-back left undone against 17.3%, coarse_correction_test); at a whole spring the physical model's
 // 9,500-particle stress run gained 3.24% over a rest (frame 1,099), at half a spring at most 0.62%.
 constexpr float kPatchTrustScale = 2.0f;
-
-bool isSolved(const std::vector<uint32_t>& alive, const Topology& topo, size_t i) {
-  return alive[i] != 0 && topo.boundary[i] == 0;
-}
 
 // Breadth first from seed over solver particles that no patch holds yet, up to `rings` springs away.
 void growPatch(const std::vector<uint32_t>& alive, const Topology& topo, uint32_t seed, uint32_t patch, int rings,
@@ -29,7 +27,7 @@ void growPatch(const std::vector<uint32_t>& alive, const Topology& topo, uint32_
     if (ring == rings) continue;
     for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
       const uint32_t j = topo.springNeighbour[k];
-      if (patchOf[j] != kNoPatch || !isSolved(alive, topo, j)) continue;
+      if (patchOf[j] != kNoPatch || !isSolverParticle(alive, topo, j)) continue;
       patchOf[j] = patch;
       frontier.emplace_back(j, ring + 1);
     }
@@ -112,7 +110,7 @@ void groupIntoPatches(const std::vector<uint32_t>& alive, int rings, Topology& t
   topo.patchOf.assign(n, kNoPatch);
   uint32_t patches = 0;
   for (size_t i = 0; i < n; ++i)
-    if (topo.patchOf[i] == kNoPatch && isSolved(alive, topo, i))
+    if (topo.patchOf[i] == kNoPatch && isSolverParticle(alive, topo, i))
       growPatch(alive, topo, static_cast<uint32_t>(i), patches++, rings, topo.patchOf);
   // Patches squeezed between full ones join a neighbour: they would add unknowns that hardly reach further
   // than a sweep does. A full patch on a triangle mesh holds 1 + 3 r (r + 1) particles.

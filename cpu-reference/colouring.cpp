@@ -12,11 +12,11 @@ void forEachCoupled(const Topology& topo, size_t i, Visit&& visit) {
   for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) visit(topo.springNeighbour[k]);
 }
 
-bool solved(const std::vector<uint32_t>& alive, const Topology& topo, size_t i) {
+}  // namespace
+
+bool isSolverParticle(const std::vector<uint32_t>& alive, const Topology& topo, size_t i) {
   return alive[i] != 0 && topo.boundary[i] == 0;
 }
-
-}  // namespace
 
 void colourParticles(const std::vector<uint32_t>& alive, Topology& topo) {
   const size_t n = topo.particleCount();
@@ -25,7 +25,7 @@ void colourParticles(const std::vector<uint32_t>& alive, Topology& topo) {
   std::vector<uint32_t> usedBy;  // usedBy[c] == i: colour c is taken by a neighbour of i
   uint32_t colours = 0;
   for (size_t i = 0; i < n; ++i) {
-    if (!solved(alive, topo, i)) continue;
+    if (!isSolverParticle(alive, topo, i)) continue;
     forEachCoupled(topo, i, [&](uint32_t j) {
       if (colour[j] != kNone) usedBy[colour[j]] = static_cast<uint32_t>(i);
     });
@@ -64,7 +64,7 @@ bool isValidColouring(const std::vector<uint32_t>& alive, const Topology& topo) 
       colour[i] = static_cast<uint32_t>(c);
     }
   for (size_t i = 0; i < n; ++i) {
-    if (solved(alive, topo, i) != (colour[i] != kNone)) return false;
+    if (isSolverParticle(alive, topo, i) != (colour[i] != kNone)) return false;
     bool clash = false;
     if (colour[i] != kNone) forEachCoupled(topo, i, [&](uint32_t j) { clash = clash || colour[j] == colour[i]; });
     if (clash) return false;

@@ -8,6 +8,9 @@
 
 namespace gb {
 
+// A particle the implicit solver moves: living and not held by the wire.
+bool isSolverParticle(const std::vector<uint32_t>& alive, const Topology& topo, size_t i);
+
 // Greedy colouring in particle order: each living interior particle takes the smallest colour that none of
 // its spring neighbours has. Boundary (wire) and dead particles are not moved by the solver and
 // get no colour. Fills topo.colourOffset and topo.colourOrder (particles of a colour in increasing index).

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "colouring.h"
 #include "cpu_stepper.h"
 #include "scripted_gestures.h"
 #include "simulation.h"
@@ -14,8 +15,6 @@
 
 namespace gb {
 namespace {
-
-bool isSolverParticle(const Film& film, size_t i) { return film.state.alive[i] != 0 && film.topology.boundary[i] == 0; }
 
 // Every solver particle lies in exactly one patch and no other particle in any; each patch is a neighbourhood of
 // its seed (at most a full patch of `rings` rings plus the small patches merged into it); the rows list exactly the
@@ -36,8 +35,8 @@ TEST(CoarseCorrection, PatchesHoldEverySolverParticleOnce) {
       EXPECT_EQ(topo.patchOf[i], patch);
     }
   for (size_t i = 0; i < n; ++i) {
-    EXPECT_EQ(seen[i], isSolverParticle(sim.film(), i) ? 1 : 0) << "particle " << i;
-    if (!isSolverParticle(sim.film(), i)) {
+    EXPECT_EQ(seen[i], isSolverParticle(sim.film().state.alive, sim.film().topology, i) ? 1 : 0) << "particle " << i;
+    if (!isSolverParticle(sim.film().state.alive, sim.film().topology, i)) {
       EXPECT_EQ(topo.patchOf[i], kNoPatch);
     }
   }
@@ -90,7 +89,7 @@ BulgeStep bulgeStep() {
   Vec3Array bulge;  // the displacement of the first guess
   bulge.resize(start.state.size());
   for (size_t i = 0; i < start.state.size(); ++i) {
-    if (!isSolverParticle(start, i)) continue;
+    if (!isSolverParticle(start.state.alive, start.topology, i)) continue;
     const float r = (flat.get(i) - centre).norm() / radius;
     bulge.set(i, 0.05f * (1.0f - r * r) * start.state.normal.get(i));
     start.state.position.set(i, flat.get(i) + bulge.get(i));

@@ -193,6 +193,21 @@ TEST(VulkanEquivalence, EveryStageAloneMatchesTheCpuReference) {
   EXPECT_EQ(device->validationErrors(), 0u);
 }
 
+// A solver pass that moves the film (a sweep, the coarse correction), run on both backends from `before`: the
+// worst position difference in units of 8 ulp(|x|) of the position it started from, and the largest move (m).
+struct PassComparison {
+  double ratio, moved;
+};
+PassComparison comparePassPositions(const Film& before, const Film& cpuFilm, const Film& gpuFilm) {
+  std::vector<double> positionScale(before.state.size());
+  double moved = 0;
+  for (size_t i = 0; i < positionScale.size(); ++i) {
+    positionScale[i] = before.state.position.get(i).norm();
+    moved = std::max(moved, static_cast<double>((cpuFilm.state.position.get(i) - before.state.position.get(i)).norm()));
+  }
+  return {worstUlpRatio(cpuFilm.state.position, gpuFilm.state.position, positionScale, 8), moved};
+}
+
 // The implicit step's passes, each alone on the same input: the stages before it run on the CPU first, then
 // both backends take that film and run the pass (same 1e-5 relative bound, floor as above).
 TEST(VulkanEquivalence, EveryImplicitPassAloneMatchesTheCpuReference) {
@@ -248,13 +263,7 @@ TEST(VulkanEquivalence, EveryImplicitPassAloneMatchesTheCpuReference) {
   cpu.runStage(Stage::VertexBlockDescent, u);
   gpu.runStage(Stage::VertexBlockDescent, u);
   gpu.store(gpuFilm);
-  std::vector<double> positionScale(before.state.size());
-  double moved = 0;
-  for (size_t i = 0; i < positionScale.size(); ++i) {
-    positionScale[i] = before.state.position.get(i).norm();
-    moved = std::max(moved, static_cast<double>((cpuFilm.state.position.get(i) - before.state.position.get(i)).norm()));
-  }
-  const double ratio = worstUlpRatio(cpuFilm.state.position, gpuFilm.state.position, positionScale, 8);
+  const auto [ratio, moved] = comparePassPositions(before, cpuFilm, gpuFilm);
   std::printf("stage vertex_block_descent position worst error %.2f x (8 ulp(x)); largest move %.2e m\n", ratio, moved);
   EXPECT_LT(ratio, 1.0);
   EXPECT_GT(moved, 1e-5) << "the sweep must move the film for the comparison to mean something";
@@ -286,14 +295,7 @@ TEST(VulkanEquivalence, TheCoarseCorrectionAloneMatchesTheCpuReference) {
     cpu.runStage(Stage::CoarseCorrection, input.uniforms);
     gpu.runStage(Stage::CoarseCorrection, input.uniforms);
     gpu.store(gpuFilm);
-    std::vector<double> positionScale(before.state.size());
-    double moved = 0;
-    for (size_t i = 0; i < positionScale.size(); ++i) {
-      positionScale[i] = before.state.position.get(i).norm();
-      moved =
-          std::max(moved, static_cast<double>((cpuFilm.state.position.get(i) - before.state.position.get(i)).norm()));
-    }
-    const double ratio = worstUlpRatio(cpuFilm.state.position, gpuFilm.state.position, positionScale, 8);
+    const auto [ratio, moved] = comparePassPositions(before, cpuFilm, gpuFilm);
     std::printf("stage coarse_correction (%s) position worst error %.2f x (8 ulp(x)); largest move %.2e m\n",
                 model ? "physical" : "springs", ratio, moved);
     EXPECT_LT(ratio, 1.0);

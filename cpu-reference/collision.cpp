@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 
+#include "float_lanes.h"
+
 namespace gb {
 
 namespace {
@@ -134,8 +136,9 @@ struct CellTable {
   // gathering from the state's arrays, which is most of its time on a large film.
   std::vector<Vec3> position;
   std::vector<Vec3> normal;
-  std::vector<float> speed;  // about the film's mean velocity
-  std::vector<float> along;  // the coordinate along the bucket's sort direction, ascending within each bucket
+  std::vector<float> x, y, z;  // the positions again, one array per axis, for the search's four-wide test
+  std::vector<float> speed;    // about the film's mean velocity
+  std::vector<float> along;    // the coordinate along the bucket's sort direction, ascending within each bucket
   // The occupied buckets in ascending order, and each one's sheet: bucket occupied[o]'s is sheet[o], and
   // bucket b's is sheet[sheetIndex[b]] (a bucket holds a cell of tens to thousands of particles).
   std::vector<uint32_t> occupied;
@@ -198,6 +201,7 @@ void sortBucketAlongItsSheet(const State& s, const std::vector<float>& speed, si
     table.along[k] = order[k - begin].first;
     table.position[k] = s.position.get(i);
     table.normal[k] = s.normal.get(i);
+    table.x[k] = s.position.x[i], table.y[k] = s.position.y[i], table.z[k] = s.position.z[i];
     table.speed[k] = speed[i];
   }
 }
@@ -223,6 +227,7 @@ CellTable bucketParticles(const Film& film, const std::vector<float>& speed, flo
   table.position.resize(table.particle.size());
   table.normal.resize(table.particle.size());
   table.speed.resize(table.particle.size());
+  for (auto* axis : {&table.x, &table.y, &table.z}) axis->resize(table.particle.size());
   table.along.resize(table.particle.size());
   table.sheetIndex.assign(buckets, 0u);
   for (uint32_t b = 0; b < buckets; ++b) {
@@ -310,19 +315,40 @@ struct PartnerRule {
     const size_t first = along[begin] >= lowest
                              ? begin
                              : static_cast<size_t>(std::lower_bound(along + begin, along + end, lowest) - along);
-    for (size_t k = first; k < end && along[k] <= centre + radius; ++k) {
+    auto consider = [&](size_t k) {
       // Squared lengths throughout: most candidates are the film's own in-plane neighbours, rejected here
       // without a square root.
       const Vec3 d = position[k] - xi;
       const float lengthSquared = d.squaredNorm();
-      if (!(lengthSquared < reachSquared) || lengthSquared <= 0) continue;
+      if (!(lengthSquared < reachSquared) || lengthSquared <= 0) return;
       const float pairReach = distance + contactMargin(time, extra, speedI + speed[k]);
-      if (!(lengthSquared < pairReach * pairReach)) continue;
+      if (!(lengthSquared < pairReach * pairReach)) return;
       const float alongI = ni.dot(d), alongJ = normal[k].dot(d);
       const bool across = alongI * alongI > kAcrossCosineSquared * lengthSquared ||
                           alongJ * alongJ > kAcrossCosineSquared * lengthSquared;
       if (across && !isOneRingNeighbour(topo, i, table.particle[k])) partners.push_back(table.particle[k]);
+    };
+    const float highest = centre + radius;
+    size_t k = first;
+    // Four candidates at a time from the table's coordinate arrays: a candidate farther than its pair's reach
+    // (most of them) is dropped without a branch of its own. The test is looser than consider()'s by a thousandth,
+    // for the order in which the lanes sum the squares, so that consider() alone decides: the list is the one the
+    // plain loop makes.
+    const float *xs = table.x.data(), *ys = table.y.data(), *zs = table.z.data();
+    const Float4 x4(xi.x()), y4(xi.y()), z4(xi.z()), highest4(highest), speed4(speedI), distance4(distance),
+        time4(time), extra4(extra), cap4(kMaxContactMargin);
+    for (; k + 4 <= end; k += 4) {
+      const Mask4 inSlab = Float4::load(along + k) <= highest4;
+      const Float4 dx = Float4::load(xs + k) - x4, dy = Float4::load(ys + k) - y4, dz = Float4::load(zs + k) - z4;
+      const Float4 lengthSquared = dx * dx + dy * dy + dz * dz;
+      const Float4 pairReach = distance4 + min(cap4, time4 * (speed4 + Float4::load(speed + k)) + extra4);
+      const unsigned slab = laneBits(inSlab);
+      for (unsigned near = laneBits(inSlab && lengthSquared < pairReach * pairReach * Float4(1.001f)); near;
+           near &= near - 1)
+        consider(k + static_cast<size_t>(std::countr_zero(near)));
+      if (slab != 0xfu) return;  // the slab ends within these four
     }
+    for (; k < end && along[k] <= highest; ++k) consider(k);
   }
 };
 

@@ -58,8 +58,11 @@ inline Float4 min(Float4 a, Float4 b) { return Float4(_mm_min_ps(b.v, a.v)); }
 inline Float4 max(Float4 a, Float4 b) { return Float4(_mm_max_ps(b.v, a.v)); }
 inline Mask4 operator<(Float4 a, Float4 b) { return {_mm_cmplt_ps(a.v, b.v)}; }
 inline Mask4 operator>(Float4 a, Float4 b) { return {_mm_cmpgt_ps(a.v, b.v)}; }
+inline Mask4 operator<=(Float4 a, Float4 b) { return {_mm_cmple_ps(a.v, b.v)}; }
 inline Mask4 operator&&(Mask4 a, Mask4 b) { return {_mm_and_ps(a.v, b.v)}; }
 inline bool none(Mask4 m) { return _mm_movemask_ps(m.v) == 0; }
+// Bit l set where lane l is true.
+inline unsigned laneBits(Mask4 m) { return static_cast<unsigned>(_mm_movemask_ps(m.v)); }
 // a in the lanes of m, +0 elsewhere (whatever a holds there, infinities and NaN included).
 inline Float4 masked(Mask4 m, Float4 a) { return Float4(_mm_and_ps(m.v, a.v)); }
 inline Float4 select(Mask4 m, Float4 a, Float4 b) {
@@ -127,12 +130,20 @@ inline Mask4 operator<(Float4 a, Float4 b) {
 inline Mask4 operator>(Float4 a, Float4 b) {
   return eachLaneTest(a, b, [](float x, float y) { return x > y; });
 }
+inline Mask4 operator<=(Float4 a, Float4 b) {
+  return eachLaneTest(a, b, [](float x, float y) { return x <= y; });
+}
 inline Mask4 operator&&(Mask4 a, Mask4 b) {
   Mask4 r;
   for (int l = 0; l < 4; ++l) r.v[l] = a.v[l] && b.v[l];
   return r;
 }
 inline bool none(Mask4 m) { return !(m.v[0] || m.v[1] || m.v[2] || m.v[3]); }
+inline unsigned laneBits(Mask4 m) {
+  unsigned bits = 0;
+  for (int l = 0; l < 4; ++l) bits |= m.v[l] ? 1u << l : 0u;
+  return bits;
+}
 inline Float4 select(Mask4 m, Float4 a, Float4 b) {
   Float4 r;
   for (int l = 0; l < 4; ++l) r.v[l] = m.v[l] ? a.v[l] : b.v[l];

@@ -138,6 +138,7 @@ struct CellTable {
   std::vector<Vec3> normal;
   std::vector<float> x, y, z;  // the positions again, one array per axis, for the search's four-wide test
   std::vector<float> speed;    // about the film's mean velocity
+  std::vector<Vec3> velocity;  // for the relative velocity of a candidate pair
   std::vector<float> along;    // the coordinate along the bucket's sort direction, ascending within each bucket
   // The occupied buckets in ascending order, and each one's sheet: bucket occupied[o]'s is sheet[o], and
   // bucket b's is sheet[sheetIndex[b]] (a bucket holds a cell of tens to thousands of particles).
@@ -203,6 +204,7 @@ void sortBucketAlongItsSheet(const State& s, const std::vector<float>& speed, si
     table.normal[k] = s.normal.get(i);
     table.x[k] = s.position.x[i], table.y[k] = s.position.y[i], table.z[k] = s.position.z[i];
     table.speed[k] = speed[i];
+    table.velocity[k] = s.velocity.get(i);
   }
 }
 
@@ -227,6 +229,7 @@ CellTable bucketParticles(const Film& film, const std::vector<float>& speed, flo
   table.position.resize(table.particle.size());
   table.normal.resize(table.particle.size());
   table.speed.resize(table.particle.size());
+  table.velocity.resize(table.particle.size());
   for (auto* axis : {&table.x, &table.y, &table.z}) axis->resize(table.particle.size());
   table.along.resize(table.particle.size());
   table.sheetIndex.assign(buckets, 0u);
@@ -307,6 +310,8 @@ struct PartnerRule {
     const Vec3* position = table.position.data();
     const Vec3* normal = table.normal.data();
     const float* speed = table.speed.data();
+    const Vec3* velocity = table.velocity.data();
+    const Vec3 vi = velocity[at];
     const float centre = sheet.sortDirection.dot(xi), speedI = speed[at];
     const float reachSquared = reach * reach, distance = p.collisionDistance, time = frameTime, extra = slack;
     // No search where the slab starts before the bucket (always after `at` in its own bucket, and in most buckets
@@ -321,7 +326,7 @@ struct PartnerRule {
       const Vec3 d = position[k] - xi;
       const float lengthSquared = d.squaredNorm();
       if (!(lengthSquared < reachSquared) || lengthSquared <= 0) return;
-      const float pairReach = distance + contactMargin(time, extra, speedI + speed[k]);
+      const float pairReach = distance + contactMargin(time, extra, (velocity[k] - vi).norm());
       if (!(lengthSquared < pairReach * pairReach)) return;
       const float alongI = ni.dot(d), alongJ = normal[k].dot(d);
       const bool across = alongI * alongI > kAcrossCosineSquared * lengthSquared ||
@@ -330,10 +335,10 @@ struct PartnerRule {
     };
     const float highest = centre + radius;
     size_t k = first;
-    // Four candidates at a time from the table's coordinate arrays: a candidate farther than its pair's reach
-    // (most of them) is dropped without a branch of its own. The test is looser than consider()'s by a thousandth,
-    // for the order in which the lanes sum the squares, so that consider() alone decides: the list is the one the
-    // plain loop makes.
+    // Four candidates at a time from the table's coordinate arrays: a candidate farther than the reach its speeds
+    // about the mean allow (most of them) is dropped without a branch of its own. That reach is never shorter than
+    // consider()'s, which takes the pair's relative velocity, and it is widened by a thousandth for the order in
+    // which the lanes sum the squares: consider() alone decides, and the list is the one the plain loop makes.
     const float *xs = table.x.data(), *ys = table.y.data(), *zs = table.z.data();
     const Float4 x4(xi.x()), y4(xi.y()), z4(xi.z()), highest4(highest), speed4(speedI), distance4(distance),
         time4(time), extra4(extra), cap4(kMaxContactMargin);
@@ -391,8 +396,9 @@ size_t findContacts(const Params& p, float frameTime, float slack, Film& film, c
   const State& s = film.state;
   Topology& topo = film.topology;
   const size_t n = s.size();
-  // Two particles close at most |v_i - v_j| <= |v_i - mean| + |v_j - mean| in a frame: a bubble flying as a whole
-  // needs no wider search than one at rest, and each pair only its own reach.
+  // Two particles close at most by |v_i - v_j| in a frame: a bubble flying as a whole needs no wider search than
+  // one at rest, and each pair only its own reach. The cells are as wide as the largest reach, bounded by
+  // |v_i - v_j| <= |v_i - mean| + |v_j - mean|; the same bound drops most candidates four at a time.
   const std::vector<float> speed = speedsAboutTheMean(film);
   const float fastest = n ? *std::max_element(speed.begin(), speed.end()) : 0.0f;
   const float reach = p.collisionDistance + contactMargin(frameTime, slack, 2.0f * fastest);

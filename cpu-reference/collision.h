@@ -29,7 +29,7 @@ float contactRestDistanceAfter(const Params& params, float previousRest, float s
 // collisionDistance of it during the next frame of frameTime and that are not its one-ring neighbours and lie
 // across the film from it (their separation makes an angle under 45 degrees with one of the two normals, so
 // neighbours along the same sheet are left out), each pair with its rest distance (contactRestDistanceAfter, with
-// the rest distance it had in `history`). A pair may close by h (|v_i - mean| + |v_j - mean|) at its start
+// the rest distance it had in `history`). A pair may close by h |v_i - v_j| at its start
 // velocities, plus slack for what the frame's forces add; the margin is capped at kMaxContactMargin. The list is
 // symmetric and sorted. Returns the number of pairs.
 constexpr float kMaxContactMargin = 0.05f;  // m: a film faster than 2.5 m/s relative to itself bursts anyway

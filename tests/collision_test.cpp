@@ -103,18 +103,13 @@ std::vector<std::vector<uint32_t>> contactsByTestingEveryPair(const Params& p, f
   const Topology& topo = film.topology;
   const size_t n = s.size();
   auto inFilm = [&](size_t i) { return s.alive[i] && topo.triangleOffset[i + 1] > topo.triangleOffset[i]; };
-  Vec3 mean = Vec3::Zero();
-  size_t living = 0;
-  for (size_t i = 0; i < n; ++i)
-    if (inFilm(i)) mean += s.velocity.get(i), ++living;
-  mean /= static_cast<float>(living);
   std::vector<std::vector<uint32_t>> partners(n);
   for (uint32_t i = 0; i < n; ++i)
     for (uint32_t j = i + 1; j < n; ++j) {
       if (!inFilm(i) || !inFilm(j)) continue;
       const Vec3 d = s.position.get(j) - s.position.get(i);
-      const float speeds = (s.velocity.get(i) - mean).norm() + (s.velocity.get(j) - mean).norm();
-      const float reach = p.collisionDistance + std::min(kMaxContactMargin, frameTime * speeds + slack);
+      const float closing = (s.velocity.get(i) - s.velocity.get(j)).norm();
+      const float reach = p.collisionDistance + std::min(kMaxContactMargin, frameTime * closing + slack);
       const float length = d.squaredNorm();
       if (!(length > 0 && length < reach * reach)) continue;
       const float alongI = s.normal.get(i).dot(d), alongJ = s.normal.get(j).dot(d);

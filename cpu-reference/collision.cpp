@@ -136,10 +136,10 @@ struct CellTable {
   // gathering from the state's arrays, which is most of its time on a large film.
   std::vector<Vec3> position;
   std::vector<Vec3> normal;
-  std::vector<float> x, y, z;  // the positions again, one array per axis, for the search's four-wide test
-  std::vector<float> speed;    // about the film's mean velocity
-  std::vector<Vec3> velocity;  // for the relative velocity of a candidate pair
-  std::vector<float> along;    // the coordinate along the bucket's sort direction, ascending within each bucket
+  std::vector<Vec3> velocity;
+  // The same again, one array per axis, for the search's four-wide test.
+  std::array<std::vector<float>, 3> x, n, v;
+  std::vector<float> along;  // the coordinate along the bucket's sort direction, ascending within each bucket
   // The occupied buckets in ascending order, and each one's sheet: bucket occupied[o]'s is sheet[o], and
   // bucket b's is sheet[sheetIndex[b]] (a bucket holds a cell of tens to thousands of particles).
   std::vector<uint32_t> occupied;
@@ -180,10 +180,9 @@ size_t bucketCount(const Film& film, float cellSize) {
   return buckets;
 }
 
-// Fills the table's entries [begin, end) of one bucket: their positions, normals and speeds, the bucket's sheet,
+// Fills the table's entries [begin, end) of one bucket: their positions, normals and velocities, the bucket's sheet,
 // and the order along its sort direction (ties by id keep the table the same on every run).
-void sortBucketAlongItsSheet(const State& s, const std::vector<float>& speed, size_t begin, size_t end,
-                             BucketSheet& sheet, CellTable& table) {
+void sortBucketAlongItsSheet(const State& s, size_t begin, size_t end, BucketSheet& sheet, CellTable& table) {
   for (size_t k = begin; k < end; ++k) {
     table.position[k] = s.position.get(table.particle[k]);
     table.normal[k] = s.normal.get(table.particle[k]);
@@ -202,13 +201,16 @@ void sortBucketAlongItsSheet(const State& s, const std::vector<float>& speed, si
     table.along[k] = order[k - begin].first;
     table.position[k] = s.position.get(i);
     table.normal[k] = s.normal.get(i);
-    table.x[k] = s.position.x[i], table.y[k] = s.position.y[i], table.z[k] = s.position.z[i];
-    table.speed[k] = speed[i];
     table.velocity[k] = s.velocity.get(i);
+    for (int a = 0; a < 3; ++a) {
+      table.x[a][k] = table.position[k][a];
+      table.n[a][k] = table.normal[k][a];
+      table.v[a][k] = table.velocity[k][a];
+    }
   }
 }
 
-CellTable bucketParticles(const Film& film, const std::vector<float>& speed, float cellSize) {
+CellTable bucketParticles(const Film& film, float cellSize) {
   const State& s = film.state;
   const size_t n = s.size();
   CellTable table;
@@ -228,9 +230,9 @@ CellTable bucketParticles(const Film& film, const std::vector<float>& speed, flo
     if (inFilm(film, i)) table.particle[fill[bucket[i]]++] = i;
   table.position.resize(table.particle.size());
   table.normal.resize(table.particle.size());
-  table.speed.resize(table.particle.size());
   table.velocity.resize(table.particle.size());
-  for (auto* axis : {&table.x, &table.y, &table.z}) axis->resize(table.particle.size());
+  for (auto* arrays : {&table.x, &table.n, &table.v})
+    for (std::vector<float>& axis : *arrays) axis.resize(table.particle.size());
   table.along.resize(table.particle.size());
   table.sheetIndex.assign(buckets, 0u);
   for (uint32_t b = 0; b < buckets; ++b) {
@@ -242,7 +244,7 @@ CellTable bucketParticles(const Film& film, const std::vector<float>& speed, flo
 #pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelPass)
   for (size_t o = 0; o < table.occupied.size(); ++o) {
     const uint32_t b = table.occupied[o];
-    sortBucketAlongItsSheet(s, speed, table.offset[b], table.offset[b + 1], table.sheet[o], table);
+    sortBucketAlongItsSheet(s, table.offset[b], table.offset[b + 1], table.sheet[o], table);
   }
   return table;
 }
@@ -309,10 +311,9 @@ struct PartnerRule {
     const float* along = table.along.data();
     const Vec3* position = table.position.data();
     const Vec3* normal = table.normal.data();
-    const float* speed = table.speed.data();
     const Vec3* velocity = table.velocity.data();
     const Vec3 vi = velocity[at];
-    const float centre = sheet.sortDirection.dot(xi), speedI = speed[at];
+    const float centre = sheet.sortDirection.dot(xi);
     const float reachSquared = reach * reach, distance = p.collisionDistance, time = frameTime, extra = slack;
     // No search where the slab starts before the bucket (always after `at` in its own bucket, and in most buckets
     // of a curved or folded sheet, whose radius is the reach).
@@ -321,8 +322,6 @@ struct PartnerRule {
                              ? begin
                              : static_cast<size_t>(std::lower_bound(along + begin, along + end, lowest) - along);
     auto consider = [&](size_t k) {
-      // Squared lengths throughout: most candidates are the film's own in-plane neighbours, rejected here
-      // without a square root.
       const Vec3 d = position[k] - xi;
       const float lengthSquared = d.squaredNorm();
       if (!(lengthSquared < reachSquared) || lengthSquared <= 0) return;
@@ -335,23 +334,29 @@ struct PartnerRule {
     };
     const float highest = centre + radius;
     size_t k = first;
-    // Four candidates at a time from the table's coordinate arrays: a candidate farther than the reach its speeds
-    // about the mean allow (most of them) is dropped without a branch of its own. That reach is never shorter than
-    // consider()'s, which takes the pair's relative velocity, and it is widened by a thousandth for the order in
-    // which the lanes sum the squares: consider() alone decides, and the list is the one the plain loop makes.
-    const float *xs = table.x.data(), *ys = table.y.data(), *zs = table.z.data();
-    const Float4 x4(xi.x()), y4(xi.y()), z4(xi.z()), highest4(highest), speed4(speedI), distance4(distance),
-        time4(time), extra4(extra), cap4(kMaxContactMargin);
+    // Four candidates at a time from the table's arrays per axis: the same tests as consider()'s, but each a
+    // thousandth looser for the order in which the lanes sum, so that consider() alone decides and the list is the
+    // one the plain loop makes. Most candidates are the film's own neighbours along the sheet, dropped here
+    // without a branch of their own.
+    const std::array<Float4, 3> x4{xi.x(), xi.y(), xi.z()}, n4{ni.x(), ni.y(), ni.z()}, v4{vi.x(), vi.y(), vi.z()};
+    const Float4 highest4(highest), distance4(distance), time4(time), extra4(extra), cap4(kMaxContactMargin),
+        loose(1.001f), acrossLoose(kAcrossCosineSquared * 0.999f);
+    auto load = [&](const std::array<std::vector<float>, 3>& axes, int a) { return Float4::load(axes[a].data() + k); };
     for (; k + 4 <= end; k += 4) {
       const Mask4 inSlab = Float4::load(along + k) <= highest4;
-      const Float4 dx = Float4::load(xs + k) - x4, dy = Float4::load(ys + k) - y4, dz = Float4::load(zs + k) - z4;
-      const Float4 lengthSquared = dx * dx + dy * dy + dz * dz;
-      const Float4 pairReach = distance4 + min(cap4, time4 * (speed4 + Float4::load(speed + k)) + extra4);
-      const unsigned slab = laneBits(inSlab);
-      for (unsigned near = laneBits(inSlab && lengthSquared < pairReach * pairReach * Float4(1.001f)); near;
-           near &= near - 1)
+      const std::array<Float4, 3> d{load(table.x, 0) - x4[0], load(table.x, 1) - x4[1], load(table.x, 2) - x4[2]};
+      const std::array<Float4, 3> w{load(table.v, 0) - v4[0], load(table.v, 1) - v4[1], load(table.v, 2) - v4[2]};
+      const Float4 lengthSquared = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+      const Float4 closing = sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+      const Float4 pairReach = distance4 + min(cap4, time4 * closing + extra4);
+      const Float4 alongI = n4[0] * d[0] + n4[1] * d[1] + n4[2] * d[2];
+      const Float4 alongJ = load(table.n, 0) * d[0] + load(table.n, 1) * d[1] + load(table.n, 2) * d[2];
+      const Float4 acrossBound = acrossLoose * lengthSquared;
+      const Mask4 candidate = inSlab && lengthSquared < pairReach * pairReach * loose &&
+                              (alongI * alongI > acrossBound || alongJ * alongJ > acrossBound);
+      for (unsigned near = laneBits(candidate); near; near &= near - 1)
         consider(k + static_cast<size_t>(std::countr_zero(near)));
-      if (slab != 0xfu) return;  // the slab ends within these four
+      if (laneBits(inSlab) != 0xfu) return;  // the slab ends within these four
     }
     for (; k < end && along[k] <= highest; ++k) consider(k);
   }
@@ -404,7 +409,7 @@ size_t findContacts(const Params& p, float frameTime, float slack, Film& film, c
   const float reach = p.collisionDistance + contactMargin(frameTime, slack, 2.0f * fastest);
   std::vector<std::vector<uint32_t>> lists(n);
   if (reach > 0 && p.collisionStiffness > 0) {
-    const CellTable table = bucketParticles(film, speed, reach);
+    const CellTable table = bucketParticles(film, reach);
     const PartnerRule rule{p, topo, frameTime, slack, reach};
     // Each particle lists the partners it owns (each pair once, half the distance tests; listPartnersIn) from the
     // read-only table: parallel over the buckets, and the same lists in any order. The particles of a cell

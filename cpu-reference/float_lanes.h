@@ -60,6 +60,7 @@ inline Mask4 operator<(Float4 a, Float4 b) { return {_mm_cmplt_ps(a.v, b.v)}; }
 inline Mask4 operator>(Float4 a, Float4 b) { return {_mm_cmpgt_ps(a.v, b.v)}; }
 inline Mask4 operator<=(Float4 a, Float4 b) { return {_mm_cmple_ps(a.v, b.v)}; }
 inline Mask4 operator&&(Mask4 a, Mask4 b) { return {_mm_and_ps(a.v, b.v)}; }
+inline Mask4 operator||(Mask4 a, Mask4 b) { return {_mm_or_ps(a.v, b.v)}; }
 inline bool none(Mask4 m) { return _mm_movemask_ps(m.v) == 0; }
 // Bit l set where lane l is true.
 inline unsigned laneBits(Mask4 m) { return static_cast<unsigned>(_mm_movemask_ps(m.v)); }
@@ -136,6 +137,11 @@ inline Mask4 operator<=(Float4 a, Float4 b) {
 inline Mask4 operator&&(Mask4 a, Mask4 b) {
   Mask4 r;
   for (int l = 0; l < 4; ++l) r.v[l] = a.v[l] && b.v[l];
+  return r;
+}
+inline Mask4 operator||(Mask4 a, Mask4 b) {
+  Mask4 r;
+  for (int l = 0; l < 4; ++l) r.v[l] = a.v[l] || b.v[l];
   return r;
 }
 inline bool none(Mask4 m) { return !(m.v[0] || m.v[1] || m.v[2] || m.v[3]); }

@@ -43,6 +43,15 @@ void addRenderOptions(CLI::App& command, RenderOutputOptions& o) {
           "follow (default): keep the film framed at half the image height as it grows and drifts; fixed: the "
           "scene's camera as it is")
       ->check(CLI::IsMember({"follow", "fixed"}));
+  command
+      .add_option("--samples", o.samples,
+                  "multisample anti-aliasing, samples per pixel (1: none); default 4, 1 for live on a CPU driver")
+      ->check(CLI::IsMember({1, 2, 4, 8}));
+}
+
+int samplesFor(const RenderOutputOptions& options, const std::string& deviceType, bool live) {
+  if (options.samples > 0) return options.samples;
+  return live && deviceType == "CPU" ? 1 : options.image.samples;
 }
 
 EnvironmentImage loadEnvironment(const std::filesystem::path& path) {
@@ -186,9 +195,11 @@ RunRenderer::RunRenderer(const RenderOutputOptions& options, const std::filesyst
                                e.what());
     }
   }
-  renderer_ = std::make_unique<Renderer>(context, options.image, loadEnvironment(options.environment));
-  std::printf("render: %dx%d %s on %s, film read %s\n", options.image.width, options.image.height,
-              colouringName(options.image.colouring), context->info().name.c_str(),
+  RenderOptions image = options.image;
+  image.samples = samplesFor(options, context->info().type, false);
+  renderer_ = std::make_unique<Renderer>(context, image, loadEnvironment(options.environment));
+  std::printf("render: %dx%d %s, %d samples per pixel, on %s, film read %s\n", image.width, image.height,
+              colouringName(image.colouring), image.samples, context->info().name.c_str(),
               readInPlace_ ? "in place from the Vulkan stepper's buffers" : "from the CPU state, uploaded each frame");
   if (!options.video.empty()) {
     if (ffmpegAvailable()) {

@@ -21,6 +21,7 @@ namespace gb {
 struct RenderOutputOptions {
   bool enabled = false;               // --render
   RenderOptions image;                // size and colouring (host/renderer.h)
+  int samples = 0;                    // --samples: MSAA samples per pixel; 0: the command's own choice (samplesFor)
   int pngEvery = 1;                   // write render_NNNNN.png every N frames (0: none)
   std::string video = "render.mp4";   // in the output folder, all frames; empty: none. Needs ffmpeg
   std::filesystem::path environment;  // equirectangular PNG the film reflects; empty: the built-in sky
@@ -28,8 +29,15 @@ struct RenderOutputOptions {
   bool followCamera = true;           // --camera follow (default): keep the film framed; fixed: `camera` as is
 };
 
-// Adds --render, --width, --height, --colouring, --render-every, --video, --environment, --camera to a command.
+// Adds --render, --width, --height, --colouring, --render-every, --video, --environment, --camera, --samples to a
+// command.
 void addRenderOptions(CLI::App& command, RenderOutputOptions& options);
+
+// The MSAA samples per pixel to draw with on `device` (its VulkanContext type, "CPU" for lavapipe): --samples when
+// given; else the image's own (4), except for a live show on a CPU driver, which draws without multisampling. On
+// lavapipe four samples double a frame's render time (docs/performance.md), and a live show there is scaled up
+// from a smaller image anyway, so its edges are soft whatever the samples.
+int samplesFor(const RenderOutputOptions& options, const std::string& deviceType, bool live);
 
 // The environment to reflect: the built-in outdoor sky, or an equirectangular PNG (sRGB, 2:1) converted to linear
 // radiance. Throws naming the file when it cannot be read or is not 2:1.

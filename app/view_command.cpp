@@ -161,6 +161,31 @@ std::string liveFigures(const RealTimePacer& pacer, long shown, std::chrono::ste
                 100.0 * pacer.renderScale(), pacer.sweeps(), pacer.atFloor() ? " (floor)" : "");
   return text;
 }
+// The show's figures while a film is on the wands or in the air. An empty stage after a burst draws and keeps time
+// easily: figures over the whole show would hide how it runs while there is something to see.
+struct FilmShownTally {
+  long presented = 0, simulated = 0, sweeps = 0;
+  double wallSeconds = 0;
+
+  void add(int frames, int sweepsTaken, double seconds) {
+    ++presented;
+    simulated += frames;
+    sweeps += static_cast<long>(sweepsTaken) * frames;
+    wallSeconds += seconds;
+  }
+  [[nodiscard]] std::string describe(double frameTime) const {
+    if (presented == 0) return "no film was shown";
+    char text[200];
+    std::snprintf(text, sizeof text,
+                  "while a film was shown: %ld frames presented in %.2f s (%.1f frames/s), real time x%.2f, %.1f "
+                  "sweeps a frame",
+                  presented, wallSeconds, static_cast<double>(presented) / std::max(wallSeconds, 1e-9),
+                  static_cast<double>(simulated) * frameTime / std::max(wallSeconds, 1e-9),
+                  static_cast<double>(sweeps) / static_cast<double>(std::max(simulated, 1L)));
+    return text;
+  }
+};
+
 // A camera that was unplugged is looked for again this often (s of wall time); a recording or a file that
 // ended stays ended, the wands at rest, until R restarts it.
 constexpr double kReopenCameraEvery = 2.0;
@@ -189,8 +214,9 @@ int runView(ViewOptions o) try {
   RunOptions& run = o.run;
   run.tool.kind = o.tool == "ring" ? ToolKind::Ring : ToolKind::TwoWands;
   ShowControl show(run.osc);
-  const RenderOptions& image = run.render.image;
+  RenderOptions image = run.render.image;
   Window window("giantbubble", image.width, image.height, run.device);
+  image.samples = samplesFor(run.render, window.context()->info().type, true);
   const InterruptCatcher interrupts;  // Ctrl-C ends the show as Esc does, with its totals
   Renderer renderer(window.context(), image, loadEnvironment(run.render.environment));
   PerformerWaitScreen waiting(window, renderer);
@@ -203,9 +229,9 @@ int runView(ViewOptions o) try {
   window.camera() = run.render.camera;
   std::unique_ptr<Stepper> stepper = viewStepper(o.backend, window.context());
   const bool readInPlace = dynamic_cast<VulkanStepper*>(stepper.get()) != nullptr;
-  std::printf("live: %s on %s (validation layer %s), simulation on %s\n", colouringName(image.colouring),
-              window.context()->info().name.c_str(), window.context()->validationEnabled() ? "on" : "off",
-              stepper->name().c_str());
+  std::printf("live: %s, %d samples per pixel, on %s (validation layer %s), simulation on %s\n",
+              colouringName(image.colouring), image.samples, window.context()->info().name.c_str(),
+              window.context()->validationEnabled() ? "on" : "off", stepper->name().c_str());
   double t = 0;
   WandState wands = input->at(t).wands;
   auto sim = std::make_unique<Simulation>(run.params, run.tool, wands, std::move(stepper));
@@ -221,6 +247,8 @@ int runView(ViewOptions o) try {
   RealTimePacer pacer(
       {run.params.frameTime, sim->solverIterations(), o.minSweeps, 4, o.fixedStep ? 1.0 : o.minRenderScale}, start);
   auto lastTitle = start;
+  auto lastPresented = start;
+  FilmShownTally filmShown;
   for (;;) {
     WindowKeys keys = window.poll();
     addScriptedKeys(o.keys, shown, keys);
@@ -345,6 +373,9 @@ int runView(ViewOptions o) try {
     window.present(renderer, renderFrameOf(*sim, wands, wire, window.camera(), readInPlace, deviceFilm));
     const auto now = std::chrono::steady_clock::now();
     pacer.record(due, simMs, std::chrono::duration<double, std::milli>(now - renderStart).count());
+    if (filmGoneSince < 0 && !paused)
+      filmShown.add(due, sim->solverIterations(), std::chrono::duration<double>(now - lastPresented).count());
+    lastPresented = now;
     if (now - lastTitle > std::chrono::seconds(1)) {  // the show's figures in the title bar, once a second
       window.setTitle(liveFigures(pacer, shown, start, now));
       lastTitle = now;
@@ -360,6 +391,7 @@ int runView(ViewOptions o) try {
       "live: presented %ld frames in %.2f s (%.1f frames/s), %ld dips, %zu validation errors, %ld recoveries "
       "from instability\n",
       shown, seconds, static_cast<double>(shown) / std::max(seconds, 1e-9), dips, errors, recoveries);
+  std::printf("live: %s\n", filmShown.describe(run.params.frameTime).c_str());
   return errors == 0 ? 0 : 4;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "error: %s\n", e.what());

@@ -604,5 +604,17 @@ TEST(RenderOutput, EnvironmentPngIsDecodedToLinearRadiance) {
   }
 }
 
+TEST(RenderOutput, LiveOnACpuDriverDrawsWithoutMultisamplingUnlessAsked) {
+  // Exact: a choice, not a measurement. Four samples double lavapipe's render of a live frame (docs/performance.md),
+  // so a live show on a CPU driver draws one; a rendered run keeps the image's four, and --samples always wins.
+  RenderOutputOptions o;
+  EXPECT_EQ(samplesFor(o, "CPU", true), 1);
+  EXPECT_EQ(samplesFor(o, "CPU", false), 4);
+  EXPECT_EQ(samplesFor(o, "discrete GPU", true), 4);
+  o.samples = 2;
+  EXPECT_EQ(samplesFor(o, "CPU", true), 2);
+  EXPECT_EQ(samplesFor(o, "discrete GPU", false), 2);
+}
+
 }  // namespace
 }  // namespace gb

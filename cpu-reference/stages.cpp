@@ -87,7 +87,8 @@ float treeSum(std::vector<float> v) {
 float elasticity(const Params& p, float thickness, float lifetime) {
   const float x = thickness / p.elasticityThickness;                                      // e_i / k
   if (lifetime < p.marangoniLifetime) return p.elasticityWeight * 2.0f * x / (x + 2.0f);  // Marangoni
-  return p.elasticityWeight * 4.0f * x / ((x + 2.0f) * (x + 2.0f));                       // Gibbs
+  const float g = std::max(x, p.gibbsFloorThickness / p.elasticityThickness);             // held below the floor
+  return p.elasticityWeight * 4.0f * g / ((g + 2.0f) * (g + 2.0f));                       // Gibbs
 }
 
 float filmTension(const Params& p, float thickness) {

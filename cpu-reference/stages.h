@@ -51,8 +51,9 @@ float triangleSignedVolume(const Topology& topo, const State& s, size_t t, const
 float treeSum(std::vector<float> values);
 
 // ---- Stage 3: film state (Section 5.1) ---------------------------------------------------------------
-// Eq. (4): elasticity from thickness e (m) and lifetime (s). Marangoni while young, Gibbs after.
-// The paper's formulas are divided by k so that w_E carries the unit N/m (docs/model.md).
+// Eq. (4): elasticity from thickness e (m) and lifetime (s). Marangoni while young, Gibbs after, the Gibbs
+// branch held at its value at Params::gibbsFloorThickness for thinner film. The paper's formulas are divided by k so
+// that w_E carries the unit N/m (docs/model.md).
 float elasticity(const Params& p, float thickness, float lifetime);
 
 // Physical model: the film's tension 2 gamma (N/m), gamma following the thickness e through Gibbs-Marangoni

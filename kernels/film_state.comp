@@ -8,7 +8,8 @@
 float elasticityOf(float thicknessValue, float age) {
   const float x = thicknessValue / params.elasticityThickness;
   if (age < params.marangoniLifetime) return params.elasticityWeight * 2.0 * x / (x + 2.0);
-  return params.elasticityWeight * 4.0 * x / ((x + 2.0) * (x + 2.0));
+  const float g = max(x, params.gibbsFloorThickness / params.elasticityThickness);  // held below the floor
+  return params.elasticityWeight * 4.0 * g / ((g + 2.0) * (g + 2.0));
 }
 
 // filmTension of cpu-reference/stages.cpp: 2 gamma, gamma from the thickness through Gibbs-Marangoni elasticity.

@@ -28,6 +28,9 @@ struct Params {
   // --- Surface tension and elasticity (Section 5.1, Eqs. 3-4) ---
   float elasticityWeight GB_DEFAULT(12.5f);     // w_E, Table 2 [12.0, 13.0]; N/m, the stiffness scale of Eq. (4)
   float elasticityThickness GB_DEFAULT(4e-6f);  // k, "typically 4 um" (m)
+  float gibbsFloorThickness GB_DEFAULT(0.0f);   // thinner film keeps Eq. (4)'s Gibbs elasticity at this thickness
+                                                // (m); 0: the paper's formula all the way down. 1.5e-6 keeps the
+                                                // thinnest film from being the softest (docs/model.md)
   float areaWeight GB_DEFAULT(0.035f);          // w_e, Table 2 [0.02, 0.05]; initial thickness is w_e x 100 um
   float marangoniLifetime GB_DEFAULT(0.2f);     // "life time < 10": ten paper steps of 0.02 s (s)
   float springPrestrain GB_DEFAULT(0.1f);       // springs rest this fraction shorter than at creation: taut film

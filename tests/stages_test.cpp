@@ -26,6 +26,25 @@ TEST(Elasticity, MarangoniWhileYoungGibbsAfterEq4) {
   EXPECT_LT(elasticity(p, 40e-6f, 1.0f), elasticity(p, 8e-6f, 1.0f));
 }
 
+TEST(Elasticity, GibbsHoldsBelowItsFloorAndTheMarangoniBranchDoesNot) {
+  Params p;
+  p.elasticityWeight = 12.5f;
+  p.elasticityThickness = 4e-6f;
+  p.marangoniLifetime = 0.2f;
+  p.gibbsFloorThickness = 1.5e-6f;
+  // x = 0.375 at the floor: 4 w_E x / (x + 2)^2 = 18.75 / 5.640625. Film thinner than the floor keeps it exactly
+  // (the same float formula at the same x); above the floor Eq. (4) is untouched.
+  const float atFloor = 12.5f * 4.0f * 0.375f / (2.375f * 2.375f);
+  EXPECT_NEAR(elasticity(p, 1.5e-6f, 1.0f), atFloor, 1e-5f);
+  EXPECT_EQ(elasticity(p, 0.3e-6f, 1.0f), elasticity(p, 1.5e-6f, 1.0f));
+  EXPECT_EQ(elasticity(p, 20e-9f, 1.0f), elasticity(p, 1.5e-6f, 1.0f));
+  EXPECT_NEAR(elasticity(p, 4e-6f, 1.0f), 50.0f / 9.0f, 1e-5f);
+  // Young film follows Marangoni's branch all the way down; a floor of 0 is the paper's formula.
+  EXPECT_LT(elasticity(p, 0.3e-6f, 0.1f), elasticity(p, 1.5e-6f, 0.1f));
+  p.gibbsFloorThickness = 0.0f;
+  EXPECT_NEAR(elasticity(p, 0.4e-6f, 1.0f), 12.5f * 4.0f * 0.1f / (2.1f * 2.1f), 1e-5f);
+}
+
 TEST(FilmState, ThicknessIsLiquidOverVoronoiArea) {
   const Params p;
   Film film = test::makeHexagon(p);

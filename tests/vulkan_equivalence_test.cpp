@@ -208,6 +208,43 @@ PassComparison comparePassPositions(const Film& before, const Film& cpuFilm, con
   return {worstUlpRatio(cpuFilm.state.position, gpuFilm.state.position, positionScale, 8), moved};
 }
 
+// The film state stage with Eq. (4)'s Gibbs branch held below a floor (Params::gibbsFloorThickness) at the film's
+// median thickness, every particle past its Marangoni lifetime: half the film takes the floored value, half the
+// formula. The stage bound, 1e-5 relative.
+TEST(VulkanEquivalence, TheGibbsFloorMatchesTheCpuReference) {
+  GB_REQUIRE_VULKAN(device);
+  const MovingFilm input;
+  std::vector<float> thickness;
+  for (size_t i = 0; i < input.film.state.size(); ++i)
+    if (input.film.state.thickness[i] > 0) thickness.push_back(input.film.state.thickness[i]);
+  std::nth_element(thickness.begin(), thickness.begin() + thickness.size() / 2, thickness.end());
+  Params p = input.params;
+  p.gibbsFloorThickness = thickness[thickness.size() / 2];
+  p.marangoniLifetime = 0.0f;
+  Film cpuFilm = input.film, gpuFilm = input.film;
+  CpuStepper cpu;
+  VulkanStepper gpu(device);
+  cpu.load(p, cpuFilm);
+  gpu.load(p, gpuFilm);
+  for (Stage stage : {Stage::Geometry, Stage::FilmState}) {
+    cpu.runStage(stage, input.uniforms);
+    gpu.runStage(stage, input.uniforms);
+  }
+  cpu.store(cpuFilm);
+  gpu.store(gpuFilm);
+  const float floored = elasticity(p, p.gibbsFloorThickness, 1.0f);
+  const size_t n = cpuFilm.state.size();
+  size_t held = 0;
+  for (size_t i = 0; i < n; ++i) held += cpuFilm.state.elasticity[i] == floored ? 1 : 0;
+  EXPECT_GT(held, n / 5) << "the floor must hold part of the film for the test to mean something";
+  EXPECT_LT(held, 4 * n / 5) << "and leave part of it to the formula";
+  const double error = worstRelativeError(cpuFilm.state.elasticity, gpuFilm.state.elasticity, kCancellationFloor, 1);
+  std::printf("film state with a Gibbs floor at %.2f um: %zu of %zu particles held, worst relative error %.2e\n",
+              1e6 * p.gibbsFloorThickness, held, n, error);
+  EXPECT_LT(error, kStageTolerance);
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
 // The implicit step's passes, each alone on the same input: the stages before it run on the CPU first, then
 // both backends take that film and run the pass (same 1e-5 relative bound, floor as above).
 TEST(VulkanEquivalence, EveryImplicitPassAloneMatchesTheCpuReference) {

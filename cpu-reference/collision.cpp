@@ -275,10 +275,10 @@ size_t bucketsAround(const CellTable& table, uint32_t home, const Cell& c, std::
   return count;
 }
 
-// How much closer than the collision distance a pair is searched for, at `speeds` the sum of the pair's speeds
-// about the film's mean velocity (findContacts, collision.h).
-float contactMargin(float frameTime, float slack, float speeds) {
-  return std::min(kMaxContactMargin, frameTime * speeds + slack);
+// How much closer than the collision distance a pair is searched for, at `closing` a bound on the speed at which
+// the pair closes (its relative speed; twice the fastest speed about the mean for the cells' width).
+float contactMargin(float frameTime, float slack, float closing) {
+  return std::min(kMaxContactMargin, frameTime * closing + slack);
 }
 
 // The pair rule of findContacts (collision.h) for the particles of the table.
@@ -403,7 +403,7 @@ size_t findContacts(const Params& p, float frameTime, float slack, Film& film, c
   const size_t n = s.size();
   // Two particles close at most by |v_i - v_j| in a frame: a bubble flying as a whole needs no wider search than
   // one at rest, and each pair only its own reach. The cells are as wide as the largest reach, bounded by
-  // |v_i - v_j| <= |v_i - mean| + |v_j - mean|; the same bound drops most candidates four at a time.
+  // |v_i - v_j| <= |v_i - mean| + |v_j - mean| <= twice the fastest speed about the mean.
   const std::vector<float> speed = speedsAboutTheMean(film);
   const float fastest = n ? *std::max_element(speed.begin(), speed.end()) : 0.0f;
   const float reach = p.collisionDistance + contactMargin(frameTime, slack, 2.0f * fastest);

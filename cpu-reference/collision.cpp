@@ -497,6 +497,15 @@ Nearest nearestParticle(const State& s, const Vec3& x) {
   return nearest;
 }
 
+bool insideClosedFilm(const Film& film, const Vec3& x) {
+  const State& s = film.state;
+  Vec3 lower = Vec3::Constant(std::numeric_limits<float>::infinity()), upper = -lower;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.alive[i]) lower = lower.cwiseMin(s.position.get(i)), upper = upper.cwiseMax(s.position.get(i));
+  if ((x.array() < lower.array()).any() || (x.array() > upper.array()).any()) return false;
+  return windingNumber(film, x) > 0.5;
+}
+
 double windingNumber(const Film& film, const Vec3& x) {
   const Topology& topo = film.topology;
   double solidAngle = 0;

@@ -53,6 +53,11 @@ Nearest nearestParticle(const State& state, const Vec3& x);
 // 4 pi (Van Oosterom and Strackee 1983). 1 inside a bubble with outward normals, 0 outside, robust to folds.
 double windingNumber(const Film& film, const Vec3& x);
 
+// Whether x lies inside a closed film: its winding number is over 1/2. Outside the box of the film's living
+// particles a closed surface winds 0 times around a point, so the sum over every triangle (a millisecond on the
+// default bubble, each frame for each wand) is taken only inside it.
+bool insideClosedFilm(const Film& film, const Vec3& x);
+
 struct Impact {
   size_t particle = 0;  // the faster particle of the hardest pair
   float number = 0.0f;  // its impact number; 0 when no pair is in contact and closing

@@ -208,7 +208,7 @@ void Simulation::burstOnWandTouch() {
     const Nearest nearest = nearestParticle(film_.state, tips[w]);
     if (!wandArmed_[w]) {
       wandArmed_[w] = nearest.distance > params_.pinchDistance;  // pulled clear of the bubble it let go of
-    } else if (nearest.distance < params_.collisionDistance || windingNumber(film_, tips[w]) > 0.5) {
+    } else if (nearest.distance < params_.collisionDistance || insideClosedFilm(film_, tips[w])) {
       startCrack(burst_, film_, nearest.particle, time_, "wand");
       return;
     }

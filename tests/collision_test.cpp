@@ -274,6 +274,10 @@ TEST(Collision, WindingNumberTellsInsideFromOutsideOfABubble) {
   EXPECT_NEAR(windingNumber(sphere, Vec3(0.3f, 1.2f, 0.1f)), 1.0, 1e-6);
   EXPECT_NEAR(windingNumber(sphere, Vec3(2, 1, 0)), 0.0, 1e-6);
   EXPECT_NEAR(windingNumber(sphere, Vec3(0, 1.6f, 0)), 0.0, 1e-6);
+  // Exact: inside (within its box), outside within its box (a corner), outside the box.
+  EXPECT_TRUE(insideClosedFilm(sphere, Vec3(0.3f, 1.2f, 0.1f)));
+  EXPECT_FALSE(insideClosedFilm(sphere, Vec3(0.45f, 1.45f, 0.0f)));
+  EXPECT_FALSE(insideClosedFilm(sphere, Vec3(2, 1, 0)));
 }
 
 }  // namespace

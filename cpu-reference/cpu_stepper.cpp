@@ -128,14 +128,20 @@ void CpuStepper::runSweeps(const StepUniforms& u, int from, int to) {
   const Topology& topo = film_->topology;
   const SweepRuns& runs = sweepRuns_;
   Bubble bubble;
-  // One parallel region for the sweeps: the colours still wait for each other (the barrier closing each
-  // omp for), but the threads are woken once, not once per colour and sweep.
+  const auto triangles = static_cast<long>(topo.triangleCount());
+  if (u.closed) triangleVolumes_.resize(topo.triangleCount());
+    // One parallel region for the sweeps: the colours still wait for each other (the barrier closing each
+    // omp for), but the threads are woken once, not once per colour and sweep.
 #pragma omp parallel
   for (int sweep = from; sweep < to; ++sweep) {
-    if (u.closed) {
+    if (u.closed) {  // Boyle's pressure at this iterate's volume, as volume() takes it: the triangles on every
+                     // thread, their sum on one, in the fixed order both backends add in
+#pragma omp for schedule(static)
+      for (long t = 0; t < triangles; ++t)
+        triangleVolumes_[t] = triangleSignedVolume(topo, s, static_cast<size_t>(t), u.volumeOrigin);
 #pragma omp single
-      {  // Boyle's pressure at this iterate's volume (the volume's own loop runs on this one thread)
-        bubble.volume = lastVolume_ = volume(*film_, u.volumeOrigin);
+      {
+        bubble.volume = lastVolume_ = treeSum(triangleVolumes_);
         bubble.pressure = currentPressure(u);
       }
     }

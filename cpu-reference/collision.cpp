@@ -136,8 +136,7 @@ struct CellTable {
   // gathering from the state's arrays, which is most of its time on a large film.
   std::vector<Vec3> position;
   std::vector<Vec3> normal;
-  std::vector<Vec3> velocity;
-  // The same again, one array per axis, for the search's four-wide test.
+  // The positions and normals again, and the velocities, one array per axis for the search's four-wide test.
   std::array<std::vector<float>, 3> x, n, v;
   std::vector<float> along;  // the coordinate along the bucket's sort direction, ascending within each bucket
   // The occupied buckets in ascending order, and each one's sheet: bucket occupied[o]'s is sheet[o], and
@@ -201,11 +200,10 @@ void sortBucketAlongItsSheet(const State& s, size_t begin, size_t end, BucketShe
     table.along[k] = order[k - begin].first;
     table.position[k] = s.position.get(i);
     table.normal[k] = s.normal.get(i);
-    table.velocity[k] = s.velocity.get(i);
     for (int a = 0; a < 3; ++a) {
       table.x[a][k] = table.position[k][a];
       table.n[a][k] = table.normal[k][a];
-      table.v[a][k] = table.velocity[k][a];
+      table.v[a][k] = s.velocity.get(i)[a];
     }
   }
 }
@@ -230,7 +228,6 @@ CellTable bucketParticles(const Film& film, float cellSize) {
     if (inFilm(film, i)) table.particle[fill[bucket[i]]++] = i;
   table.position.resize(table.particle.size());
   table.normal.resize(table.particle.size());
-  table.velocity.resize(table.particle.size());
   for (auto* arrays : {&table.x, &table.n, &table.v})
     for (std::vector<float>& axis : *arrays) axis.resize(table.particle.size());
   table.along.resize(table.particle.size());
@@ -311,8 +308,9 @@ struct PartnerRule {
     const float* along = table.along.data();
     const Vec3* position = table.position.data();
     const Vec3* normal = table.normal.data();
-    const Vec3* velocity = table.velocity.data();
-    const Vec3 vi = velocity[at];
+    const std::array<std::vector<float>, 3>& v = table.v;
+    const auto velocity = [&](size_t k) { return Vec3(v[0][k], v[1][k], v[2][k]); };
+    const Vec3 vi = velocity(at);
     const float centre = sheet.sortDirection.dot(xi);
     const float reachSquared = reach * reach, distance = p.collisionDistance, time = frameTime, extra = slack;
     // No search where the slab starts before the bucket (always after `at` in its own bucket, and in most buckets
@@ -325,7 +323,7 @@ struct PartnerRule {
       const Vec3 d = position[k] - xi;
       const float lengthSquared = d.squaredNorm();
       if (!(lengthSquared < reachSquared) || lengthSquared <= 0) return;
-      const float pairReach = distance + contactMargin(time, extra, (velocity[k] - vi).norm());
+      const float pairReach = distance + contactMargin(time, extra, (velocity(k) - vi).norm());
       if (!(lengthSquared < pairReach * pairReach)) return;
       const float alongI = ni.dot(d), alongJ = normal[k].dot(d);
       const bool across = alongI * alongI > kAcrossCosineSquared * lengthSquared ||

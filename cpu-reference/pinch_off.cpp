@@ -165,27 +165,46 @@ std::vector<uint32_t> ringCap(const State& s, const std::vector<uint32_t>& loop,
   return capTriangles;
 }
 
-// The cap's liquid is not made from nothing: the wet wire lets go of the film with the solution it still holds, so
-// the cap takes a new film's thickness from it, and where the wire runs short, from the loop's own particles (the
-// film's edge, which the cap continues), at most half of what each holds. A cap that still lacks liquid is thinner.
-void takeCapLiquid(const Params& params, const std::vector<uint32_t>& loop, size_t first, Film& film) {
+// The seam (the loop's particles, whose Voronoi areas grew by the seam's triangles, and the cap's new ones) is
+// wetted to the film's mean thickness: a seam thinner than the film around it is where the free bubble cracks
+// first (Algorithm 3). The film's last strips grown at a drying wire and the long triangles of a zip left the seam
+// at a twentieth of the film's thickness, and the bubble then burst within a quarter second in one live show of six
+// (docs/model.md, "Pinch-off"). The liquid is not made from nothing: the wet wire lets go of the film with the
+// solution it still holds, and where it runs short the rest of the film gives it, every particle the same fraction
+// of what it holds (a seam is small beside its bubble: a fraction of a percent), at most half of its liquid: a cap
+// as large as its film (a sliver dipped between closed wands) is then thinner than the film.
+void wetTheSeam(const Params& params, const std::vector<uint32_t>& loop, size_t first, Film& film) {
   State& s = film.state;
-  double wanted = 0;  // initialiseNewParticles gave the cap a new film's thickness over its area
-  for (size_t i = first; i < s.size(); ++i) wanted += s.liquid[i];
-  if (wanted <= 0) return;  // a zipped seam: no new particle
+  std::vector<char> inSeam(s.size(), 0);
+  for (uint32_t i : loop) inSeam[i] = 1;
+  for (size_t i = first; i < s.size(); ++i) {
+    inSeam[i] = 1;
+    s.liquid[i] = 0.0f;  // initialiseNewParticles gave the cap a new film's liquid; it is taken below
+  }
+  double restLiquid = 0, restArea = 0;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.alive[i] && !inSeam[i]) {
+      restLiquid += s.liquid[i];
+      restArea += s.voronoiArea[i];
+    }
+  if (restArea <= 0 || restLiquid <= 0) return;
+  const double filmThickness = restLiquid / restArea;
+  auto shortfall = [&](size_t i) { return std::max(0.0, filmThickness * s.voronoiArea[i] - s.liquid[i]); };
+  double wanted = 0;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (inSeam[i]) wanted += shortfall(i);
+  if (wanted <= 0) return;
   const double fromWire = std::min(wanted, static_cast<double>(film.wireLiquid));
-  double edgeLiquid = 0;
-  for (uint32_t i : loop) edgeLiquid += s.liquid[i];
-  const double fromEdge = std::min(wanted - fromWire, 0.5 * edgeLiquid);
+  const double fromFilm = std::min(wanted - fromWire, 0.5 * restLiquid);
   film.wireLiquid = static_cast<float>(std::max(0.0, film.wireLiquid - fromWire));
-  auto scaleLiquid = [&](size_t i, double factor) {
-    s.liquid[i] = static_cast<float>(s.liquid[i] * factor);
+  const double filled = (fromWire + fromFilm) / wanted;  // of each seam particle's shortfall
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (!s.alive[i]) continue;
+    s.liquid[i] = static_cast<float>(inSeam[i] ? s.liquid[i] + filled * shortfall(i)
+                                               : s.liquid[i] * (1.0 - fromFilm / restLiquid));
     s.mass[i] = particleMass(params, s.voronoiArea[i], s.liquid[i]);  // the physical model weighs the liquid
     updateFilmState(params, 0.0f, s, i);
-  };
-  if (edgeLiquid > 0)
-    for (uint32_t i : loop) scaleLiquid(i, 1.0 - fromEdge / edgeLiquid);
-  for (size_t i = first; i < s.size(); ++i) scaleLiquid(i, (fromWire + fromEdge) / wanted);
+  }
 }
 
 }  // namespace
@@ -235,7 +254,7 @@ bool pinchOff(const Params& params, Film& film) {
   result.state = std::move(grown);
   result.topology = std::move(*closed);
   initialiseNewParticles(params, result, first);
-  takeCapLiquid(params, loop, first, result);
+  wetTheSeam(params, loop, first, result);
   // Outward normals: a closed film encloses a positive volume.
   result.volumeOrigin = centroid(result.state);
   double volume = signedVolume(result, result.volumeOrigin);

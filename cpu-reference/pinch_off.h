@@ -17,11 +17,12 @@ std::vector<uint32_t> boundaryLoop(const Topology& topology);
 // loop[0] -> loop[1] as the film does.
 void orientAgainstLoop(const std::vector<uint32_t>& loop, std::vector<uint32_t>& seam);
 
-// Caps the loop with rings shrunk towards its centroid (about one ring per loop spacing, each with fewer
-// particles) and a particle at the centroid; new springs rest prestrained at their length, new particles get
-// the film's material, their liquid (a new film's thickness) taken from the wire and, where it runs short, from
-// the loop's particles: film + wire liquid is conserved. Sets the reference volume and origin of Eq. (11) and
-// clears the wire flags. Returns false (film unchanged) when the film is already closed.
+// Zips a collapsed loop shut, or caps it with rings shrunk towards its centroid (about one ring per loop spacing,
+// each with fewer particles) and a particle at the centroid; new springs rest prestrained at their length, new
+// particles get the film's material. The seam's particles are wetted to the film's mean thickness with liquid from
+// the wire and, where it runs short, from the rest of the film: film + wire liquid is conserved. Sets the reference
+// volume and origin of Eq. (11) and clears the wire flags. Returns false (film unchanged) when the film is already
+// closed.
 bool pinchOff(const Params& params, Film& film);
 
 }  // namespace gb

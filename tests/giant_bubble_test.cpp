@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <random>
 #include <string>
 
 #include "film_growth.h"
@@ -29,8 +30,11 @@ struct PerformanceRecord {
 };
 
 // The default performance, with `sweeps` solver sweeps (0: the scene's), for `seconds` (0: the scene's duration),
-// with Params::gibbsFloorThickness (negative: the scene's).
-PerformanceRecord performDefaultScene(int sweeps = 0, double seconds = 0, float gibbsFloorThickness = -1) {
+// with Params::gibbsFloorThickness (negative: the scene's). `liveSeed` > 0 steps it as `live` does on a machine
+// that cannot keep up (app/realtime_pacer.h): each step takes 3 to 6 sweeps and covers one or two frames, drawn
+// from a generator seeded with it.
+PerformanceRecord performDefaultScene(int sweeps = 0, double seconds = 0, float gibbsFloorThickness = -1,
+                                      unsigned liveSeed = 0) {
   const Scene scene = resolveScene("default");
   RunOptions run = scene.run;
   EXPECT_EQ(run.input.spec(), "script:giant");
@@ -38,11 +42,19 @@ PerformanceRecord performDefaultScene(int sweeps = 0, double seconds = 0, float 
   if (gibbsFloorThickness >= 0) run.params.gibbsFloorThickness = gibbsFloorThickness;
   const GestureOptions& g = run.gestureOptions;
   Simulation sim(run.params, run.tool, gestureAt(Gesture::Giant, g, 0.0));
+  std::mt19937 live(liveSeed);
   PerformanceRecord r;
   r.firstArea = sim.stats().area;
   const long frames = std::lround((seconds > 0 ? seconds : run.duration) / run.params.frameTime);
-  for (long f = 1; f <= frames; ++f) {
+  for (long f = 1; f <= frames;) {
+    if (liveSeed > 0) {
+      const int stepFrames = std::uniform_int_distribution<int>(1, 2)(live);
+      sim.setSolverIterations(std::uniform_int_distribution<int>(3, 6)(live));
+      sim.setFrameTime(run.params.frameTime * static_cast<float>(stepFrames));
+      f += stepFrames - 1;
+    }
     const WandState wands = gestureAt(Gesture::Giant, g, static_cast<double>(f) * run.params.frameTime);
+    ++f;
     r.peakWandSpeed = std::max({r.peakWandSpeed, static_cast<double>(wands.leftVelocity.norm()),
                                 static_cast<double>(wands.rightVelocity.norm())});
     sim.advanceFrame(wands);
@@ -80,7 +92,8 @@ TEST(GiantBubble, DefaultPerformanceBlowsReleasesAndBurstsABubble) {
   // floor at 5.80 s (5.0 s, where it thinned, before contact pairs entered the list at their separation), fastest
   // film particle 3.5 m/s against the wands' 2.2 m/s, roundness a second after pinch-off 1.19. Session 10, with the
   // scene's Gibbs floor (1.5 um): area 0.63 -> 3.18 m^2, volume 0.53 m^3, pinch-off at 1.86 s, burst by the floor
-  // at 6.66 s, fastest film particle 2.9 m/s, roundness 1.11.
+  // at 6.66 s, fastest film particle 2.9 m/s, roundness 1.11. Session 11, the seam wetted at pinch-off: area 3.19
+  // m^2, volume 0.53 m^3, pinch-off at 1.86 s, burst by the floor at 6.78 s, 2.9 m/s, roundness 1.13.
   EXPECT_GE(r.peakArea, 3.0 * r.firstArea) << "the bag is not giant: peak area " << r.peakArea << " m^2";
   EXPECT_GE(r.peakVolume, 0.5) << "peak volume " << r.peakVolume << " m^3";
   ASSERT_GE(r.pinchTime, 0.0) << "the wands closed but the film never pinched off";
@@ -115,6 +128,21 @@ TEST(GiantBubble, AGibbsFloorLetsTheFreeBubbleLiveWhateverTheSolversSweeps) {
   }
   // And without the floor the same film does burst by thinning at 10 sweeps: the test sees the mechanism.
   EXPECT_EQ(performDefaultScene(10, 3.5, 0.0f).burstCause, "thin");
+}
+
+TEST(GiantBubble, TheFreeBubbleOutlivesItsPinchOffWhateverLiveDoesToTheStep) {
+  // `live` changes the sweeps and the step's length from frame to frame with the machine's load. The pinch-off
+  // seam used to keep the liquid of the film's edge (the last strips, grown as the wire ran dry) over the larger
+  // area of the zip's triangles, 94 nm against the film's microns; the seam then stretched as the bag rounded, and
+  // the bubble burst by thinning within 0.3 s of pinch-off in one show of six in `live` and in the schedule of
+  // seed 5 here (2.12 s; docs/performance.md, session 11). The seam is now wetted to the film's mean thickness
+  // (pinch_off.h). Bound: no burst at all by 3.0 s, 1.1 s after pinch-off (the default test asks 1 s of life).
+  for (unsigned seed : {3u, 5u, 7u}) {
+    const PerformanceRecord r = performDefaultScene(0, 3.0, -1, seed);
+    ASSERT_GE(r.pinchTime, 0.0) << "seed " << seed << ": the film never pinched off";
+    EXPECT_LT(r.burstTime, 0.0) << "seed " << seed << ": the free bubble burst (" << r.burstCause << ") at "
+                                << r.burstTime << " s, " << r.burstTime - r.pinchTime << " s after pinch-off";
+  }
 }
 
 // A built-in scene driven by its own scripted gesture, at `particles` per full-solution film (fewer than the

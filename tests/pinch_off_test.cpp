@@ -56,9 +56,11 @@ double liquidOf(const Film& film) {
   return sum;
 }
 
-// The wands apart: the loop is open, so it gets a cap of new particles, whose liquid must come from somewhere.
-TEST(PinchOff, TheCapTakesItsLiquidFromTheWireAndThenTheFilmsEdge) {
-  for (const float reserve : {1.0f, 0.0f}) {  // a wet wire, and a dry one: the cap then draws on the edge
+// The wands apart: the loop is open, so it gets a cap of new particles, whose liquid must come from somewhere; and
+// the seam (the loop's particles, which gain the cap's triangles, and the cap) is as thick as the film it joins:
+// a thin seam is where the free bubble would crack first.
+TEST(PinchOff, TheSeamIsWettedToTheFilmsThicknessFromTheWireAndThenTheFilm) {
+  for (const float reserve : {1.0f, 0.0f}) {  // a wet wire, and a dry one: the seam then draws on the film
     Params p;
     p.particlesAtFullSolution = 1500;
     p.solutionReserve = reserve;
@@ -67,15 +69,29 @@ TEST(PinchOff, TheCapTakesItsLiquidFromTheWireAndThenTheFilmsEdge) {
     Simulation sim(p, WandTool{}, gestureAt(Gesture::Straight, g, 0.0));
     for (int f = 1; f <= 60; ++f) sim.advanceFrame(gestureAt(Gesture::Straight, g, f * 0.02));
     const size_t before = sim.film().state.size();
+    const std::vector<uint32_t> onLoop = sim.film().topology.boundary;
     const double liquid = liquidOf(sim.film()), wire = sim.film().wireLiquid;
     ASSERT_TRUE(sim.pinch());
-    ASSERT_GT(sim.film().state.size(), before) << "an open loop is capped with new particles";
+    const State& s = sim.film().state;
+    ASSERT_GT(s.size(), before) << "an open loop is capped with new particles";
     // Film + wire liquid conserved to float rounding (~1e-7 per addition over ~2000 particles).
     EXPECT_NEAR(liquidOf(sim.film()), liquid, 1e-5 * liquid) << "reserve " << reserve;
     if (reserve > 0) {
-      EXPECT_LT(sim.film().wireLiquid, wire) << "the cap's liquid comes from the wet wire";
+      EXPECT_LT(sim.film().wireLiquid, wire) << "the seam's liquid comes from the wet wire";
     }
-    for (size_t i = before; i < sim.film().state.size(); ++i) EXPECT_GT(sim.film().state.liquid[i], 0.0f);
+    double restLiquid = 0, restArea = 0;
+    for (size_t i = 0; i < before; ++i)
+      if (!onLoop[i]) {
+        restLiquid += s.liquid[i];
+        restArea += s.voronoiArea[i];
+      }
+    // As thick as the rest of the film on average, to float rounding (the seam is filled to the mean exactly, and
+    // the rest thins by the fraction it gave, well under a percent here).
+    const double filmThickness = restLiquid / restArea;
+    for (size_t i = 0; i < s.size(); ++i) {
+      if (i < before && !onLoop[i]) continue;
+      EXPECT_GE(s.thickness[i], (1.0 - 1e-4) * filmThickness) << "seam particle " << i << ", reserve " << reserve;
+    }
   }
 }
 

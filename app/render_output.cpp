@@ -45,13 +45,13 @@ void addRenderOptions(CLI::App& command, RenderOutputOptions& o) {
       ->check(CLI::IsMember({"follow", "fixed"}));
   command
       .add_option("--samples", o.samples,
-                  "multisample anti-aliasing, samples per pixel (1: none); default 4, 1 for live on a CPU driver")
+                  "multisample anti-aliasing, samples per pixel (1: none); default 4, 1 on a CPU driver (lavapipe)")
       ->check(CLI::IsMember({1, 2, 4, 8}));
 }
 
-int samplesFor(const RenderOutputOptions& options, const std::string& deviceType, bool live) {
+int samplesFor(const RenderOutputOptions& options, const std::string& deviceType) {
   if (options.samples > 0) return options.samples;
-  return live && deviceType == "CPU" ? 1 : options.image.samples;
+  return deviceType == "CPU" ? 1 : options.image.samples;
 }
 
 EnvironmentImage loadEnvironment(const std::filesystem::path& path) {
@@ -196,7 +196,7 @@ RunRenderer::RunRenderer(const RenderOutputOptions& options, const std::filesyst
     }
   }
   RenderOptions image = options.image;
-  image.samples = samplesFor(options, context->info().type, false);
+  image.samples = samplesFor(options, context->info().type);
   renderer_ = std::make_unique<Renderer>(context, image, loadEnvironment(options.environment));
   std::printf("render: %dx%d %s, %d samples per pixel, on %s, film read %s\n", image.width, image.height,
               colouringName(image.colouring), image.samples, context->info().name.c_str(),
@@ -215,6 +215,7 @@ RunRenderer::RunRenderer(const RenderOutputOptions& options, const std::filesyst
 }
 
 void RunRenderer::frame(long index, Simulation& sim, const WandState& wands) {
+  writeDrawnFrame();
   const bool png = options_.pngEvery > 0 && index % options_.pngEvery == 0;
   // The framing eases every frame, drawn or not, so that it moves at the same pace whatever is written.
   const OrbitCamera camera = options_.followCamera
@@ -223,9 +224,17 @@ void RunRenderer::frame(long index, Simulation& sim, const WandState& wands) {
   if (!png && !video_) return;
   const WireFrame wire = sim.wireFrame(wands);
   DeviceFilm deviceFilm;
-  renderer_->render(renderFrameOf(sim, wands, wire, camera, readInPlace_, deviceFilm));
+  renderer_->submit(renderFrameOf(sim, wands, wire, camera, readInPlace_, deviceFilm));
+  drawing_ = index;
+  drawingPng_ = png;
+  if (readInPlace_) writeDrawnFrame();
+}
+
+void RunRenderer::writeDrawnFrame() {
+  if (drawing_ < 0) return;
+  const long index = std::exchange(drawing_, -1);
   const std::vector<uint8_t> rgb = renderer_->readPixels();
-  if (png) {
+  if (drawingPng_) {
     char name[40];
     std::snprintf(name, sizeof name, "render_%05ld.png", index);
     writePng(outDir_ / name, options_.image.width, options_.image.height, rgb);
@@ -252,6 +261,11 @@ void RunRenderer::dropVideo(const std::string& why) {
 }
 
 void RunRenderer::finish() {
+  try {
+    writeDrawnFrame();
+  } catch (const std::exception& e) {  // the device was lost drawing it: the run's other outputs still matter
+    std::fprintf(stderr, "error: render: the last frame: %s\n", e.what());
+  }
   if (!video_) return;
   try {
     video_->close();

@@ -34,10 +34,11 @@ struct RenderOutputOptions {
 void addRenderOptions(CLI::App& command, RenderOutputOptions& options);
 
 // The MSAA samples per pixel to draw with on `device` (its VulkanContext type, "CPU" for lavapipe): --samples when
-// given; else the image's own (4), except for a live show on a CPU driver, which draws without multisampling. On
-// lavapipe four samples double a frame's render time (docs/performance.md), and a live show there is scaled up
-// from a smaller image anyway, so its edges are soft whatever the samples.
-int samplesFor(const RenderOutputOptions& options, const std::string& deviceType, bool live);
+// given; else the image's own (4), except on a CPU driver, which draws without multisampling. Lavapipe offers 1 or 4
+// samples, and four cost the README's main job 1.6 times the wall time (docs/performance.md, session 11) for edges
+// that differ only along the string and the wands at 960x540; a live show there is also scaled up from a smaller
+// image, so its edges are soft whatever the samples.
+int samplesFor(const RenderOutputOptions& options, const std::string& deviceType);
 
 // The environment to reflect: the built-in outdoor sky, or an equirectangular PNG (sRGB, 2:1) converted to linear
 // radiance. Throws naming the file when it cannot be read or is not 2:1.
@@ -72,9 +73,13 @@ class RunRenderer {
  public:
   RunRenderer(const RenderOutputOptions& options, const std::filesystem::path& outDir, Simulation& sim,
               const std::string& device);
+  // Draws frame `index` of `sim`. The frame is drawn while the caller simulates the next one (Renderer::submit),
+  // and written (PNG, video) at the next call or at finish(); a film read in place on the Vulkan stepper's device
+  // is drawn and written at once, as the next step would change it.
   void frame(long index, Simulation& sim, const WandState& wands);
-  // Closes the video; says what was written. An encoder that failed is reported (stderr and videoError()), never
-  // thrown: the simulation's results are written whatever happened to the video.
+  // Writes the frame still being drawn and closes the video; says what was written. An encoder that failed is
+  // reported (stderr and videoError()), never thrown: the simulation's results are written whatever happened to
+  // the video.
   void finish();
   [[nodiscard]] const std::string& videoError() const { return videoError_; }
 
@@ -87,6 +92,9 @@ class RunRenderer {
   long written_ = 0;
   FilmFraming framing_;
   std::string videoError_;  // why the video stopped (empty while it is fine)
+  long drawing_ = -1;       // the frame submitted and not yet written, -1 for none
+  bool drawingPng_ = false;
+  void writeDrawnFrame();
   void dropVideo(const std::string& why);
 };
 

@@ -216,7 +216,7 @@ int runView(ViewOptions o) try {
   ShowControl show(run.osc);
   RenderOptions image = run.render.image;
   Window window("giantbubble", image.width, image.height, run.device);
-  image.samples = samplesFor(run.render, window.context()->info().type, true);
+  image.samples = samplesFor(run.render, window.context()->info().type);
   const InterruptCatcher interrupts;  // Ctrl-C ends the show as Esc does, with its totals
   Renderer renderer(window.context(), image, loadEnvironment(run.render.environment));
   PerformerWaitScreen waiting(window, renderer);

@@ -130,6 +130,8 @@ struct Renderer::Impl {
   vk::raii::DescriptorPool pool{nullptr};
   vk::raii::DescriptorSet sceneSet{nullptr}, compositeSet{nullptr};
   vk::raii::CommandBuffer commands{nullptr};
+  vk::raii::Fence frameDone{nullptr};
+  bool inFlight = false;  // `commands` submitted and not yet waited for
 
   DeviceBuffer uniforms, position, normal, thickness, airFlow, triangles, propsMesh, dropletBuffer, variation, readback;
   DeviceBuffer bannerPixels;  // the message banner's RGBA rows (host memory the copy reads)
@@ -158,6 +160,18 @@ struct Renderer::Impl {
     uniforms = DeviceBuffer(*ctx, sizeof(RenderUniforms));
     makeImageBuffers();
     commands = ctx->newCommandBuffer();
+    frameDone = ctx->newFence();
+  }
+  ~Impl() {
+    if (inFlight) (void)ctx->device.waitForFences({*frameDone}, VK_TRUE, UINT64_MAX);  // before its objects go
+  }
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
+
+  void wait() {
+    if (!inFlight) return;
+    inFlight = false;  // also when the wait throws: a lost device is not waited for twice
+    ctx->waitFor(frameDone);
   }
 
   void setExtent(int width, int height) {
@@ -176,6 +190,7 @@ struct Renderer::Impl {
 
   void resize(int width, int height) {
     setExtent(width, height);
+    wait();
     ctx->device.waitIdle();
     // The descriptor sets go before their pool, the pipelines and modules before they are made again.
     sceneSet = nullptr;
@@ -575,8 +590,14 @@ Renderer::Renderer(std::shared_ptr<const VulkanContext> context, const RenderOpt
 Renderer::~Renderer() = default;
 
 void Renderer::render(const RenderFrame& frame, bool readback, const AfterRender& after) {
+  submit(frame, readback, after);
+  wait();
+}
+
+void Renderer::submit(const RenderFrame& frame, bool readback, const AfterRender& after) {
   Impl& m = *impl_;
-  if (!frame.film) throw std::invalid_argument("Renderer::render: no film");
+  if (!frame.film) throw std::invalid_argument("Renderer::submit: no film");
+  m.wait();  // its buffers and command buffer are reused
   const DeviceFilm film = m.filmBuffers(frame);
   m.uploadPropsAndDroplets(frame);
   const bool varied = m.uploadVariation(frame);
@@ -584,11 +605,15 @@ void Renderer::render(const RenderFrame& frame, bool readback, const AfterRender
   m.bindSceneBuffers(film);
   m.uploadBanner(frame.banner);
   m.record(film, readback, after);
-  m.ctx->submitAndWait(m.commands);
+  m.ctx->submit(m.commands, m.frameDone);
+  m.inFlight = true;
 }
 
-std::vector<uint8_t> Renderer::readPixels() const {
-  const Impl& m = *impl_;
+void Renderer::wait() { impl_->wait(); }
+
+std::vector<uint8_t> Renderer::readPixels() {
+  Impl& m = *impl_;
+  m.wait();
   const size_t pixels = static_cast<size_t>(m.extent.width) * m.extent.height;
   std::vector<uint8_t> rgba(4 * pixels), rgb(3 * pixels);
   m.readback.read(rgba.data(), rgba.size());

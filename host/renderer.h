@@ -72,8 +72,13 @@ class Renderer {
   // commands into the same submission once the output image is in transfer-source layout (the window's blit).
   using AfterRender = std::function<void(const vk::raii::CommandBuffer&, vk::Image output)>;
   void render(const RenderFrame& frame, bool readback = true, const AfterRender& after = {});
-  // The last frame read back, RGB 8 bits per channel (sRGB), rows from the top.
-  [[nodiscard]] std::vector<uint8_t> readPixels() const;
+  // The same without waiting: everything `frame` points to is copied to the device before it returns, so the
+  // caller may change it (simulate the next frame) while the device draws. The previous frame is waited for
+  // first. A film read in place (`frame.deviceFilm`) must stay unchanged until wait().
+  void submit(const RenderFrame& frame, bool readback = true, const AfterRender& after = {});
+  void wait();  // for the frame submitted, if any
+  // The last frame read back, RGB 8 bits per channel (sRGB), rows from the top; waits for it.
+  [[nodiscard]] std::vector<uint8_t> readPixels();
 
   // Draws at a new size from the next frame on (the live window's dynamic resolution: its blit scales the image
   // to the window). The targets and pipelines are made again; the film's swirls and the textures are kept.

@@ -11,22 +11,32 @@ namespace {
 
 std::string typeName(vk::PhysicalDeviceType type) {
   switch (type) {
-    case vk::PhysicalDeviceType::eDiscreteGpu: return "discrete GPU";
-    case vk::PhysicalDeviceType::eIntegratedGpu: return "integrated GPU";
-    case vk::PhysicalDeviceType::eVirtualGpu: return "virtual GPU";
-    case vk::PhysicalDeviceType::eCpu: return "CPU";
-    default: return "other";
+    case vk::PhysicalDeviceType::eDiscreteGpu:
+      return "discrete GPU";
+    case vk::PhysicalDeviceType::eIntegratedGpu:
+      return "integrated GPU";
+    case vk::PhysicalDeviceType::eVirtualGpu:
+      return "virtual GPU";
+    case vk::PhysicalDeviceType::eCpu:
+      return "CPU";
+    default:
+      return "other";
   }
 }
 
 // Lower rank is preferred: discrete, integrated, virtual, CPU, other.
 int typeRank(vk::PhysicalDeviceType type) {
   switch (type) {
-    case vk::PhysicalDeviceType::eDiscreteGpu: return 0;
-    case vk::PhysicalDeviceType::eIntegratedGpu: return 1;
-    case vk::PhysicalDeviceType::eVirtualGpu: return 2;
-    case vk::PhysicalDeviceType::eCpu: return 3;
-    default: return 4;
+    case vk::PhysicalDeviceType::eDiscreteGpu:
+      return 0;
+    case vk::PhysicalDeviceType::eIntegratedGpu:
+      return 1;
+    case vk::PhysicalDeviceType::eVirtualGpu:
+      return 2;
+    case vk::PhysicalDeviceType::eCpu:
+      return 3;
+    default:
+      return 4;
   }
 }
 
@@ -124,10 +134,12 @@ VulkanContext::VulkanContext(const std::string& requestArg, const VulkanExtensio
 
   const auto families = physical.getQueueFamilyProperties();
   using Q = vk::QueueFlagBits;
-  auto compute = std::find_if(families.begin(), families.end(),
-                              [](const auto& f) { return (f.queueFlags & (Q::eCompute | Q::eGraphics)) == (Q::eCompute | Q::eGraphics); });
+  auto compute = std::find_if(families.begin(), families.end(), [](const auto& f) {
+    return (f.queueFlags & (Q::eCompute | Q::eGraphics)) == (Q::eCompute | Q::eGraphics);
+  });
   if (compute == families.end())
-    compute = std::find_if(families.begin(), families.end(), [](const auto& f) { return bool(f.queueFlags & Q::eCompute); });
+    compute =
+        std::find_if(families.begin(), families.end(), [](const auto& f) { return bool(f.queueFlags & Q::eCompute); });
   if (compute == families.end()) throw VulkanUnavailable("device " + info_.name + " has no compute queue");
   queueFamily_ = static_cast<uint32_t>(compute - families.begin());
   if (compute->timestampValidBits > 0) timestampPeriodNs_ = props.limits.timestampPeriod;
@@ -136,7 +148,8 @@ VulkanContext::VulkanContext(const std::string& requestArg, const VulkanExtensio
   const vk::DeviceQueueCreateInfo queueInfo({}, queueFamily_, 1, &priority);
   for (const char* wanted : extensions.device) {
     const auto available = physical.enumerateDeviceExtensionProperties();
-    if (std::none_of(available.begin(), available.end(), [&](const auto& e) { return std::string(e.extensionName.data()) == wanted; }))
+    if (std::none_of(available.begin(), available.end(),
+                     [&](const auto& e) { return std::string(e.extensionName.data()) == wanted; }))
       throw VulkanUnavailable("device " + info_.name + " lacks the extension " + wanted);
   }
   device = vk::raii::Device(physical, vk::DeviceCreateInfo({}, queueInfo, {}, extensions.device));
@@ -155,12 +168,22 @@ vk::raii::CommandBuffer VulkanContext::newCommandBuffer() const {
 }
 
 void VulkanContext::submitAndWait(const vk::raii::CommandBuffer& commands) const {
-  const vk::CommandBuffer handle = *commands;
-  queue.submit(vk::SubmitInfo({}, {}, handle), *fence_);
-  if (device.waitForFences({*fence_}, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
-    throw std::runtime_error("Vulkan: waiting for the GPU failed");
-  device.resetFences({*fence_});
+  submit(commands, fence_);
+  waitFor(fence_);
 }
+
+void VulkanContext::submit(const vk::raii::CommandBuffer& commands, const vk::raii::Fence& done) const {
+  const vk::CommandBuffer handle = *commands;
+  queue.submit(vk::SubmitInfo({}, {}, handle), *done);
+}
+
+void VulkanContext::waitFor(const vk::raii::Fence& done) const {
+  if (device.waitForFences({*done}, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
+    throw std::runtime_error("Vulkan: waiting for the GPU failed");
+  device.resetFences({*done});
+}
+
+vk::raii::Fence VulkanContext::newFence() const { return vk::raii::Fence(device, vk::FenceCreateInfo()); }
 
 int VulkanContext::memoryType(uint32_t typeBits, vk::MemoryPropertyFlags wanted) const {
   const auto memory = physical.getMemoryProperties();

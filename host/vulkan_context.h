@@ -43,6 +43,12 @@ class VulkanContext {
 
   // Submits a recorded command buffer and blocks until it has finished.
   void submitAndWait(const vk::raii::CommandBuffer& commands) const;
+  // Submits without waiting: `done` (from newFence()) is signalled when the commands have finished, and
+  // waitFor(done) blocks until then and resets it for the next submission. The caller keeps what the commands
+  // read and write alive and unchanged until then.
+  void submit(const vk::raii::CommandBuffer& commands, const vk::raii::Fence& done) const;
+  void waitFor(const vk::raii::Fence& done) const;
+  [[nodiscard]] vk::raii::Fence newFence() const;
   // A memory type index with all of `wanted`, or -1.
   [[nodiscard]] int memoryType(uint32_t typeBits, vk::MemoryPropertyFlags wanted) const;
   [[nodiscard]] vk::raii::CommandBuffer newCommandBuffer() const;
@@ -65,7 +71,7 @@ class VulkanContext {
   VulkanDeviceInfo info_;
   uint32_t queueFamily_ = 0;
   bool validation_ = false;
-  double timestampPeriodNs_ = 0.0;  // 0 when the queue has no timestamps
+  double timestampPeriodNs_ = 0.0;                                          // 0 when the queue has no timestamps
   std::unique_ptr<size_t> validationErrors_ = std::make_unique<size_t>(0);  // stable address for the callback
   vk::raii::DebugUtilsMessengerEXT messenger_{nullptr};
   vk::raii::Fence fence_{nullptr};

@@ -140,6 +140,26 @@ TEST(Renderer, ResizedAndBackDrawsTheSamePicture) {
   EXPECT_EQ(device->validationErrors(), 0u);
 }
 
+// `giantbubble run` simulates the next frame while the device draws this one (Renderer::submit): what the frame
+// points to is copied before submit returns, so changing the film afterwards does not change the picture.
+TEST(Renderer, ASubmittedFrameIsDrawnAsTheFilmWasWhenSubmitted) {
+  GB_REQUIRE_VULKAN(device);
+  test::KnownScene scene = test::makeKnownScene();
+  Renderer renderer(device, smallImage(), studioEnvironment(256));
+  renderer.render(test::frameOf(scene));
+  const std::vector<uint8_t> drawnAndWaited = renderer.readPixels();
+  renderer.submit(test::frameOf(scene));
+  State& s = scene.film.state;
+  for (size_t i = 0; i < s.size(); ++i) s.position.set(i, s.position.get(i) + Vec3(0.3f, 0.2f, 0.0f));
+  // Same floats through the same shaders: identical to the bit.
+  EXPECT_EQ(compare(renderer.readPixels(), drawnAndWaited).max, 0);
+  // And the change is visible once drawn: the test would see a frame drawn from the changed film.
+  renderer.submit(test::frameOf(scene));
+  renderer.submit(test::frameOf(scene));  // waits for the one before: its buffers are reused
+  EXPECT_GT(compare(renderer.readPixels(), drawnAndWaited).mean, 1.0);
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
 TEST(Renderer, ReadsTheVulkanSteppersBuffersInPlace) {
   GB_REQUIRE_VULKAN(device);
   test::KnownScene scene = test::makeKnownScene();
@@ -604,16 +624,17 @@ TEST(RenderOutput, EnvironmentPngIsDecodedToLinearRadiance) {
   }
 }
 
-TEST(RenderOutput, LiveOnACpuDriverDrawsWithoutMultisamplingUnlessAsked) {
-  // Exact: a choice, not a measurement. Four samples double lavapipe's render of a live frame (docs/performance.md),
-  // so a live show on a CPU driver draws one; a rendered run keeps the image's four, and --samples always wins.
+TEST(RenderOutput, ACpuDriverDrawsWithoutMultisamplingUnlessAsked) {
+  // Exact: a choice, not a measurement. Four samples cost lavapipe 1.6 times the main job's wall time
+  // (docs/performance.md), so a CPU driver draws one; a GPU the image's four, and --samples always wins.
   RenderOutputOptions o;
-  EXPECT_EQ(samplesFor(o, "CPU", true), 1);
-  EXPECT_EQ(samplesFor(o, "CPU", false), 4);
-  EXPECT_EQ(samplesFor(o, "discrete GPU", true), 4);
+  EXPECT_EQ(samplesFor(o, "CPU"), 1);
+  EXPECT_EQ(samplesFor(o, "discrete GPU"), 4);
+  EXPECT_EQ(samplesFor(o, "integrated GPU"), 4);
+  o.samples = 4;
+  EXPECT_EQ(samplesFor(o, "CPU"), 4);
   o.samples = 2;
-  EXPECT_EQ(samplesFor(o, "CPU", true), 2);
-  EXPECT_EQ(samplesFor(o, "discrete GPU", false), 2);
+  EXPECT_EQ(samplesFor(o, "discrete GPU"), 2);
 }
 
 }  // namespace

@@ -198,8 +198,9 @@ RunRenderer::RunRenderer(const RenderOutputOptions& options, const std::filesyst
   RenderOptions image = options.image;
   image.samples = samplesFor(options, context->info().type);
   renderer_ = std::make_unique<Renderer>(context, image, loadEnvironment(options.environment));
-  std::printf("render: %dx%d %s, %d samples per pixel, on %s, film read %s\n", image.width, image.height,
-              colouringName(image.colouring), image.samples, context->info().name.c_str(),
+  std::printf("render: %dx%d %s, %d sample%s per pixel, on %s, film read %s\n", image.width, image.height,
+              colouringName(image.colouring), image.samples, image.samples == 1 ? "" : "s",
+              context->info().name.c_str(),
               readInPlace_ ? "in place from the Vulkan stepper's buffers" : "from the CPU state, uploaded each frame");
   if (!options.video.empty()) {
     if (ffmpegAvailable()) {

@@ -229,9 +229,10 @@ int runView(ViewOptions o) try {
   window.camera() = run.render.camera;
   std::unique_ptr<Stepper> stepper = viewStepper(o.backend, window.context());
   const bool readInPlace = dynamic_cast<VulkanStepper*>(stepper.get()) != nullptr;
-  std::printf("live: %s, %d samples per pixel, on %s (validation layer %s), simulation on %s\n",
-              colouringName(image.colouring), image.samples, window.context()->info().name.c_str(),
-              window.context()->validationEnabled() ? "on" : "off", stepper->name().c_str());
+  std::printf("live: %s, %d sample%s per pixel, on %s (validation layer %s), simulation on %s\n",
+              colouringName(image.colouring), image.samples, image.samples == 1 ? "" : "s",
+              window.context()->info().name.c_str(), window.context()->validationEnabled() ? "on" : "off",
+              stepper->name().c_str());
   double t = 0;
   WandState wands = input->at(t).wands;
   auto sim = std::make_unique<Simulation>(run.params, run.tool, wands, std::move(stepper));

@@ -7,9 +7,11 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <span>
 #include <stdexcept>
 
 #include "pinch_off.h"
@@ -214,6 +216,108 @@ size_t contractSlackSprings(const Params& params, Film& film) {
     if (std::max(thickness[a], thickness[b]) >= dipThickness) return std::nullopt;
     return length * (1.0f - params.springPrestrain);
   });
+}
+
+namespace {
+
+// The particles around i (its one-ring).
+std::span<const uint32_t> ringOf(const Topology& topo, uint32_t i) {
+  return {topo.springNeighbour.data() + topo.springOffset[i], topo.springOffset[i + 1] - topo.springOffset[i]};
+}
+
+// Whether merging b into a at x keeps the mesh a manifold that does not fold over: the two one-rings share exactly
+// the two particles across the edge (the link condition), and no triangle that keeps one of them turns over.
+bool mergeKeepsTheMesh(const Film& film, uint32_t a, uint32_t b, const Vec3& x) {
+  const Topology& topo = film.topology;
+  const State& s = film.state;
+  size_t shared = 0;
+  for (uint32_t n : ringOf(topo, a))
+    for (uint32_t m : ringOf(topo, b)) shared += n == m;
+  if (shared != 2) return false;
+  for (uint32_t moved : {a, b})
+    for (uint32_t k = topo.triangleOffset[moved]; k < topo.triangleOffset[moved + 1]; ++k) {
+      const uint32_t* tri = &topo.triangles[3 * topo.triangleIndex[k]];
+      if ((tri[0] == a || tri[1] == a || tri[2] == a) && (tri[0] == b || tri[1] == b || tri[2] == b)) continue;
+      std::array<Vec3, 3> before, after;
+      for (int c = 0; c < 3; ++c) {
+        before[c] = s.position.get(tri[c]);
+        after[c] = tri[c] == moved ? x : before[c];
+      }
+      const Vec3 n0 = (before[1] - before[0]).cross(before[2] - before[0]);
+      const Vec3 n1 = (after[1] - after[0]).cross(after[2] - after[0]);
+      if (!(n0.dot(n1) > 0.5f * n0.norm() * n1.norm())) return false;  // turned by more than 60 degrees
+    }
+  return true;
+}
+
+// Particle b joins particle a at their centre of mass: its mass, liquid and momentum go to a, and b dies.
+void mergeInto(State& s, uint32_t a, uint32_t b) {
+  const float ma = s.mass[a], mb = s.mass[b], m = ma + mb;
+  s.position.set(a, (ma * s.position.get(a) + mb * s.position.get(b)) / m);
+  s.previousPosition.set(a, (ma * s.previousPosition.get(a) + mb * s.previousPosition.get(b)) / m);
+  s.velocity.set(a, (ma * s.velocity.get(a) + mb * s.velocity.get(b)) / m);
+  s.mass[a] = m;
+  s.liquid[a] += s.liquid[b];
+  s.lifetime[a] = std::min(s.lifetime[a], s.lifetime[b]);
+  s.alive[b] = 0u;
+  s.liquid[b] = 0.0f;
+  s.mass[b] = 0.0f;
+}
+
+}  // namespace
+
+size_t mergeCrowdedParticles(const Params& params, Film& film) {
+  Topology& topo = film.topology;
+  State& s = film.state;
+  if (!topo.isClosed() || params.tensionModel != 0 || topo.springCount() == 0) return 0;
+  std::vector<float> lengths;
+  lengths.reserve(topo.springCount());
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    if (s.alive[a] && s.alive[b]) lengths.push_back((s.position.get(a) - s.position.get(b)).norm());
+  }
+  if (lengths.empty()) return 0;
+  std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+  const float shortest = kCrowdedEdge * lengths[lengths.size() / 2];
+  const float dipThickness = initialThickness(params);
+  std::vector<std::pair<float, size_t>> crowded;  // length, spring
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    if (!s.alive[a] || !s.alive[b] || std::max(s.thickness[a], s.thickness[b]) < dipThickness) continue;
+    const float length = (s.position.get(a) - s.position.get(b)).norm();
+    if (length < shortest && length < topo.restLength[k]) crowded.emplace_back(length, k);
+  }
+  if (crowded.empty()) return 0;
+  std::sort(crowded.begin(), crowded.end());  // the shortest first; ties by spring: deterministic
+  std::vector<char> touched(s.size(), 0);     // merged or beside a merge this frame: its ring has changed
+  std::vector<uint32_t> into(s.size());
+  for (uint32_t i = 0; i < into.size(); ++i) into[i] = i;
+  size_t merged = 0;
+  for (const auto& [length, k] : crowded) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    if (touched[a] || touched[b]) continue;
+    const float ma = s.mass[a], mb = s.mass[b];
+    const Vec3 x = (ma * s.position.get(a) + mb * s.position.get(b)) / (ma + mb);
+    if (!mergeKeepsTheMesh(film, a, b, x)) continue;
+    for (uint32_t p : {a, b}) {
+      touched[p] = 1;
+      for (uint32_t n : ringOf(topo, p)) touched[n] = 1;
+    }
+    mergeInto(s, a, b);
+    into[b] = a;
+    ++merged;
+  }
+  if (merged == 0) return 0;
+  std::vector<uint32_t> triangles;
+  triangles.reserve(topo.triangles.size());
+  for (size_t t = 0; t < topo.triangleCount(); ++t) {
+    const std::array<uint32_t, 3> tri{into[topo.triangles[3 * t]], into[topo.triangles[3 * t + 1]],
+                                      into[topo.triangles[3 * t + 2]]};
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;  // the two across each merged edge
+    triangles.insert(triangles.end(), tri.begin(), tri.end());
+  }
+  topo = rebuildTopology(topo, std::move(triangles), s.position, params.springPrestrain);
+  return merged;
 }
 
 size_t yieldStretchedSprings(const Params& params, Film& film) {

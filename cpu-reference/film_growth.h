@@ -53,6 +53,17 @@ size_t yieldStretchedSprings(const Params& params, Film& film);
 // many springs contracted.
 size_t contractSlackSprings(const Params& params, Film& film);
 
+// Where a closed film stays pushed together because it is too thick to contract (above), its particles merge:
+// a spring between two particles of which one is at least as thick as the dip, shorter than its rest length and
+// than kCrowdedEdge of the film's median spring, collapses into the pair's centre of mass (mass, liquid and
+// momentum conserved; the second particle dies, keeping its index). The crumpled film that the pinch-off seam
+// gathers otherwise stays folded in fine wrinkles for the bubble's whole flight. A merge is skipped where it would
+// break the manifold (the two one-rings share other particles than the two across the edge) or turn a triangle
+// over, and no two merges touch the same one-ring in one call. New springs rest as at creation
+// (rebuildTopology). Returns how many particles merged; the caller refreshes the geometry and reloads the stepper.
+constexpr float kCrowdedEdge = 0.5f;
+size_t mergeCrowdedParticles(const Params& params, Film& film);
+
 struct GrowthEvent {
   size_t restLengthsChanged = 0;  // rungs lengthened by the payout
   size_t particlesAdded = 0;      // the new ring (0: no ring inserted)

@@ -183,6 +183,10 @@ void Simulation::advanceFrame(const WandState& next) {
     // it, and there it is still being drawn.
     if (!film_.topology.isClosed() && yieldStretchedSprings(params_, film_) > 0) stepper_->updateRestLengths(film_);
     if (film_.topology.isClosed() && contractSlackSprings(params_, film_) > 0) stepper_->updateRestLengths(film_);
+    if (mergeCrowdedParticles(params_, film_) > 0) {
+      CpuStepper::refreshGeometry(params_, film_);
+      stepper_->load(params_, film_);
+    }
     growFilm(next, wandSpeed);
   }
   const bool tipsTogether =

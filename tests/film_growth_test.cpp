@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <tuple>
 
+#include "cpu_stepper.h"
 #include "mesh_checks.h"
 #include "scripted_gestures.h"
 #include "simulation.h"
@@ -95,6 +97,77 @@ TEST(FilmGrowth, SlackSpringsContractToANewFilmsTautnessAndTheWireTautAndThickOn
   p.tensionModel = 1;  // constant tension: no rest lengths to contract
   topo.restLength[0] *= 2.0f;
   EXPECT_EQ(contractSlackSprings(p, film), 0u);
+}
+
+// A closed film pushed together where it is too thick to contract (the pinch-off seam's crumple): its crowded
+// particles merge, conserving mass, liquid and momentum, and it stays a closed, oriented manifold.
+TEST(FilmGrowth, ACrowdedThickPatchOfABubbleMergesAndTheBubbleStaysClosed) {
+  Params p;
+  const Vec3 centre(0.0f, 1.0f, 0.0f), pole(0.0f, 1.5f, 0.0f);
+  Film film = generateSphere(p, centre, 0.5f, 3);
+  State& s = film.state;
+  std::vector<char> patch(s.size(), 0);
+  for (size_t i = 0; i < s.size(); ++i) {
+    s.velocity.set(i, Vec3(0.1f * static_cast<float>(i % 7), -0.2f, 0.05f * static_cast<float>(i % 3)));
+    if (s.position.y[i] > 1.35f) {  // the cap around the pole: drawn towards it to 40% of its size, and thick
+      patch[i] = 1;
+      s.position.set(i, pole + 0.4f * (s.position.get(i) - pole));
+    }
+  }
+  CpuStepper::refreshGeometry(p, film);
+  for (size_t i = 0; i < s.size(); ++i)
+    if (patch[i]) s.liquid[i] = 2.0f * initialThickness(p) * s.voronoiArea[i];
+  CpuStepper::refreshGeometry(p, film);
+  auto totals = [&] {
+    double mass = 0, liquid = 0;
+    Eigen::Vector3d momentum = Eigen::Vector3d::Zero(), moment = Eigen::Vector3d::Zero();
+    for (size_t i = 0; i < s.size(); ++i) {
+      if (!s.alive[i]) continue;
+      mass += s.mass[i];
+      liquid += s.liquid[i];
+      momentum += static_cast<double>(s.mass[i]) * s.velocity.get(i).cast<double>();
+      moment += static_cast<double>(s.mass[i]) * s.position.get(i).cast<double>();
+    }
+    return std::make_tuple(mass, liquid, momentum, moment);
+  };
+  const auto [mass, liquid, momentum, moment] = totals();
+  const size_t triangles = film.topology.triangleCount();
+
+  const size_t merged = mergeCrowdedParticles(p, film);
+  EXPECT_GT(merged, 10u) << "the crowded cap merges";
+  size_t outsideThePatch = 0;
+  for (size_t i = 0; i < s.size(); ++i) outsideThePatch += !s.alive[i] && !patch[i];
+  EXPECT_EQ(outsideThePatch, 0u) << "only the crowded, thick particles merge";
+  EXPECT_EQ(film.topology.triangleCount(), triangles - 2 * merged) << "two triangles go with each merged edge";
+  EXPECT_TRUE(film.topology.isClosed());
+  EXPECT_EQ(test::eulerCharacteristic(film.topology), 2);  // also asserts each directed edge once
+  test::expectAdjacencyMatchesTriangles(film.topology);
+  const auto [mass2, liquid2, momentum2, moment2] = totals();
+  // Float sums of a few hundred particles: 1e-6 relative.
+  EXPECT_NEAR(mass2, mass, 1e-6 * mass);
+  EXPECT_NEAR(liquid2, liquid, 1e-6 * liquid);
+  EXPECT_LT((momentum2 - momentum).norm(), 1e-6 * mass * 1.0) << "momentum (velocities up to 1 m/s)";
+  EXPECT_LT((moment2 - moment).norm(), 1e-6 * mass * 1.5) << "centre of mass (positions up to 1.5 m)";
+  // No triangle turned over: every normal still points away from the centre.
+  CpuStepper::refreshGeometry(p, film);
+  for (size_t t = 0; t < film.topology.triangleCount(); ++t) {
+    const uint32_t* tri = &film.topology.triangles[3 * t];
+    const Vec3 a = s.position.get(tri[0]), b = s.position.get(tri[1]), c = s.position.get(tri[2]);
+    EXPECT_GT((b - a).cross(c - a).dot((a + b + c) / 3.0f - centre), 0.0f) << "triangle " << t;
+  }
+
+  // Thin film contracts instead (contractSlackSprings), and an open film is still being drawn: neither merges.
+  Film thin = generateSphere(p, centre, 0.5f, 3);
+  for (size_t i = 0; i < thin.state.size(); ++i)
+    if (thin.state.position.y[i] > 1.35f) thin.state.position.set(i, pole + 0.4f * (thin.state.position.get(i) - pole));
+  CpuStepper::refreshGeometry(p, thin);
+  for (size_t i = 0; i < thin.state.size(); ++i)
+    thin.state.liquid[i] = 0.5f * initialThickness(p) * thin.state.voronoiArea[i];
+  CpuStepper::refreshGeometry(p, thin);
+  EXPECT_EQ(mergeCrowdedParticles(p, thin), 0u);
+  Film open = generateFilm(p, WandTool{}, gestureAt(Gesture::Straight, GestureOptions{}, 0.0));
+  for (float& e : open.state.thickness) e = 2.0f * initialThickness(p);
+  EXPECT_EQ(mergeCrowdedParticles(p, open), 0u);
 }
 
 TEST(FilmGrowth, AFilmHangingStillDoesNotPayOut) {

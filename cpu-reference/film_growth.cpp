@@ -270,23 +270,24 @@ size_t mergeCrowdedParticles(const Params& params, Film& film) {
   Topology& topo = film.topology;
   State& s = film.state;
   if (!topo.isClosed() || params.tensionModel != 0 || topo.springCount() == 0) return 0;
+  const float dipThickness = initialThickness(params);
+  std::vector<std::pair<float, size_t>> crowded;  // length, spring: slack, with a thick end
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    if (!s.alive[a] || !s.alive[b] || std::max(s.thickness[a], s.thickness[b]) < dipThickness) continue;
+    const float length = (s.position.get(a) - s.position.get(b)).norm();
+    if (length < topo.restLength[k]) crowded.emplace_back(length, k);
+  }
+  if (crowded.empty()) return 0;  // most frames: the median below is not needed
   std::vector<float> lengths;
   lengths.reserve(topo.springCount());
   for (size_t k = 0; k < topo.springCount(); ++k) {
     const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
     if (s.alive[a] && s.alive[b]) lengths.push_back((s.position.get(a) - s.position.get(b)).norm());
   }
-  if (lengths.empty()) return 0;
   std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
   const float shortest = kCrowdedEdge * lengths[lengths.size() / 2];
-  const float dipThickness = initialThickness(params);
-  std::vector<std::pair<float, size_t>> crowded;  // length, spring
-  for (size_t k = 0; k < topo.springCount(); ++k) {
-    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
-    if (!s.alive[a] || !s.alive[b] || std::max(s.thickness[a], s.thickness[b]) < dipThickness) continue;
-    const float length = (s.position.get(a) - s.position.get(b)).norm();
-    if (length < shortest && length < topo.restLength[k]) crowded.emplace_back(length, k);
-  }
+  std::erase_if(crowded, [&](const std::pair<float, size_t>& c) { return !(c.first < shortest); });
   if (crowded.empty()) return 0;
   std::sort(crowded.begin(), crowded.end());  // the shortest first; ties by spring: deterministic
   std::vector<char> touched(s.size(), 0);     // merged or beside a merge this frame: its ring has changed

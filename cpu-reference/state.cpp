@@ -1,6 +1,7 @@
 #include "state.h"
 
 #include <algorithm>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
@@ -133,17 +134,18 @@ Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, co
 
 Topology rebuildTopology(const Topology& previous, std::vector<uint32_t> triangles, const Vec3Array& positions,
                          float prestrain) {
-  std::vector<std::pair<Edge, float>> rest;  // the old springs, sorted by edge for a binary search
-  rest.reserve(previous.springCount());
-  for (size_t k = 0; k < previous.springCount(); ++k)
-    rest.emplace_back(undirected(previous.springEnds[2 * k], previous.springEnds[2 * k + 1]), previous.restLength[k]);
-  std::sort(rest.begin(), rest.end());
+  // An old spring is found in its lower end's old one-ring (a few entries): a sorted copy of every spring cost the
+  // merging of a free bubble's crowded particles a millisecond a frame (docs/performance.md, session 11).
+  const auto oldRest = [&](uint32_t a, uint32_t b) -> std::optional<float> {
+    if (a >= previous.particleCount()) return std::nullopt;  // appended since: all its springs are new
+    for (uint32_t k = previous.springOffset[a]; k < previous.springOffset[a + 1]; ++k)
+      if (previous.springNeighbour[k] == b) return previous.restLength[previous.springIndex[k]];
+    return std::nullopt;
+  };
   Topology topo = buildTopology(positions.size(), std::move(triangles), positions);
   for (size_t k = 0; k < topo.springCount(); ++k) {
-    const Edge edge = undirected(topo.springEnds[2 * k], topo.springEnds[2 * k + 1]);
-    const auto it = std::lower_bound(rest.begin(), rest.end(), edge,
-                                     [](const std::pair<Edge, float>& r, const Edge& e) { return r.first < e; });
-    topo.restLength[k] = it != rest.end() && it->first == edge ? it->second : topo.restLength[k] * (1.0f - prestrain);
+    const std::optional<float> rest = oldRest(topo.springEnds[2 * k], topo.springEnds[2 * k + 1]);
+    topo.restLength[k] = rest ? *rest : topo.restLength[k] * (1.0f - prestrain);
   }
   return topo;
 }

@@ -141,8 +141,8 @@ void CpuStepper::runSweeps(const StepUniforms& u, int from, int to) {
         triangleVolumes_[t] = triangleSignedVolume(topo, s, static_cast<size_t>(t), u.volumeOrigin);
 #pragma omp single
       {
-        bubble.volume = lastVolume_ = treeSum(triangleVolumes_);
-        bubble.pressure = currentPressure(u);
+        lastVolume_ = treeSum(triangleVolumes_);  // first: Boyle's pressure reads it
+        bubble = bubbleOf(lastVolume_, currentPressure(u));
       }
     }
     for (size_t c = 0; c + 1 < runs.colourRuns.size(); ++c) {  // colours in order
@@ -159,9 +159,9 @@ void CpuStepper::correctCoarsely(const StepUniforms& u) {
   const Topology& topo = film_->topology;
   if (topo.patchOffset.empty()) return;  // the correction is off: no patches were made
   Bubble bubble;
-  if (u.closed) {  // Boyle's pressure at this iterate's volume, as a sweep takes it
-    bubble.volume = lastVolume_ = volume(*film_, u.volumeOrigin);
-    bubble.pressure = currentPressure(u);
+  if (u.closed) {                                  // Boyle's pressure at this iterate's volume, as a sweep takes it
+    lastVolume_ = volume(*film_, u.volumeOrigin);  // first: Boyle's pressure reads it
+    bubble = bubbleOf(lastVolume_, currentPressure(u));
   }
   fitCoarseSystem(topo, coarse_);
   forEach(coarse_.shortestSpring.size(),

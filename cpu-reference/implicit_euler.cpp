@@ -366,10 +366,14 @@ Vec3 solveLinear3(const Eigen::Matrix3f& a, const Vec3& b) {
       {{{a(0, 0), a(0, 1), a(0, 2)}, {a(1, 0), a(1, 1), a(1, 2)}, {a(2, 0), a(2, 1), a(2, 2)}}}, lanesOf(b)));
 }
 
+Bubble bubbleOf(float volume, float pressure) {
+  constexpr float sphereShape = 36.0f * 3.14159265f;  // A^3 = 36 pi V^2 for a sphere
+  return {volume, pressure, volume > 0 ? std::cbrt(sphereShape / volume) : 0.0f};
+}
+
 float breathingStiffness(const Bubble& bubble, float area) {
   if (!(bubble.volume > 0)) return 0.0f;
-  constexpr float sphereShape = 36.0f * 3.14159265f;  // A^3 = 36 pi V^2 for a sphere
-  return bubble.pressure * area * std::cbrt(sphereShape / bubble.volume);
+  return bubble.pressure * area * bubble.areaPerVolume;
 }
 
 int solverSweeps(const Params& p, const StepUniforms& u) {

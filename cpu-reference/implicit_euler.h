@@ -29,9 +29,14 @@ Vec3 solveLinear3(const Eigen::Matrix3f& a, const Vec3& b);
 // A closed bubble's volume and Boyle pressure at the solver's current iterate (recomputed before each sweep);
 // unused for an open film.
 struct Bubble {
-  float volume = 0.0f;    // m^3
-  float pressure = 0.0f;  // P_cur of Eq. (11), Pa
+  float volume = 0.0f;         // m^3
+  float pressure = 0.0f;       // P_cur of Eq. (11), Pa
+  float areaPerVolume = 0.0f;  // A_total / V of a sphere of this volume, (36 pi / V)^(1/3) (1/m); 0 without one
 };
+// A closed film's gas at an iterate: its volume and Boyle's pressure, with the sphere's area per volume that
+// breathingStiffness takes, worked out once per sweep rather than at every particle (a cube root each: 4% of the
+// default run's time, docs/performance.md, session 11).
+Bubble bubbleOf(float volume, float pressure);
 
 // The stiffness of the bubble's breathing seen by one particle of area A: P A A_total / V, the pressure change
 // when the whole bubble swells, with A_total = (36 pi V^2)^(1/3) as for a sphere. Added to the particle's

@@ -17,6 +17,7 @@ std::vector<uint32_t> boundaryLoop(const Topology& topo) {
   std::vector<std::pair<uint32_t, uint32_t>> next;  // boundary edges, sorted by their first particle
   std::vector<uint32_t> leaving, entering;
   for (uint32_t a = 0; a < topo.particleCount(); ++a) {
+    if (!topo.boundary[a]) continue;  // both ends of an edge of one triangle are flagged (buildTopology)
     leaving.clear();
     entering.clear();
     for (uint32_t k = topo.triangleOffset[a]; k < topo.triangleOffset[a + 1]; ++k) {

@@ -79,7 +79,14 @@ std::vector<EdgeUse> edgeUses(size_t particleCount, const std::vector<uint32_t>&
   return uses;
 }
 
-void buildAdjacency(Topology& topo) {
+namespace {
+
+bool noEdgeOfOneTriangle(const std::vector<EdgeUse>& uses) {
+  return !uses.empty() && std::none_of(uses.begin(), uses.end(), [](const EdgeUse& e) { return e.triangles == 1; });
+}
+
+// buildAdjacency but for Topology::closed, which needs every edge's uses: buildTopology has them already.
+void buildAdjacencyArrays(Topology& topo) {
   const size_t n = topo.particleCount();
   topo.colourOffset.clear();  // the springs changed: the solver's colouring is made anew (colouring.h)
   topo.colourOrder.clear();
@@ -110,9 +117,13 @@ void buildAdjacency(Topology& topo) {
   for (uint32_t t = 0; t < topo.triangleCount(); ++t)
     for (int c = 0; c < 3; ++c) topo.triangleIndex[fill[topo.triangles[3 * t + c]]++] = t;
   topo.contacts.assign(n + 1, 0u);  // no contacts until the collision search runs
-  const std::vector<EdgeUse> uses = edgeUses(n, topo.triangles);
-  topo.closed =
-      !uses.empty() && std::none_of(uses.begin(), uses.end(), [](const EdgeUse& e) { return e.triangles == 1; });
+}
+
+}  // namespace
+
+void buildAdjacency(Topology& topo) {
+  buildAdjacencyArrays(topo);
+  topo.closed = noEdgeOfOneTriangle(edgeUses(topo.particleCount(), topo.triangles));
 }
 
 Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, const Vec3Array& positions) {
@@ -121,14 +132,16 @@ Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, co
   topo.boundary.assign(particleCount, 0u);
   for (uint32_t v : topo.triangles)
     if (v >= particleCount) throw std::runtime_error("triangle refers to a particle that does not exist");
-  for (const EdgeUse& e : edgeUses(particleCount, topo.triangles)) {
+  const std::vector<EdgeUse> uses = edgeUses(particleCount, topo.triangles);
+  for (const EdgeUse& e : uses) {
     if (e.triangles > 2) throw std::runtime_error("non-manifold mesh: an edge is shared by more than two triangles");
     if (e.triangles == 1) topo.boundary[e.lower] = topo.boundary[e.upper] = 1u;  // the film's edge: the wire
     topo.springEnds.push_back(e.lower);
     topo.springEnds.push_back(e.upper);
     topo.restLength.push_back((positions.get(e.lower) - positions.get(e.upper)).norm());
   }
-  buildAdjacency(topo);
+  buildAdjacencyArrays(topo);
+  topo.closed = noEdgeOfOneTriangle(uses);
   return topo;
 }
 

@@ -53,6 +53,7 @@ void CpuStepper::refreshGeometry(const Params& params, Film& film) {
     computeVertexGeometry(film.topology, s, i);
     updateFilmState(params, 0.0f, s, i);
   });
+  film.geometryKey = geometryKey(film.topology, s);
 }
 
 float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
@@ -63,11 +64,15 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
   float result = 0.0f;
   timed(stage, [&] {
     switch (stage) {
-      case Stage::Geometry:  // two passes: every triangle is done before any particle gathers
+      case Stage::Geometry: {  // two passes: every triangle is done before any particle gathers
+        const uint64_t key = geometryKey(topo, s);
+        if (key == film_->geometryKey && s.cornerArea.size() == 3 * topo.triangleCount()) break;  // computed
         fitTriangleArrays(topo, s);
         forEach(topo.triangleCount(), [&](size_t t) { computeTriangleGeometry(topo, s, t); });
         forEach(n, [&](size_t i) { computeVertexGeometry(topo, s, i); });
+        film_->geometryKey = key;
         break;
+      }
       case Stage::Volume:
         result = volume(*film_, u.volumeOrigin);
         break;

@@ -15,6 +15,7 @@ struct Film {
   Vec3 loopHang = Vec3::Zero();      // two wands: the way the loop hangs now (its frame's `down`, see swingLoop);
                                      // zero: straight towards gravity
   float referenceVolume = 0.0f;      // V_0 of Eq. (11) once the film is a closed bubble (m^3)
+  uint64_t geometryKey = 0;          // geometryKey (stages.h) of the geometry the CPU stepper computed last
   Vec3 volumeOrigin = Vec3::Zero();  // closed bubble: apex of the volume's cone decomposition, fixed at
                                      // closure so that no backend needs to read the state back for it
   // Soap solution control (Section 7): liquid still on the wet wire, from which new film is drawn.

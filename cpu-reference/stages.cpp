@@ -1,7 +1,9 @@
 #include "stages.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 #include "film.h"
@@ -56,6 +58,29 @@ void fitTriangleArrays(const Topology& topo, State& s) {
   if (s.cornerArea.size() == 3 * topo.triangleCount() && s.triangleNormal.size() == topo.triangleCount()) return;
   s.triangleNormal.resize(topo.triangleCount());
   s.cornerArea.assign(3 * topo.triangleCount(), 0.0f);
+}
+
+uint64_t geometryKey(const Topology& topo, const State& s) {
+  // Word by word, multiply and rotate (a few tens of microseconds for the default film, against the geometry's
+  // hundreds): not cryptographic, but a changed position or triangle changes the key but for a 2^-64 chance.
+  uint64_t h = 0x9E3779B97F4A7C15ull ^ (static_cast<uint64_t>(s.size()) << 32) ^ topo.triangles.size();
+  const auto mix = [&h](uint64_t word) { h = std::rotl((h ^ word) * 0xFF51AFD7ED558CCDull, 29); };
+  const auto mixWords = [&mix](const void* data, size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    size_t k = 0;
+    for (; k + 8 <= bytes; k += 8) {
+      uint64_t word;
+      std::memcpy(&word, p + k, 8);
+      mix(word);
+    }
+    uint64_t tail = 0;
+    std::memcpy(&tail, p + k, bytes - k);
+    mix(tail);
+  };
+  for (const std::vector<float>* axis : {&s.position.x, &s.position.y, &s.position.z})
+    mixWords(axis->data(), axis->size() * sizeof(float));
+  mixWords(topo.triangles.data(), topo.triangles.size() * sizeof(uint32_t));
+  return h;
 }
 
 void computeGeometry(const Topology& topo, State& s) {

@@ -41,6 +41,12 @@ void computeVertexGeometry(const Topology& topo, State& s, size_t i);
 void computeGeometry(const Topology& topo, State& s);
 // Sizes the per-triangle arrays for the topology.
 void fitTriangleArrays(const Topology& topo, State& s);
+// A 64-bit hash of everything the geometry depends on (the positions, the triangles, the counts): equal keys mean
+// the geometry computed for one holds for the other. The CPU stepper's geometry stage skips its work when the film
+// still has the key of the geometry last computed: `giantbubble run` computes it for each frame's figures
+// (Simulation::stats) and the next step would compute it again from the same positions (0.6 ms of a 10 ms frame of
+// the default film, docs/performance.md, session 11).
+uint64_t geometryKey(const Topology& topo, const State& s);
 
 // Signed volume of the tetrahedron (origin, triangle t); their sum is the enclosed volume of a closed
 // film and the volume swept between an open film and the apex.

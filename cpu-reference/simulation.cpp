@@ -183,10 +183,7 @@ void Simulation::advanceFrame(const WandState& next) {
     // it, and there it is still being drawn.
     if (!film_.topology.isClosed() && yieldStretchedSprings(params_, film_) > 0) stepper_->updateRestLengths(film_);
     if (film_.topology.isClosed() && contractSlackSprings(params_, film_) > 0) stepper_->updateRestLengths(film_);
-    if (mergeCrowdedParticles(params_, film_) > 0) {
-      CpuStepper::refreshGeometry(params_, film_);
-      stepper_->load(params_, film_);
-    }
+    if (mergeCrowdedParticles(params_, film_) > 0) reloadFilm();
     growFilm(next, wandSpeed);
   }
   const bool tipsTogether =
@@ -239,6 +236,10 @@ void Simulation::growFilm(const WandState& wands, float wandSpeed) {
     return;
   }
   events_.particlesAdded = grew.particlesAdded;
+  reloadFilm();
+}
+
+void Simulation::reloadFilm() {
   CpuStepper::refreshGeometry(params_, film_);
   chooseSubsteps();
   stepper_->load(params_, film_);
@@ -281,22 +282,18 @@ bool Simulation::pinch() {
     film_.state.airInflow.set(i, Vec3::Zero());
     film_.state.airFlowNext.set(i, Vec3::Zero());
   }
-  CpuStepper::refreshGeometry(params_, film_);
   burst_ = BurstFront{};
   wandArmed_ = {false, false};  // the tips are at the seam: they count once they have left the bubble
-  chooseSubsteps();
-  stepper_->load(params_, film_);
+  reloadFilm();
   return true;
 }
 
 void Simulation::dip(const WandState& wands) {
   film_ = generateFilm(params_, film_.tool, wands);
   contactHistory_ = {};  // the new film's particles are not the old one's
-  CpuStepper::refreshGeometry(params_, film_);
   burst_ = BurstFront{};
   wands_ = wands;
-  chooseSubsteps();
-  stepper_->load(params_, film_);
+  reloadFilm();
 }
 
 void Simulation::checkStable() const {

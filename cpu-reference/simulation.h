@@ -121,6 +121,9 @@ class Simulation {
                                              const Vec3& hangB) const;
   [[nodiscard]] Vec3 loopHangAfter(const WandState& next) const;
   void chooseSubsteps();
+  // After the film's mesh or particles changed (growth, a merge, pinch-off, a dip): its geometry, the substeps
+  // and the stepper's copy made anew.
+  void reloadFilm();
   void growFilm(const WandState& wands, float wandSpeed);
   void burstOnHardImpact();
   void burstOnWandTouch();

@@ -1,9 +1,11 @@
-// The renderer's speed on the paper's largest scene (Table 1: 25,650 particles) at 1280x720 and 1920x1080.
+// The renderer's speed: on the paper's largest scene (Table 1: 25,650 particles) and on the README's main job.
 // Run: ./build/bench/gb_render_bench   (counter fps = frames per second; docs/performance.md has the figures)
 //
 // BM_Render/upload:   one frame rendered from the CPU state (uploaded every frame, the CPU backend's path).
 // BM_Render/inplace:  one frame rendered from the Vulkan stepper's own buffers (no copy).
 // BM_FrameSimulationAndRender: a whole frame as `giantbubble run --render` does it, minus the file output.
+// BM_RenderMainJob/F: the README's main job's render of its frame F (60: the bag being drawn; 200: the free
+//                      bubble), 960x540, one sample, pixels read back: the main job's own per-frame render.
 // BM_PropsMesh, BM_FilmSwirls: the renderer's CPU work per frame, what bounds it on a real GPU.
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
@@ -16,6 +18,7 @@
 #include "film_swirls.h"
 #include "render_scene.h"
 #include "renderer.h"
+#include "scene_file.h"
 #include "scripted_gestures.h"
 #include "simulation.h"
 #include "vulkan_context.h"
@@ -123,6 +126,51 @@ void BM_FrameSimulationAndRender(benchmark::State& state) {
   report(state, *sim, cpu);
 }
 BENCHMARK(BM_FrameSimulationAndRender)->Args({1280, 720})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// The default performance after `frame` frames, with the camera framing it as the main job's does.
+struct MainJobFrame {
+  std::unique_ptr<Simulation> sim;
+  WireFrame wire;
+  OrbitCamera camera;
+};
+
+MainJobFrame mainJobAt(int frame, float aspect) {
+  const Scene scene = resolveScene("default");
+  const GestureOptions& stroke = scene.run.gestureOptions;
+  const double h = scene.run.params.frameTime;
+  MainJobFrame m;
+  m.sim = std::make_unique<Simulation>(scene.run.params, WandTool{}, gestureAt(Gesture::Giant, stroke, 0.0));
+  FilmFraming::Options framingOptions;
+  framingOptions.aspect = aspect;
+  FilmFraming framing(framingOptions);
+  for (int f = 1; f <= frame; ++f) {
+    m.sim->advanceFrame(gestureAt(Gesture::Giant, stroke, f * h));
+    m.camera = framing.update(OrbitCamera{}, m.sim->film().state, static_cast<float>(h));
+  }
+  m.wire = m.sim->wireFrame(gestureAt(Gesture::Giant, stroke, frame * h));
+  return m;
+}
+
+void BM_RenderMainJob(benchmark::State& state) {
+  const auto device = vulkanDevice();
+  if (!device) return state.SkipWithError("no Vulkan device");
+  RenderOptions options;
+  options.width = 960;
+  options.height = 540;
+  options.samples = 1;
+  MainJobFrame m = mainJobAt(static_cast<int>(state.range(0)), 960.0f / 540.0f);
+  Renderer renderer(device, options, skyEnvironment());  // the main job's
+  RenderFrame frame = frameOf(*m.sim, m.wire);
+  frame.aerosolLifetime = m.sim->params().aerosolLifetime;
+  frame.camera = m.camera;
+  const double cpu = processCpuSeconds();
+  for (auto _ : state) {
+    renderer.render(frame, true);
+    benchmark::DoNotOptimize(renderer.readPixels());
+  }
+  report(state, *m.sim, cpu);
+}
+BENCHMARK(BM_RenderMainJob)->Arg(60)->Arg(200)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // The renderer's own CPU work per frame, no Vulkan: the props mesh (floor, string, sticks, the rims of holes)
 // and the film's swirl factors. On a real GPU this, not the GPU, bounds the render's frame rate.

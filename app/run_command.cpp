@@ -67,8 +67,8 @@ void printSummary(const FrameStats& first, const FrameStats& last, long frames, 
                   const std::filesystem::path& outDir) {
   const double fps = static_cast<double>(frames) / std::max(wallSeconds, 1e-9);
   std::printf("\n%-28s %s\n", "giantbubble run", "summary");
-  std::printf("%-28s %zu\n", "particles", last.particles);
-  std::printf("%-28s %zu\n", "triangles", last.triangles);
+  std::printf("%-28s %zu -> %zu\n", "particles", first.particles, last.particles);
+  std::printf("%-28s %zu -> %zu\n", "triangles", first.triangles, last.triangles);
   std::printf("%-28s %.2f s (%ld frames x %d substeps)\n", "simulated", last.time, frames, substeps);
   std::printf("%-28s %.2f s (%.1f frames/s, %.0f substeps/s)\n", "wall time", wallSeconds, fps, fps * substeps);
   std::printf("%-28s %.2f (simulated s per wall s)\n", "real-time factor", last.time / std::max(wallSeconds, 1e-9));
@@ -304,6 +304,7 @@ int runSimulation(const RunOptions& o) {
   }
   if (exitCode == 3) return exitCode;
   printSummary(first, last, frames, sim.substepsPerFrame(), wall, o.outDir);
+  std::fputs(record.story().c_str(), stdout);
   record.printPhases();
   record.printTable1(o.scene);
   return exitCode;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -77,13 +78,19 @@ void StatsWriter::write(long frame, const FrameStats& st, int substeps, double f
 void StatsWriter::close() { out_.close(); }
 
 void RunRecord::start(const FrameStats& first) {
-  first_ = last_ = first;
+  first_ = last_ = largestArea_ = largestVolume_ = first;
+  mostParticles_ = first.particles;
+  mostDroplets_ = first.droplets;
   events_.emplace_back(first.time, "film_created");
 }
 
 void RunRecord::addFrame(const FrameStats& stats, int substeps, double frameMilliseconds, const std::string& events) {
   last_ = stats;
   ++frames_;
+  if (stats.area > largestArea_.area) largestArea_ = stats;
+  if (std::abs(stats.volume) > std::abs(largestVolume_.volume)) largestVolume_ = stats;
+  mostParticles_ = std::max(mostParticles_, stats.particles);
+  mostDroplets_ = std::max(mostDroplets_, stats.droplets);
   std::istringstream words(events);
   for (std::string event; words >> event;) events_.emplace_back(stats.time, event);
   // Table 1 averages a performance with a film: frames after the film is gone (droplets alone) would drag
@@ -131,6 +138,9 @@ void RunRecord::writeJson(const std::filesystem::path& path, const std::string& 
   j["real_time_factor"] = realTimeFactor_;
   j["first_frame"] = frameJson(first_);
   j["last_frame"] = frameJson(last_);
+  j["largest"] = {{"area_m2", largestArea_.area},       {"area_time_s", largestArea_.time},
+                  {"volume_m3", largestVolume_.volume}, {"volume_time_s", largestVolume_.time},
+                  {"particles", mostParticles_},        {"droplets", mostDroplets_}};
   nlohmann::json events = nlohmann::json::array();
   for (const auto& [time, name] : events_) events.push_back({{"time_s", time}, {"event", name}});
   j["events"] = events;
@@ -170,6 +180,79 @@ void RunRecord::printTable1(const std::string& scene) const {
               "Avg. Time (fps) (simulation)");
   std::printf("%-12s %18.0f %18.0f %26.1f\n", scene.c_str(), particleSum_ / n, triangleSum_ / n,
               msPerFrame > 0 ? 1e3 / msPerFrame : 0.0);
+}
+
+namespace {
+
+// Why a burst started (BurstFront::cause, the event burst_by_<cause>), in words.
+std::string burstCauseInWords(const std::string& cause) {
+  if (cause == "thin") return "thinned out";
+  if (cause == "floor") return "touched the floor";
+  if (cause == "wand") return "touched a wand";
+  if (cause == "impact") return "hit itself";
+  if (cause == "poke") return "poked";
+  return cause;
+}
+
+// The events after `from` at the same time whose name starts with `prefix`, without it ("" when none).
+std::string sameFrameSuffix(const std::vector<std::pair<double, std::string>>& events, size_t from,
+                            const std::string& prefix) {
+  for (size_t k = from + 1; k < events.size() && events[k].first == events[from].first; ++k)
+    if (events[k].second.starts_with(prefix)) return events[k].second.substr(prefix.size());
+  return "";
+}
+
+std::string seconds(double t) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f s", t);
+  return text;
+}
+
+}  // namespace
+
+std::string RunRecord::story() const {
+  constexpr size_t kMostPhrases = 8;  // a show with many films: the rest is in stats.json
+  size_t grown = 0;
+  double firstGrown = 0, lastGrown = 0;
+  for (const auto& [time, name] : events_)
+    if (name == "film_grown") {
+      if (grown++ == 0) firstGrown = time;
+      lastGrown = time;
+    }
+  std::vector<std::string> phrases;
+  bool growthTold = false;
+  for (size_t k = 0; k < events_.size(); ++k) {
+    const auto& [time, name] = events_[k];
+    if (name == "film_created") {
+      phrases.push_back("made " + seconds(time));
+    } else if (name == "film_grown" && !growthTold) {
+      growthTold = true;
+      phrases.push_back("grown at the wire on " + std::to_string(grown) + " frames (" + seconds(firstGrown) + " to " +
+                        seconds(lastGrown) + ")");
+    } else if (name == "pinched_off") {
+      phrases.push_back("pinched off " + seconds(time));
+    } else if (name == "burst_started") {
+      const std::string cause = sameFrameSuffix(events_, k, "burst_by_");
+      phrases.push_back("burst " + seconds(time) + (cause.empty() ? "" : " (" + burstCauseInWords(cause) + ")"));
+    } else if (name == "burst_finished") {
+      phrases.push_back("gone " + seconds(time));
+    } else if (name == "performer_found") {
+      phrases.push_back("performer found");
+    }
+  }
+  std::string story;
+  for (size_t k = 0; k < std::min(phrases.size(), kMostPhrases); ++k) story += (k ? ", " : "") + phrases[k];
+  if (phrases.size() > kMostPhrases)
+    story += ", and " + std::to_string(phrases.size() - kMostPhrases) + " more (stats.json)";
+  char largest[200];
+  std::snprintf(largest, sizeof largest, "area %.4f m^2 (%s), volume %.4f m^3 (%s), %zu particles, %zu droplets",
+                largestArea_.area, seconds(largestArea_.time).c_str(), largestVolume_.volume,
+                seconds(largestVolume_.time).c_str(), mostParticles_, mostDroplets_);
+  char lines[160];
+  std::snprintf(lines, sizeof lines, "%-28s ", "film's life");
+  std::string text = lines + story + "\n";
+  std::snprintf(lines, sizeof lines, "%-28s ", "largest");
+  return text + lines + largest + "\n";
 }
 
 std::string describeEvents(const TopologyEvents& e) {

@@ -41,6 +41,10 @@ class RunRecord {
   void printPhases() const;
   // The paper's Table 1 row for this run: example, average particles, average triangles, average frames/s.
   void printTable1(const std::string& scene) const;
+  // The summary's two lines on the film: its events in order, in words ("pinched off 1.86 s, burst 6.72 s
+  // (touched the floor)", film growth counted rather than listed), and its largest area, volume, particles and
+  // droplet cloud. A run's last frame alone says little: the default performance ends with the film gone.
+  [[nodiscard]] std::string story() const;
 
  private:
   long frames_ = 0;
@@ -48,6 +52,8 @@ class RunRecord {
   std::vector<std::pair<std::string, std::string>> extra_;
   double particleSum_ = 0, triangleSum_ = 0, millisecondSum_ = 0, substepSum_ = 0;
   FrameStats first_, last_;
+  FrameStats largestArea_, largestVolume_;  // the frames with the largest area and |volume|
+  size_t mostParticles_ = 0, mostDroplets_ = 0;
   double realTimeFactor_ = 0;
   std::vector<std::pair<double, std::string>> events_;
   std::vector<std::pair<std::string, double>> phaseSums_;  // ms over all frames

@@ -216,7 +216,7 @@ RunRenderer::RunRenderer(const RenderOutputOptions& options, const std::filesyst
 }
 
 void RunRenderer::frame(long index, Simulation& sim, const WandState& wands) {
-  writeDrawnFrame();
+  while (drawing_.size() >= 2) writeDrawnFrame();  // the renderer keeps two frames
   const bool png = options_.pngEvery > 0 && index % options_.pngEvery == 0;
   // The framing eases every frame, drawn or not, so that it moves at the same pace whatever is written.
   const OrbitCamera camera = options_.followCamera
@@ -225,17 +225,18 @@ void RunRenderer::frame(long index, Simulation& sim, const WandState& wands) {
   if (!png && !video_) return;
   const WireFrame wire = sim.wireFrame(wands);
   DeviceFilm deviceFilm;
-  renderer_->submit(renderFrameOf(sim, wands, wire, camera, readInPlace_, deviceFilm));
-  drawing_ = index;
-  drawingPng_ = png;
+  const Renderer::Ticket ticket = renderer_->submit(renderFrameOf(sim, wands, wire, camera, readInPlace_, deviceFilm));
+  drawing_.push_back({ticket, index, png});
   if (readInPlace_) writeDrawnFrame();
 }
 
 void RunRenderer::writeDrawnFrame() {
-  if (drawing_ < 0) return;
-  const long index = std::exchange(drawing_, -1);
-  const std::vector<uint8_t> rgb = renderer_->readPixels();
-  if (drawingPng_) {
+  if (drawing_.empty()) return;
+  const Drawing drawn = drawing_.front();
+  drawing_.pop_front();
+  const long index = drawn.index;
+  const std::vector<uint8_t> rgb = renderer_->readPixels(drawn.ticket);
+  if (drawn.png) {
     char name[40];
     std::snprintf(name, sizeof name, "render_%05ld.png", index);
     writePng(outDir_ / name, options_.image.width, options_.image.height, rgb);
@@ -263,9 +264,9 @@ void RunRenderer::dropVideo(const std::string& why) {
 
 void RunRenderer::finish() {
   try {
-    writeDrawnFrame();
-  } catch (const std::exception& e) {  // the device was lost drawing it: the run's other outputs still matter
-    std::fprintf(stderr, "error: render: the last frame: %s\n", e.what());
+    while (!drawing_.empty()) writeDrawnFrame();
+  } catch (const std::exception& e) {  // the device was lost drawing them: the run's other outputs still matter
+    std::fprintf(stderr, "error: render: the last frames: %s\n", e.what());
   }
   if (!video_) return;
   try {

@@ -5,6 +5,7 @@
 // without a GPU) and uploads the film each frame.
 
 #include <cstdio>
+#include <deque>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -73,9 +74,9 @@ class RunRenderer {
  public:
   RunRenderer(const RenderOutputOptions& options, const std::filesystem::path& outDir, Simulation& sim,
               const std::string& device);
-  // Draws frame `index` of `sim`. The frame is drawn while the caller simulates the next one (Renderer::submit),
-  // and written (PNG, video) at the next call or at finish(); a film read in place on the Vulkan stepper's device
-  // is drawn and written at once, as the next step would change it.
+  // Draws frame `index` of `sim`. The frame is drawn while the caller simulates the next two (Renderer::submit
+  // keeps two frames in flight) and written (PNG, video) in order, at the call after next or at finish(); a film
+  // read in place on the Vulkan stepper's device is drawn and written at once, as the next step would change it.
   void frame(long index, Simulation& sim, const WandState& wands);
   // Writes the frame still being drawn and closes the video; says what was written. An encoder that failed is
   // reported (stderr and videoError()), never thrown: the simulation's results are written whatever happened to
@@ -92,9 +93,13 @@ class RunRenderer {
   long written_ = 0;
   FilmFraming framing_;
   std::string videoError_;  // why the video stopped (empty while it is fine)
-  long drawing_ = -1;       // the frame submitted and not yet written, -1 for none
-  bool drawingPng_ = false;
-  void writeDrawnFrame();
+  struct Drawing {
+    Renderer::Ticket ticket;
+    long index;
+    bool png;
+  };
+  std::deque<Drawing> drawing_;  // frames submitted and not yet written, oldest first
+  void writeDrawnFrame();        // the oldest of them
   void dropVideo(const std::string& why);
 };
 

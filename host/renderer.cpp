@@ -1,8 +1,11 @@
 #include "renderer.h"
 
+#include <algorithm>
+#include <array>
 #include <cstddef>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 
 #include "banner_text.h"
 #include "device_buffer.h"
@@ -128,14 +131,29 @@ struct Renderer::Impl {
   std::vector<vk::raii::ShaderModule> modules;  // indexed by RenderShader
   vk::raii::Pipeline props{nullptr}, droplets{nullptr}, film{nullptr}, composite{nullptr};
   vk::raii::DescriptorPool pool{nullptr};
-  vk::raii::DescriptorSet sceneSet{nullptr}, compositeSet{nullptr};
-  vk::raii::CommandBuffer commands{nullptr};
-  vk::raii::Fence frameDone{nullptr};
-  bool inFlight = false;  // `commands` submitted and not yet waited for
+  vk::raii::DescriptorSet compositeSet{nullptr};
 
-  DeviceBuffer uniforms, position, normal, thickness, airFlow, triangles, propsMesh, dropletBuffer, variation, readback;
-  DeviceBuffer bannerPixels;  // the message banner's RGBA rows (host memory the copy reads)
-  uint32_t propsVertices = 0, dropletCount = 0, bannerRows = 0;
+  // What a frame in flight owns: its commands and fence, the buffers they read (the uploaded film, props,
+  // droplets, swirls, uniforms, banner, and the descriptor set naming them) and the pixels they read back. Two
+  // slots: `run` submits a frame while the one before is still drawn. The targets are shared: frames run in
+  // submission order on the one queue, and each render pass waits for the passes before it that touch its
+  // attachments (its external dependencies).
+  struct FrameSlot {
+    vk::raii::CommandBuffer commands{nullptr};
+    vk::raii::Fence done{nullptr};
+    bool inFlight = false;  // `commands` submitted and not yet waited for
+    Renderer::Ticket ticket = 0;
+    DeviceBuffer uniforms, position, normal, thickness, airFlow, triangles, propsMesh, dropletBuffer, variation;
+    DeviceBuffer readback;
+    DeviceBuffer bannerPixels;  // the message banner's RGBA rows (host memory the copy reads)
+    uint32_t propsVertices = 0, dropletCount = 0, bannerRows = 0;
+    vk::raii::DescriptorSet sceneSet{nullptr};
+  };
+  std::array<FrameSlot, 2> slots;
+  size_t current = 0;            // the slot of the latest submit
+  Renderer::Ticket tickets = 0;  // submits so far
+  FrameSlot& slot() { return slots[current]; }
+  const FrameSlot& slot() const { return slots[current]; }
   std::array<Vec3, 2> ambient;  // mean environment radiance above and below the horizon
   Vec3 horizon;                 // just below it
   float hazeDistance = 0.0f;    // over which the ground fades into it (EnvironmentImage::hazeDistance)
@@ -157,21 +175,29 @@ struct Renderer::Impl {
     makeLayouts();
     makePipelines();
     makeDescriptors();
-    uniforms = DeviceBuffer(*ctx, sizeof(RenderUniforms));
     makeImageBuffers();
-    commands = ctx->newCommandBuffer();
-    frameDone = ctx->newFence();
+    for (FrameSlot& f : slots) {
+      f.uniforms = DeviceBuffer(*ctx, sizeof(RenderUniforms));
+      f.commands = ctx->newCommandBuffer();
+      f.done = ctx->newFence();
+    }
   }
   ~Impl() {
-    if (inFlight) (void)ctx->device.waitForFences({*frameDone}, VK_TRUE, UINT64_MAX);  // before its objects go
+    for (FrameSlot& f : slots)  // before their objects go
+      if (f.inFlight) (void)ctx->device.waitForFences({*f.done}, VK_TRUE, UINT64_MAX);
   }
   Impl(const Impl&) = delete;
   Impl& operator=(const Impl&) = delete;
 
-  void wait() {
-    if (!inFlight) return;
-    inFlight = false;  // also when the wait throws: a lost device is not waited for twice
-    ctx->waitFor(frameDone);
+  void wait(FrameSlot& f) {
+    if (!f.inFlight) return;
+    f.inFlight = false;  // also when the wait throws: a lost device is not waited for twice
+    ctx->waitFor(f.done);
+  }
+  void waitForAll() {
+    // Oldest first: the other slot's frame was submitted before the current one.
+    wait(slots[1 - current]);
+    wait(slots[current]);
   }
 
   void setExtent(int width, int height) {
@@ -183,17 +209,19 @@ struct Renderer::Impl {
     extent = vk::Extent2D(static_cast<uint32_t>(width), static_cast<uint32_t>(height));
   }
 
-  void makeImageBuffers() {  // host memory for the read-back image and the banner's rows
-    readback = DeviceBuffer(*ctx, 4ull * extent.width * extent.height, DeviceBuffer::Placement::Readback);
-    bannerPixels = DeviceBuffer(*ctx, 4ull * extent.width * extent.height, DeviceBuffer::Placement::Host);
+  void makeImageBuffers() {  // host memory for the read-back images and the banners' rows
+    for (FrameSlot& f : slots) {
+      f.readback = DeviceBuffer(*ctx, 4ull * extent.width * extent.height, DeviceBuffer::Placement::Readback);
+      f.bannerPixels = DeviceBuffer(*ctx, 4ull * extent.width * extent.height, DeviceBuffer::Placement::Host);
+    }
   }
 
   void resize(int width, int height) {
     setExtent(width, height);
-    wait();
+    waitForAll();
     ctx->device.waitIdle();
     // The descriptor sets go before their pool, the pipelines and modules before they are made again.
-    sceneSet = nullptr;
+    for (FrameSlot& f : slots) f.sceneSet = nullptr;
     compositeSet = nullptr;
     props = nullptr;
     droplets = nullptr;
@@ -391,14 +419,15 @@ struct Renderer::Impl {
 
   void makeDescriptors() {
     const std::array<vk::DescriptorPoolSize, 2> sizes{
-        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 9),
-        vk::DescriptorPoolSize(vk::DescriptorType::eCombinedImageSampler, 5)};
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 2 * 9),
+        vk::DescriptorPoolSize(vk::DescriptorType::eCombinedImageSampler, 2 * 2 + 3)};
     pool = vk::raii::DescriptorPool(
-        ctx->device, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 2, sizes));
-    const std::array<vk::DescriptorSetLayout, 2> layouts{*sceneLayout, *compositeLayout};
+        ctx->device, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 3, sizes));
+    const std::array<vk::DescriptorSetLayout, 3> layouts{*sceneLayout, *sceneLayout, *compositeLayout};
     vk::raii::DescriptorSets sets(ctx->device, vk::DescriptorSetAllocateInfo(*pool, layouts));
-    sceneSet = std::move(sets[0]);
-    compositeSet = std::move(sets[1]);
+    slots[0].sceneSet = std::move(sets[0]);
+    slots[1].sceneSet = std::move(sets[1]);
+    compositeSet = std::move(sets[2]);
     const vk::DescriptorImageInfo images[] = {{*linearSampler, lut.view(), Layout::eShaderReadOnlyOptimal},
                                               {*linearSampler, environment.view(), Layout::eShaderReadOnlyOptimal},
                                               {*nearestSampler, opaque.view(), Layout::eShaderReadOnlyOptimal},
@@ -406,8 +435,10 @@ struct Renderer::Impl {
                                               {*nearestSampler, reveal.view(), Layout::eShaderReadOnlyOptimal}};
     using D = vk::DescriptorType;
     const vk::WriteDescriptorSet writes[] = {
-        {*sceneSet, GB_RENDER_LUT, 0, D::eCombinedImageSampler, images[0]},
-        {*sceneSet, GB_RENDER_ENVIRONMENT, 0, D::eCombinedImageSampler, images[1]},
+        {*slots[0].sceneSet, GB_RENDER_LUT, 0, D::eCombinedImageSampler, images[0]},
+        {*slots[0].sceneSet, GB_RENDER_ENVIRONMENT, 0, D::eCombinedImageSampler, images[1]},
+        {*slots[1].sceneSet, GB_RENDER_LUT, 0, D::eCombinedImageSampler, images[0]},
+        {*slots[1].sceneSet, GB_RENDER_ENVIRONMENT, 0, D::eCombinedImageSampler, images[1]},
         {*compositeSet, GB_COMPOSITE_OPAQUE, 0, D::eCombinedImageSampler, images[2]},
         {*compositeSet, GB_COMPOSITE_ACCUM, 0, D::eCombinedImageSampler, images[3]},
         {*compositeSet, GB_COMPOSITE_REVEAL, 0, D::eCombinedImageSampler, images[4]}};
@@ -426,48 +457,48 @@ struct Renderer::Impl {
     const State& s = frame.film->state;
     const std::vector<uint32_t>& tris = frame.film->topology.triangles;
     const size_t n = s.size(), bytes = n * sizeof(float);
-    reserve(position, 3 * bytes);
-    reserve(normal, 3 * bytes);
-    reserve(airFlow, 3 * bytes);
-    reserve(thickness, bytes);
-    reserve(triangles, tris.size() * sizeof(uint32_t));
+    reserve(slot().position, 3 * bytes);
+    reserve(slot().normal, 3 * bytes);
+    reserve(slot().airFlow, 3 * bytes);
+    reserve(slot().thickness, bytes);
+    reserve(slot().triangles, tris.size() * sizeof(uint32_t));
     auto writeVec3 = [&](DeviceBuffer& b, const Vec3Array& a) {
       b.write(a.x.data(), bytes, 0);
       b.write(a.y.data(), bytes, bytes);
       b.write(a.z.data(), bytes, 2 * bytes);
     };
-    writeVec3(position, s.position);
-    writeVec3(normal, s.normal);
-    writeVec3(airFlow, s.airFlow);
-    thickness.write(s.thickness.data(), bytes);
-    triangles.write(tris.data(), tris.size() * sizeof(uint32_t));
-    return {position.handle(),
-            normal.handle(),
-            thickness.handle(),
-            airFlow.handle(),
-            triangles.handle(),
+    writeVec3(slot().position, s.position);
+    writeVec3(slot().normal, s.normal);
+    writeVec3(slot().airFlow, s.airFlow);
+    slot().thickness.write(s.thickness.data(), bytes);
+    slot().triangles.write(tris.data(), tris.size() * sizeof(uint32_t));
+    return {slot().position.handle(),
+            slot().normal.handle(),
+            slot().thickness.handle(),
+            slot().airFlow.handle(),
+            slot().triangles.handle(),
             static_cast<uint32_t>(n),
             static_cast<uint32_t>(frame.film->topology.triangleCount())};
   }
 
   void uploadPropsAndDroplets(const RenderFrame& frame) {
     const std::vector<float> mesh = buildProps(frame.wireFrame, frame.film);
-    reserve(propsMesh, mesh.size() * sizeof(float));
-    propsMesh.write(mesh.data(), mesh.size() * sizeof(float));
-    propsVertices = static_cast<uint32_t>(mesh.size() / kPropsVertexFloats);
+    reserve(slot().propsMesh, mesh.size() * sizeof(float));
+    slot().propsMesh.write(mesh.data(), mesh.size() * sizeof(float));
+    slot().propsVertices = static_cast<uint32_t>(mesh.size() / kPropsVertexFloats);
     const std::vector<float> drops =
         frame.aerosol ? packDroplets(*frame.aerosol, frame.aerosolLifetime) : std::vector<float>();
-    reserve(dropletBuffer, drops.size() * sizeof(float));
-    dropletBuffer.write(drops.data(), drops.size() * sizeof(float));
-    dropletCount = static_cast<uint32_t>(drops.size() / 4);
+    reserve(slot().dropletBuffer, drops.size() * sizeof(float));
+    slot().dropletBuffer.write(drops.data(), drops.size() * sizeof(float));
+    slot().dropletCount = static_cast<uint32_t>(drops.size() / 4);
   }
 
   // The film's swirls (host/film_swirls.h), for the interference colouring only: the diagnostic colourings show
   // the simulated thickness as it is.
   bool uploadVariation(const RenderFrame& frame) {
     const std::vector<float>& factors = swirls.update(frame.film->state);
-    reserve(variation, factors.size() * sizeof(float));
-    variation.write(factors.data(), factors.size() * sizeof(float));
+    reserve(slot().variation, factors.size() * sizeof(float));
+    slot().variation.write(factors.data(), factors.size() * sizeof(float));
     return options.colouring == Colouring::Interference && swirls.sigma() > 0.0f;
   }
 
@@ -493,31 +524,32 @@ struct Renderer::Impl {
     u.dropletRadius = options.dropletRadius;
     u.thicknessVariation = varied ? 1u : 0u;
     u.minTubePixels = options.minTubePixels;
-    uniforms.write(&u, sizeof u);
+    slot().uniforms.write(&u, sizeof u);
   }
 
   void bindSceneBuffers(const DeviceFilm& f) {
     auto info = [](vk::Buffer b) { return vk::DescriptorBufferInfo(b, 0, VK_WHOLE_SIZE); };
-    const std::pair<uint32_t, vk::DescriptorBufferInfo> buffers[] = {{GB_RENDER_UNIFORMS, info(uniforms.handle())},
-                                                                     {GB_RENDER_POSITION, info(f.position)},
-                                                                     {GB_RENDER_NORMAL, info(f.normal)},
-                                                                     {GB_RENDER_THICKNESS, info(f.thickness)},
-                                                                     {GB_RENDER_AIR_FLOW, info(f.airFlow)},
-                                                                     {GB_RENDER_TRIANGLES, info(f.triangles)},
-                                                                     {GB_RENDER_MESH, info(propsMesh.handle())},
-                                                                     {GB_RENDER_DROPLETS, info(dropletBuffer.handle())},
-                                                                     {GB_RENDER_VARIATION, info(variation.handle())}};
+    const std::pair<uint32_t, vk::DescriptorBufferInfo> buffers[] = {
+        {GB_RENDER_UNIFORMS, info(slot().uniforms.handle())},
+        {GB_RENDER_POSITION, info(f.position)},
+        {GB_RENDER_NORMAL, info(f.normal)},
+        {GB_RENDER_THICKNESS, info(f.thickness)},
+        {GB_RENDER_AIR_FLOW, info(f.airFlow)},
+        {GB_RENDER_TRIANGLES, info(f.triangles)},
+        {GB_RENDER_MESH, info(slot().propsMesh.handle())},
+        {GB_RENDER_DROPLETS, info(slot().dropletBuffer.handle())},
+        {GB_RENDER_VARIATION, info(slot().variation.handle())}};
     std::vector<vk::WriteDescriptorSet> writes;
     for (const auto& [binding, buffer] : buffers)
-      writes.emplace_back(*sceneSet, binding, 0, vk::DescriptorType::eStorageBuffer, nullptr, buffer);
+      writes.emplace_back(*slot().sceneSet, binding, 0, vk::DescriptorType::eStorageBuffer, nullptr, buffer);
     ctx->device.updateDescriptorSets(writes, {});
   }
 
-  // The banner of `text` into bannerPixels; bannerRows its height (0: no banner this frame).
+  // The banner of `text` into the slot's bannerPixels; bannerRows its height (0: no banner this frame).
   void uploadBanner(const std::string& text) {
     const BannerImage banner = drawBanner(text, static_cast<int>(extent.width), static_cast<int>(extent.height));
-    bannerRows = static_cast<uint32_t>(banner.height);
-    if (bannerRows > 0) bannerPixels.write(banner.rgba.data(), banner.rgba.size());
+    slot().bannerRows = static_cast<uint32_t>(banner.height);
+    if (slot().bannerRows > 0) slot().bannerPixels.write(banner.rgba.data(), banner.rgba.size());
   }
 
   // Copies the banner over the output's top rows. The resolve pass left the output ready to be read by a
@@ -526,19 +558,19 @@ struct Renderer::Impl {
     transitionImage(cb, output.handle(), Layout::eTransferSrcOptimal, Layout::eTransferDstOptimal,
                     Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite, Stage::eTransfer,
                     Access::eTransferWrite);
-    cb.copyBufferToImage(bannerPixels.handle(), output.handle(), Layout::eTransferDstOptimal,
+    cb.copyBufferToImage(slot().bannerPixels.handle(), output.handle(), Layout::eTransferDstOptimal,
                          vk::BufferImageCopy(0, 0, 0, {vk::ImageAspectFlagBits::eColor, 0, 0, 1}, {0, 0, 0},
-                                             vk::Extent3D(extent.width, bannerRows, 1)));
+                                             vk::Extent3D(extent.width, slot().bannerRows, 1)));
     transitionImage(cb, output.handle(), Layout::eTransferDstOptimal, Layout::eTransferSrcOptimal, Stage::eTransfer,
                     Access::eTransferWrite, Stage::eTransfer, Access::eTransferRead);
   }
 
   void record(const DeviceFilm& f, bool readPixels, const AfterRender& after) {
-    const vk::raii::CommandBuffer& cb = commands;
+    const vk::raii::CommandBuffer& cb = slot().commands;
     cb.reset();
     cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
     const vk::Rect2D area({0, 0}, extent);
-    const std::array<vk::DescriptorSet, 2> sets{*sceneSet, *compositeSet};
+    const std::array<vk::DescriptorSet, 2> sets{*slot().sceneSet, *compositeSet};
     cb.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipelineLayout, 0, sets, {});
 
     // Alpha 0: no prop here, the resolve shows the environment.
@@ -547,7 +579,7 @@ struct Renderer::Impl {
     cb.beginRenderPass(vk::RenderPassBeginInfo(*opaquePass, *opaqueTarget, area, opaqueClear),
                        vk::SubpassContents::eInline);
     cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *props);
-    cb.draw(propsVertices, 1, 0, 0);
+    cb.draw(slot().propsVertices, 1, 0, 0);
     cb.endRenderPass();
 
     const std::array<vk::ClearValue, 5> filmClear{vk::ClearColorValue(std::array<float, 4>{0, 0, 0, 0}),
@@ -558,9 +590,9 @@ struct Renderer::Impl {
       cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *film);
       cb.draw(3 * f.triangleCount, 1, 0, 0);
     }
-    if (dropletCount > 0) {
+    if (slot().dropletCount > 0) {
       cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *droplets);
-      cb.draw(dropletCount, 1, 0, 0);
+      cb.draw(slot().dropletCount, 1, 0, 0);
     }
     cb.endRenderPass();
 
@@ -569,10 +601,10 @@ struct Renderer::Impl {
     cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *composite);
     cb.draw(3, 1, 0, 0);
     cb.endRenderPass();
-    if (bannerRows > 0) recordBannerCopy(cb);
+    if (slot().bannerRows > 0) recordBannerCopy(cb);
 
     if (readPixels) {
-      cb.copyImageToBuffer(output.handle(), Layout::eTransferSrcOptimal, readback.handle(),
+      cb.copyImageToBuffer(output.handle(), Layout::eTransferSrcOptimal, slot().readback.handle(),
                            vk::BufferImageCopy(0, 0, 0, {vk::ImageAspectFlagBits::eColor, 0, 0, 1}, {0, 0, 0},
                                                vk::Extent3D(extent.width, extent.height, 1)));
       const vk::MemoryBarrier toHost(Access::eTransferWrite, Access::eHostRead);
@@ -594,10 +626,11 @@ void Renderer::render(const RenderFrame& frame, bool readback, const AfterRender
   wait();
 }
 
-void Renderer::submit(const RenderFrame& frame, bool readback, const AfterRender& after) {
+Renderer::Ticket Renderer::submit(const RenderFrame& frame, bool readback, const AfterRender& after) {
   Impl& m = *impl_;
   if (!frame.film) throw std::invalid_argument("Renderer::submit: no film");
-  m.wait();  // its buffers and command buffer are reused
+  m.current = 1 - m.current;
+  m.wait(m.slot());  // the frame two submits ago: its buffers and command buffer are reused
   const DeviceFilm film = m.filmBuffers(frame);
   m.uploadPropsAndDroplets(frame);
   const bool varied = m.uploadVariation(frame);
@@ -605,18 +638,25 @@ void Renderer::submit(const RenderFrame& frame, bool readback, const AfterRender
   m.bindSceneBuffers(film);
   m.uploadBanner(frame.banner);
   m.record(film, readback, after);
-  m.ctx->submit(m.commands, m.frameDone);
-  m.inFlight = true;
+  m.ctx->submit(m.slot().commands, m.slot().done);
+  m.slot().inFlight = true;
+  return m.slot().ticket = ++m.tickets;
 }
 
-void Renderer::wait() { impl_->wait(); }
+void Renderer::wait() { impl_->waitForAll(); }
 
-std::vector<uint8_t> Renderer::readPixels() {
+std::vector<uint8_t> Renderer::readPixels() { return readPixels(impl_->slot().ticket); }
+
+std::vector<uint8_t> Renderer::readPixels(Ticket frame) {
   Impl& m = *impl_;
-  m.wait();
+  const auto held = std::find_if(m.slots.begin(), m.slots.end(), [&](const auto& f) { return f.ticket == frame; });
+  if (held == m.slots.end())
+    throw std::logic_error("Renderer::readPixels: frame " + std::to_string(frame) +
+                           " is no longer held (two frames are kept: read a frame before submitting two more)");
+  m.wait(*held);
   const size_t pixels = static_cast<size_t>(m.extent.width) * m.extent.height;
   std::vector<uint8_t> rgba(4 * pixels), rgb(3 * pixels);
-  m.readback.read(rgba.data(), rgba.size());
+  held->readback.read(rgba.data(), rgba.size());
   for (size_t i = 0; i < pixels; ++i)
     for (size_t c = 0; c < 3; ++c) rgb[3 * i + c] = rgba[4 * i + c];
   return rgb;

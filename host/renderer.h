@@ -73,12 +73,16 @@ class Renderer {
   using AfterRender = std::function<void(const vk::raii::CommandBuffer&, vk::Image output)>;
   void render(const RenderFrame& frame, bool readback = true, const AfterRender& after = {});
   // The same without waiting: everything `frame` points to is copied to the device before it returns, so the
-  // caller may change it (simulate the next frame) while the device draws. The previous frame is waited for
-  // first. A film read in place (`frame.deviceFilm`) must stay unchanged until wait().
-  void submit(const RenderFrame& frame, bool readback = true, const AfterRender& after = {});
-  void wait();  // for the frame submitted, if any
-  // The last frame read back, RGB 8 bits per channel (sRGB), rows from the top; waits for it.
+  // caller may change it (simulate the next frame) while the device draws. Two frames may be in flight: the one
+  // submitted two calls before is waited for first. A film read in place (`frame.deviceFilm`) must stay unchanged
+  // until wait(). Returns the frame's ticket, for readPixels.
+  using Ticket = uint64_t;
+  Ticket submit(const RenderFrame& frame, bool readback = true, const AfterRender& after = {});
+  void wait();  // for every frame submitted
+  // A frame read back, RGB 8 bits per channel (sRGB), rows from the top; waits for it. The last frame submitted,
+  // or the one of `frame`'s ticket, which must be one of the last two submitted (std::logic_error otherwise).
   [[nodiscard]] std::vector<uint8_t> readPixels();
+  [[nodiscard]] std::vector<uint8_t> readPixels(Ticket frame);
 
   // Draws at a new size from the next frame on (the live window's dynamic resolution: its blit scales the image
   // to the window). The targets and pipelines are made again; the film's swirls and the textures are kept.

@@ -30,15 +30,18 @@ namespace {
 class ProgressBar {
  public:
   explicit ProgressBar(long total) : total_(total), terminal_(isatty(STDERR_FILENO) != 0) {}
-  void update(long done, double simTime, double stepsPerSecond) {
+  // `done` frames of the total after `wallSeconds`, the simulation at `simTime`: the frame rate and how the run
+  // keeps up with the wall clock (a live show needs 1x or more).
+  void update(long done, double simTime, double wallSeconds) {
     const int percent = static_cast<int>(100 * done / std::max(total_, 1L));
     if (!terminal_ && percent / 10 == lastDecile_) return;
     lastDecile_ = percent / 10;
     constexpr int width = 30;
     const int filled = width * percent / 100;
-    std::fprintf(stderr, "%s[%.*s%*s] %3d%%  t = %6.2f s  %8.0f substeps/s%s", terminal_ ? "\r" : "", filled,
-                 "##############################", width - filled, "", percent, simTime, stepsPerSecond,
-                 terminal_ ? "" : "\n");
+    const double wall = std::max(wallSeconds, 1e-9);
+    std::fprintf(stderr, "%s[%.*s%*s] %3d%%  t = %6.2f s  %6.1f frames/s  %5.2fx real time%s", terminal_ ? "\r" : "",
+                 filled, "##############################", width - filled, "", percent, simTime,
+                 static_cast<double>(done) / wall, simTime / wall, terminal_ ? "" : "\n");
     std::fflush(stderr);
   }
   void finish() {
@@ -275,7 +278,7 @@ int runSimulation(const RunOptions& o) {
     addFramePhases(record, sim.lastPhases(), statsMs, outputsMs, renderer ? phase.lap() : 0.0);
     done = frame;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
-    if (o.progress) bar.update(frame, sim.time(), static_cast<double>(frame) * sim.substepsPerFrame() / wall);
+    if (o.progress) bar.update(frame, sim.time(), wall);
   }
   if (exitCode == 0) bar.finish();
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();

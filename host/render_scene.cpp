@@ -70,20 +70,27 @@ void addStick(std::vector<float>& mesh, const Vec3& tip, const Vec3& outward) {
 
 }  // namespace
 
-Vec3 OrbitCamera::position() const {
-  const Vec3 back(std::sin(yaw) * std::cos(pitch), std::sin(pitch), std::cos(yaw) * std::cos(pitch));
-  return target + distance * back;
+namespace {
+
+// Unit, from the target towards the eye of a camera turned by `yaw` about the vertical and pitched by `pitch`.
+Vec3 backOf(float yaw, float pitch) {
+  return {std::sin(yaw) * std::cos(pitch), std::sin(pitch), std::cos(yaw) * std::cos(pitch)};
 }
 
-Eigen::Matrix4f OrbitCamera::viewProjection(float aspect) const {
-  const Vec3 eye = position();
-  const Vec3 f = (target - eye).normalized();
+// World -> view space of an eye at `eye` looking along the unit `forward`, y up.
+Eigen::Matrix4f lookAlong(const Vec3& forward, const Vec3& eye) {
+  const Vec3& f = forward;
   const Vec3 s = f.cross(Vec3::UnitY()).normalized();
   const Vec3 up = s.cross(f);
   Eigen::Matrix4f view = Eigen::Matrix4f::Identity();
   view.row(0) << s.x(), s.y(), s.z(), -s.dot(eye);
   view.row(1) << up.x(), up.y(), up.z(), -up.dot(eye);
   view.row(2) << -f.x(), -f.y(), -f.z(), f.dot(eye);
+  return view;
+}
+
+// View -> Vulkan clip space (y down, depth 0 at near .. 1 at far).
+Eigen::Matrix4f perspective(float fovY, float aspect) {
   const float nearPlane = 0.05f, farPlane = 100.0f;
   const float t = 1.0f / std::tan(0.5f * fovY);
   Eigen::Matrix4f proj = Eigen::Matrix4f::Zero();
@@ -92,7 +99,20 @@ Eigen::Matrix4f OrbitCamera::viewProjection(float aspect) const {
   proj(2, 2) = farPlane / (nearPlane - farPlane);
   proj(2, 3) = nearPlane * farPlane / (nearPlane - farPlane);
   proj(3, 2) = -1.0f;
-  return proj * view;
+  return proj;
+}
+
+}  // namespace
+
+Vec3 OrbitCamera::position() const { return target + distance * backOf(yaw, pitch); }
+
+Eigen::Matrix4f OrbitCamera::viewProjection(float aspect) const {
+  const Vec3 eye = position();
+  return perspective(fovY, aspect) * lookAlong((target - eye).normalized(), eye);
+}
+
+Eigen::Matrix4f OrbitCamera::skyRays(float aspect) const {
+  return (perspective(fovY, aspect) * lookAlong(-backOf(yaw, pitch), Vec3::Zero())).inverse();
 }
 
 float FilmFraming::pitchAbove(const OrbitCamera& base, const Vec3& target, float distance) const {

@@ -26,6 +26,10 @@ struct OrbitCamera {
   [[nodiscard]] Vec3 position() const;
   // World -> Vulkan clip space (y down, depth 0 at near .. 1 at far), for an image of this aspect ratio.
   [[nodiscard]] Eigen::Matrix4f viewProjection(float aspect) const;
+  // Clip space -> a point along the view ray from the eye (homogeneous; its xyz / w is the ray's direction):
+  // the inverse of the projection and the view's turn alone, from yaw, pitch and fovY. Where the camera stands
+  // does not enter, so the sky at infinity drawn with it is the same, to the bit, from anywhere.
+  [[nodiscard]] Eigen::Matrix4f skyRays(float aspect) const;
 };
 
 // A camera that keeps the film framed as it grows and drifts: it looks from the base camera's direction (yaw,

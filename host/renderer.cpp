@@ -4,6 +4,7 @@
 #include <array>
 #include <cstddef>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -20,7 +21,7 @@ namespace gb {
 
 using gpu::RenderUniforms;
 using kernels::RenderShader;
-static_assert(offsetof(RenderUniforms, inverseViewProjection) == 64);
+static_assert(offsetof(RenderUniforms, skyRays) == 64);
 static_assert(offsetof(RenderUniforms, cameraPosition) == 128);
 static_assert(offsetof(RenderUniforms, skyIrradiance) == 160);
 static_assert(offsetof(RenderUniforms, horizon) == 192);
@@ -120,16 +121,25 @@ struct Renderer::Impl {
 
   vk::SampleCountFlagBits samples = vk::SampleCountFlagBits::e1;
   DeviceImage opaque, depth, accum, reveal, output;
+  DeviceImage sky;  // the environment along each pixel's view ray (sky.frag), drawn when the view turns
   DeviceImage opaqueSamples, accumSamples, revealSamples;  // the multisampled targets, resolved into the above
-  vk::raii::RenderPass opaquePass{nullptr}, filmPass{nullptr}, compositePass{nullptr};
-  vk::raii::Framebuffer opaqueTarget{nullptr}, filmTarget{nullptr}, compositeTarget{nullptr};
+  vk::raii::RenderPass opaquePass{nullptr}, filmPass{nullptr}, compositePass{nullptr}, skyPass{nullptr};
+  vk::raii::Framebuffer opaqueTarget{nullptr}, filmTarget{nullptr}, compositeTarget{nullptr}, skyTarget{nullptr};
   vk::raii::Sampler linearSampler{nullptr}, nearestSampler{nullptr};
   DeviceImage lut, environment;
 
   vk::raii::DescriptorSetLayout sceneLayout{nullptr}, compositeLayout{nullptr};
   vk::raii::PipelineLayout pipelineLayout{nullptr};
   std::vector<vk::raii::ShaderModule> modules;  // indexed by RenderShader
-  vk::raii::Pipeline props{nullptr}, droplets{nullptr}, film{nullptr}, composite{nullptr};
+  vk::raii::Pipeline props{nullptr}, droplets{nullptr}, film{nullptr}, composite{nullptr}, skyLookup{nullptr};
+  // What the sky image shows: the sky is at infinity, so it depends on the view's direction and zoom and the
+  // image's size, not on where the camera is. Empty: not drawn yet (or the targets were made again).
+  struct SkyView {
+    float yaw, pitch, fovY;
+    uint32_t width, height;
+    bool operator==(const SkyView&) const = default;
+  };
+  std::optional<SkyView> skyDrawnFor;
   vk::raii::DescriptorPool pool{nullptr};
   vk::raii::DescriptorSet compositeSet{nullptr};
 
@@ -227,6 +237,7 @@ struct Renderer::Impl {
     droplets = nullptr;
     film = nullptr;
     composite = nullptr;
+    skyLookup = nullptr;
     modules.clear();
     makeTargets();
     makePipelines();
@@ -335,6 +346,24 @@ struct Renderer::Impl {
         device, vk::FramebufferCreateInfo({}, *filmPass, filmViews, extent.width, extent.height, 1));
     compositeTarget = vk::raii::Framebuffer(
         device, vk::FramebufferCreateInfo({}, *compositePass, outputView, extent.width, extent.height, 1));
+    // Sky: waits for the resolves before it to have read the sky image, and is read by the resolves after it.
+    sky = DeviceImage(*ctx, extent, kHdrFormat, U::eColorAttachment | U::eSampled);
+    skyPass = makeRenderPass(
+        device,
+        {attachment(kHdrFormat, Load::eDontCare, Store::eStore, Layout::eUndefined, Layout::eShaderReadOnlyOptimal)}, 1,
+        false, false,
+        {VK_SUBPASS_EXTERNAL,
+         0,
+         Stage::eFragmentShader,
+         Stage::eColorAttachmentOutput,
+         {},
+         Access::eColorAttachmentWrite},
+        {0, VK_SUBPASS_EXTERNAL, Stage::eColorAttachmentOutput, Stage::eFragmentShader, Access::eColorAttachmentWrite,
+         Access::eShaderRead});
+    const vk::ImageView skyView = sky.view();
+    skyTarget =
+        vk::raii::Framebuffer(device, vk::FramebufferCreateInfo({}, *skyPass, skyView, extent.width, extent.height, 1));
+    skyDrawnFor.reset();
   }
 
   void makeSamplersAndTextures(const EnvironmentImage& env) {
@@ -362,7 +391,7 @@ struct Renderer::Impl {
       scene.emplace_back(
           b, b == GB_RENDER_LUT || b == GB_RENDER_ENVIRONMENT ? D::eCombinedImageSampler : D::eStorageBuffer, 1, all);
     std::vector<vk::DescriptorSetLayoutBinding> resolve;
-    for (uint32_t b : {GB_COMPOSITE_OPAQUE, GB_COMPOSITE_ACCUM, GB_COMPOSITE_REVEAL})
+    for (uint32_t b : {GB_COMPOSITE_OPAQUE, GB_COMPOSITE_ACCUM, GB_COMPOSITE_REVEAL, GB_COMPOSITE_SKY})
       resolve.emplace_back(b, D::eCombinedImageSampler, 1, vk::ShaderStageFlagBits::eFragment);
     sceneLayout = vk::raii::DescriptorSetLayout(ctx->device, vk::DescriptorSetLayoutCreateInfo({}, scene));
     compositeLayout = vk::raii::DescriptorSetLayout(ctx->device, vk::DescriptorSetLayoutCreateInfo({}, resolve));
@@ -394,7 +423,7 @@ struct Renderer::Impl {
   }
 
   void makePipelines() {
-    for (int s = 0; s <= static_cast<int>(RenderShader::CompositeFrag); ++s) {
+    for (int s = 0; s <= static_cast<int>(RenderShader::SkyFrag); ++s) {
       const auto code = kernels::renderSpirv(static_cast<RenderShader>(s));
       modules.emplace_back(ctx->device, vk::ShaderModuleCreateInfo({}, code.size_bytes(), code.data()));
     }
@@ -415,12 +444,15 @@ struct Renderer::Impl {
                               {opaqueBlend()},
                               false},
                              compositePass);
+    skyLookup = makePipeline(
+        {R::FullscreenVert, R::SkyFrag, vk::PrimitiveTopology::eTriangleList, false, false, {opaqueBlend()}, false},
+        skyPass);
   }
 
   void makeDescriptors() {
     const std::array<vk::DescriptorPoolSize, 2> sizes{
         vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 2 * 9),
-        vk::DescriptorPoolSize(vk::DescriptorType::eCombinedImageSampler, 2 * 2 + 3)};
+        vk::DescriptorPoolSize(vk::DescriptorType::eCombinedImageSampler, 2 * 2 + 4)};
     pool = vk::raii::DescriptorPool(
         ctx->device, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 3, sizes));
     const std::array<vk::DescriptorSetLayout, 3> layouts{*sceneLayout, *sceneLayout, *compositeLayout};
@@ -432,7 +464,8 @@ struct Renderer::Impl {
                                               {*linearSampler, environment.view(), Layout::eShaderReadOnlyOptimal},
                                               {*nearestSampler, opaque.view(), Layout::eShaderReadOnlyOptimal},
                                               {*nearestSampler, accum.view(), Layout::eShaderReadOnlyOptimal},
-                                              {*nearestSampler, reveal.view(), Layout::eShaderReadOnlyOptimal}};
+                                              {*nearestSampler, reveal.view(), Layout::eShaderReadOnlyOptimal},
+                                              {*nearestSampler, sky.view(), Layout::eShaderReadOnlyOptimal}};
     using D = vk::DescriptorType;
     const vk::WriteDescriptorSet writes[] = {
         {*slots[0].sceneSet, GB_RENDER_LUT, 0, D::eCombinedImageSampler, images[0]},
@@ -441,7 +474,8 @@ struct Renderer::Impl {
         {*slots[1].sceneSet, GB_RENDER_ENVIRONMENT, 0, D::eCombinedImageSampler, images[1]},
         {*compositeSet, GB_COMPOSITE_OPAQUE, 0, D::eCombinedImageSampler, images[2]},
         {*compositeSet, GB_COMPOSITE_ACCUM, 0, D::eCombinedImageSampler, images[3]},
-        {*compositeSet, GB_COMPOSITE_REVEAL, 0, D::eCombinedImageSampler, images[4]}};
+        {*compositeSet, GB_COMPOSITE_REVEAL, 0, D::eCombinedImageSampler, images[4]},
+        {*compositeSet, GB_COMPOSITE_SKY, 0, D::eCombinedImageSampler, images[5]}};
     ctx->device.updateDescriptorSets(writes, {});
   }
 
@@ -506,9 +540,9 @@ struct Renderer::Impl {
     RenderUniforms u{};
     const float aspect = static_cast<float>(extent.width) / static_cast<float>(extent.height);
     const Eigen::Matrix4f viewProjection = frame.camera.viewProjection(aspect);
-    const Eigen::Matrix4f inverse = viewProjection.inverse();
+    const Eigen::Matrix4f skyRays = frame.camera.skyRays(aspect);
     std::memcpy(u.viewProjection.m, viewProjection.data(), sizeof u.viewProjection.m);
-    std::memcpy(u.inverseViewProjection.m, inverse.data(), sizeof u.inverseViewProjection.m);
+    std::memcpy(u.skyRays.m, skyRays.data(), sizeof u.skyRays.m);
     const Vec3 eye = frame.camera.position();
     u.cameraPosition = {eye.x(), eye.y(), eye.z(), 1.0f};
     u.keyLight = {keyLight.x(), keyLight.y(), keyLight.z(), keyStrength};
@@ -565,7 +599,7 @@ struct Renderer::Impl {
                     Access::eTransferWrite, Stage::eTransfer, Access::eTransferRead);
   }
 
-  void record(const DeviceFilm& f, bool readPixels, const AfterRender& after) {
+  void record(const DeviceFilm& f, bool drawSky, bool readPixels, const AfterRender& after) {
     const vk::raii::CommandBuffer& cb = slot().commands;
     cb.reset();
     cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
@@ -596,6 +630,12 @@ struct Renderer::Impl {
     }
     cb.endRenderPass();
 
+    if (drawSky) {
+      cb.beginRenderPass(vk::RenderPassBeginInfo(*skyPass, *skyTarget, area, {}), vk::SubpassContents::eInline);
+      cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *skyLookup);
+      cb.draw(3, 1, 0, 0);
+      cb.endRenderPass();
+    }
     cb.beginRenderPass(vk::RenderPassBeginInfo(*compositePass, *compositeTarget, area, {}),
                        vk::SubpassContents::eInline);
     cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *composite);
@@ -637,7 +677,12 @@ Renderer::Ticket Renderer::submit(const RenderFrame& frame, bool readback, const
   m.uploadUniforms(frame, film.particleCount, varied);
   m.bindSceneBuffers(film);
   m.uploadBanner(frame.banner);
-  m.record(film, readback, after);
+  // The sky is drawn again only when the view turns or zooms (or the size changes): on lavapipe a full-screen
+  // environment lookup costs a seventh of a main-job frame, and the framing often holds its direction.
+  const Impl::SkyView view{frame.camera.yaw, frame.camera.pitch, frame.camera.fovY, m.extent.width, m.extent.height};
+  const bool drawSky = m.skyDrawnFor != view;
+  m.skyDrawnFor = view;
+  m.record(film, drawSky, readback, after);
   m.ctx->submit(m.slot().commands, m.slot().done);
   m.slot().inFlight = true;
   return m.slot().ticket = ++m.tickets;

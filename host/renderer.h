@@ -2,12 +2,14 @@
 // The renderer (Section 8 of the paper): the film as a two-sided transparent sheet coloured by thin-film
 // interference (host/thin_film.h's lookup table) reflecting an environment and dimming what is behind it,
 // over the ground, the wands and their string, the rim of a bursting hole and the aerosol droplets; or coloured
-// by a diagnostic (thickness, air flow). Three passes into offscreen images, multisampled (MSAA) and resolved,
-// then the caller reads the pixels (PNG, video) or copies the image to a window (host/window.h):
+// by a diagnostic (thickness, air flow). Passes into offscreen images, multisampled (MSAA) and resolved, then the
+// caller reads the pixels (PNG, video) or copies the image to a window (host/window.h):
 //   1. opaque:   ground, wands, string, hole rims                   -> colour (RGBA16F) + depth
 //   2. film:     film and droplets, weighted blended order-independent transparency
 //                                                                    -> accum (RGBA16F) + reveal (R16F)
-//   3. resolve:  film over opaque (or the environment where nothing opaque is), exposure, sRGB encoding
+//   3. sky:      the environment along each pixel's view ray, only when the view has turned or zoomed
+//                                                                    -> sky (RGBA16F), kept between frames
+//   4. resolve:  film over opaque (or the sky where nothing opaque is), exposure, sRGB encoding
 //                                                                    -> output (RGBA8)
 //   then, when the frame has a message, its banner (drawn on the CPU) copied over the output's top rows.
 // docs/rendering.md has the optics and the choices.

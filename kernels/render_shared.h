@@ -16,24 +16,24 @@ struct alignas(16) mat4 {
 #define GB_COLOURING_AIR_FLOW 2
 
 struct RenderUniforms {
-  mat4 viewProjection;         // world -> clip (Vulkan: y down, depth 0 near .. 1 far)
-  mat4 inverseViewProjection;  // clip -> world, for the background's view rays
-  vec4 cameraPosition;         // world (m)
-  vec4 keyLight;               // unit direction towards the key light (the sun, a softbox); w: its strength on props
-  vec4 skyIrradiance;          // mean environment radiance over the upper hemisphere (props' ambient light)
-  vec4 groundIrradiance;       // and over the lower hemisphere
-  vec4 horizon;                // environment radiance just below the horizon (the far ground fades into it); w:
-                               // the floor's fog distance (m)
-  uint particles;              // stride of the x, y, z blocks of the film's vector buffers
-  uint colouring;              // GB_COLOURING_*
-  float thickColour;           // thickness drawn red by the thickness colouring (m)
-  float airFlowColour;         // air flow strength drawn yellow by the air flow colouring (m^3/s)
-  float exposure;              // scale of radiance before display encoding
-  float pointScale;            // droplet sprite size: pixels per metre at distance 1 m
-  float dropletRadius;         // drawn radius of a droplet (m)
-  uint thicknessVariation;     // 1: the interference colouring multiplies the thickness by GB_RENDER_VARIATION
-  float minTubePixels;         // tubes (string, wands, rims) are drawn at least this radius in pixels, so that
-                               // a string thinner than a pixel stays a continuous anti-aliased line
+  mat4 viewProjection;      // world -> clip (Vulkan: y down, depth 0 near .. 1 far)
+  mat4 skyRays;             // clip -> a view ray's direction from the eye (OrbitCamera::skyRays), for the sky
+  vec4 cameraPosition;      // world (m)
+  vec4 keyLight;            // unit direction towards the key light (the sun, a softbox); w: its strength on props
+  vec4 skyIrradiance;       // mean environment radiance over the upper hemisphere (props' ambient light)
+  vec4 groundIrradiance;    // and over the lower hemisphere
+  vec4 horizon;             // environment radiance just below the horizon (the far ground fades into it); w:
+                            // the floor's fog distance (m)
+  uint particles;           // stride of the x, y, z blocks of the film's vector buffers
+  uint colouring;           // GB_COLOURING_*
+  float thickColour;        // thickness drawn red by the thickness colouring (m)
+  float airFlowColour;      // air flow strength drawn yellow by the air flow colouring (m^3/s)
+  float exposure;           // scale of radiance before display encoding
+  float pointScale;         // droplet sprite size: pixels per metre at distance 1 m
+  float dropletRadius;      // drawn radius of a droplet (m)
+  uint thicknessVariation;  // 1: the interference colouring multiplies the thickness by GB_RENDER_VARIATION
+  float minTubePixels;      // tubes (string, wands, rims) are drawn at least this radius in pixels, so that
+                            // a string thinner than a pixel stays a continuous anti-aliased line
   uint pad0, pad1, pad2;
 };
 
@@ -58,6 +58,7 @@ struct RenderUniforms {
 #define GB_COMPOSITE_OPAQUE 0
 #define GB_COMPOSITE_ACCUM 1
 #define GB_COMPOSITE_REVEAL 2
+#define GB_COMPOSITE_SKY 3  // the environment along each pixel's view ray (sky.frag)
 
 // Materials of the opaque props (the fourth float of a mesh vertex's albedo).
 #define GB_MATERIAL_PLAIN 0

@@ -8,6 +8,7 @@
 #include "spirv/fullscreen_vert.h"
 #include "spirv/props_frag.h"
 #include "spirv/props_vert.h"
+#include "spirv/sky_frag.h"
 
 namespace gb::kernels {
 
@@ -21,6 +22,7 @@ std::span<const uint32_t> renderSpirv(RenderShader shader) {
     case RenderShader::FilmVert: return film_vert_spv;
     case RenderShader::FilmFrag: return film_frag_spv;
     case RenderShader::CompositeFrag: return composite_frag_spv;
+    case RenderShader::SkyFrag: return sky_frag_spv;
   }
   return {};
 }

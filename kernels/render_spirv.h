@@ -14,7 +14,8 @@ enum class RenderShader {
   DropletsFrag,
   FilmVert,         // the film from the simulation's buffers
   FilmFrag,         // thin-film interference or a diagnostic colouring, into the transparency targets
-  CompositeFrag     // transparency resolve, the environment behind everything, display encoding
+  CompositeFrag,    // transparency resolve over the opaque scene and the sky, display encoding
+  SkyFrag           // the environment along each pixel's view ray, for the resolve
 };
 
 std::span<const uint32_t> renderSpirv(RenderShader shader);

@@ -602,6 +602,39 @@ TEST(Renderer, DefaultPerformancesFilmIsColourfulMidStroke) {
   EXPECT_EQ(device->validationErrors(), 0u);
 }
 
+// The sky is drawn into an image of its own only when the view turns or zooms (the resolve reads it otherwise).
+// The image's top rows show only sky in the known scene (its droplets' ring is below them): they must change when
+// the view turns or zooms, stay when only the camera's place changes, and turning back must give the first
+// picture again, to the bit.
+TEST(Renderer, TheSkyIsDrawnAgainWhenTheViewTurns) {
+  GB_REQUIRE_VULKAN(device);
+  const test::KnownScene scene = test::makeKnownScene();
+  Renderer renderer(device, smallImage(), skyEnvironment(256));  // the sky has clouds and a horizon to turn
+  RenderFrame frame = test::frameOf(scene);
+  auto drawn = [&](const OrbitCamera& camera) {
+    frame.camera = camera;
+    renderer.render(frame);
+    return renderer.readPixels();
+  };
+  auto topRows = [](const std::vector<uint8_t>& rgb) {  // the top 16th: above the droplets' ring
+    return std::vector<uint8_t>(rgb.begin(), rgb.begin() + 3 * kWidth * (kHeight / 16));
+  };
+  const OrbitCamera base = scene.camera;
+  const std::vector<uint8_t> ahead = drawn(base);
+  OrbitCamera turned = base, zoomed = base, moved = base;
+  turned.yaw += 0.5f;
+  zoomed.fovY *= 0.8f;
+  moved.target += Vec3(0.0f, 0.05f, 0.0f);
+  moved.distance += 0.2f;
+  // Mean differences of a few levels at least: the sky's clouds and gradient move under the turn and the zoom.
+  EXPECT_GT(compare(topRows(drawn(turned)), topRows(ahead)).mean, 1.0);
+  EXPECT_GT(compare(topRows(drawn(zoomed)), topRows(ahead)).mean, 1.0);
+  // The sky at infinity is the same from anywhere: its pixels stay to the bit (the film and props move).
+  EXPECT_EQ(compare(topRows(drawn(moved)), topRows(ahead)).max, 0);
+  EXPECT_EQ(compare(drawn(base), ahead).max, 0);
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
 TEST(Renderer, RejectsAbsurdImageSizes) {
   GB_REQUIRE_VULKAN(device);
   RenderOptions o = smallImage();

@@ -78,7 +78,7 @@ class RunRenderer {
   // keeps two frames in flight) and written (PNG, video) in order, at the call after next or at finish(); a film
   // read in place on the Vulkan stepper's device is drawn and written at once, as the next step would change it.
   void frame(long index, Simulation& sim, const WandState& wands);
-  // Writes the frame still being drawn and closes the video; says what was written. An encoder that failed is
+  // Writes the frames still being drawn and closes the video; says what was written. An encoder that failed is
   // reported (stderr and videoError()), never thrown: the simulation's results are written whatever happened to
   // the video.
   void finish();

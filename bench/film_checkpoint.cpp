@@ -10,7 +10,7 @@ namespace gb {
 
 namespace {
 
-constexpr uint64_t kMagic = 0x676266696c6d3031;  // "gbfilm01"
+constexpr uint64_t kMagic = 0x676266696c6d3032;  // "gbfilm02": the triangle CSR holds corners, not triangles
 
 template <class T>
 struct IsVector : std::false_type {};
@@ -33,7 +33,7 @@ void forEachField(F& c, Visit&& visit) {
   visit(s.alive);
   auto& t = c.film.topology;
   for (auto* a : {&t.triangles, &t.springEnds, &t.springOffset, &t.springIndex, &t.springNeighbour, &t.triangleOffset,
-                  &t.triangleIndex, &t.boundary})
+                  &t.triangleCorner, &t.boundary})
     visit(*a);
   visit(t.restLength);
   visit(t.closed);

@@ -286,7 +286,7 @@ class EnergyLedger {
       if (!s.alive[i]) continue;
       Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
       for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k)
-        gradient += s.triangleNormal.get(topo.triangleIndex[k]).cast<double>() / 6.0;
+        gradient += s.triangleNormal.get(topo.triangleCorner[k] / 3).cast<double>() / 6.0;
       const Eigen::Vector3d used = s.voronoiArea[i] * s.normal.get(i).cast<double>();
       const Eigen::Vector3d v = s.velocity.get(i).cast<double>();
       net += excess * used;

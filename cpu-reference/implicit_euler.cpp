@@ -187,13 +187,13 @@ struct Ranges {
   [[nodiscard]] uint32_t entry(int l, uint32_t k) const { return k < count[l] ? first[l] + k : fallback + k; }
 };
 
-// The corners of a triangle after its corner i, counter-clockwise.
+// The corners of a triangle after one of its corners (3 t + c, Topology::triangleCorner), counter-clockwise.
 struct CornersAfter {
   uint32_t next, last;
 };
-CornersAfter cornersAfter(const uint32_t* tri, uint32_t i) {
-  const uint32_t c = tri[0] == i ? 0u : (tri[1] == i ? 1u : 2u);
-  return {tri[(c + 1) % 3], tri[(c + 2) % 3]};
+CornersAfter cornersAfter(const Topology& topo, uint32_t corner) {
+  const uint32_t* tri = &topo.triangles[corner - corner % 3];
+  return {tri[(corner + 1) % 3], tri[(corner + 2) % 3]};
 }
 
 // One particle's one-ring read from the topology's lists (objectiveBlock).
@@ -214,8 +214,9 @@ struct ListedRing {
   [[nodiscard]] bool hasTriangle(uint32_t) const { return true; }
   // The tension of i's k-th triangle, and its corners after i counter-clockwise.
   float triangle(uint32_t k, Particles<float>& next, Particles<float>& last) const {
-    const uint32_t* tri = &topo.triangles[3 * topo.triangleIndex[topo.triangleOffset[i] + k]];
-    const CornersAfter corners = cornersAfter(tri, i);
+    const uint32_t corner = topo.triangleCorner[topo.triangleOffset[i] + k];
+    const uint32_t* tri = &topo.triangles[corner - corner % 3];
+    const CornersAfter corners = cornersAfter(topo, corner);
     next = {corners.next};
     last = {corners.last};
     return triangleTension(s, tri);
@@ -463,8 +464,9 @@ void layOutSlots(const Params& p, const Topology& topo, const State& s, uint32_t
       CornersAfter corners{filler, filler};
       float tension = 0.0f;
       if (k < runs.triangleCount[4 * r + l]) {
-        const uint32_t* tri = &topo.triangles[3 * topo.triangleIndex[topo.triangleOffset[i] + k]];
-        corners = cornersAfter(tri, i);
+        const uint32_t corner = topo.triangleCorner[topo.triangleOffset[i] + k];
+        const uint32_t* tri = &topo.triangles[corner - corner % 3];
+        corners = cornersAfter(topo, corner);
         tension = triangleTension(s, tri);
       }
       runs.cornerNext[slot] = corners.next;

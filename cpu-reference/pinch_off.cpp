@@ -21,8 +21,8 @@ std::vector<uint32_t> boundaryLoop(const Topology& topo) {
     leaving.clear();
     entering.clear();
     for (uint32_t k = topo.triangleOffset[a]; k < topo.triangleOffset[a + 1]; ++k) {
-      const uint32_t* corner = &topo.triangles[3 * topo.triangleIndex[k]];
-      const int c = corner[0] == a ? 0 : corner[1] == a ? 1 : 2;
+      const uint32_t c = topo.triangleCorner[k] % 3;
+      const uint32_t* corner = &topo.triangles[topo.triangleCorner[k] - c];
       leaving.push_back(corner[(c + 1) % 3]);
       entering.push_back(corner[(c + 2) % 3]);
     }

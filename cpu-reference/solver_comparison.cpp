@@ -246,8 +246,8 @@ void ImplicitSolve::hessianProduct(const Vec3Array& v, Vec3Array& out) const {
       sum += springCouplingBlock(params_, h, topo, s, start_, i, k) * v.get(topo.springNeighbour[k]);
     if (params_.tensionModel == 1) {
       for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
-        const uint32_t* tri = &topo.triangles[3 * topo.triangleIndex[k]];
-        const uint32_t c = tri[0] == i ? 0u : (tri[1] == i ? 1u : 2u);
+        const uint32_t corner = topo.triangleCorner[k], c = corner % 3;
+        const uint32_t* tri = &topo.triangles[corner - c];
         for (uint32_t l = 0; l < 3; ++l)
           if (l != c) sum += triangleCouplingBlock(s, start_, tri, c, l) * v.get(tri[l]);
       }

@@ -1,6 +1,7 @@
 #include "stages.h"
 
 #include <algorithm>
+#include <array>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -44,10 +45,9 @@ void computeVertexGeometry(const Topology& topo, State& s, size_t i) {
   Vec3 normalSum = Vec3::Zero();
   float area = 0.0f;
   for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
-    const uint32_t t = topo.triangleIndex[k];
-    const uint32_t c = topo.triangles[3 * t] == i ? 0u : (topo.triangles[3 * t + 1] == i ? 1u : 2u);
-    normalSum += s.triangleNormal.get(t);
-    area += s.cornerArea[3 * t + c];
+    const uint32_t corner = topo.triangleCorner[k];
+    normalSum += s.triangleNormal.get(corner / 3);
+    area += s.cornerArea[corner];
   }
   const float len = normalSum.norm();
   s.normal.set(i, len > 0 ? Vec3(normalSum / len) : Vec3::Zero());
@@ -61,26 +61,35 @@ void fitTriangleArrays(const Topology& topo, State& s) {
 }
 
 uint64_t geometryKey(const Topology& topo, const State& s) {
-  // Word by word, multiply and rotate (a few tens of microseconds for the default film, against the geometry's
-  // hundreds): not cryptographic, but a changed position or triangle changes the key but for a 2^-64 chance.
-  uint64_t h = 0x9E3779B97F4A7C15ull ^ (static_cast<uint64_t>(s.size()) << 32) ^ topo.triangles.size();
-  const auto mix = [&h](uint64_t word) { h = std::rotl((h ^ word) * 0xFF51AFD7ED558CCDull, 29); };
-  const auto mixWords = [&mix](const void* data, size_t bytes) {
+  // Word by word, multiply and rotate, in four independent lanes (word k into lane k % 4) so that the
+  // multiplications overlap instead of waiting for each other: about a millisecond for 1,000,000 particles, against
+  // the geometry's 30-50. Not cryptographic, but a changed position or triangle changes the key but for a 2^-64
+  // chance.
+  std::array<uint64_t, 4> lane{0x9E3779B97F4A7C15ull ^ (static_cast<uint64_t>(s.size()) << 32) ^ topo.triangles.size(),
+                               1, 2, 3};
+  const auto mix = [](uint64_t& h, uint64_t word) { h = std::rotl((h ^ word) * 0xFF51AFD7ED558CCDull, 29); };
+  const auto mixWords = [&](const void* data, size_t bytes) {
     const auto* p = static_cast<const unsigned char*>(data);
     size_t k = 0;
+    for (; k + 32 <= bytes; k += 32) {
+      std::array<uint64_t, 4> words;
+      std::memcpy(words.data(), p + k, 32);
+      for (int l = 0; l < 4; ++l) mix(lane[l], words[l]);
+    }
     for (; k + 8 <= bytes; k += 8) {
       uint64_t word;
       std::memcpy(&word, p + k, 8);
-      mix(word);
+      mix(lane[0], word);
     }
     uint64_t tail = 0;
     std::memcpy(&tail, p + k, bytes - k);
-    mix(tail);
+    mix(lane[0], tail);
   };
   for (const std::vector<float>* axis : {&s.position.x, &s.position.y, &s.position.z})
     mixWords(axis->data(), axis->size() * sizeof(float));
   mixWords(topo.triangles.data(), topo.triangles.size() * sizeof(uint32_t));
-  return h;
+  for (int l = 1; l < 4; ++l) mix(lane[0], lane[l]);
+  return lane[0];
 }
 
 void computeGeometry(const Topology& topo, State& s) {
@@ -179,9 +188,8 @@ double boyleGasEnergy(const Params& p, double referenceVolume, double currentVol
 Vec3 areaTensionForce(const Topology& topo, const State& s, size_t i) {
   Vec3 f = Vec3::Zero();
   for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
-    const uint32_t t = topo.triangleIndex[k];
+    const uint32_t corner = topo.triangleCorner[k], t = corner / 3, c = corner % 3;
     const uint32_t* tri = &topo.triangles[3 * t];
-    const uint32_t c = tri[0] == i ? 0u : (tri[1] == i ? 1u : 2u);
     const uint32_t j = tri[(c + 1) % 3], l = tri[(c + 2) % 3];
     const Vec3 twiceAreaNormal = s.triangleNormal.get(t);
     const float twiceArea = twiceAreaNormal.norm();
@@ -333,9 +341,8 @@ namespace {
 float areaHessianDiagonal(const Topology& topo, const State& s, size_t i) {
   float sum = 0.0f;
   for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
-    const uint32_t t = topo.triangleIndex[k];
+    const uint32_t corner = topo.triangleCorner[k], t = corner / 3, c = corner % 3;
     const uint32_t* tri = &topo.triangles[3 * t];
-    const uint32_t c = tri[0] == i ? 0u : (tri[1] == i ? 1u : 2u);
     const float twiceArea = s.triangleNormal.get(t).norm();
     const float edge2 = (s.position.get(tri[(c + 2) % 3]) - s.position.get(tri[(c + 1) % 3])).squaredNorm();
     if (twiceArea > 0) sum += edge2 / (2.0f * twiceArea);

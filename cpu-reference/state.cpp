@@ -112,10 +112,10 @@ void buildAdjacencyArrays(Topology& topo) {
   topo.triangleOffset.assign(n + 1, 0);
   for (uint32_t v : topo.triangles) ++topo.triangleOffset[v + 1];
   for (size_t i = 0; i < n; ++i) topo.triangleOffset[i + 1] += topo.triangleOffset[i];
-  topo.triangleIndex.assign(topo.triangleOffset[n], 0);
+  topo.triangleCorner.assign(topo.triangleOffset[n], 0);
   fill.assign(topo.triangleOffset.begin(), topo.triangleOffset.end() - 1);
-  for (uint32_t t = 0; t < topo.triangleCount(); ++t)
-    for (int c = 0; c < 3; ++c) topo.triangleIndex[fill[topo.triangles[3 * t + c]]++] = t;
+  for (uint32_t corner = 0; corner < topo.triangles.size(); ++corner)
+    topo.triangleCorner[fill[topo.triangles[corner]]++] = corner;
   topo.contacts.assign(n + 1, 0u);  // no contacts until the collision search runs
 }
 

@@ -77,7 +77,7 @@ struct Topology {
   std::vector<uint32_t> springIndex;      // spring id
   std::vector<uint32_t> springNeighbour;  // particle at the other end of that spring (the one-ring)
   std::vector<uint32_t> triangleOffset;   // CSR: triangles of particle i
-  std::vector<uint32_t> triangleIndex;    // triangle id
+  std::vector<uint32_t> triangleCorner;   // its corner 3 t + c: triangle t = corner / 3, i is its corner c
   std::vector<uint32_t> boundary;         // 1 for a particle held by the wire frame (the "end particles"),
                                           // fixed when the film is made
 

@@ -188,7 +188,7 @@ struct VulkanStepper::Impl {
     writeVector(buffer(GB_BINDING_SPRING_INDEX), t.springIndex);
     writeVector(buffer(GB_BINDING_SPRING_NEIGHBOUR), t.springNeighbour);
     writeVector(buffer(GB_BINDING_TRIANGLE_OFFSET), t.triangleOffset);
-    writeVector(buffer(GB_BINDING_TRIANGLE_INDEX), t.triangleIndex);
+    writeVector(buffer(GB_BINDING_TRIANGLE_CORNER), t.triangleCorner);
     writeSolverLists(t);
     writeContacts(t);
   }
@@ -385,7 +385,7 @@ void VulkanStepper::load(const Params& params, Film& film) {
   make(GB_BINDING_SPRING_INDEX, t.springIndex.size() * sizeof(uint32_t));
   make(GB_BINDING_SPRING_NEIGHBOUR, t.springNeighbour.size() * sizeof(uint32_t));
   make(GB_BINDING_TRIANGLE_OFFSET, t.triangleOffset.size() * sizeof(uint32_t));
-  make(GB_BINDING_TRIANGLE_INDEX, t.triangleIndex.size() * sizeof(uint32_t));
+  make(GB_BINDING_TRIANGLE_CORNER, t.triangleCorner.size() * sizeof(uint32_t));
   make(GB_BINDING_CONTACTS, t.contacts.size() * sizeof(uint32_t));
   make(GB_BINDING_TRIANGLE_NORMAL, 3 * t.triangleCount() * sizeof(float));
   make(GB_BINDING_CORNER_AREA, 3 * t.triangleCount() * sizeof(float));
@@ -496,7 +496,7 @@ void VulkanStepper::updateTopology(const Params& params, Film& film) {
                            fits(GB_BINDING_REST_LENGTH, t.restLength.size(), sizeof(float)) &&
                            fits(GB_BINDING_SPRING_INDEX, t.springIndex.size(), sizeof(uint32_t)) &&
                            fits(GB_BINDING_SPRING_NEIGHBOUR, t.springNeighbour.size(), sizeof(uint32_t)) &&
-                           fits(GB_BINDING_TRIANGLE_INDEX, t.triangleIndex.size(), sizeof(uint32_t)) &&
+                           fits(GB_BINDING_TRIANGLE_CORNER, t.triangleCorner.size(), sizeof(uint32_t)) &&
                            fits(GB_BINDING_CONTACTS, t.contacts.size(), sizeof(uint32_t)) &&
                            fits(GB_BINDING_COLOUR_ORDER, solverListEntries(t), sizeof(uint32_t)) &&
                            fits(GB_BINDING_REDUCE, reduceFloats(t), sizeof(float));

@@ -67,8 +67,7 @@ void main() {
     }
     if (params.tensionModel != 1) continue;
     for (uint k = triangleOffset[i]; k < triangleOffset[i + 1u]; ++k) {
-      const uint t = triangleIndex[k];
-      const uint c = triangles[3u * t] == i ? 0u : (triangles[3u * t + 1u] == i ? 1u : 2u);
+      const uint corner = triangleCorner[k], t = corner / 3u, c = corner % 3u;
       for (uint l = 0u; l < 3u; ++l) {
         const uint other = PATCH_OF(triangles[3u * t + l]);
         if (l != c && other != kNoPatch) addToBlock(rowSlot(ownPatch, other), triangleCouplingBlock(t, c, l));

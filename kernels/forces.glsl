@@ -5,8 +5,7 @@
 vec3 areaTensionForce(uint i) {
   vec3 f = vec3(0.0);
   for (uint k = triangleOffset[i]; k < triangleOffset[i + 1u]; ++k) {
-    const uint t = triangleIndex[k];
-    const uint c = triangles[3u * t] == i ? 0u : (triangles[3u * t + 1u] == i ? 1u : 2u);
+    const uint corner = triangleCorner[k], t = corner / 3u, c = corner % 3u;
     const uint j = triangles[3u * t + (c + 1u) % 3u], l = triangles[3u * t + (c + 2u) % 3u];
     const vec3 twiceAreaNormal =
         vec3(triangleNormal[t], triangleNormal[pc.triangles + t], triangleNormal[2u * pc.triangles + t]);

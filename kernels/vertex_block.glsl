@@ -52,8 +52,7 @@ void addInternal(float h, uint i) {
   hessian += isotropic * mat3(1.0);
   if (physical) {
     for (uint k = triangleOffset[i]; k < triangleOffset[i + 1u]; ++k) {
-      const uint t = triangleIndex[k];
-      const uint c = triangles[3u * t] == i ? 0u : (triangles[3u * t + 1u] == i ? 1u : 2u);
+      const uint corner = triangleCorner[k], t = corner / 3u, c = corner % 3u;
       const float tension =
           (elasticity[triangles[3u * t]] + elasticity[triangles[3u * t + 1u]] + elasticity[triangles[3u * t + 2u]]) / 3.0;
       addAreaTension(tension, x, LOAD3(position, triangles[3u * t + (c + 1u) % 3u]),

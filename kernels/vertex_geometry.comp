@@ -10,10 +10,9 @@ void main() {
   vec3 normalSum = vec3(0.0);
   float area = 0.0;
   for (uint k = triangleOffset[i]; k < triangleOffset[i + 1u]; ++k) {
-    const uint t = triangleIndex[k];
-    const uint c = triangles[3u * t] == i ? 0u : (triangles[3u * t + 1u] == i ? 1u : 2u);
+    const uint corner = triangleCorner[k], t = corner / 3u;
     normalSum += vec3(triangleNormal[t], triangleNormal[pc.triangles + t], triangleNormal[2u * pc.triangles + t]);
-    area += cornerArea[3u * t + c];
+    area += cornerArea[corner];
   }
   const float len = length(normalSum);
   STORE3(normal, i, len > 0.0 ? normalSum / len : vec3(0.0));

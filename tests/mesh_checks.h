@@ -38,8 +38,11 @@ inline void expectAdjacencyMatchesTriangles(const Topology& topo) {
       neighbours[topo.triangles[3 * t + (c + 1) % 3]].insert(topo.triangles[3 * t + c]);
     }
   for (size_t i = 0; i < n; ++i) {
-    std::set<uint32_t> csrTriangles(topo.triangleIndex.begin() + topo.triangleOffset[i],
-                                    topo.triangleIndex.begin() + topo.triangleOffset[i + 1]);
+    std::set<uint32_t> csrTriangles;
+    for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
+      EXPECT_EQ(topo.triangles[topo.triangleCorner[k]], i) << "particle " << i << "'s corner " << k;
+      csrTriangles.insert(topo.triangleCorner[k] / 3);
+    }
     std::set<uint32_t> csrNeighbours(topo.springNeighbour.begin() + topo.springOffset[i],
                                      topo.springNeighbour.begin() + topo.springOffset[i + 1]);
     EXPECT_EQ(csrTriangles, triangles[i]) << "particle " << i;

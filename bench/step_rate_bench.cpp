@@ -48,6 +48,13 @@ void printCpu(const char* per, const std::vector<double>& ms) {
   std::printf("  main thread's CPU ms per %s: least %.2f, median %.2f\n", per, ms.front(), ms[ms.size() / 2]);
 }
 
+void printStageTimes(const Stepper& stepper, int steps) {
+  for (int s = 0; s < kStageCount; ++s)
+    if (stepper.stageTimes()[s] > 0)
+      std::printf(" %s %.2f", stageName(static_cast<Stage>(s)), stepper.stageTimes()[s] / steps);
+  std::printf("\n");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -98,16 +105,20 @@ int main(int argc, char** argv) {
   stepper.enableTiming(false);
   std::printf("stepper alone: %.2f frames/s (%.1f ms per step); ms per step by stage:", frames / stepSeconds,
               1e3 * stepSeconds / frames);
-  for (int s = 0; s < kStageCount; ++s)
-    if (stepper.stageTimes()[s] > 0)
-      std::printf(" %s %.2f", stageName(static_cast<Stage>(s)), stepper.stageTimes()[s] / frames);
-  std::printf("\n");
+  printStageTimes(stepper, frames);
   printCpu("step", stepCpu);
 
+  stepper.resetStageTimes();
+  stepper.enableTiming(true);
   t0 = Clock::now();
   const std::vector<double> frameCpu = cpuMillisecondsOf(frames, [&] { sim.advanceFrame(wandsAt(++frame)); });
   const double frameSeconds = secondsSince(t0);
   std::printf("whole frames: %.2f frames/s (%.1f ms per frame)\n", frames / frameSeconds, 1e3 * frameSeconds / frames);
+  stepper.enableTiming(false);
+  std::printf(
+      "  the step's stages in them (drainage runs once a frame, geometry only after the positions changed), ms "
+      "per frame:");
+  printStageTimes(stepper, frames);
   printCpu("frame", frameCpu);
   return 0;
 }

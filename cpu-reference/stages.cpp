@@ -301,9 +301,10 @@ void integrateParticle(const StepUniforms& u, const Topology& topo, State& s, si
 // ---- drainage -------------------------------------------------------------------------------------------
 
 float drainageDirection(const Vec3& xi, const Vec3& xj, const Vec3& g) {
+  // Uphill or level (about half of a film's edges): no liquid runs that way, and no square roots are spent on it.
   const Vec3 d = xj - xi;
-  const float norms = d.norm() * g.norm();
-  return norms > 0 ? std::max(d.dot(g) / norms, 0.0f) : 0.0f;
+  const float along = d.dot(g);
+  return along > 0 ? along / (d.norm() * g.norm()) : 0.0f;
 }
 
 void computeDrainageOutflow(const Params& p, float dt, const Topology& topo, State& s, size_t i) {

@@ -71,8 +71,8 @@ vec3 framePoint(StepUniformsBlock u, float param) {
 // drainageDirection of cpu-reference/stages.cpp, Eq. (14).
 float drainageDirection(vec3 xi, vec3 xj, vec3 g) {
   const vec3 d = xj - xi;
-  const float norms = length(d) * length(g);
-  return norms > 0.0 ? max(dot(d, g) / norms, 0.0) : 0.0;
+  const float along = dot(d, g);
+  return along > 0.0 ? along / (length(d) * length(g)) : 0.0;
 }
 
 // boylePressure of cpu-reference/stages.cpp, Eq. (11).

@@ -145,6 +145,7 @@ struct CellTable {
   std::vector<uint32_t> sheetIndex;
   std::vector<BucketSheet> sheet;
   uint64_t mask = 0;
+  std::vector<uint32_t> bucket;  // each particle's bucket, while the table is built
 
   [[nodiscard]] uint32_t bucketOf(const Cell& c) const {
     return static_cast<uint32_t>((cellKey(c) * 0x9E3779B97F4A7C15ull) >> 32 & mask);
@@ -208,13 +209,14 @@ void sortBucketAlongItsSheet(const State& s, size_t begin, size_t end, BucketShe
   }
 }
 
-CellTable bucketParticles(const Film& film, float cellSize) {
+// Fills `table` (its arrays keep their memory from the last time).
+void bucketParticles(const Film& film, float cellSize, CellTable& table) {
   const State& s = film.state;
   const size_t n = s.size();
-  CellTable table;
   const size_t buckets = bucketCount(film, cellSize);
   table.mask = buckets - 1;
-  std::vector<uint32_t> bucket(n, 0u);
+  std::vector<uint32_t>& bucket = table.bucket;
+  bucket.assign(n, 0u);
 #pragma omp parallel for schedule(static) if (n >= kParallelPass)
   for (size_t i = 0; i < n; ++i)
     if (inFilm(film, static_cast<uint32_t>(i))) bucket[i] = table.bucketOf(cellOf(s.position.get(i), cellSize));
@@ -232,6 +234,7 @@ CellTable bucketParticles(const Film& film, float cellSize) {
     for (std::vector<float>& axis : *arrays) axis.resize(table.particle.size());
   table.along.resize(table.particle.size());
   table.sheetIndex.assign(buckets, 0u);
+  table.occupied.clear();
   for (uint32_t b = 0; b < buckets; ++b) {
     if (table.offset[b] == table.offset[b + 1]) continue;
     table.sheetIndex[b] = static_cast<uint32_t>(table.occupied.size());
@@ -243,7 +246,6 @@ CellTable bucketParticles(const Film& film, float cellSize) {
     const uint32_t b = table.occupied[o];
     sortBucketAlongItsSheet(s, table.offset[b], table.offset[b + 1], table.sheet[o], table);
   }
-  return table;
 }
 
 // Whether the pairs between the particles of buckets `home` and b are listed from home's (else from b's): from the
@@ -395,7 +397,21 @@ float contactRestDistanceAfter(const Params& p, float previousRest, float separa
   return std::min(p.collisionDistance, std::max(previousRest, separation));
 }
 
+struct ContactSearch::Memory {
+  CellTable table;
+  std::vector<std::vector<uint32_t>> lists;  // the partners each particle lists
+};
+
+ContactSearch::ContactSearch() : memory_(std::make_unique<Memory>()) {}
+ContactSearch::~ContactSearch() = default;
+ContactSearch::ContactSearch(const ContactSearch&) : ContactSearch() {}
+ContactSearch& ContactSearch::operator=(const ContactSearch&) { return *this; }
+
 size_t findContacts(const Params& p, float frameTime, float slack, Film& film, const ContactHistory& history) {
+  return ContactSearch().find(p, frameTime, slack, film, history);
+}
+
+size_t ContactSearch::find(const Params& p, float frameTime, float slack, Film& film, const ContactHistory& history) {
   const State& s = film.state;
   Topology& topo = film.topology;
   const size_t n = s.size();
@@ -405,9 +421,13 @@ size_t findContacts(const Params& p, float frameTime, float slack, Film& film, c
   const std::vector<float> speed = speedsAboutTheMean(film);
   const float fastest = n ? *std::max_element(speed.begin(), speed.end()) : 0.0f;
   const float reach = p.collisionDistance + contactMargin(frameTime, slack, 2.0f * fastest);
-  std::vector<std::vector<uint32_t>> lists(n);
+  std::vector<std::vector<uint32_t>>& lists = memory_->lists;
+  lists.resize(n);
+#pragma omp parallel for schedule(static) if (n >= kParallelPass)
+  for (size_t i = 0; i < n; ++i) lists[i].clear();
   if (reach > 0 && p.collisionStiffness > 0) {
-    const CellTable table = bucketParticles(film, reach);
+    const CellTable& table = memory_->table;
+    bucketParticles(film, reach, memory_->table);
     const PartnerRule rule{p, topo, frameTime, slack, reach};
     // Each particle lists the partners it owns (each pair once, half the distance tests; listPartnersIn) from the
     // read-only table: parallel over the buckets, and the same lists in any order. The particles of a cell

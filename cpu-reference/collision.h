@@ -5,6 +5,8 @@
 // opposite, tangential motion free so that the sheets slip). A contact hit too hard bursts the film there
 // (lambda_col, findImpact).
 
+#include <memory>
+
 #include "film.h"
 
 namespace gb {
@@ -34,6 +36,23 @@ float contactRestDistanceAfter(const Params& params, float previousRest, float s
 // symmetric and sorted. Returns the number of pairs.
 constexpr float kMaxContactMargin = 0.05f;  // m: a film faster than 2.5 m/s relative to itself bursts anyway
 size_t findContacts(const Params& params, float frameTime, float slack, Film& film, const ContactHistory& history = {});
+
+// findContacts with the memory it keeps from one search to the next: a film of a million particles has a cell
+// table and per-particle lists of tens of megabytes, which a search of its own allocates and zeroes each time (25
+// ms of a 370 ms frame at 1,000,000 particles, docs/performance.md). The lists found are the same. A copy starts
+// with no memory.
+class ContactSearch {
+ public:
+  ContactSearch();
+  ~ContactSearch();
+  ContactSearch(const ContactSearch&);
+  ContactSearch& operator=(const ContactSearch&);
+  size_t find(const Params& params, float frameTime, float slack, Film& film, const ContactHistory& history = {});
+
+ private:
+  struct Memory;
+  std::unique_ptr<Memory> memory_;
+};
 
 // The impact of two film particles meeting at approach speed v (the closing speed along their separation):
 // the film Weber number m_A v^2 / E, the dynamic pressure of the approach over the film's tension, with m_A

@@ -249,7 +249,7 @@ void Simulation::updateContacts() {
   // Contacts for the next frame: within reach of what two particles can close in the longest step taken so far,
   // plus 5 mm for what the step's forces add to their start velocities.
   constexpr float slack = 0.005f;
-  findContacts(params_, contactHorizon_, slack, film_, contactHistory_);
+  contactSearch_.find(params_, contactHorizon_, slack, film_, contactHistory_);
   contactHistory_ = {film_.topology.contacts, film_.state.size()};
   stepper_->updateContacts(film_);
 }

@@ -147,6 +147,7 @@ class Simulation {
   float pressure_ = 0;
   float contactHorizon_;           // the longest step taken (s): what the contact search must reach across
   ContactHistory contactHistory_;  // the last contact list, for the pairs' rest distances (collision.h)
+  ContactSearch contactSearch_;
   long stepCount_ = 0;
 };
 

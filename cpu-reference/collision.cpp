@@ -426,8 +426,8 @@ size_t ContactSearch::find(const Params& p, float frameTime, float slack, Film& 
 #pragma omp parallel for schedule(static) if (n >= kParallelPass)
   for (size_t i = 0; i < n; ++i) lists[i].clear();
   if (reach > 0 && p.collisionStiffness > 0) {
-    const CellTable& table = memory_->table;
     bucketParticles(film, reach, memory_->table);
+    const CellTable& table = memory_->table;
     const PartnerRule rule{p, topo, frameTime, slack, reach};
     // Each particle lists the partners it owns (each pair once, half the distance tests; listPartnersIn) from the
     // read-only table: parallel over the buckets, and the same lists in any order. The particles of a cell

@@ -38,9 +38,9 @@ constexpr float kMaxContactMargin = 0.05f;  // m: a film faster than 2.5 m/s rel
 size_t findContacts(const Params& params, float frameTime, float slack, Film& film, const ContactHistory& history = {});
 
 // findContacts with the memory it keeps from one search to the next: a film of a million particles has a cell
-// table and per-particle lists of tens of megabytes, which a search of its own allocates and zeroes each time (25
-// ms of a 370 ms frame at 1,000,000 particles, docs/performance.md). The lists found are the same. A copy starts
-// with no memory.
+// table and per-particle lists of tens of megabytes, which a search of its own allocates and zeroes each time
+// (about 30 ms of a 370 ms frame at 1,000,000 particles, docs/performance.md). The lists found are the same. A copy
+// starts with no memory.
 class ContactSearch {
  public:
   ContactSearch();

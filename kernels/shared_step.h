@@ -77,7 +77,7 @@ struct PushBlock {
 #define GB_BINDING_SPRING_INDEX 20
 #define GB_BINDING_SPRING_NEIGHBOUR 21
 #define GB_BINDING_TRIANGLE_OFFSET 22
-#define GB_BINDING_TRIANGLE_CORNER 23
+#define GB_BINDING_TRIANGLE_CORNER 23  // each particle's triangles as its corners 3 t + c (Topology::triangleCorner)
 #define GB_BINDING_BOUNDARY 24
 #define GB_BINDING_REDUCE \
   25                            // two halves of `triangles` floats, A then B: the tree sum's ping-pong; then the

@@ -198,7 +198,7 @@ void assembleCoarseRow(const Params& p, const StepUniforms& u, const Bubble& bub
     if (p.tensionModel != 1) continue;
     for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
       const uint32_t corner = topo.triangleCorner[k], c = corner % 3;
-      const uint32_t* tri = &topo.triangles[corner - c];
+      const uint32_t* tri = topo.triangleOf(corner);
       for (uint32_t l = 0; l < 3; ++l) {
         const uint32_t other = topo.patchOf[tri[l]];
         if (l == c || other == kNoPatch) continue;

@@ -236,7 +236,7 @@ bool mergeKeepsTheMesh(const Film& film, uint32_t a, uint32_t b, const Vec3& x) 
   if (shared != 2) return false;
   for (uint32_t moved : {a, b})
     for (uint32_t k = topo.triangleOffset[moved]; k < topo.triangleOffset[moved + 1]; ++k) {
-      const uint32_t* tri = &topo.triangles[topo.triangleCorner[k] - topo.triangleCorner[k] % 3];
+      const uint32_t* tri = topo.triangleOf(topo.triangleCorner[k]);
       if ((tri[0] == a || tri[1] == a || tri[2] == a) && (tri[0] == b || tri[1] == b || tri[2] == b)) continue;
       std::array<Vec3, 3> before, after;
       for (int c = 0; c < 3; ++c) {

@@ -192,7 +192,7 @@ struct CornersAfter {
   uint32_t next, last;
 };
 CornersAfter cornersAfter(const Topology& topo, uint32_t corner) {
-  const uint32_t* tri = &topo.triangles[corner - corner % 3];
+  const uint32_t* tri = topo.triangleOf(corner);
   return {tri[(corner + 1) % 3], tri[(corner + 2) % 3]};
 }
 
@@ -215,7 +215,7 @@ struct ListedRing {
   // The tension of i's k-th triangle, and its corners after i counter-clockwise.
   float triangle(uint32_t k, Particles<float>& next, Particles<float>& last) const {
     const uint32_t corner = topo.triangleCorner[topo.triangleOffset[i] + k];
-    const uint32_t* tri = &topo.triangles[corner - corner % 3];
+    const uint32_t* tri = topo.triangleOf(corner);
     const CornersAfter corners = cornersAfter(topo, corner);
     next = {corners.next};
     last = {corners.last};
@@ -465,7 +465,7 @@ void layOutSlots(const Params& p, const Topology& topo, const State& s, uint32_t
       float tension = 0.0f;
       if (k < runs.triangleCount[4 * r + l]) {
         const uint32_t corner = topo.triangleCorner[topo.triangleOffset[i] + k];
-        const uint32_t* tri = &topo.triangles[corner - corner % 3];
+        const uint32_t* tri = topo.triangleOf(corner);
         corners = cornersAfter(topo, corner);
         tension = triangleTension(s, tri);
       }

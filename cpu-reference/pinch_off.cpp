@@ -22,7 +22,7 @@ std::vector<uint32_t> boundaryLoop(const Topology& topo) {
     entering.clear();
     for (uint32_t k = topo.triangleOffset[a]; k < topo.triangleOffset[a + 1]; ++k) {
       const uint32_t c = topo.triangleCorner[k] % 3;
-      const uint32_t* corner = &topo.triangles[topo.triangleCorner[k] - c];
+      const uint32_t* corner = topo.triangleOf(topo.triangleCorner[k]);
       leaving.push_back(corner[(c + 1) % 3]);
       entering.push_back(corner[(c + 2) % 3]);
     }

@@ -247,7 +247,7 @@ void ImplicitSolve::hessianProduct(const Vec3Array& v, Vec3Array& out) const {
     if (params_.tensionModel == 1) {
       for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
         const uint32_t corner = topo.triangleCorner[k], c = corner % 3;
-        const uint32_t* tri = &topo.triangles[corner - c];
+        const uint32_t* tri = topo.triangleOf(corner);
         for (uint32_t l = 0; l < 3; ++l)
           if (l != c) sum += triangleCouplingBlock(s, start_, tri, c, l) * v.get(tri[l]);
       }

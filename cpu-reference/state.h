@@ -82,6 +82,8 @@ struct Topology {
                                           // fixed when the film is made
 
   [[nodiscard]] size_t triangleCount() const { return triangles.size() / 3; }
+  // The three corners of the triangle that `corner` (an entry of triangleCorner) belongs to.
+  [[nodiscard]] const uint32_t* triangleOf(uint32_t corner) const { return &triangles[corner - corner % 3]; }
   [[nodiscard]] size_t springCount() const { return restLength.size(); }
   [[nodiscard]] size_t particleCount() const { return boundary.size(); }
   // Self-collision candidates of each particle for the current frame, as one packed array (collision.h):

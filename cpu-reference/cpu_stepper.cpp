@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "colouring.h"
+#include "energy_budget.h"
 #include "implicit_euler.h"
 
 namespace gb {
@@ -34,6 +35,7 @@ void CpuStepper::timed(Stage stage, Body&& body) {
 void CpuStepper::load(const Params& params, Film& film) {
   params_ = params;
   film_ = &film;
+  velocityBudget_ = {};
   ensureColouring(film.state.alive, film.topology);
   if (params.coarseIterations > 0) ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
 }
@@ -104,9 +106,15 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
       case Stage::VertexBlockDescent:
         sweep(u);
         break;
-      case Stage::ImplicitVelocity:
-        forEach(n, [&](size_t i) { finishImplicitStep(u, s, i); });
+      case Stage::EnergyBudget:
+        velocityBudget_ = budgetEnergy(u);
+        result = velocityBudget_.scale;
         break;
+      case Stage::ImplicitVelocity: {
+        const VelocityBudget budget = params_.energyBudget ? velocityBudget_ : VelocityBudget{};
+        forEach(n, [&](size_t i) { finishImplicitStep(u, topo, budget, s, i); });
+        break;
+      }
       case Stage::Drainage:  // two Jacobi passes: every outflow is known before anyone gathers
         forEach(n, [&](size_t i) { computeDrainageOutflow(params_, u.drainageDt, topo, s, i); });
         forEach(n, [&](size_t i) { gatherDrainage(params_, topo, s, i); });
@@ -173,6 +181,30 @@ void CpuStepper::correctCoarsely(const StepUniforms& u) {
           [&](size_t patch) { assembleCoarseRow(params_, u, bubble, topo, s, patch, coarse_); });
   solveCoarseSystem(topo, params_.coarseIterations, coarse_);
   forEach(s.size(), [&](size_t i) { applyCoarseCorrection(topo, coarse_, s, i); });
+}
+
+VelocityBudget CpuStepper::budgetEnergy(const StepUniforms& u) {
+  const State& s = film_->state;
+  const Topology& topo = film_->topology;
+  for (std::vector<float>& terms : energyTerms_) terms.resize(s.size());
+  forEach(s.size(), [&](size_t i) {
+    const ParticleEnergy e = particleEnergy(params_, u, topo, s, i);
+    const std::array<float, 7> terms = {e.start,        e.kinetic,      e.held,        e.mass,
+                                        e.momentum.x(), e.momentum.y(), e.momentum.z()};
+    for (size_t c = 0; c < terms.size(); ++c) energyTerms_[c][i] = terms[c];
+  });
+  float gas = 0.0f;
+  if (u.closed) {  // the volumes before and after the step, as the volume stage sums them
+    triangleVolumes_.resize(topo.triangleCount());
+    forEach(triangleVolumes_.size(),
+            [&](size_t t) { triangleVolumes_[t] = triangleSignedVolumeAtStart(topo, s, t, u.volumeOrigin); });
+    const float before = treeSum(triangleVolumes_);
+    lastVolume_ = volume(*film_, u.volumeOrigin);
+    gas = boyleEnergyChange(params_, u.referenceVolume, before, lastVolume_);
+  }
+  std::array<float, 7> sums{};
+  for (size_t c = 0; c < sums.size(); ++c) sums[c] = treeSum(energyTerms_[c]);
+  return energyBudget(sums[0], sums[1], sums[2] + gas, sums[3], Vec3(sums[4], sums[5], sums[6]));
 }
 
 float CpuStepper::currentPressure(const StepUniforms& u) const {

@@ -2,9 +2,11 @@
 // The CPU backend: one step walks stepStages() (stepper.h), each stage run over all elements in parallel
 // (OpenMP), on the host film in place. The Vulkan stepper records the same table as dispatches.
 
+#include <array>
 #include <vector>
 
 #include "coarse_correction.h"
+#include "energy_budget.h"
 #include "implicit_euler.h"
 #include "stepper.h"
 
@@ -32,6 +34,9 @@ class CpuStepper final : public Stepper {
   void runSweeps(const StepUniforms& u, int from, int to);
   // Stage coarse_correction: the patch system assembled, solved and applied (coarse_correction.h).
   void correctCoarsely(const StepUniforms& u);
+  // Stage energy_budget: every particle's share of the step's energy, summed in the fixed tree order, and for a
+  // closed film the gas's energy change between the volumes before and after.
+  VelocityBudget budgetEnergy(const StepUniforms& u);
   // Boyle's pressure of a closed film at the last volume (Eq. 11), P_0 for an open film.
   [[nodiscard]] float currentPressure(const StepUniforms& u) const;
   template <class Body>
@@ -39,10 +44,12 @@ class CpuStepper final : public Stepper {
 
   Params params_;
   Film* film_ = nullptr;
-  std::vector<float> triangleVolumes_;  // scratch for the volume reduction, reused every step
-  float lastVolume_ = 0.0f;             // result of the last Volume stage, read by Forces
-  SweepRuns sweepRuns_;                 // the implicit step's one-rings, laid out again every step
-  CoarseSystem coarse_;                 // the implicit step's patch system, assembled again every step
+  std::vector<float> triangleVolumes_;             // scratch for the volume reduction, reused every step
+  float lastVolume_ = 0.0f;                        // result of the last Volume stage, read by Forces
+  SweepRuns sweepRuns_;                            // the implicit step's one-rings, laid out again every step
+  CoarseSystem coarse_;                            // the implicit step's patch system, assembled again every step
+  std::array<std::vector<float>, 7> energyTerms_;  // energy_budget's per-particle terms (ParticleEnergy, flat)
+  VelocityBudget velocityBudget_;                  // the last energy budget's, read by implicit_velocity
 };
 
 }  // namespace gb

@@ -5,6 +5,7 @@
 #include <limits>
 #include <numeric>
 
+#include "energy_budget.h"
 #include "float_lanes.h"
 
 namespace gb {
@@ -562,9 +563,10 @@ double implicitResidual(const Params& p, const StepUniforms& u, const Bubble& bu
   return std::sqrt(sum);
 }
 
-void finishImplicitStep(const StepUniforms& u, State& s, size_t i) {
+void finishImplicitStep(const StepUniforms& u, const Topology& topo, const VelocityBudget& budget, State& s, size_t i) {
   if (!s.alive[i]) return;
-  s.velocity.set(i, (s.position.get(i) - s.previousPosition.get(i)) / u.dt);
+  const Vec3 v = (s.position.get(i) - s.previousPosition.get(i)) / u.dt;
+  s.velocity.set(i, topo.boundary[i] ? v : budgetedVelocity(budget, v));
 }
 
 }  // namespace gb

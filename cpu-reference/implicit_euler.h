@@ -119,7 +119,9 @@ void solveVertexBlockRun(const Params& p, const StepUniforms& u, const Bubble& b
 double implicitResidual(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo,
                         const State& s);
 
-// Stage implicit_velocity, per particle i: v = (x - x_t) / h, the implicit Euler velocity.
-void finishImplicitStep(const StepUniforms& u, State& s, size_t i);
+struct VelocityBudget;
+// Stage implicit_velocity, per particle i: v = (x - x_t) / h, the implicit Euler velocity, a free particle's as the
+// energy budget leaves it (energy_budget.h; unchanged without one).
+void finishImplicitStep(const StepUniforms& u, const Topology& topo, const VelocityBudget& budget, State& s, size_t i);
 
 }  // namespace gb

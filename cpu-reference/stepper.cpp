@@ -10,6 +10,7 @@ bool always(const Params&, const StepUniforms&) { return true; }
 bool closedFilm(const Params&, const StepUniforms& u) { return u.closed != 0; }
 bool explicitStep(const Params& p, const StepUniforms&) { return p.integrator == 0; }
 bool implicitStep(const Params& p, const StepUniforms&) { return p.integrator != 0; }
+bool budgetedStep(const Params& p, const StepUniforms&) { return p.integrator != 0 && p.energyBudget != 0; }
 // The coarse correction runs inside vertex_block_descent, between its smoothing sweeps (coarse_correction.h),
 // never as a row of its own.
 bool insideTheSweeps(const Params&, const StepUniforms&) { return false; }
@@ -28,8 +29,9 @@ constexpr std::array kStages = {
     StageSpec{Stage::ImplicitPredict, "implicit_predict", implicitStep,
               "the solver reads x_t, the placed wire and the first guess"},
     StageSpec{Stage::VertexBlockDescent, "vertex_block_descent", implicitStep,
-              "the velocity reads the solved positions"},
+              "the energy budget and the velocity read the solved positions"},
     StageSpec{Stage::CoarseCorrection, "coarse_correction", insideTheSweeps, nullptr},
+    StageSpec{Stage::EnergyBudget, "energy_budget", budgetedStep, "the velocity reads the budget's factor"},
     StageSpec{Stage::ImplicitVelocity, "implicit_velocity", implicitStep,
               "drainage and the next step read the new positions and velocities"},
     StageSpec{Stage::Drainage, "drainage", drainsThisStep, "the next step's film state reads the new liquid"},

@@ -27,7 +27,9 @@ enum class Stage : int {
                        // after the first half of them (coarseSweepsBefore)
   CoarseCorrection,    // implicit integrator: the iterate corrected by rigid moves of patches (coarse_correction.h);
                        // recorded inside vertex_block_descent, run alone only by tests and benchmarks
-  ImplicitVelocity,    // implicit integrator: v = (x - x_t) / h
+  EnergyBudget,        // implicit integrator: the factor on the new velocities that keeps the step's energy within
+                       // the work done on the film (energy_budget.h)
+  ImplicitVelocity,    // implicit integrator: v = (x - x_t) / h, the free particles' times the energy budget's factor
   Drainage,
   Count
 };
@@ -61,7 +63,8 @@ class Stepper {
   // (Eq. 11; P_0 for an open film).
   virtual float run(std::span<const StepUniforms> substeps) = 0;
   // Runs one stage alone on the loaded film (equivalence tests, per-stage benchmarks). Returns the volume
-  // for Stage::Volume, 0 otherwise. AirTransfer includes the Jacobi swap.
+  // for Stage::Volume, the velocity factor for Stage::EnergyBudget, 0 otherwise. AirTransfer includes the
+  // Jacobi swap.
   virtual float runStage(Stage stage, const StepUniforms& uniforms) = 0;
   // Brings the per-particle state back into the film given to load (nothing to do on the CPU).
   virtual void store(Film& film) = 0;

@@ -114,10 +114,15 @@ size_t solverListEntries(const Topology& t) {
                                  t.patchRowOffset.size() + t.patchRow.size());
 }
 
-// The reduce buffer: the tree sum's two halves, then the coarse correction's patch system (kernels/coarse.glsl).
-size_t reduceFloats(const Topology& t) {
+// The reduce buffer: the tree sum's two halves, the coarse correction's patch system (kernels/coarse.glsl), then
+// the energy budget's region (ENERGY_A in kernels/common.glsl), which starts at energyRegion.
+size_t energyRegion(const Topology& t) {
   const size_t patches = t.patchOffset.empty() ? 0 : t.patchOffset.size() - 1;
   return 2 * std::max<size_t>(t.triangleCount(), 1) + 9 * t.patchRow.size() + 21 * patches;
+}
+constexpr size_t kEnergyTerms = 7, kEnergySlots = 5;  // ENERGY_TERMS and the slots after them (kernels/common.glsl)
+size_t reduceFloats(const Topology& t, size_t particles) {
+  return energyRegion(t) + 2 * kEnergyTerms * particles + kEnergySlots;
 }
 
 }  // namespace
@@ -137,6 +142,7 @@ struct VulkanStepper::Impl {
                                                        // buffers of descriptor set 0
   std::vector<uint32_t> colourOffset;                  // the implicit solver's colours (Topology::colourOffset)
   uint32_t patches = 0, solverParticles = 0;           // the coarse correction's P and M (kernels/coarse.glsl)
+  uint32_t energyBase = 0;                             // where the energy budget's region of the reduce buffer starts
   size_t stepsCapacity = 0;
   vk::raii::DescriptorPool pool{nullptr};
   std::vector<vk::raii::DescriptorSet> sets;  // [0]: air A front, B back; [1]: swapped
@@ -191,6 +197,19 @@ struct VulkanStepper::Impl {
     writeVector(buffer(GB_BINDING_TRIANGLE_CORNER), t.triangleCorner);
     writeSolverLists(t);
     writeContacts(t);
+    energyBase = static_cast<uint32_t>(energyRegion(t));
+    writeVelocityScale(1.0f);  // no budget has run on this mesh yet
+  }
+
+  // The factor implicit_velocity applies (ENERGY_VELOCITY_SCALE), as the energy budget leaves it.
+  [[nodiscard]] vk::DeviceSize velocityScaleOffset() const {
+    return (energyBase + 2 * kEnergyTerms * particles + 1) * sizeof(float);
+  }
+  void writeVelocityScale(float scale) { buffer(GB_BINDING_REDUCE).write(&scale, sizeof scale, velocityScaleOffset()); }
+  [[nodiscard]] float readVelocityScale() {
+    float scale = 1.0f;
+    buffer(GB_BINDING_REDUCE).read(&scale, sizeof scale, velocityScaleOffset());
+    return scale;
   }
 
   // The implicit solver's colours and the coarse correction's patches (kernels/coarse.glsl), made with the mesh.
@@ -241,6 +260,35 @@ struct VulkanStepper::Impl {
     cb.dispatch(ceilDiv(count, workgroup), 1, 1);
   }
 
+  // The volume's tree sum, at the current positions or at the step's start (the energy budget); ends with a
+  // barrier, and volumeInA says which half holds the result.
+  void recordVolume(const vk::raii::CommandBuffer& cb, uint32_t stepIndex, bool atStepStart) {
+    dispatch(cb, Kernel::TriangleVolume, triangles, stepIndex, atStepStart ? 2u : 0u);
+    computeToComputeBarrier(cb);
+    bool fromA = true;
+    for (uint32_t n = triangles; n > 1; n = (n + 1) / 2) {  // the levels of treeSum
+      dispatch(cb, Kernel::TreeSum, n, stepIndex, fromA ? 1u : 0u);
+      computeToComputeBarrier(cb);
+      fromA = !fromA;
+    }
+    volumeInA = fromA;
+  }
+
+  // Stage energy_budget: the terms, the volumes before and after for a closed film, the terms' tree sum, the factor.
+  void recordEnergyBudget(const vk::raii::CommandBuffer& cb, const StepUniforms& u, uint32_t stepIndex) {
+    if (u.closed) recordVolume(cb, stepIndex, true);  // energy_terms keeps it
+    dispatch(cb, Kernel::EnergyTerms, particles, stepIndex, volumeInA ? 1u : 0u, energyBase);
+    computeToComputeBarrier(cb);                       // the terms are written, the volume before is kept
+    if (u.closed) recordVolume(cb, stepIndex, false);  // the volume after: the gas's change, the step's pressure
+    bool fromA = true;
+    for (uint32_t n = particles; n > 1; n = (n + 1) / 2) {  // the levels of treeSum
+      dispatch(cb, Kernel::EnergyTreeSum, n, stepIndex, fromA ? 1u : 0u, energyBase);
+      computeToComputeBarrier(cb);
+      fromA = !fromA;
+    }
+    dispatch(cb, Kernel::EnergyScale, 1, stepIndex, (fromA ? 1u : 0u) | (volumeInA ? 2u : 0u), energyBase);
+  }
+
   // Records one stage. Stages of several passes record their own barriers between the passes.
   void recordStage(const vk::raii::CommandBuffer& cb, Stage stage, const StepUniforms& u, uint32_t stepIndex) {
     switch (stage) {
@@ -249,18 +297,9 @@ struct VulkanStepper::Impl {
         computeToComputeBarrier(cb);  // every triangle is done before any particle gathers
         dispatch(cb, Kernel::VertexGeometry, particles, stepIndex);
         break;
-      case Stage::Volume: {
-        dispatch(cb, Kernel::TriangleVolume, triangles, stepIndex);
-        computeToComputeBarrier(cb);
-        bool fromA = true;
-        for (uint32_t n = triangles; n > 1; n = (n + 1) / 2) {  // the levels of treeSum
-          dispatch(cb, Kernel::TreeSum, n, stepIndex, fromA ? 1u : 0u);
-          computeToComputeBarrier(cb);
-          fromA = !fromA;
-        }
-        volumeInA = fromA;
+      case Stage::Volume:
+        recordVolume(cb, stepIndex, false);
         break;
-      }
       case Stage::FilmState:
         dispatch(cb, Kernel::FilmState, particles, stepIndex);
         break;
@@ -310,8 +349,11 @@ struct VulkanStepper::Impl {
         computeToComputeBarrier(cb);                      // every particle reads its patch's solution
         dispatch(cb, Kernel::CoarseApply, particles, stepIndex);
         break;
+      case Stage::EnergyBudget:
+        recordEnergyBudget(cb, u, stepIndex);
+        break;
       case Stage::ImplicitVelocity:
-        dispatch(cb, Kernel::ImplicitVelocity, particles, stepIndex);
+        dispatch(cb, Kernel::ImplicitVelocity, particles, stepIndex, 0, energyBase);
         break;
       case Stage::Drainage:
         dispatch(cb, Kernel::DrainageOutflow, particles, stepIndex);
@@ -389,7 +431,7 @@ void VulkanStepper::load(const Params& params, Film& film) {
   make(GB_BINDING_CONTACTS, t.contacts.size() * sizeof(uint32_t));
   make(GB_BINDING_TRIANGLE_NORMAL, 3 * t.triangleCount() * sizeof(float));
   make(GB_BINDING_CORNER_AREA, 3 * t.triangleCount() * sizeof(float));
-  make(GB_BINDING_REDUCE, reduceFloats(t) * sizeof(float));
+  make(GB_BINDING_REDUCE, reduceFloats(t, n) * sizeof(float));
   m.stepsCapacity = 0;
   make(GB_BINDING_STEPS, sizeof(StepUniformsBlock));
 
@@ -478,7 +520,8 @@ float VulkanStepper::runStage(Stage stage, const StepUniforms& uniforms) {
   computeToHostBarrier(cb);
   cb.end();
   m.ctx->submitAndWait(cb);
-  return stage == Stage::Volume ? m.readVolume() : 0.0f;
+  if (stage == Stage::Volume) return m.readVolume();
+  return stage == Stage::EnergyBudget ? m.readVelocityScale() : 0.0f;
 }
 
 void VulkanStepper::updateContacts(const Film& film) { impl_->writeContacts(film.topology); }
@@ -499,7 +542,7 @@ void VulkanStepper::updateTopology(const Params& params, Film& film) {
                            fits(GB_BINDING_TRIANGLE_CORNER, t.triangleCorner.size(), sizeof(uint32_t)) &&
                            fits(GB_BINDING_CONTACTS, t.contacts.size(), sizeof(uint32_t)) &&
                            fits(GB_BINDING_COLOUR_ORDER, solverListEntries(t), sizeof(uint32_t)) &&
-                           fits(GB_BINDING_REDUCE, reduceFloats(t), sizeof(float));
+                           fits(GB_BINDING_REDUCE, reduceFloats(t, film.state.size()), sizeof(float));
   if (!fitsBuffers) {
     load(params, film);
     return;

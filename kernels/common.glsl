@@ -44,6 +44,16 @@ layout(std430, binding = GB_BINDING_COLOUR_ORDER) readonly buffer ColourOrderBuf
 // The two halves of the reduce buffer (tree sum ping-pong) and of the drainage buffer.
 #define REDUCE_A(k) reduce[(k)]
 #define REDUCE_B(k) reduce[pc.triangles + (k)]
+// The energy budget's part of the reduce buffer, from pc.first (after the coarse correction's): halves A and B of
+// its tree sum, each ENERGY_TERMS blocks of `particles` floats (ParticleEnergy of energy_budget.h: start, kinetic,
+// held, mass, momentum x, y, z), then the bubble's volume before the step and the VelocityBudget (scale, centre).
+#define ENERGY_TERMS 7u
+#define ENERGY_A(c, k) reduce[pc.first + (c) * pc.particles + (k)]
+#define ENERGY_B(c, k) reduce[pc.first + (ENERGY_TERMS + (c)) * pc.particles + (k)]
+#define ENERGY_SLOT(k) reduce[pc.first + 2u * ENERGY_TERMS * pc.particles + (k)]
+#define ENERGY_VOLUME_BEFORE ENERGY_SLOT(0u)
+#define ENERGY_VELOCITY_SCALE ENERGY_SLOT(1u)
+#define ENERGY_CENTRE vec3(ENERGY_SLOT(2u), ENERGY_SLOT(3u), ENERGY_SLOT(4u))
 #define DRAIN_OUTFLOW(i) drainage[(i)]
 #define DRAIN_WEIGHT(i) drainage[pc.particles + (i)]
 
@@ -59,6 +69,9 @@ layout(std430, binding = GB_BINDING_COLOUR_ORDER) readonly buffer ColourOrderBuf
 
 // contactRestDistance: the rest distance of the k-th partner entry, stored after the partners (C++ twin).
 float contactRestDistance(uint k) { return uintBitsToFloat(contacts[pc.particles + 1u + contacts[pc.particles] + k]); }
+
+// positionAtStepStart of cpu-reference/energy_budget.cpp: x_t, or where the wire put a wire particle.
+vec3 positionAtStepStart(uint i) { return boundary[i] != 0u ? LOAD3(position, i) : LOAD3(previousPosition, i); }
 
 // framePoint of cpu-reference/wire_frame.cpp.
 vec3 framePoint(StepUniformsBlock u, float param) {

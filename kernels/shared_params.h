@@ -21,6 +21,8 @@ struct Params {
                                            // default: the default performance is tuned to the sweeps alone
                                            // (docs/model.md "Coarse correction")
   int coarsePatchRings GB_DEFAULT(4);      // a coarse-correction patch: the particles within this many springs
+  int energyBudget GB_DEFAULT(1);          // 1: an implicit step that gave the film more energy than was done on it
+                                           // gives the excess back from its velocities (energy_budget.h); 0: off
   int implicitSubsteps GB_DEFAULT(1);      // implicit steps per frame (a scene may ask for more; stability never does)
   float stabilitySafety GB_DEFAULT(0.5f);  // fraction of the explicit stability limit taken as the substep (0, 1]
   int maxSubsteps GB_DEFAULT(4000);        // refuse films whose stability limit needs more substeps per frame

@@ -52,6 +52,9 @@ struct PushBlock {
 }  // namespace gb::gpu
 #endif
 
+// The energy budget's slack (cpu-reference/energy_budget.h says why this much), one value for both backends.
+#define GB_ENERGY_BUDGET_TOLERANCE 1e-4
+
 // Storage buffer bindings of descriptor set 0. A vector attribute is one buffer holding its x, y and z
 // components as three consecutive blocks of `particles` floats (structure of arrays).
 #define GB_BINDING_PARAMS 0

@@ -1,0 +1,94 @@
+#include "energy_budget.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "implicit_euler.h"
+
+namespace gb {
+
+namespace {
+
+// Particle i's share of the internal energy E with every particle j at at(j): half of each of its springs
+// (k/2 (len - l0)^2) or a third of each of its triangles (mean 2 gamma x area), and half of each contact's
+// penalty (k_c/2 (d_c - len)^2 inside its rest distance d_c).
+template <class At>
+float heldShare(const Params& p, const Topology& topo, const State& s, uint32_t i, At at) {
+  const Vec3 xi = at(i);
+  float sum = 0.0f;
+  if (p.tensionModel == 1) {
+    for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
+      const uint32_t* tri = topo.triangleOf(topo.triangleCorner[k]);
+      const Vec3 a = at(tri[0]);
+      const float area = 0.5f * (at(tri[1]) - a).cross(at(tri[2]) - a).norm();
+      sum += triangleTension(s, tri) * area / 3.0f;
+    }
+  } else {
+    for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
+      const uint32_t j = topo.springNeighbour[k];
+      const float stretch = (at(j) - xi).norm() - topo.restLength[topo.springIndex[k]];
+      sum += 0.25f * springStiffness(s, i, j) * stretch * stretch;
+    }
+  }
+  const uint32_t base = static_cast<uint32_t>(s.size()) + 1;
+  for (uint32_t k = topo.contacts[i]; k < topo.contacts[i + 1]; ++k) {
+    const float len = (xi - at(topo.contacts[base + k])).norm(), rest = contactRestDistance(topo.contacts, s.size(), k);
+    if (len < rest) sum += 0.25f * p.collisionStiffness * (rest - len) * (rest - len);
+  }
+  return sum;
+}
+
+}  // namespace
+
+Vec3 positionAtStepStart(const Topology& topo, const State& s, size_t i) {
+  return topo.boundary[i] ? s.position.get(i) : s.previousPosition.get(i);
+}
+
+float triangleSignedVolumeAtStart(const Topology& topo, const State& s, size_t t, const Vec3& origin) {
+  const uint32_t* tri = &topo.triangles[3 * t];
+  const Vec3 a = positionAtStepStart(topo, s, tri[0]) - origin, b = positionAtStepStart(topo, s, tri[1]) - origin,
+             c = positionAtStepStart(topo, s, tri[2]) - origin;
+  return a.dot(b.cross(c)) / 6.0f;
+}
+
+ParticleEnergy particleEnergy(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, size_t i) {
+  if (!s.alive[i]) return {};
+  const auto index = static_cast<uint32_t>(i);
+  ParticleEnergy e;
+  e.start = heldShare(p, topo, s, index, [&](uint32_t j) { return positionAtStepStart(topo, s, j); });
+  e.held = heldShare(p, topo, s, index, [&](uint32_t j) { return s.position.get(j); });
+  if (topo.boundary[i]) return e;  // the wire's particles are prescribed: their motion is the wands' work
+  const float m = s.mass[i];
+  const Vec3 moved = s.position.get(i) - s.previousPosition.get(i), v = moved / u.dt;
+  e.start += 0.5f * m * s.velocity.get(i).squaredNorm();
+  e.kinetic = 0.5f * m * v.squaredNorm();
+  e.held -= s.force.get(i).dot(moved);
+  e.mass = m;
+  e.momentum = m * v;
+  return e;
+}
+
+float boyleEnergyChange(const Params& p, float referenceVolume, float before, float after) {
+  if (!(before > 0.0f && after > 0.0f && referenceVolume > 0.0f)) return 0.0f;
+  const float d = (after - before) / before;
+  // d - ln(1 + d): by its series for a small change (float's log(1 + d) would lose it), else directly
+  const float curvature =
+      std::abs(d) < 0.1f
+          ? d * d * (0.5f - d * (1.0f / 3.0f - d * (0.25f - d * (0.2f - d * (1.0f / 6.0f - d * (1.0f / 7.0f))))))
+          : d - std::log(1.0f + d);
+  return p.pressureCoefficient * ((before - referenceVolume) * d + referenceVolume * curvature);
+}
+
+VelocityBudget energyBudget(float start, float kinetic, float held, float mass, const Vec3& momentum) {
+  const float budget = start + kEnergyBudgetTolerance * std::abs(start);
+  if (!(kinetic + held > budget) || !(mass > 0.0f) || !std::isfinite(budget)) return {};
+  const float drift = 0.5f * momentum.squaredNorm() / mass, internal = kinetic - drift;
+  if (!(internal > 0.0f)) return {};
+  return {std::sqrt(std::clamp((budget - held - drift) / internal, 0.0f, 1.0f)), momentum / mass};
+}
+
+Vec3 budgetedVelocity(const VelocityBudget& budget, const Vec3& v) {
+  return budget.scale == 1.0f ? v : Vec3(budget.centre + budget.scale * (v - budget.centre));
+}
+
+}  // namespace gb

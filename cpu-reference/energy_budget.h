@@ -1,0 +1,66 @@
+#pragma once
+// The implicit step's energy budget (docs/model.md "Energy budget"). Implicit Euler solved exactly never gives
+// the film more energy than the work done on it: with the wire placed first (the wands' work), the step's
+// mechanical energy H = K + E (kinetic, springs or 2 gamma x area, contacts, the bubble's gas) satisfies
+//
+//   H(x_{t+h}, v_{t+h}) <= H(x_t with the wire placed, v_t) + sum_i f_ext,i . (x_{t+h} - x_t)
+//
+// for a convex E (Gast et al. 2015). A fixed number of sweeps stops short of the solution: the long waves
+// keep the first guess x_t + h v_t, which stretches a swinging, crumpled film (docs/performance.md, session 14).
+// Stage energy_budget checks the inequality after the sweeps; where the step broke it by more than
+// kEnergyBudgetTolerance, the free particles' new velocities relative to their centre of mass are scaled down by
+// the one factor that brings H back to the budget (implicit_velocity applies it): the film keeps its momentum (a
+// sinking bubble keeps sinking) and gives up the excess from its wobble. The positions stay the solver's. A step
+// that gains potential energy beyond what the wobble holds ends without it; the next steps take the rest out as it
+// turns into motion.
+
+#include <vector>
+
+#include "shared_step.h"
+#include "stages.h"
+
+namespace gb {
+
+// Relative slack of the budget, 1e-4 of the step's starting energy (GB_ENERGY_BUDGET_TOLERANCE, shared with the
+// shaders). It covers the float sums of both backends (a tree sum of a million float terms is exact to ~1e-6 of
+// its size) and the little a solved step can gain where E is not convex (a compressed spring, a contact); 40 steps
+// of it stay far below the stress check's 2%.
+inline constexpr float kEnergyBudgetTolerance = static_cast<float>(GB_ENERGY_BUDGET_TOLERANCE);
+
+// Where particle i was at the step's start, as the budget counts it: x_t, or for a wire particle the place the
+// wire put it at the step's end (the wands' work is done before the step).
+Vec3 positionAtStepStart(const Topology& topo, const State& s, size_t i);
+
+// triangleSignedVolume (stages.h) at the step's start: the leaves of a closed bubble's volume before the step.
+float triangleSignedVolumeAtStart(const Topology& topo, const State& s, size_t t, const Vec3& origin);
+
+// A particle's share of the step's energy (J): at the start (x_t, the wire placed at its end position, v_t),
+// at the end its kinetic energy (v = (x - x_t) / h) and the rest (its share of E at x less the work the
+// explicit forces did on it). Springs, triangles and contacts are shared equally among the particles they join.
+// A free particle also gives its mass and its momentum at the end, for the centre of mass.
+struct ParticleEnergy {
+  float start = 0.0f, kinetic = 0.0f, held = 0.0f;
+  float mass = 0.0f;             // kg
+  Vec3 momentum = Vec3::Zero();  // m v (kg m/s)
+};
+ParticleEnergy particleEnergy(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, size_t i);
+
+// The isothermal gas's energy change P0 (V0 ln(V0 / V) + V - V0) from volume `before` to `after` (J), taken
+// as a difference so that float keeps it: its first-order term is the excess pressure's work, tiny next to P0 V.
+float boyleEnergyChange(const Params& p, float referenceVolume, float before, float after);
+
+// What implicit_velocity does with a free particle's new velocity v: c + scale (v - c), c the free particles'
+// centre-of-mass velocity. A scale of 1 leaves v as it is.
+struct VelocityBudget {
+  float scale = 1.0f;
+  Vec3 centre = Vec3::Zero();  // m/s
+};
+// The budget from the sums of the particles' terms: scale 1 when kinetic + held <= start (1 +
+// kEnergyBudgetTolerance), else the factor on the motion about the centre of mass that takes the excess out of it,
+// sqrt((budget - held - drift) / (kinetic - drift)) clamped to [0, 1] (drift = |momentum|^2 / 2 mass). Scale 1 when
+// the sums are not finite: the simulation's instability check reports that, not the budget.
+VelocityBudget energyBudget(float start, float kinetic, float held, float mass, const Vec3& momentum);
+// The velocity implicit_velocity gives a free particle whose unbudgeted one is v.
+Vec3 budgetedVelocity(const VelocityBudget& budget, const Vec3& v);
+
+}  // namespace gb

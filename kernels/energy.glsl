@@ -1,0 +1,79 @@
+// The implicit step's energy budget (cpu-reference/energy_budget.h): each function has its C++ twin's name and float
+// operations.
+
+// Where particle j is counted: at the step's start (positionAtStepStart) or at the solved positions.
+vec3 positionAt(bool atStart, uint j) { return atStart ? positionAtStepStart(j) : LOAD3(position, j); }
+
+// heldShare: particle i's share of the internal energy, half of each spring (a third of each triangle) and half of
+// each contact's penalty.
+float heldShare(bool atStart, uint i) {
+  const vec3 xi = positionAt(atStart, i);
+  float sum = 0.0;
+  if (params.tensionModel == 1) {
+    for (uint k = triangleOffset[i]; k < triangleOffset[i + 1u]; ++k) {
+      const uint t = triangleCorner[k] / 3u;
+      const uint c0 = triangles[3u * t], c1 = triangles[3u * t + 1u], c2 = triangles[3u * t + 2u];
+      const vec3 a = positionAt(atStart, c0);
+      const float area = 0.5 * length(cross(positionAt(atStart, c1) - a, positionAt(atStart, c2) - a));
+      const float tension = (elasticity[c0] + elasticity[c1] + elasticity[c2]) / 3.0;
+      sum += tension * area / 3.0;
+    }
+  } else {
+    for (uint k = springOffset[i]; k < springOffset[i + 1u]; ++k) {
+      const uint j = springNeighbour[k];
+      const float stretch = length(positionAt(atStart, j) - xi) - restLength[springIndex[k]];
+      sum += 0.25 * (0.5 * (elasticity[i] + elasticity[j])) * stretch * stretch;
+    }
+  }
+  const uint base = pc.particles + 1u;
+  for (uint k = contacts[i]; k < contacts[i + 1u]; ++k) {
+    const float len = length(xi - positionAt(atStart, contacts[base + k])), rest = contactRestDistance(k);
+    if (len < rest) sum += 0.25 * params.collisionStiffness * (rest - len) * (rest - len);
+  }
+  return sum;
+}
+
+// particleEnergy: particle i's terms, in the order of ENERGY_TERMS.
+void particleEnergy(uint i, float dt, out float terms[7]) {
+  for (uint c = 0u; c < 7u; ++c) terms[c] = 0.0;
+  if (alive[i] == 0u) return;
+  terms[0] = heldShare(true, i);
+  terms[2] = heldShare(false, i);
+  if (boundary[i] != 0u) return;  // prescribed: the wands' work
+  const float m = mass[i];
+  const vec3 vt = LOAD3(velocity, i);
+  const vec3 moved = LOAD3(position, i) - LOAD3(previousPosition, i), v = moved / dt;
+  terms[0] += 0.5 * m * dot(vt, vt);
+  terms[1] = 0.5 * m * dot(v, v);
+  terms[2] -= dot(LOAD3(force, i), moved);
+  terms[3] = m;
+  const vec3 momentum = m * v;
+  terms[4] = momentum.x;
+  terms[5] = momentum.y;
+  terms[6] = momentum.z;
+}
+
+// boyleEnergyChange: the gas's energy change from volume `before` to `after`, as a difference.
+float boyleEnergyChange(float referenceVolume, float before, float after) {
+  if (!(before > 0.0 && after > 0.0 && referenceVolume > 0.0)) return 0.0;
+  const float d = (after - before) / before;
+  const float curvature =
+      abs(d) < 0.1 ? d * d * (0.5 - d * (1.0 / 3.0 - d * (0.25 - d * (0.2 - d * (1.0 / 6.0 - d * (1.0 / 7.0))))))
+                   : d - log(1.0 + d);
+  return params.pressureCoefficient * ((before - referenceVolume) * d + referenceVolume * curvature);
+}
+
+// energyBudget: the factor on the motion about the centre of mass (scale) and the centre's velocity.
+void energyBudget(float start, float kinetic, float held, float mass, vec3 momentum, out float scale, out vec3 centre) {
+  scale = 1.0;
+  centre = vec3(0.0);
+  const float budget = start + float(GB_ENERGY_BUDGET_TOLERANCE) * abs(start);
+  if (!(kinetic + held > budget) || !(mass > 0.0) || isinf(budget) || isnan(budget)) return;
+  const float drift = 0.5 * dot(momentum, momentum) / mass, internal = kinetic - drift;
+  if (!(internal > 0.0)) return;
+  scale = sqrt(clamp((budget - held - drift) / internal, 0.0, 1.0));
+  centre = momentum / mass;
+}
+
+// budgetedVelocity: a free particle's new velocity as the budget leaves it.
+vec3 budgetedVelocity(float scale, vec3 centre, vec3 v) { return scale == 1.0 ? v : centre + scale * (v - centre); }

@@ -1,0 +1,16 @@
+#version 450
+// Stage energy_budget, pass 1 (cpu-reference/energy_budget.cpp, particleEnergy): every particle's terms into half A
+// of the budget's tree sum. Invocation 0 also keeps the bubble's volume before the step, which
+// the host reduced just before (in half A of the volume's sum when pc.reduceFlags is 1).
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+#include "energy.glsl"
+
+void main() {
+  const uint i = gl_GlobalInvocationID.x;
+  if (i >= pc.count) return;
+  if (i == 0u) ENERGY_VOLUME_BEFORE = (pc.reduceFlags & 1u) != 0u ? REDUCE_A(0u) : REDUCE_B(0u);
+  float terms[7];
+  particleEnergy(i, steps[pc.stepIndex].dt, terms);
+  for (uint c = 0u; c < ENERGY_TERMS; ++c) ENERGY_A(c, i) = terms[c];
+}

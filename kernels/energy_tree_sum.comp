@@ -1,0 +1,18 @@
+#version 450
+// Stage energy_budget, pass 2: one level of treeSum (cpu-reference/stages.cpp) over the blocks of terms at once,
+// out[k] = in[2k] + in[2k+1] (or in[2k] alone for the odd last element); pc.reduceFlags 1 reads half A.
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+
+void main() {
+  const uint k = gl_GlobalInvocationID.x;
+  const uint n = pc.count;
+  if (k >= (n + 1u) / 2u) return;
+  for (uint c = 0u; c < ENERGY_TERMS; ++c) {
+    if ((pc.reduceFlags & 1u) != 0u) {
+      ENERGY_B(c, k) = 2u * k + 1u < n ? ENERGY_A(c, 2u * k) + ENERGY_A(c, 2u * k + 1u) : ENERGY_A(c, 2u * k);
+    } else {
+      ENERGY_A(c, k) = 2u * k + 1u < n ? ENERGY_B(c, 2u * k) + ENERGY_B(c, 2u * k + 1u) : ENERGY_B(c, 2u * k);
+    }
+  }
+}

@@ -50,4 +50,21 @@ inline Film makeTwoSheets(const Params& params, float gap, float speed) {
   return film;
 }
 
+// A ring's film with its rim let go: a free disc in the wands' plane.
+inline Film makeFreeDisc(const Params& params) {
+  WandTool ring;
+  ring.kind = ToolKind::Ring;
+  Film film = generateFilm(params, ring, gestureAt(Gesture::Straight, GestureOptions{}, 0.0));
+  film.topology.boundary.assign(film.state.size(), 0u);
+  return film;
+}
+
+// Gives every particle the velocity of a rigid spin at `rate` (rad/s) about `axis` through the film's centroid.
+inline void spin(Film& film, const Vec3& axis, float rate) {
+  State& s = film.state;
+  Vec3 centre = Vec3::Zero();
+  for (size_t i = 0; i < s.size(); ++i) centre += s.position.get(i) / static_cast<float>(s.size());
+  for (size_t i = 0; i < s.size(); ++i) s.velocity.set(i, rate * axis.normalized().cross(s.position.get(i) - centre));
+}
+
 }  // namespace gb::test

@@ -307,6 +307,49 @@ TEST(VulkanEquivalence, EveryImplicitPassAloneMatchesTheCpuReference) {
   EXPECT_EQ(device->validationErrors(), 0u);
 }
 
+// The energy budget alone (its kernels: the terms, their tree sum, the factor; for a bubble the volumes before and
+// after) and the velocity that applies it, on a film spun after one sweep, which broke its budget: a free disc at
+// 12 rad/s and a closed bubble at 25 rad/s (its gas takes up part of the stretch). The factor and the velocities get
+// the stage bound, 1e-5 relative: both backends add the same float terms in the same tree order.
+TEST(VulkanEquivalence, TheEnergyBudgetMatchesTheCpuReference) {
+  GB_REQUIRE_VULKAN(device);
+  for (const bool bubble : {false, true}) {
+    Params p;
+    p.particlesAtFullSolution = 1000;
+    p.solverIterations = 1;
+    p.gravityY = 0.0f;
+    Film film = bubble ? generateSphere(p, Vec3(0, 1.5f, 0), 0.4f, 3) : test::makeFreeDisc(p);
+    test::spin(film, bubble ? Vec3(0, 1, 0) : Vec3(film.state.normal.get(0)), bubble ? 25.0f : 12.0f);
+    const Simulation sim(p, film, WandState{});
+    const StepUniforms u = sim.uniformsFor(WandState{}, WandState{}, p.frameTime);
+    Film before = sim.film();
+    CpuStepper prepare;
+    prepare.load(p, before);
+    for (const StageSpec& spec : stepStages()) {  // the step up to the budget, on the CPU
+      if (spec.stage == Stage::EnergyBudget) break;
+      if (spec.runs(p, u)) prepare.runStage(spec.stage, u);
+    }
+    Film cpuFilm = before, gpuFilm = before;
+    CpuStepper cpu;
+    VulkanStepper gpu(device);
+    cpu.load(p, cpuFilm);
+    gpu.load(p, gpuFilm);
+    const float cpuScale = cpu.runStage(Stage::EnergyBudget, u), gpuScale = gpu.runStage(Stage::EnergyBudget, u);
+    cpu.runStage(Stage::ImplicitVelocity, u);
+    gpu.runStage(Stage::ImplicitVelocity, u);
+    gpu.store(gpuFilm);
+    const double error =
+        worstRelativeError(flatten(cpuFilm.state.velocity), flatten(gpuFilm.state.velocity), kCancellationFloor, 3);
+    std::printf("stage energy_budget (%s): factor %.6f cpu, %.6f vulkan; velocity worst relative error %.2e\n",
+                bubble ? "bubble" : "disc", cpuScale, gpuScale, error);
+    EXPECT_EQ(u.closed, bubble ? 1u : 0u);
+    EXPECT_LT(cpuScale, 0.99f) << "the spun film must break its budget for the comparison to mean something";
+    EXPECT_NEAR(gpuScale, cpuScale, kStageTolerance * cpuScale);
+    EXPECT_LT(error, kStageTolerance);
+  }
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
 // The coarse correction alone (its three kernels: the patch system's rows, its conjugate gradients in one
 // workgroup, the moves), on the film the step has predicted, for both tension models. It moves each patch by
 // ~1e-4 m: like a sweep, the result is a position whose rounding dominates, so it gets the same 8 ulp(|x|).

@@ -83,8 +83,11 @@ VelocityBudget energyBudget(float start, float kinetic, float held, float mass, 
   const float budget = start + kEnergyBudgetTolerance * std::abs(start);
   if (!(kinetic + held > budget) || !(mass > 0.0f) || !std::isfinite(budget)) return {};
   const float drift = 0.5f * momentum.squaredNorm() / mass, internal = kinetic - drift;
-  if (!(internal > 0.0f)) return {};
-  return {std::sqrt(std::clamp((budget - held - drift) / internal, 0.0f, 1.0f)), momentum / mass};
+  const Vec3 centre = momentum / mass;
+  if (budget - held >= drift)  // the wobble holds the excess
+    return {internal > 0.0f ? std::sqrt(std::clamp((budget - held - drift) / internal, 0.0f, 1.0f)) : 1.0f, centre};
+  // Not even the drift was paid for (a crumpled film's contacts can push it along): no wobble, and the drift slowed.
+  return {0.0f, std::sqrt(std::max(budget - held, 0.0f) / drift) * centre};
 }
 
 Vec3 budgetedVelocity(const VelocityBudget& budget, const Vec3& v) {

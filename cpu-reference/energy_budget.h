@@ -57,8 +57,10 @@ struct VelocityBudget {
 };
 // The budget from the sums of the particles' terms: scale 1 when kinetic + held <= start (1 +
 // kEnergyBudgetTolerance), else the factor on the motion about the centre of mass that takes the excess out of it,
-// sqrt((budget - held - drift) / (kinetic - drift)) clamped to [0, 1] (drift = |momentum|^2 / 2 mass). Scale 1 when
-// the sums are not finite: the simulation's instability check reports that, not the budget.
+// sqrt((budget - held - drift) / (kinetic - drift)) clamped to [0, 1] (drift = |momentum|^2 / 2 mass). Where even
+// the drift exceeds what is left (a crumpled film's contacts, taken at their partners' first guess, do not push
+// equally both ways and can drive it), the wobble goes and the centre's velocity is slowed to what is left. Scale 1
+// when the sums are not finite: the simulation's instability check reports that, not the budget.
 VelocityBudget energyBudget(float start, float kinetic, float held, float mass, const Vec3& momentum);
 // The velocity implicit_velocity gives a free particle whose unbudgeted one is v.
 Vec3 budgetedVelocity(const VelocityBudget& budget, const Vec3& v);

@@ -70,9 +70,13 @@ void energyBudget(float start, float kinetic, float held, float mass, vec3 momen
   const float budget = start + float(GB_ENERGY_BUDGET_TOLERANCE) * abs(start);
   if (!(kinetic + held > budget) || !(mass > 0.0) || isinf(budget) || isnan(budget)) return;
   const float drift = 0.5 * dot(momentum, momentum) / mass, internal = kinetic - drift;
-  if (!(internal > 0.0)) return;
-  scale = sqrt(clamp((budget - held - drift) / internal, 0.0, 1.0));
   centre = momentum / mass;
+  if (budget - held >= drift) {  // the wobble holds the excess
+    scale = internal > 0.0 ? sqrt(clamp((budget - held - drift) / internal, 0.0, 1.0)) : 1.0;
+    return;
+  }
+  scale = 0.0;  // not even the drift was paid for: no wobble, and the drift slowed
+  centre = sqrt(max(budget - held, 0.0) / drift) * centre;
 }
 
 // budgetedVelocity: a free particle's new velocity as the budget leaves it.

@@ -59,6 +59,15 @@ TEST(EnergyBudget, TakesTheExcessFromTheMotionAboutTheCentreOfMass) {
   EXPECT_NEAR(kineticAfter + held, start * (1 + kEnergyBudgetTolerance), 1e-5 * start);
   EXPECT_LT((momentumAfter - momentum).norm(), 1e-5 * momentum.norm());
 
+  // A step that was not even owed its drift (start below held + drift): no wobble left, the centre slowed so that
+  // the kinetic energy is what the budget has left.
+  const float drift = 0.5f * momentum.squaredNorm() / mass, poor = held + 0.5f * drift;
+  const VelocityBudget slowed = energyBudget(poor, kinetic, held, mass, momentum);
+  const Vec3 v = budgetedVelocity(slowed, velocities[0]);
+  EXPECT_EQ(slowed.scale, 0.0f);
+  EXPECT_EQ(v, budgetedVelocity(slowed, velocities[1])) << "every particle moves with the centre";
+  EXPECT_NEAR(0.5f * mass * v.squaredNorm() + held, poor * (1 + kEnergyBudgetTolerance), 1e-5 * poor);
+
   const VelocityBudget within = energyBudget(held + kinetic, kinetic, held, mass, momentum);
   EXPECT_EQ(within.scale, 1.0f);
   EXPECT_EQ(budgetedVelocity(within, velocities[2]), velocities[2]) << "a step within its budget is left alone";

@@ -136,6 +136,7 @@ void RunRecord::writeJson(const std::filesystem::path& path, const std::string& 
                   {"substeps_per_frame", substepSum_ / n},
                   {"step_ms", substepSum_ > 0 ? millisecondSum_ / substepSum_ : 0.0}};
   j["real_time_factor"] = realTimeFactor_;
+  j["energy_budget"] = {{"frames", budgetFrames_}, {"smallest_factor", budgetSmallestScale_}};
   j["first_frame"] = frameJson(first_);
   j["last_frame"] = frameJson(last_);
   j["largest"] = {{"area_m2", largestArea_.area},       {"area_time_s", largestArea_.time},
@@ -252,7 +253,14 @@ std::string RunRecord::story() const {
   std::snprintf(lines, sizeof lines, "%-28s ", "film's life");
   std::string text = lines + story + "\n";
   std::snprintf(lines, sizeof lines, "%-28s ", "largest");
-  return text + lines + largest + "\n";
+  text += lines + std::string(largest) + "\n";
+  if (budgetFrames_ > 0) {  // the step's safeguard acted: say so (docs/model.md "Energy budget")
+    std::snprintf(lines, sizeof lines,
+                  "%-28s took energy back on %ld of %ld frames (smallest factor on the wobble %.2f)\n", "energy budget",
+                  budgetFrames_, frames_, budgetSmallestScale_);
+    text += lines;
+  }
+  return text;
 }
 
 std::string describeEvents(const TopologyEvents& e) {

@@ -212,8 +212,10 @@ float CpuStepper::currentPressure(const StepUniforms& u) const {
 }
 
 float CpuStepper::step(const StepUniforms& u) {
+  velocityBudget_ = {};
   for (const StageSpec& spec : stepStages())
     if (spec.runs(params_, u)) runStage(spec.stage, u);
+  velocityScale_ = velocityBudget_.scale;
   return currentPressure(u);
 }
 

@@ -1,5 +1,6 @@
 #include "simulation.h"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -165,6 +166,10 @@ void Simulation::advanceFrame(const WandState& next) {
   const auto started = Clock::now();
   pressure_ = stepper_->run(substepUniforms_);
   stepper_->store(film_);
+  if (stepper_->velocityScale() < 1.0f) {
+    ++budgetRecord_.frames;
+    budgetRecord_.smallestScale = std::min(budgetRecord_.smallestScale, stepper_->velocityScale());
+  }
   const auto stepped = Clock::now();
   stepCount_ += substeps_;
   wands_ = next;

@@ -105,6 +105,13 @@ class Simulation {
     return solverIterations_ > 0 ? solverIterations_ : params_.solverIterations;
   }
   [[nodiscard]] float lastPressure() const { return pressure_; }
+  // How often the implicit step's energy budget took energy back (energy_budget.h): frames, and the smallest factor
+  // it left on the film's wobble (1: never).
+  struct BudgetRecord {
+    long frames = 0;
+    float smallestScale = 1.0f;
+  };
+  [[nodiscard]] const BudgetRecord& energyBudgetRecord() const { return budgetRecord_; }
   [[nodiscard]] Stepper& stepper() { return *stepper_; }
   [[nodiscard]] FrameStats stats();
 
@@ -149,6 +156,7 @@ class Simulation {
   ContactHistory contactHistory_;  // the last contact list, for the pairs' rest distances (collision.h)
   ContactSearch contactSearch_;
   long stepCount_ = 0;
+  BudgetRecord budgetRecord_;
 };
 
 }  // namespace gb

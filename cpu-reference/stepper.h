@@ -77,6 +77,10 @@ class Stepper {
   // Takes the film's changed spring rest lengths (the wire paying out film between frames, film_growth.h).
   virtual void updateRestLengths(const Film&) {}
 
+  // The energy budget's factor on the wobble in the last step run (the last substep of run()): 1 when the step kept
+  // within its budget or no budget ran (energy_budget.h).
+  [[nodiscard]] float velocityScale() const { return velocityScale_; }
+
   virtual void enableTiming(bool on) { timing_ = on; }
   [[nodiscard]] const StageTimes& stageTimes() const { return times_; }
   void resetStageTimes() { times_.fill(0.0); }
@@ -84,6 +88,7 @@ class Stepper {
  protected:
   bool timing_ = false;
   StageTimes times_{};
+  float velocityScale_ = 1.0f;
 };
 
 }  // namespace gb

@@ -506,6 +506,7 @@ float VulkanStepper::run(std::span<const StepUniforms> substeps) {
     m.ctx->submitAndWait(cb);
   }
   const StepUniforms& last = substeps.back();
+  velocityScale_ = m.params.integrator != 0 && m.params.energyBudget != 0 ? m.readVelocityScale() : 1.0f;
   return last.closed ? boylePressure(m.params, last.referenceVolume, m.readVolume()) : m.params.pressureCoefficient;
 }
 

@@ -73,8 +73,12 @@ int main(int argc, char** argv) {
       p.solverIterations = value;
     else if (flag == "--coarse")
       p.coarseIterations = value;
+    else if (flag == "--budget")
+      p.energyBudget = value;
     else {
-      std::fprintf(stderr, "unknown option %s (--particles N --tension-model 0|1 --frames N --sweeps N --coarse N)\n",
+      std::fprintf(stderr,
+                   "unknown option %s (--particles N --tension-model 0|1 --frames N --sweeps N --coarse N --budget "
+                   "0|1)\n",
                    flag.c_str());
       return 2;
     }

@@ -9,33 +9,46 @@ namespace gb {
 
 namespace {
 
-// Particle i's share of the internal energy E with every particle j at at(j): half of each of its springs
-// (k/2 (len - l0)^2) or a third of each of its triangles (mean 2 gamma x area), and half of each contact's
-// penalty (k_c/2 (d_c - len)^2 inside its rest distance d_c).
-template <class At>
-float heldShare(const Params& p, const Topology& topo, const State& s, uint32_t i, At at) {
-  const Vec3 xi = at(i);
-  float sum = 0.0f;
+// Particle i's share of the internal energy E, at the step's start and at its end, in one pass over its one-ring:
+// half of each of its springs (k/2 (len - l0)^2) or a third of each of its triangles (mean 2 gamma x area), and half
+// of each contact's penalty (k_c/2 (d_c - len)^2 inside its rest distance d_c).
+struct HeldShares {
+  float start = 0.0f, end = 0.0f;
+};
+HeldShares heldShares(const Params& p, const Topology& topo, const State& s, uint32_t i) {
+  const Vec3 xi = s.position.get(i), xi0 = positionAtStepStart(topo, s, i);
+  HeldShares h;
   if (p.tensionModel == 1) {
     for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
       const uint32_t* tri = topo.triangleOf(topo.triangleCorner[k]);
-      const Vec3 a = at(tri[0]);
-      const float area = 0.5f * (at(tri[1]) - a).cross(at(tri[2]) - a).norm();
-      sum += triangleTension(s, tri) * area / 3.0f;
+      const float third = triangleTension(s, tri) / 3.0f;
+      const Vec3 a = s.position.get(tri[0]), a0 = positionAtStepStart(topo, s, tri[0]);
+      const float area = 0.5f * (s.position.get(tri[1]) - a).cross(s.position.get(tri[2]) - a).norm();
+      const float area0 =
+          0.5f * (positionAtStepStart(topo, s, tri[1]) - a0).cross(positionAtStepStart(topo, s, tri[2]) - a0).norm();
+      h.start += third * area0;
+      h.end += third * area;
     }
   } else {
     for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
       const uint32_t j = topo.springNeighbour[k];
-      const float stretch = (at(j) - xi).norm() - topo.restLength[topo.springIndex[k]];
-      sum += 0.25f * springStiffness(s, i, j) * stretch * stretch;
+      const float quarter = 0.25f * springStiffness(s, i, j), rest = topo.restLength[topo.springIndex[k]];
+      const float stretch0 = (positionAtStepStart(topo, s, j) - xi0).norm() - rest;
+      const float stretch = (s.position.get(j) - xi).norm() - rest;
+      h.start += quarter * stretch0 * stretch0;
+      h.end += quarter * stretch * stretch;
     }
   }
   const uint32_t base = static_cast<uint32_t>(s.size()) + 1;
+  const float quarter = 0.25f * p.collisionStiffness;
   for (uint32_t k = topo.contacts[i]; k < topo.contacts[i + 1]; ++k) {
-    const float len = (xi - at(topo.contacts[base + k])).norm(), rest = contactRestDistance(topo.contacts, s.size(), k);
-    if (len < rest) sum += 0.25f * p.collisionStiffness * (rest - len) * (rest - len);
+    const uint32_t j = topo.contacts[base + k];
+    const float rest = contactRestDistance(topo.contacts, s.size(), k);
+    const float len0 = (xi0 - positionAtStepStart(topo, s, j)).norm(), len = (xi - s.position.get(j)).norm();
+    if (len0 < rest) h.start += quarter * (rest - len0) * (rest - len0);
+    if (len < rest) h.end += quarter * (rest - len) * (rest - len);
   }
-  return sum;
+  return h;
 }
 
 }  // namespace
@@ -55,8 +68,9 @@ ParticleEnergy particleEnergy(const Params& p, const StepUniforms& u, const Topo
   if (!s.alive[i]) return {};
   const auto index = static_cast<uint32_t>(i);
   ParticleEnergy e;
-  e.start = heldShare(p, topo, s, index, [&](uint32_t j) { return positionAtStepStart(topo, s, j); });
-  e.held = heldShare(p, topo, s, index, [&](uint32_t j) { return s.position.get(j); });
+  const HeldShares held = heldShares(p, topo, s, index);
+  e.start = held.start;
+  e.held = held.end;
   if (topo.boundary[i]) return e;  // the wire's particles are prescribed: their motion is the wands' work
   const float m = s.mass[i];
   const Vec3 moved = s.position.get(i) - s.previousPosition.get(i), v = moved / u.dt;

@@ -1,44 +1,49 @@
 // The implicit step's energy budget (cpu-reference/energy_budget.h): each function has its C++ twin's name and float
 // operations.
 
-// Where particle j is counted: at the step's start (positionAtStepStart) or at the solved positions.
-vec3 positionAt(bool atStart, uint j) { return atStart ? positionAtStepStart(j) : LOAD3(position, j); }
-
-// heldShare: particle i's share of the internal energy, half of each spring (a third of each triangle) and half of
-// each contact's penalty.
-float heldShare(bool atStart, uint i) {
-  const vec3 xi = positionAt(atStart, i);
-  float sum = 0.0;
+// heldShares: particle i's share of the internal energy at the step's start and at its end, in one pass over its
+// one-ring: half of each spring (a third of each triangle) and half of each contact's penalty.
+void heldShares(uint i, out float start, out float end) {
+  const vec3 xi = LOAD3(position, i), xi0 = positionAtStepStart(i);
+  start = 0.0;
+  end = 0.0;
   if (params.tensionModel == 1) {
     for (uint k = triangleOffset[i]; k < triangleOffset[i + 1u]; ++k) {
       const uint t = triangleCorner[k] / 3u;
       const uint c0 = triangles[3u * t], c1 = triangles[3u * t + 1u], c2 = triangles[3u * t + 2u];
-      const vec3 a = positionAt(atStart, c0);
-      const float area = 0.5 * length(cross(positionAt(atStart, c1) - a, positionAt(atStart, c2) - a));
-      const float tension = (elasticity[c0] + elasticity[c1] + elasticity[c2]) / 3.0;
-      sum += tension * area / 3.0;
+      const float third = (elasticity[c0] + elasticity[c1] + elasticity[c2]) / 3.0 / 3.0;
+      const vec3 a = LOAD3(position, c0), a0 = positionAtStepStart(c0);
+      const float area = 0.5 * length(cross(LOAD3(position, c1) - a, LOAD3(position, c2) - a));
+      const float area0 = 0.5 * length(cross(positionAtStepStart(c1) - a0, positionAtStepStart(c2) - a0));
+      start += third * area0;
+      end += third * area;
     }
   } else {
     for (uint k = springOffset[i]; k < springOffset[i + 1u]; ++k) {
       const uint j = springNeighbour[k];
-      const float stretch = length(positionAt(atStart, j) - xi) - restLength[springIndex[k]];
-      sum += 0.25 * (0.5 * (elasticity[i] + elasticity[j])) * stretch * stretch;
+      const float quarter = 0.25 * (0.5 * (elasticity[i] + elasticity[j])), rest = restLength[springIndex[k]];
+      const float stretch0 = length(positionAtStepStart(j) - xi0) - rest;
+      const float stretch = length(LOAD3(position, j) - xi) - rest;
+      start += quarter * stretch0 * stretch0;
+      end += quarter * stretch * stretch;
     }
   }
   const uint base = pc.particles + 1u;
+  const float quarter = 0.25 * params.collisionStiffness;
   for (uint k = contacts[i]; k < contacts[i + 1u]; ++k) {
-    const float len = length(xi - positionAt(atStart, contacts[base + k])), rest = contactRestDistance(k);
-    if (len < rest) sum += 0.25 * params.collisionStiffness * (rest - len) * (rest - len);
+    const uint j = contacts[base + k];
+    const float rest = contactRestDistance(k);
+    const float len0 = length(xi0 - positionAtStepStart(j)), len = length(xi - LOAD3(position, j));
+    if (len0 < rest) start += quarter * (rest - len0) * (rest - len0);
+    if (len < rest) end += quarter * (rest - len) * (rest - len);
   }
-  return sum;
 }
 
 // particleEnergy: particle i's terms, in the order of ENERGY_TERMS.
 void particleEnergy(uint i, float dt, out float terms[7]) {
   for (uint c = 0u; c < 7u; ++c) terms[c] = 0.0;
   if (alive[i] == 0u) return;
-  terms[0] = heldShare(true, i);
-  terms[2] = heldShare(false, i);
+  heldShares(i, terms[0], terms[2]);
   if (boundary[i] != 0u) return;  // prescribed: the wands' work
   const float m = mass[i];
   const vec3 vt = LOAD3(velocity, i);

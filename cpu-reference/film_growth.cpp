@@ -214,7 +214,9 @@ size_t contractSlackSprings(const Params& params, Film& film) {
   return reshapeSpringsOffTheWire(film, [&](size_t k, uint32_t a, uint32_t b, float length) -> std::optional<float> {
     if (!(length < rest[k])) return std::nullopt;
     if (std::max(thickness[a], thickness[b]) >= dipThickness) return std::nullopt;
-    return length * (1.0f - params.springPrestrain);
+    if (!params.energyNeutralContraction) return length * (1.0f - params.springPrestrain);  // as taut as new film
+    // Stretched by as much as it was compressed (at most as taut as new film): its spring energy stays as it was.
+    return length - std::min(rest[k] - length, params.springPrestrain * length);
   });
 }
 

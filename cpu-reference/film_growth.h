@@ -49,8 +49,9 @@ size_t yieldStretchedSprings(const Params& params, Film& film);
 // (Params::springPrestrain), unless one of its ends is already as thick as the film was dipped (a region that keeps
 // being pushed together would otherwise gather into a lump tens of microns thick while the rest thins). The film's
 // liquid stays with its particles, so a contracted region thickens. Springs
-// held by the wire follow the wire's rule; the physical model has constant tension and no rest lengths. Returns how
-// many springs contracted.
+// held by the wire follow the wire's rule; the physical model has constant tension and no rest lengths. With
+// Params::energyNeutralContraction a spring is stretched only by as much as it was compressed, so the rule adds no
+// spring energy (docs/model.md "Energy budget"). Returns how many springs contracted.
 size_t contractSlackSprings(const Params& params, Film& film);
 
 // Where a closed film stays pushed together because it is too thick to contract (above), its particles merge:

@@ -77,8 +77,11 @@ struct Params {
                                                  // to the film are this many times their rest length (mean)
   float yieldStretch GB_DEFAULT(1.3f);  // a spring stretched past this x its rest length yields: its rest grows with
                                         // it (new surface, the film thins); 0: the paper's purely elastic springs
-  float yieldThickness GB_DEFAULT(0.5e-6f);  // film thinner than this no longer yields: too little liquid is left
-                                             // to make new surface of, so a thinned region stays elastic (m)
+  float yieldThickness GB_DEFAULT(0.5e-6f);    // film thinner than this no longer yields: too little liquid is left
+                                               // to make new surface of, so a thinned region stays elastic (m)
+  int energyNeutralContraction GB_DEFAULT(0);  // a free bubble's slack spring contracts: 0 to as taut as new film
+                                               // (springPrestrain: the bubble rounds up, its spring energy grows);
+                                               // 1 only as far as it was slack (the energy stays; docs/model.md)
   int airTransfer GB_DEFAULT(1);  // 1: air flow transfer, Eqs. (7)-(8) (the paper); 0: each particle feels only
                                   // the inflow of Eq. (5) where it arrives (Figure 12a's comparison)
 

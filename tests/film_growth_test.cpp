@@ -99,6 +99,34 @@ TEST(FilmGrowth, SlackSpringsContractToANewFilmsTautnessAndTheWireTautAndThickOn
   EXPECT_EQ(contractSlackSprings(p, film), 0u);
 }
 
+// The energy-neutral rule: a spring slack by 20% of its length or by 5% contracts to be stretched by as much (the
+// 20% one at most as taut as new film, 10%), so no spring's energy k/2 (len - l0)^2 grows.
+TEST(FilmGrowth, EnergyNeutralContractionStretchesASlackSpringOnlyAsFarAsItWasSlack) {
+  Params p;
+  p.particlesAtFullSolution = 1500;
+  p.energyNeutralContraction = 1;
+  Film film = generateFilm(p, WandTool{}, gestureAt(Gesture::Straight, GestureOptions{}, 0.0));
+  Topology& topo = film.topology;
+  const auto length = [&](size_t k) {
+    return (film.state.position.get(topo.springEnds[2 * k]) - film.state.position.get(topo.springEnds[2 * k + 1]))
+        .norm();
+  };
+  for (size_t k = 0; k < topo.springCount(); ++k) topo.restLength[k] = (k % 2 ? 1.05f : 1.2f) * length(k);
+  for (float& e : film.state.thickness) e = 0.5f * initialThickness(p);
+  const std::vector<float> before = topo.restLength;
+  EXPECT_GT(contractSlackSprings(p, film), 0u);
+  size_t checked = 0;
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    if (topo.boundary[a] || topo.boundary[b]) continue;
+    const float len = length(k), expected = k % 2 ? len - 0.05f * len : len * (1.0f - p.springPrestrain);
+    EXPECT_NEAR(topo.restLength[k], expected, 1e-6f * len) << "spring " << k;  // a few float roundings
+    EXPECT_LE(std::abs(len - topo.restLength[k]), std::abs(len - before[k]) * (1.0f + 1e-5f)) << "its energy grew";
+    ++checked;
+  }
+  EXPECT_GT(checked, topo.springCount() / 2);
+}
+
 // A closed film pushed together where it is too thick to contract (the pinch-off seam's crumple): its crowded
 // particles merge, conserving mass, liquid and momentum, and it stays a closed, oriented manifold.
 TEST(FilmGrowth, ACrowdedThickPatchOfABubbleMergesAndTheBubbleStaysClosed) {

@@ -10,11 +10,9 @@
 // Stage energy_budget checks the inequality after the sweeps; where the step broke it by more than
 // kEnergyBudgetTolerance, the free particles' new velocities relative to their centre of mass are scaled down by
 // the one factor that brings H back to the budget (implicit_velocity applies it): the film keeps its momentum (a
-// sinking bubble keeps sinking) and gives up the excess from its wobble. The positions stay the solver's. A step
-// that gains potential energy beyond what the wobble holds ends without it; the next steps take the rest out as it
-// turns into motion.
-
-#include <vector>
+// sinking bubble keeps sinking) and gives up the excess from its wobble, or where even its drift was not paid for,
+// from the drift too. The positions stay the solver's: a step that gains more potential energy than the motion
+// holds ends at rest, and the next steps take the rest out as it turns into motion.
 
 #include "shared_step.h"
 #include "stages.h"

@@ -15,7 +15,9 @@
 //                                                and pressure are found again, so the run is close to, not equal to,
 //                                                the uninterrupted one)
 //   --trace-from F --trace-to F                  prints each frame's energy terms and what changed them (EnergyLedger)
-//   --param NAME=VALUE                           changes a parameter (e.g. solverIterations=30, collisionStiffness=0)
+//   --param NAME=VALUE                           changes a parameter (e.g. solverIterations=30, collisionStiffness=0,
+//                                                energyBudget=0, energyNeutralContraction=1: docs/performance.md,
+//                                                session 14, has what each does to the runs)
 #include <algorithm>
 #include <chrono>
 #include <cmath>

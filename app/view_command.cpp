@@ -393,6 +393,11 @@ int runView(ViewOptions o) try {
       "from instability\n",
       shown, seconds, static_cast<double>(shown) / std::max(seconds, 1e-9), dips, errors, recoveries);
   std::printf("live: %s\n", filmShown.describe(run.params.frameTime).c_str());
+  if (const Simulation::BudgetRecord& budget = sim->energyBudgetRecord(); budget.frames > 0)
+    std::printf(
+        "live: the implicit step's energy budget took energy back on %ld steps (smallest factor on the "
+        "wobble %.2f; docs/model.md)\n",
+        budget.frames, static_cast<double>(budget.smallestScale));
   return errors == 0 ? 0 : 4;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "error: %s\n", e.what());

@@ -309,17 +309,26 @@ TEST(VulkanEquivalence, EveryImplicitPassAloneMatchesTheCpuReference) {
 
 // The energy budget alone (its kernels: the terms, their tree sum, the factor; for a bubble the volumes before and
 // after) and the velocity that applies it, on a film spun after one sweep, which broke its budget: a free disc at
-// 12 rad/s and a closed bubble at 25 rad/s (its gas takes up part of the stretch). The factor and the velocities get
+// 12 rad/s, a closed bubble at 25 rad/s (its gas takes up part of the stretch) and a disc of the physical tension
+// model (its triangles' 2 gamma x area) at 20 rad/s. The factor and the velocities get
 // the stage bound, 1e-5 relative: both backends add the same float terms in the same tree order.
 TEST(VulkanEquivalence, TheEnergyBudgetMatchesTheCpuReference) {
   GB_REQUIRE_VULKAN(device);
-  for (const bool bubble : {false, true}) {
+  const struct {
+    const char* name;
+    bool bubble;
+    int tensionModel;
+    float spin;  // rad/s
+  } cases[] = {{"disc", false, 0, 12.0f}, {"bubble", true, 0, 25.0f}, {"physical disc", false, 1, 20.0f}};
+  for (const auto& c : cases) {
+    const bool bubble = c.bubble;
     Params p;
     p.particlesAtFullSolution = 1000;
     p.solverIterations = 1;
     p.gravityY = 0.0f;
+    p.tensionModel = c.tensionModel;
     Film film = bubble ? generateSphere(p, Vec3(0, 1.5f, 0), 0.4f, 3) : test::makeFreeDisc(p);
-    test::spin(film, bubble ? Vec3(0, 1, 0) : Vec3(film.state.normal.get(0)), bubble ? 25.0f : 12.0f);
+    test::spin(film, bubble ? Vec3(0, 1, 0) : Vec3(film.state.normal.get(0)), c.spin);
     const Simulation sim(p, film, WandState{});
     const StepUniforms u = sim.uniformsFor(WandState{}, WandState{}, p.frameTime);
     Film before = sim.film();
@@ -340,8 +349,8 @@ TEST(VulkanEquivalence, TheEnergyBudgetMatchesTheCpuReference) {
     gpu.store(gpuFilm);
     const double error =
         worstRelativeError(flatten(cpuFilm.state.velocity), flatten(gpuFilm.state.velocity), kCancellationFloor, 3);
-    std::printf("stage energy_budget (%s): factor %.6f cpu, %.6f vulkan; velocity worst relative error %.2e\n",
-                bubble ? "bubble" : "disc", cpuScale, gpuScale, error);
+    std::printf("stage energy_budget (%s): factor %.6f cpu, %.6f vulkan; velocity worst relative error %.2e\n", c.name,
+                cpuScale, gpuScale, error);
     EXPECT_EQ(u.closed, bubble ? 1u : 0u);
     EXPECT_LT(cpuScale, 0.99f) << "the spun film must break its budget for the comparison to mean something";
     EXPECT_NEAR(gpuScale, cpuScale, kStageTolerance * cpuScale);

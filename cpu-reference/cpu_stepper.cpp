@@ -41,9 +41,14 @@ void CpuStepper::load(const Params& params, Film& film) {
 }
 
 float CpuStepper::volume(const Film& film, const Vec3& origin) {
-  triangleVolumes_.resize(film.topology.triangleCount());
-  forEach(triangleVolumes_.size(),
-          [&](size_t t) { triangleVolumes_[t] = triangleSignedVolume(film.topology, film.state, t, origin); });
+  return sumOverTriangles(film.topology.triangleCount(),
+                          [&](size_t t) { return triangleSignedVolume(film.topology, film.state, t, origin); });
+}
+
+template <class Leaf>
+float CpuStepper::sumOverTriangles(size_t triangles, Leaf leaf) {
+  triangleVolumes_.resize(triangles);
+  forEach(triangles, [&](size_t t) { triangleVolumes_[t] = leaf(t); });
   return treeSum(triangleVolumes_);
 }
 
@@ -195,10 +200,8 @@ VelocityBudget CpuStepper::budgetEnergy(const StepUniforms& u) {
   });
   float gas = 0.0f;
   if (u.closed) {  // the volumes before and after the step, as the volume stage sums them
-    triangleVolumes_.resize(topo.triangleCount());
-    forEach(triangleVolumes_.size(),
-            [&](size_t t) { triangleVolumes_[t] = triangleSignedVolumeAtStart(topo, s, t, u.volumeOrigin); });
-    const float before = treeSum(triangleVolumes_);
+    const float before = sumOverTriangles(
+        topo.triangleCount(), [&](size_t t) { return triangleSignedVolumeAtStart(topo, s, t, u.volumeOrigin); });
     lastVolume_ = volume(*film_, u.volumeOrigin);
     gas = boyleEnergyChange(params_, u.referenceVolume, before, lastVolume_);
   }

@@ -37,6 +37,9 @@ class CpuStepper final : public Stepper {
   // Stage energy_budget: every particle's share of the step's energy, summed in the fixed tree order, and for a
   // closed film the gas's energy change between the volumes before and after.
   VelocityBudget budgetEnergy(const StepUniforms& u);
+  // The tree sum (treeSum) of leaf(t) over the triangles, each computed in parallel: the volume's reduction.
+  template <class Leaf>
+  float sumOverTriangles(size_t triangles, Leaf leaf);
   // Boyle's pressure of a closed film at the last volume (Eq. 11), P_0 for an open film.
   [[nodiscard]] float currentPressure(const StepUniforms& u) const;
   template <class Body>

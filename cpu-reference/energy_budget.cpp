@@ -59,9 +59,8 @@ Vec3 positionAtStepStart(const Topology& topo, const State& s, size_t i) {
 
 float triangleSignedVolumeAtStart(const Topology& topo, const State& s, size_t t, const Vec3& origin) {
   const uint32_t* tri = &topo.triangles[3 * t];
-  const Vec3 a = positionAtStepStart(topo, s, tri[0]) - origin, b = positionAtStepStart(topo, s, tri[1]) - origin,
-             c = positionAtStepStart(topo, s, tri[2]) - origin;
-  return a.dot(b.cross(c)) / 6.0f;
+  return coneVolume(positionAtStepStart(topo, s, tri[0]), positionAtStepStart(topo, s, tri[1]),
+                    positionAtStepStart(topo, s, tri[2]), origin);
 }
 
 ParticleEnergy particleEnergy(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, size_t i) {

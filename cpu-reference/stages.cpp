@@ -98,11 +98,13 @@ void computeGeometry(const Topology& topo, State& s) {
   for (size_t i = 0; i < s.size(); ++i) computeVertexGeometry(topo, s, i);
 }
 
+float coneVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& origin) {
+  return (a - origin).dot((b - origin).cross(c - origin)) / 6.0f;
+}
+
 float triangleSignedVolume(const Topology& topo, const State& s, size_t t, const Vec3& origin) {
   const uint32_t* tri = &topo.triangles[3 * t];
-  const Vec3 a = s.position.get(tri[0]) - origin, b = s.position.get(tri[1]) - origin,
-             c = s.position.get(tri[2]) - origin;
-  return a.dot(b.cross(c)) / 6.0f;
+  return coneVolume(s.position.get(tri[0]), s.position.get(tri[1]), s.position.get(tri[2]), origin);
 }
 
 float treeSum(std::vector<float> v) {

@@ -51,6 +51,9 @@ uint64_t geometryKey(const Topology& topo, const State& s);
 // Signed volume of the tetrahedron (origin, triangle t); their sum is the enclosed volume of a closed
 // film and the volume swept between an open film and the apex.
 float triangleSignedVolume(const Topology& topo, const State& s, size_t t, const Vec3& origin);
+// The signed volume of the cone from `origin` to the triangle (a, b, c), the one formula of triangleSignedVolume and
+// of the energy budget's triangleSignedVolumeAtStart.
+float coneVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& origin);
 
 // Pairwise sum with a fixed tree shape (level by level, a[k] = a[2k] + a[2k+1]): the reduction both
 // backends use for the volume, so that they add in the same order.

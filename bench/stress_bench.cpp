@@ -102,13 +102,18 @@ Options parse(int argc, char** argv) {
 }
 
 // The tension's energy at the film's positions with the given elasticities (N/m per particle) and rest lengths: the
-// springs of Eq. (3), or in the physical model each triangle's mean 2 gamma times its area (J).
+// springs of Eq. (3), or in the physical model each triangle's mean 2 gamma times its area less the Gibbs rise of
+// gamma that 2 gamma a counts as stored (2 gamma a - filmTensionEnergy, at the film's areas and liquid) (J).
 double tensionEnergy(const Params& p, const Film& film, const std::vector<float>& elasticity,
                      const std::vector<float>& rest) {
   const Topology& topo = film.topology;
   const State& s = film.state;
   double sum = 0;
   if (p.tensionModel == 1) {
+    for (size_t i = 0; i < s.size(); ++i)
+      if (s.alive[i] && s.voronoiArea[i] > 0)
+        sum -= filmTension(p, s.liquid[i] / s.voronoiArea[i]) * double{s.voronoiArea[i]} -
+               filmTensionEnergy(p, s.liquid[i], s.voronoiArea[i]);
     for (size_t t = 0; t < topo.triangleCount(); ++t) {
       const uint32_t* c = &topo.triangles[3 * t];
       const Vec3 twiceAreaNormal =
@@ -126,12 +131,10 @@ double tensionEnergy(const Params& p, const Film& film, const std::vector<float>
   return sum;
 }
 
-// Kinetic + gravity + the tension's energy (springs of Eq. 3, or 2 gamma x area in the physical model), J.
+// Kinetic + gravity + the tension's potential (springs of Eq. 3, or filmTensionEnergy in the physical model), J.
 double mechanicalEnergy(Simulation& sim) {
   const FrameStats st = sim.stats();  // refreshes the elasticities at the film's positions
-  const Film& film = sim.film();
-  return st.kineticEnergy + st.potentialEnergy +
-         tensionEnergy(sim.params(), film, film.state.elasticity, film.topology.restLength);
+  return st.kineticEnergy + st.potentialEnergy + st.elasticEnergy;
 }
 
 // The wands: 50 frames of a random straight motion (up to 6 m/s per tip, bouncing off the walls of a 3 m box

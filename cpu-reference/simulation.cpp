@@ -354,14 +354,21 @@ FrameStats Simulation::stats() {
   st.solution = film_.solutionLeft(params_);
   st.droplets = aerosol_.size();
   for (float m : aerosol_.mass) st.dropletMass += m;
-  foldInOrder<double>(
-      topo.springCount(),
-      [&](size_t k) {
-        const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
-        const double stretch = (s.position.get(a) - s.position.get(b)).cast<double>().norm() - topo.restLength[k];
-        return 0.25 * (s.elasticity[a] + s.elasticity[b]) * stretch * stretch;
-      },
-      [&](double energy) { st.elasticEnergy += energy; });
+  if (params_.tensionModel == 1) {
+    foldInOrder<double>(
+        s.size(),
+        [&](size_t i) { return s.alive[i] ? filmTensionEnergy(params_, s.liquid[i], s.voronoiArea[i]) : 0.0; },
+        [&](double energy) { st.elasticEnergy += energy; });
+  } else {
+    foldInOrder<double>(
+        topo.springCount(),
+        [&](size_t k) {
+          const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+          const double stretch = (s.position.get(a) - s.position.get(b)).cast<double>().norm() - topo.restLength[k];
+          return 0.25 * (s.elasticity[a] + s.elasticity[b]) * stretch * stretch;
+        },
+        [&](double energy) { st.elasticEnergy += energy; });
+  }
   const Vec3 origin = topo.isClosed() ? centroid(s) : wireFrame(wands_).center;
   st.triangles = topo.triangleCount();
   foldInOrder<std::array<double, 2>>(

@@ -30,7 +30,7 @@ struct FrameStats {
   double area = 0;             // film area (m^2)
   double volume = 0;           // enclosed (bubble) or swept (open film, cone to the frame centre) volume (m^3)
   double kineticEnergy = 0;    // J
-  double elasticEnergy = 0;    // spring energy of Eq. (3), J
+  double elasticEnergy = 0;    // the tension's: spring energy of Eq. (3), or filmTensionEnergy (physical model), J
   double potentialEnergy = 0;  // gravity, J, relative to y = 0
   double liquid = 0;           // total liquid volume (m^3)
   double meanThickness = 0;    // m

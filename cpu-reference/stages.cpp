@@ -133,6 +133,16 @@ float filmTension(const Params& p, float thickness) {
   return 2.0f * std::clamp(gamma, 0.5f * gamma0, 2.0f * gamma0);
 }
 
+double filmTensionEnergy(const Params& p, double liquid, double area) {
+  const double a = area, e0 = initialThickness(p), gamma0 = p.surfaceTension, gibbs = p.gibbsElasticity;
+  const double tension = filmTension(p, a > 0 ? static_cast<float>(liquid / a) : 0.0f);
+  if (!(gibbs > 0)) return tension * a;
+  // gamma = gamma_0 + (E_G / 2) ln(a e_0 / liquid) reaches gamma_0 / 2 at a_lo and 2 gamma_0 at a_hi. The constant
+  // of integration makes W = 2 gamma a below a_lo (a thick film, gamma at its floor).
+  const double lower = liquid / e0 * std::exp(-gamma0 / gibbs), upper = liquid / e0 * std::exp(2.0 * gamma0 / gibbs);
+  return tension * a - gibbs * (std::clamp(a, lower, upper) - lower);
+}
+
 void updateFilmState(const Params& p, float dt, State& s, size_t i) {
   const float area = s.voronoiArea[i];
   s.thickness[i] = area > 0 ? s.liquid[i] / area : 0.0f;

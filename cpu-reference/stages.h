@@ -70,6 +70,14 @@ float elasticity(const Params& p, float thickness, float lifetime);
 // kept within [gamma_0 / 2, 2 gamma_0].
 float filmTension(const Params& p, float thickness);
 
+// Physical model: the tension's potential energy on a particle's area `area` holding `liquid` (J), the W whose
+// derivative dW/da is filmTension at the thickness liquid / a: 2 gamma a less E_G (clamp(a, a_lo, a_hi) - a_lo).
+// Where gamma follows the area (between the clamp's areas a_lo and a_hi), 2 gamma a also counts the rise of gamma
+// as if it had held over the whole area, which the tension never did work against. The step freezes gamma, so a
+// film it stretched by da gains E_G da of "2 gamma a" when gamma is refreshed, but none of W: counted as 2 gamma a,
+// a film at rest would seem to gain energy from nothing.
+double filmTensionEnergy(const Params& p, double liquid, double area);
+
 // Physical model, per particle i: -sum over its triangles t of T_t grad_i A_t, T_t the mean tension 2 gamma of
 // t's corners: the discrete mean-curvature force 2 gamma (2 H) A_i n on a smooth film, and an in-plane pull
 // where the tension varies (Marangoni). Needs the geometry stage's triangle normals.

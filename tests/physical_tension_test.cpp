@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "experiments.h"
+#include "stages.h"
 
 namespace gb {
 namespace {
@@ -59,6 +60,30 @@ TEST(PhysicalTension, WavesOnAFlatFilmTravelAtTheCapillarySpeed) {
 TEST(PhysicalTension, AOneMetreBubbleVanishesInPiROverV) {
   const Measurement m = measure("bubble-burst", 1000);
   EXPECT_NEAR(m.measured, m.analytic, 0.25 * m.analytic);
+}
+
+// The tension's potential is the energy whose slope dW/da is the tension 2 gamma the step applies, at every area:
+// below the clamp (gamma at gamma_0 / 2), where gamma follows the Gibbs law, and above it (2 gamma_0). Central
+// differences of 0.01% of the area in double precision; bound 1e-4 of 2 gamma_0, for the float thickness that
+// filmTension takes (its rounding moves gamma by E_G / 2 x 6e-8). And it is not 2 gamma a: where gamma follows the
+// area, W grows by 2 gamma da, 2 gamma a by E_G da more.
+TEST(PhysicalTension, TheTensionsPotentialHasTheTensionAsItsSlope) {
+  Params p;
+  const float liquid = 1e-6f;  // m^3: 0.2 m^2 of film at the dip thickness
+  const double dipArea = liquid / initialThickness(p);
+  for (double area :
+       {0.02 * dipArea, 0.2 * dipArea, 0.5 * dipArea, dipArea, 3.0 * dipArea, 8.0 * dipArea, 20.0 * dipArea}) {
+    const double da = 1e-4 * area;
+    const double slope =
+        (filmTensionEnergy(p, liquid, area + da) - filmTensionEnergy(p, liquid, area - da)) / (2.0 * da);
+    const double tension = filmTension(p, static_cast<float>(liquid / area));
+    EXPECT_NEAR(slope, tension, 1e-4 * 2.0 * p.surfaceTension) << "area " << area / dipArea << " x the dip's";
+  }
+  const double a = 2.0 * dipArea, da = 1e-3 * a;
+  const double potentialGain = filmTensionEnergy(p, liquid, a + da) - filmTensionEnergy(p, liquid, a);
+  const double naiveGain = filmTension(p, static_cast<float>(liquid / (a + da))) * (a + da) -
+                           filmTension(p, static_cast<float>(liquid / a)) * a;
+  EXPECT_NEAR(naiveGain - potentialGain, p.gibbsElasticity * da, 0.01 * p.gibbsElasticity * da);
 }
 
 TEST(PhysicalTension, AnUnknownExperimentIsNamed) {

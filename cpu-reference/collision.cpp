@@ -258,16 +258,46 @@ bool searchedFrom(const CellTable& table, uint32_t home, uint32_t b) {
   return radiusB < radiusHome || (radiusB == radiusHome && b > home);
 }
 
+// Applies PartnerRule::listPartnersIn's first two tests (a particle farther from bucket b's box than the reach, or
+// than the partner radius b's sheet allows it, lists nothing there) to all of bucket `home`'s particles at once:
+// false when every one of them would fail them. Their distance to b's box is at least the gap between the two
+// boxes, and partnerRadius is at most its bound over home's box (heights along b's normal) and normals (home's mean
+// normal and spread). The bound is widened by 1% and 20 um for the float rounding of the sums it is made of, which
+// round differently from the per-particle ones. On a film's flat stretches this drops 26 of the 27 cells' buckets
+// (all but home) without a test per particle.
+bool bucketMayHold(const CellTable& table, uint32_t home, uint32_t b, float reach) {
+  const BucketSheet& from = table.sheet[table.sheetIndex[home]];
+  const BucketSheet& sheet = table.sheet[table.sheetIndex[b]];
+  const float gapSquared = (sheet.lower - from.upper).cwiseMax(from.lower - sheet.upper).cwiseMax(0.0f).squaredNorm();
+  auto widened = [](float r) { return r * 1.001f + 1e-5f; };       // as listPartnersIn's
+  if (gapSquared > widened(reach) * widened(reach)) return false;  // a NaN gap compares false: searched
+  const Vec3& m = sheet.normal;
+  const float turn = std::sqrt(std::min((from.normal - m).squaredNorm(), (from.normal + m).squaredNorm()));
+  const float tilt = std::max(sheet.normalSpread, from.normalSpread + turn) + 1e-5f;
+  if (!(tilt < kAcrossCosine)) return true;
+  float lowest = 0.0f, highest = 0.0f;  // of m . x over home's box
+  for (int a = 0; a < 3; ++a) {
+    lowest += std::min(m[a] * from.lower[a], m[a] * from.upper[a]);
+    highest += std::max(m[a] * from.lower[a], m[a] * from.upper[a]);
+  }
+  const float offPlane = std::max(sheet.heightMax - lowest, highest - sheet.heightMin) + 1e-5f;
+  const float radius = widened(std::min(reach, 1.01f * (offPlane + 2e-5f) / (kAcrossCosine - tilt)));
+  return !(gapSquared > radius * radius);
+}
+
 // The distinct occupied buckets of the 27 cells about cell c (in bucket `home`) that its particles search: home
-// and those searched from it (searchedFrom). Every partner of a particle in c lies in the 27; returns their number.
-size_t bucketsAround(const CellTable& table, uint32_t home, const Cell& c, std::array<uint32_t, 27>& around) {
+// and those searched from it (searchedFrom) that may hold a partner of one of them (bucketMayHold). Every partner
+// of a particle in c lies in the 27; returns their number.
+size_t bucketsAround(const CellTable& table, uint32_t home, const Cell& c, float reach,
+                     std::array<uint32_t, 27>& around) {
   size_t count = 0;
   for (int dx = -1; dx <= 1; ++dx)
     for (int dy = -1; dy <= 1; ++dy)
       for (int dz = -1; dz <= 1; ++dz) {
         const uint32_t b = table.bucketOf({c[0] + dx, c[1] + dy, c[2] + dz});
         // Two of the 27 cells can share a bucket (a hash collision): each bucket is searched once.
-        if (table.offset[b] != table.offset[b + 1] && (b == home || searchedFrom(table, home, b)) &&
+        if (table.offset[b] != table.offset[b + 1] &&
+            (b == home || (searchedFrom(table, home, b) && bucketMayHold(table, home, b, reach))) &&
             std::find(around.begin(), around.begin() + count, b) == around.begin() + static_cast<ptrdiff_t>(count))
           around[count++] = b;
       }
@@ -440,7 +470,7 @@ size_t ContactSearch::find(const Params& p, float frameTime, float slack, Film& 
       Cell cell{};
       for (size_t k = table.offset[b]; k < table.offset[b + 1]; ++k) {
         const Cell c = cellOf(table.position[k], reach);
-        if (k == table.offset[b] || c != cell) count = bucketsAround(table, b, cell = c, around);
+        if (k == table.offset[b] || c != cell) count = bucketsAround(table, b, cell = c, reach, around);
         std::vector<uint32_t>& partners = lists[table.particle[k]];
         for (size_t a = 0; a < count; ++a) rule.listPartnersIn(table, b, around[a], k, partners);
       }

@@ -1,5 +1,7 @@
 #include "collision.h"
 
+#include <omp.h>
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -429,7 +431,9 @@ float contactRestDistanceAfter(const Params& p, float previousRest, float separa
 
 struct ContactSearch::Memory {
   CellTable table;
-  std::vector<std::vector<uint32_t>> lists;  // the partners each particle lists
+  // The pairs (i, j, i, j, ...) each thread listed: one growing array per thread, where one list per particle
+  // cost a million empty lists cleared and read each frame on the largest films.
+  std::vector<std::vector<uint32_t>> pairsByThread;
 };
 
 ContactSearch::ContactSearch() : memory_(std::make_unique<Memory>()) {}
@@ -451,44 +455,48 @@ size_t ContactSearch::find(const Params& p, float frameTime, float slack, Film& 
   const std::vector<float> speed = speedsAboutTheMean(film);
   const float fastest = n ? *std::max_element(speed.begin(), speed.end()) : 0.0f;
   const float reach = p.collisionDistance + contactMargin(frameTime, slack, 2.0f * fastest);
-  std::vector<std::vector<uint32_t>>& lists = memory_->lists;
-  lists.resize(n);
-#pragma omp parallel for schedule(static) if (n >= kParallelPass)
-  for (size_t i = 0; i < n; ++i) lists[i].clear();
+  std::vector<std::vector<uint32_t>>& pairsByThread = memory_->pairsByThread;
+  pairsByThread.resize(static_cast<size_t>(std::max(omp_get_max_threads(), 1)));
+  for (std::vector<uint32_t>& pairs : pairsByThread) pairs.clear();
   if (reach > 0 && p.collisionStiffness > 0) {
     bucketParticles(film, reach, memory_->table);
     const CellTable& table = memory_->table;
     const PartnerRule rule{p, topo, frameTime, slack, reach};
     // Each particle lists the partners it owns (each pair once, half the distance tests; listPartnersIn) from the
-    // read-only table: parallel over the buckets, and the same lists in any order. The particles of a cell
-    // share the buckets about it, looked up once per run of particles of one cell.
-#pragma omp parallel for schedule(dynamic, 1)
-    for (size_t o = 0; o < table.occupied.size(); ++o) {
-      const uint32_t b = table.occupied[o];
-      std::array<uint32_t, 27> around{};
-      size_t count = 0;
-      Cell cell{};
-      for (size_t k = table.offset[b]; k < table.offset[b + 1]; ++k) {
-        const Cell c = cellOf(table.position[k], reach);
-        if (k == table.offset[b] || c != cell) count = bucketsAround(table, b, cell = c, reach, around);
-        std::vector<uint32_t>& partners = lists[table.particle[k]];
-        for (size_t a = 0; a < count; ++a) rule.listPartnersIn(table, b, around[a], k, partners);
+    // read-only table: parallel over the buckets, each thread into its own array, and the same rows in any order
+    // once they are sorted below. The particles of a cell share the buckets about it, looked up once per run of
+    // particles of one cell.
+#pragma omp parallel
+    {
+      std::vector<uint32_t>& pairs = pairsByThread[static_cast<size_t>(omp_get_thread_num())];
+      std::vector<uint32_t> partners;
+#pragma omp for schedule(dynamic, 1)
+      for (size_t o = 0; o < table.occupied.size(); ++o) {
+        const uint32_t b = table.occupied[o];
+        std::array<uint32_t, 27> around{};
+        size_t count = 0;
+        Cell cell{};
+        for (size_t k = table.offset[b]; k < table.offset[b + 1]; ++k) {
+          const Cell c = cellOf(table.position[k], reach);
+          if (k == table.offset[b] || c != cell) count = bucketsAround(table, b, cell = c, reach, around);
+          partners.clear();
+          for (size_t a = 0; a < count; ++a) rule.listPartnersIn(table, b, around[a], k, partners);
+          for (uint32_t j : partners) pairs.insert(pairs.end(), {table.particle[k], j});
+        }
       }
     }
   }
-  // Each pair was listed by one of its two particles: each particle's row holds the partners it listed and those
-  // that listed it, sorted.
+  // Each pair was listed once: each particle's row holds the partners it listed and those that listed it, sorted.
   std::vector<uint32_t> packed(n + 1, 0u);
-  for (uint32_t i = 0; i < n; ++i) {
-    packed[i + 1] += static_cast<uint32_t>(lists[i].size());
-    for (uint32_t j : lists[i]) ++packed[j + 1];
-  }
+  for (const std::vector<uint32_t>& pairs : pairsByThread)
+    for (uint32_t end : pairs) ++packed[end + 1];
   for (size_t i = 0; i < n; ++i) packed[i + 1] += packed[i];
   const size_t total = packed[n];
   packed.resize(n + 1 + 2 * total);
   std::vector<uint32_t> fill(packed.begin(), packed.begin() + static_cast<ptrdiff_t>(n));
-  for (uint32_t i = 0; i < n; ++i)
-    for (uint32_t j : lists[i]) {
+  for (const std::vector<uint32_t>& pairs : pairsByThread)
+    for (size_t k = 0; k < pairs.size(); k += 2) {
+      const uint32_t i = pairs[k], j = pairs[k + 1];
       packed[n + 1 + fill[i]++] = j;
       packed[n + 1 + fill[j]++] = i;
     }

@@ -298,7 +298,7 @@ int runSimulation(const RunOptions& o) {
                         ": " + input->describe(),
                     input->camera());
   record.setRealTimeFactor(last.time / std::max(wall, 1e-9));
-  record.setEnergyBudget(sim.energyBudgetRecord().frames, sim.energyBudgetRecord().smallestScale);
+  record.setEnergyBudget(sim.energyBudgetRecord());
   record.writeJson(o.outDir / "stats.json", o.scene, status);
   if (status == "interrupted") {
     std::fprintf(stderr,

@@ -136,7 +136,9 @@ void RunRecord::writeJson(const std::filesystem::path& path, const std::string& 
                   {"substeps_per_frame", substepSum_ / n},
                   {"step_ms", substepSum_ > 0 ? millisecondSum_ / substepSum_ : 0.0}};
   j["real_time_factor"] = realTimeFactor_;
-  j["energy_budget"] = {{"frames", budgetFrames_}, {"smallest_factor", budgetSmallestScale_}};
+  j["energy_budget"] = {{"frames", budget_.frames},
+                        {"smallest_factor", budget_.smallestScale},
+                        {"largest_drift_given_back_mps", budget_.largestShift}};
   j["first_frame"] = frameJson(first_);
   j["last_frame"] = frameJson(last_);
   j["largest"] = {{"area_m2", largestArea_.area},       {"area_time_s", largestArea_.time},
@@ -254,10 +256,11 @@ std::string RunRecord::story() const {
   std::string text = lines + story + "\n";
   std::snprintf(lines, sizeof lines, "%-28s ", "largest");
   text += lines + std::string(largest) + "\n";
-  if (budgetFrames_ > 0) {  // the step's safeguard acted: say so (docs/model.md "Energy budget")
+  if (budget_.frames > 0) {  // the step's safeguard acted: say so (docs/model.md "Energy budget")
     std::snprintf(lines, sizeof lines,
-                  "%-28s took energy back on %ld of %ld frames (smallest factor on the wobble %.2f)\n", "energy budget",
-                  budgetFrames_, frames_, budgetSmallestScale_);
+                  "%-28s took energy back on %ld of %ld frames (smallest factor on the wobble %.2f, most drift given "
+                  "back %.3f m/s)\n",
+                  "energy budget", budget_.frames, frames_, budget_.smallestScale, budget_.largestShift);
     text += lines;
   }
   return text;

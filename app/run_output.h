@@ -32,12 +32,8 @@ class RunRecord {
   void writeJson(const std::filesystem::path& path, const std::string& scene, const std::string& status) const;
   // Simulated seconds per wall second of the run (1: real time), for stats.json.
   void setRealTimeFactor(double factor) { realTimeFactor_ = factor; }
-  // The frames on which the implicit step's energy budget took energy back, and its smallest factor on the wobble
-  // (Simulation::energyBudgetRecord), for stats.json and the summary.
-  void setEnergyBudget(long frames, float smallestScale) {
-    budgetFrames_ = frames;
-    budgetSmallestScale_ = smallestScale;
-  }
+  // What the implicit step's energy budget did (Simulation::energyBudgetRecord), for stats.json and the summary.
+  void setEnergyBudget(const Simulation::BudgetRecord& budget) { budget_ = budget; }
   // A string field of stats.json beside the figures, e.g. "video_error".
   void note(const std::string& key, const std::string& value);
   // Adds `milliseconds` of this frame to the phase `name` ("step", "render"...): stats.json's "phase_ms" and the
@@ -61,8 +57,7 @@ class RunRecord {
   FrameStats largestArea_, largestVolume_;  // the frames with the largest area and |volume|
   size_t mostParticles_ = 0, mostDroplets_ = 0;
   double realTimeFactor_ = 0;
-  long budgetFrames_ = 0;
-  float budgetSmallestScale_ = 1.0f;
+  Simulation::BudgetRecord budget_;
   std::vector<std::pair<double, std::string>> events_;
   std::vector<std::pair<std::string, double>> phaseSums_;  // ms over all frames
 };

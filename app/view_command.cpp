@@ -396,8 +396,8 @@ int runView(ViewOptions o) try {
   if (const Simulation::BudgetRecord& budget = sim->energyBudgetRecord(); budget.frames > 0)
     std::printf(
         "live: the implicit step's energy budget took energy back on %ld steps (smallest factor on the "
-        "wobble %.2f; docs/model.md)\n",
-        budget.frames, static_cast<double>(budget.smallestScale));
+        "wobble %.2f, most drift given back %.3f m/s; docs/model.md)\n",
+        budget.frames, static_cast<double>(budget.smallestScale), static_cast<double>(budget.largestShift));
   return errors == 0 ? 0 : 4;
 } catch (const std::exception& e) {
   std::fprintf(stderr, "error: %s\n", e.what());

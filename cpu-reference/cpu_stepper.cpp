@@ -194,8 +194,9 @@ VelocityBudget CpuStepper::budgetEnergy(const StepUniforms& u) {
   for (std::vector<float>& terms : energyTerms_) terms.resize(s.size());
   forEach(s.size(), [&](size_t i) {
     const ParticleEnergy e = particleEnergy(params_, u, topo, s, i);
-    const std::array<float, 7> terms = {e.start,        e.kinetic,      e.held,        e.mass,
-                                        e.momentum.x(), e.momentum.y(), e.momentum.z()};
+    const std::array<float, GB_ENERGY_TERMS> terms = {e.start,        e.kinetic,      e.held,         e.mass,
+                                                      e.momentum.x(), e.momentum.y(), e.momentum.z(), e.expected.x(),
+                                                      e.expected.y(), e.expected.z()};
     for (size_t c = 0; c < terms.size(); ++c) energyTerms_[c][i] = terms[c];
   });
   float gas = 0.0f;
@@ -205,9 +206,10 @@ VelocityBudget CpuStepper::budgetEnergy(const StepUniforms& u) {
     lastVolume_ = volume(*film_, u.volumeOrigin);
     gas = boyleEnergyChange(params_, u.referenceVolume, before, lastVolume_);
   }
-  std::array<float, 7> sums{};
+  std::array<float, GB_ENERGY_TERMS> sums{};
   for (size_t c = 0; c < sums.size(); ++c) sums[c] = treeSum(energyTerms_[c]);
-  return energyBudget(sums[0], sums[1], sums[2] + gas, sums[3], Vec3(sums[4], sums[5], sums[6]));
+  return energyBudget(sums[0], sums[1], sums[2] + gas, sums[3], Vec3(sums[4], sums[5], sums[6]),
+                      Vec3(sums[7], sums[8], sums[9]));
 }
 
 float CpuStepper::currentPressure(const StepUniforms& u) const {
@@ -218,7 +220,7 @@ float CpuStepper::step(const StepUniforms& u) {
   velocityBudget_ = {};
   for (const StageSpec& spec : stepStages())
     if (spec.runs(params_, u)) runStage(spec.stage, u);
-  velocityScale_ = velocityBudget_.scale;
+  lastBudget_ = velocityBudget_;
   return currentPressure(u);
 }
 

@@ -47,12 +47,12 @@ class CpuStepper final : public Stepper {
 
   Params params_;
   Film* film_ = nullptr;
-  std::vector<float> triangleVolumes_;             // scratch for the volume reduction, reused every step
-  float lastVolume_ = 0.0f;                        // result of the last Volume stage, read by Forces
-  SweepRuns sweepRuns_;                            // the implicit step's one-rings, laid out again every step
-  CoarseSystem coarse_;                            // the implicit step's patch system, assembled again every step
-  std::array<std::vector<float>, 7> energyTerms_;  // energy_budget's per-particle terms (ParticleEnergy, flat)
-  VelocityBudget velocityBudget_;                  // the last energy budget's, read by implicit_velocity
+  std::vector<float> triangleVolumes_;  // scratch for the volume reduction, reused every step
+  float lastVolume_ = 0.0f;             // result of the last Volume stage, read by Forces
+  SweepRuns sweepRuns_;                 // the implicit step's one-rings, laid out again every step
+  CoarseSystem coarse_;                 // the implicit step's patch system, assembled again every step
+  std::array<std::vector<float>, GB_ENERGY_TERMS> energyTerms_;  // energy_budget's per-particle terms (ParticleEnergy)
+  VelocityBudget velocityBudget_;                                // the last energy budget's, read by implicit_velocity
 };
 
 }  // namespace gb

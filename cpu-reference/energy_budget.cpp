@@ -78,6 +78,7 @@ ParticleEnergy particleEnergy(const Params& p, const StepUniforms& u, const Topo
   e.held -= s.force.get(i).dot(moved);
   e.mass = m;
   e.momentum = m * v;
+  e.expected = u.closed ? Vec3(m * s.velocity.get(i) + u.dt * s.force.get(i)) : Vec3::Zero();
   return e;
 }
 
@@ -92,19 +93,35 @@ float boyleEnergyChange(const Params& p, float referenceVolume, float before, fl
   return p.pressureCoefficient * ((before - referenceVolume) * d + referenceVolume * curvature);
 }
 
-VelocityBudget energyBudget(float start, float kinetic, float held, float mass, const Vec3& momentum) {
+Vec3 driftWithinBudget(const Vec3& expected, const Vec3& centre, float speedSquared) {
+  const Vec3 made = centre - expected;  // the drift the step made itself
+  const float a = made.squaredNorm(), b = expected.dot(made), c = expected.squaredNorm() - speedSquared;
+  if (!(a > 0.0f)) return centre;
+  // |expected + l made|^2 <= speedSquared for l between the roots of a l^2 + 2 b l + c.
+  float l = std::clamp(-b / a, 0.0f, 1.0f);  // the least speed on the way, where no l will do
+  const float discriminant = b * b - a * c;
+  if (discriminant >= 0.0f) {
+    const float root = std::sqrt(discriminant), lower = (-b - root) / a, upper = (-b + root) / a;
+    if (upper >= 0.0f && lower <= 1.0f) l = std::min(upper, 1.0f);
+  }
+  return expected + l * made;
+}
+
+VelocityBudget energyBudget(float start, float kinetic, float held, float mass, const Vec3& momentum,
+                            const Vec3& expectedMomentum) {
   const float budget = start + kEnergyBudgetTolerance * std::abs(start);
   if (!(kinetic + held > budget) || !(mass > 0.0f) || !std::isfinite(budget)) return {};
   const float drift = 0.5f * momentum.squaredNorm() / mass, internal = kinetic - drift;
+  const float room = budget - held;  // the kinetic energy the step may end with
   const Vec3 centre = momentum / mass;
-  if (budget - held >= drift)  // the wobble holds the excess
-    return {internal > 0.0f ? std::sqrt(std::clamp((budget - held - drift) / internal, 0.0f, 1.0f)) : 1.0f, centre};
-  // Not even the drift was paid for (a crumpled film's contacts can push it along): no wobble, and the drift slowed.
-  return {0.0f, std::sqrt(std::max(budget - held, 0.0f) / drift) * centre};
+  if (room >= drift)  // the wobble holds the excess
+    return {internal > 0.0f ? std::sqrt(std::clamp((room - drift) / internal, 0.0f, 1.0f)) : 1.0f, centre};
+  // Not even the drift was paid for: no wobble, and the drift given back as far as the film's own goes.
+  return {0.0f, centre, driftWithinBudget(expectedMomentum / mass, centre, 2.0f * room / mass) - centre};
 }
 
 Vec3 budgetedVelocity(const VelocityBudget& budget, const Vec3& v) {
-  return budget.scale == 1.0f ? v : Vec3(budget.centre + budget.scale * (v - budget.centre));
+  return budget.acted() ? Vec3(budget.centre + budget.shift + budget.scale * (v - budget.centre)) : v;
 }
 
 }  // namespace gb

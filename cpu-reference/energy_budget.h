@@ -35,11 +35,14 @@ float triangleSignedVolumeAtStart(const Topology& topo, const State& s, size_t t
 // A particle's share of the step's energy (J): at the start (x_t, the wire placed at its end position, v_t),
 // at the end its kinetic energy (v = (x - x_t) / h) and the rest (its share of E at x less the work the
 // explicit forces did on it). Springs, triangles and contacts are shared equally among the particles they join.
-// A free particle also gives its mass and its momentum at the end, for the centre of mass.
+// A free particle also gives its mass and its momentum at the end, for the centre of mass, and on a closed film the
+// momentum it would have from its start and the explicit forces alone (m v_t + h f): the drift that is the film's
+// own. An open film's wire sets its motion every step: none of its drift is its own (expected momentum 0).
 struct ParticleEnergy {
   float start = 0.0f, kinetic = 0.0f, held = 0.0f;
   float mass = 0.0f;             // kg
   Vec3 momentum = Vec3::Zero();  // m v (kg m/s)
+  Vec3 expected = Vec3::Zero();  // m v_t + h f (kg m/s)
 };
 ParticleEnergy particleEnergy(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, size_t i);
 
@@ -47,19 +50,30 @@ ParticleEnergy particleEnergy(const Params& p, const StepUniforms& u, const Topo
 // as a difference so that float keeps it: its first-order term is the excess pressure's work, tiny next to P0 V.
 float boyleEnergyChange(const Params& p, float referenceVolume, float before, float after);
 
-// What implicit_velocity does with a free particle's new velocity v: c + scale (v - c), c the free particles'
-// centre-of-mass velocity. A scale of 1 leaves v as it is.
+// What implicit_velocity does with a free particle's new velocity v: c + shift + scale (v - c), c the free
+// particles' centre-of-mass velocity after the step. Scale 1 and no shift leave v as it is.
 struct VelocityBudget {
   float scale = 1.0f;
   Vec3 centre = Vec3::Zero();  // m/s
+  Vec3 shift = Vec3::Zero();   // m/s: the drift the step made itself, given back
+  [[nodiscard]] bool acted() const { return scale != 1.0f || shift != Vec3::Zero(); }
 };
-// The budget from the sums of the particles' terms: scale 1 when kinetic + held <= start (1 +
-// kEnergyBudgetTolerance), else the factor on the motion about the centre of mass that takes the excess out of it,
-// sqrt((budget - held - drift) / (kinetic - drift)) clamped to [0, 1] (drift = |momentum|^2 / 2 mass). Where even
-// the drift exceeds what is left (a crumpled film's contacts, taken at their partners' first guess, do not push
-// equally both ways and can drive it), the wobble goes and the centre's velocity is slowed to what is left. Scale 1
-// when the sums are not finite: the simulation's instability check reports that, not the budget.
-VelocityBudget energyBudget(float start, float kinetic, float held, float mass, const Vec3& momentum);
+// The budget from the sums of the particles' terms: none when kinetic + held <= start (1 + kEnergyBudgetTolerance).
+// Else the excess comes out of the motion about the centre of mass, by the factor
+// sqrt((budget - held - drift) / (kinetic - drift)) clamped to [0, 1] (drift = |momentum|^2 / 2 mass). Where even the
+// drift exceeds what is left, the wobble goes and the drift is given back down to what the budget has left, but not
+// below the film's own (driftWithinBudget): the momentum a closed film had at the start and the explicit forces gave
+// it (`expectedMomentum`, the sum of m v_t + h f). What it gives back there is what the step made itself: a closed
+// film's own forces cannot move its centre, but its contacts, taken at their partners' first guess, do not push
+// equally both ways. So a bubble blown off the wands keeps flying even where a step after the pinch-off gained more
+// than all its motion holds; the positions keep the rest, which the next steps take out as it turns into motion. An
+// open film has no drift of its own (its wire sets it): there the drift is slowed to what is left. No budget when
+// the sums are not finite: the simulation's instability check reports that, not the budget.
+VelocityBudget energyBudget(float start, float kinetic, float held, float mass, const Vec3& momentum,
+                            const Vec3& expectedMomentum);
+// The centre's velocity on the way from `expected` to `centre` nearest `centre` whose squared speed is at most
+// `speedSquared`; where none is, the one of least speed on that way.
+Vec3 driftWithinBudget(const Vec3& expected, const Vec3& centre, float speedSquared);
 // The velocity implicit_velocity gives a free particle whose unbudgeted one is v.
 Vec3 budgetedVelocity(const VelocityBudget& budget, const Vec3& v);
 

@@ -166,9 +166,10 @@ void Simulation::advanceFrame(const WandState& next) {
   const auto started = Clock::now();
   pressure_ = stepper_->run(substepUniforms_);
   stepper_->store(film_);
-  if (stepper_->velocityScale() < 1.0f) {
+  if (const VelocityBudget& budget = stepper_->lastBudget(); budget.acted()) {
     ++budgetRecord_.frames;
-    budgetRecord_.smallestScale = std::min(budgetRecord_.smallestScale, stepper_->velocityScale());
+    budgetRecord_.smallestScale = std::min(budgetRecord_.smallestScale, budget.scale);
+    budgetRecord_.largestShift = std::max(budgetRecord_.largestShift, budget.shift.norm());
   }
   const auto stepped = Clock::now();
   stepCount_ += substeps_;

@@ -108,8 +108,9 @@ class Simulation {
   // How often the implicit step's energy budget took energy back (energy_budget.h): frames, and the smallest factor
   // it left on the film's wobble (1: never).
   struct BudgetRecord {
-    long frames = 0;
-    float smallestScale = 1.0f;
+    long frames = 0;             // on which the energy budget acted
+    float smallestScale = 1.0f;  // its smallest factor on the wobble
+    float largestShift = 0.0f;   // the most drift it gave back in one step (m/s)
   };
   [[nodiscard]] const BudgetRecord& energyBudgetRecord() const { return budgetRecord_; }
   [[nodiscard]] Stepper& stepper() { return *stepper_; }

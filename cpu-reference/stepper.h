@@ -7,6 +7,7 @@
 #include <span>
 #include <string>
 
+#include "energy_budget.h"
 #include "film.h"
 #include "stages.h"
 
@@ -77,9 +78,9 @@ class Stepper {
   // Takes the film's changed spring rest lengths (the wire paying out film between frames, film_growth.h).
   virtual void updateRestLengths(const Film&) {}
 
-  // The energy budget's factor on the wobble in the last step run (the last substep of run()): 1 when the step kept
-  // within its budget or no budget ran (energy_budget.h).
-  [[nodiscard]] float velocityScale() const { return velocityScale_; }
+  // What the energy budget did in the last step run (the last substep of run()): nothing (VelocityBudget{}) when
+  // the step kept within its budget or no budget ran (energy_budget.h).
+  [[nodiscard]] const VelocityBudget& lastBudget() const { return lastBudget_; }
 
   virtual void enableTiming(bool on) { timing_ = on; }
   [[nodiscard]] const StageTimes& stageTimes() const { return times_; }
@@ -88,7 +89,7 @@ class Stepper {
  protected:
   bool timing_ = false;
   StageTimes times_{};
-  float velocityScale_ = 1.0f;
+  VelocityBudget lastBudget_;
 };
 
 }  // namespace gb

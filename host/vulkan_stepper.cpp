@@ -120,7 +120,9 @@ size_t energyRegion(const Topology& t) {
   const size_t patches = t.patchOffset.empty() ? 0 : t.patchOffset.size() - 1;
   return 2 * std::max<size_t>(t.triangleCount(), 1) + 9 * t.patchRow.size() + 21 * patches;
 }
-constexpr size_t kEnergyTerms = 7, kEnergySlots = 5;  // ENERGY_TERMS and the slots after them (kernels/common.glsl)
+// The slots after the terms (kernels/common.glsl): the volume before the step, then the VelocityBudget's scale,
+// centre and shift.
+constexpr size_t kEnergyTerms = GB_ENERGY_TERMS, kEnergySlots = 8;
 size_t reduceFloats(const Topology& t, size_t particles) {
   return energyRegion(t) + 2 * kEnergyTerms * particles + kEnergySlots;
 }
@@ -198,18 +200,23 @@ struct VulkanStepper::Impl {
     writeSolverLists(t);
     writeContacts(t);
     energyBase = static_cast<uint32_t>(energyRegion(t));
-    writeVelocityScale(1.0f);  // no budget has run on this mesh yet
+    writeVelocityBudget({});  // no budget has run on this mesh yet
   }
 
-  // The factor implicit_velocity applies (ENERGY_VELOCITY_SCALE), as the energy budget leaves it.
-  [[nodiscard]] vk::DeviceSize velocityScaleOffset() const {
+  // The VelocityBudget implicit_velocity applies (ENERGY_VELOCITY_SCALE, ENERGY_CENTRE, ENERGY_SHIFT), as the energy
+  // budget leaves it.
+  [[nodiscard]] vk::DeviceSize velocityBudgetOffset() const {
     return (energyBase + 2 * kEnergyTerms * particles + 1) * sizeof(float);
   }
-  void writeVelocityScale(float scale) { buffer(GB_BINDING_REDUCE).write(&scale, sizeof scale, velocityScaleOffset()); }
-  [[nodiscard]] float readVelocityScale() {
-    float scale = 1.0f;
-    buffer(GB_BINDING_REDUCE).read(&scale, sizeof scale, velocityScaleOffset());
-    return scale;
+  void writeVelocityBudget(const VelocityBudget& b) {
+    const std::array<float, 7> slots = {b.scale,     b.centre.x(), b.centre.y(), b.centre.z(),
+                                        b.shift.x(), b.shift.y(),  b.shift.z()};
+    buffer(GB_BINDING_REDUCE).write(slots.data(), sizeof slots, velocityBudgetOffset());
+  }
+  [[nodiscard]] VelocityBudget readVelocityBudget() {
+    std::array<float, 7> slots{};
+    buffer(GB_BINDING_REDUCE).read(slots.data(), sizeof slots, velocityBudgetOffset());
+    return {slots[0], Vec3(slots[1], slots[2], slots[3]), Vec3(slots[4], slots[5], slots[6])};
   }
 
   // The implicit solver's colours and the coarse correction's patches (kernels/coarse.glsl), made with the mesh.
@@ -506,7 +513,7 @@ float VulkanStepper::run(std::span<const StepUniforms> substeps) {
     m.ctx->submitAndWait(cb);
   }
   const StepUniforms& last = substeps.back();
-  velocityScale_ = m.params.integrator != 0 && m.params.energyBudget != 0 ? m.readVelocityScale() : 1.0f;
+  lastBudget_ = m.params.integrator != 0 && m.params.energyBudget != 0 ? m.readVelocityBudget() : VelocityBudget{};
   return last.closed ? boylePressure(m.params, last.referenceVolume, m.readVolume()) : m.params.pressureCoefficient;
 }
 
@@ -522,7 +529,7 @@ float VulkanStepper::runStage(Stage stage, const StepUniforms& uniforms) {
   cb.end();
   m.ctx->submitAndWait(cb);
   if (stage == Stage::Volume) return m.readVolume();
-  return stage == Stage::EnergyBudget ? m.readVelocityScale() : 0.0f;
+  return stage == Stage::EnergyBudget ? m.readVelocityBudget().scale : 0.0f;
 }
 
 void VulkanStepper::updateContacts(const Film& film) { impl_->writeContacts(film.topology); }

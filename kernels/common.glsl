@@ -45,15 +45,16 @@ layout(std430, binding = GB_BINDING_COLOUR_ORDER) readonly buffer ColourOrderBuf
 #define REDUCE_A(k) reduce[(k)]
 #define REDUCE_B(k) reduce[pc.triangles + (k)]
 // The energy budget's part of the reduce buffer, from pc.first (after the coarse correction's): halves A and B of
-// its tree sum, each ENERGY_TERMS blocks of `particles` floats (ParticleEnergy of energy_budget.h: start, kinetic,
-// held, mass, momentum x, y, z), then the bubble's volume before the step and the VelocityBudget (scale, centre).
-#define ENERGY_TERMS 7u
+// its tree sum, each ENERGY_TERMS blocks of `particles` floats (ParticleEnergy of energy_budget.h, GB_ENERGY_TERMS of
+// shared_step.h), then the bubble's volume before the step and the VelocityBudget (scale, centre, shift).
+#define ENERGY_TERMS uint(GB_ENERGY_TERMS)
 #define ENERGY_A(c, k) reduce[pc.first + (c) * pc.particles + (k)]
 #define ENERGY_B(c, k) reduce[pc.first + (ENERGY_TERMS + (c)) * pc.particles + (k)]
 #define ENERGY_SLOT(k) reduce[pc.first + 2u * ENERGY_TERMS * pc.particles + (k)]
 #define ENERGY_VOLUME_BEFORE ENERGY_SLOT(0u)
 #define ENERGY_VELOCITY_SCALE ENERGY_SLOT(1u)
 #define ENERGY_CENTRE vec3(ENERGY_SLOT(2u), ENERGY_SLOT(3u), ENERGY_SLOT(4u))
+#define ENERGY_SHIFT vec3(ENERGY_SLOT(5u), ENERGY_SLOT(6u), ENERGY_SLOT(7u))
 #define DRAIN_OUTFLOW(i) drainage[(i)]
 #define DRAIN_WEIGHT(i) drainage[pc.particles + (i)]
 

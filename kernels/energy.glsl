@@ -40,8 +40,8 @@ void heldShares(uint i, out float start, out float end) {
 }
 
 // particleEnergy: particle i's terms, in the order of ENERGY_TERMS.
-void particleEnergy(uint i, float dt, out float terms[7]) {
-  for (uint c = 0u; c < 7u; ++c) terms[c] = 0.0;
+void particleEnergy(uint i, float dt, bool closed, out float terms[GB_ENERGY_TERMS]) {
+  for (uint c = 0u; c < ENERGY_TERMS; ++c) terms[c] = 0.0;
   if (alive[i] == 0u) return;
   heldShares(i, terms[0], terms[2]);
   if (boundary[i] != 0u) return;  // prescribed: the wands' work
@@ -56,6 +56,10 @@ void particleEnergy(uint i, float dt, out float terms[7]) {
   terms[4] = momentum.x;
   terms[5] = momentum.y;
   terms[6] = momentum.z;
+  const vec3 expected = closed ? m * vt + dt * LOAD3(force, i) : vec3(0.0);
+  terms[7] = expected.x;
+  terms[8] = expected.y;
+  terms[9] = expected.z;
 }
 
 // boyleEnergyChange: the gas's energy change from volume `before` to `after`, as a difference.
@@ -68,21 +72,40 @@ float boyleEnergyChange(float referenceVolume, float before, float after) {
   return params.pressureCoefficient * ((before - referenceVolume) * d + referenceVolume * curvature);
 }
 
-// energyBudget: the factor on the motion about the centre of mass (scale) and the centre's velocity.
-void energyBudget(float start, float kinetic, float held, float mass, vec3 momentum, out float scale, out vec3 centre) {
+// driftWithinBudget: the centre's velocity between `expected` and `centre` nearest `centre` within the speed.
+vec3 driftWithinBudget(vec3 expected, vec3 centre, float speedSquared) {
+  const vec3 made = centre - expected;
+  const float a = dot(made, made), b = dot(expected, made), c = dot(expected, expected) - speedSquared;
+  if (!(a > 0.0)) return centre;
+  float l = clamp(-b / a, 0.0, 1.0);
+  const float discriminant = b * b - a * c;
+  if (discriminant >= 0.0) {
+    const float root = sqrt(discriminant), lower = (-b - root) / a, upper = (-b + root) / a;
+    if (upper >= 0.0 && lower <= 1.0) l = min(upper, 1.0);
+  }
+  return expected + l * made;
+}
+
+// energyBudget: the factor on the motion about the centre of mass (scale), the centre's velocity and its shift.
+void energyBudget(float start, float kinetic, float held, float mass, vec3 momentum, vec3 expectedMomentum,
+                  out float scale, out vec3 centre, out vec3 shift) {
   scale = 1.0;
   centre = vec3(0.0);
+  shift = vec3(0.0);
   const float budget = start + float(GB_ENERGY_BUDGET_TOLERANCE) * abs(start);
   if (!(kinetic + held > budget) || !(mass > 0.0) || isinf(budget) || isnan(budget)) return;
   const float drift = 0.5 * dot(momentum, momentum) / mass, internal = kinetic - drift;
+  const float room = budget - held;
   centre = momentum / mass;
-  if (budget - held >= drift) {  // the wobble holds the excess
-    scale = internal > 0.0 ? sqrt(clamp((budget - held - drift) / internal, 0.0, 1.0)) : 1.0;
+  if (room >= drift) {  // the wobble holds the excess
+    scale = internal > 0.0 ? sqrt(clamp((room - drift) / internal, 0.0, 1.0)) : 1.0;
     return;
   }
-  scale = 0.0;  // not even the drift was paid for: no wobble, and the drift slowed
-  centre = sqrt(max(budget - held, 0.0) / drift) * centre;
+  scale = 0.0;  // not even the drift was paid for: no wobble, and the drift given back as far as the film's own goes
+  shift = driftWithinBudget(expectedMomentum / mass, centre, 2.0 * room / mass) - centre;
 }
 
 // budgetedVelocity: a free particle's new velocity as the budget leaves it.
-vec3 budgetedVelocity(float scale, vec3 centre, vec3 v) { return scale == 1.0 ? v : centre + scale * (v - centre); }
+vec3 budgetedVelocity(float scale, vec3 centre, vec3 shift, vec3 v) {
+  return scale != 1.0 || shift != vec3(0.0) ? centre + shift + scale * (v - centre) : v;
+}

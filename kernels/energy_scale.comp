@@ -9,7 +9,7 @@
 void main() {
   if (gl_GlobalInvocationID.x != 0u) return;
   const bool sumsInA = (pc.reduceFlags & 1u) != 0u;
-  float sums[7];
+  float sums[GB_ENERGY_TERMS];
   for (uint c = 0u; c < ENERGY_TERMS; ++c) sums[c] = sumsInA ? ENERGY_A(c, 0u) : ENERGY_B(c, 0u);
   const StepUniformsBlock u = steps[pc.stepIndex];
   float gas = 0.0;
@@ -18,10 +18,14 @@ void main() {
     gas = boyleEnergyChange(u.referenceVolume, ENERGY_VOLUME_BEFORE, after);
   }
   float scale;
-  vec3 centre;
-  energyBudget(sums[0], sums[1], sums[2] + gas, sums[3], vec3(sums[4], sums[5], sums[6]), scale, centre);
+  vec3 centre, shift;
+  energyBudget(sums[0], sums[1], sums[2] + gas, sums[3], vec3(sums[4], sums[5], sums[6]),
+               vec3(sums[7], sums[8], sums[9]), scale, centre, shift);
   ENERGY_VELOCITY_SCALE = scale;
   ENERGY_SLOT(2u) = centre.x;
   ENERGY_SLOT(3u) = centre.y;
   ENERGY_SLOT(4u) = centre.z;
+  ENERGY_SLOT(5u) = shift.x;
+  ENERGY_SLOT(6u) = shift.y;
+  ENERGY_SLOT(7u) = shift.z;
 }

@@ -10,7 +10,7 @@ void main() {
   const uint i = gl_GlobalInvocationID.x;
   if (i >= pc.count) return;
   if (i == 0u) ENERGY_VOLUME_BEFORE = (pc.reduceFlags & 1u) != 0u ? REDUCE_A(0u) : REDUCE_B(0u);
-  float terms[7];
-  particleEnergy(i, steps[pc.stepIndex].dt, terms);
+  float terms[GB_ENERGY_TERMS];
+  particleEnergy(i, steps[pc.stepIndex].dt, steps[pc.stepIndex].closed != 0u, terms);
   for (uint c = 0u; c < ENERGY_TERMS; ++c) ENERGY_A(c, i) = terms[c];
 }

@@ -13,6 +13,6 @@ void main() {
   if (boundary[i] != 0u || params.energyBudget == 0) {
     STORE3(velocity, i, v);
   } else {
-    STORE3(velocity, i, budgetedVelocity(ENERGY_VELOCITY_SCALE, ENERGY_CENTRE, v));
+    STORE3(velocity, i, budgetedVelocity(ENERGY_VELOCITY_SCALE, ENERGY_CENTRE, ENERGY_SHIFT, v));
   }
 }

@@ -54,6 +54,9 @@ struct PushBlock {
 
 // The energy budget's slack (cpu-reference/energy_budget.h says why this much), one value for both backends.
 #define GB_ENERGY_BUDGET_TOLERANCE 1e-4
+// The energy budget's terms per particle (ParticleEnergy of cpu-reference/energy_budget.h): start, kinetic, held,
+// mass, momentum x, y, z, expected momentum x, y, z.
+#define GB_ENERGY_TERMS 10
 
 // Storage buffer bindings of descriptor set 0. A vector attribute is one buffer holding its x, y and z
 // components as three consecutive blocks of `particles` floats (structure of arrays).

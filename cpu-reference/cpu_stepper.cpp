@@ -35,7 +35,7 @@ void CpuStepper::timed(Stage stage, Body&& body) {
 void CpuStepper::load(const Params& params, Film& film) {
   params_ = params;
   film_ = &film;
-  velocityBudget_ = {};
+  lastBudget_ = {};
   ensureColouring(film.state.alive, film.topology);
   if (params.coarseIterations > 0) ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
 }
@@ -112,12 +112,11 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
         sweep(u);
         break;
       case Stage::EnergyBudget:
-        velocityBudget_ = budgetEnergy(u);
-        result = velocityBudget_.scale;
+        lastBudget_ = budgetEnergy(u);
+        result = lastBudget_.scale;
         break;
       case Stage::ImplicitVelocity: {
-        const VelocityBudget budget = params_.energyBudget ? velocityBudget_ : VelocityBudget{};
-        forEach(n, [&](size_t i) { finishImplicitStep(u, topo, budget, s, i); });
+        forEach(n, [&](size_t i) { finishImplicitStep(u, topo, lastBudget_, s, i); });
         break;
       }
       case Stage::Drainage:  // two Jacobi passes: every outflow is known before anyone gathers
@@ -217,10 +216,9 @@ float CpuStepper::currentPressure(const StepUniforms& u) const {
 }
 
 float CpuStepper::step(const StepUniforms& u) {
-  velocityBudget_ = {};
+  lastBudget_ = {};  // the energy budget's stage sets it where it runs; implicit_velocity applies it
   for (const StageSpec& spec : stepStages())
     if (spec.runs(params_, u)) runStage(spec.stage, u);
-  lastBudget_ = velocityBudget_;
   return currentPressure(u);
 }
 

@@ -52,7 +52,6 @@ class CpuStepper final : public Stepper {
   SweepRuns sweepRuns_;                 // the implicit step's one-rings, laid out again every step
   CoarseSystem coarse_;                 // the implicit step's patch system, assembled again every step
   std::array<std::vector<float>, GB_ENERGY_TERMS> energyTerms_;  // energy_budget's per-particle terms (ParticleEnergy)
-  VelocityBudget velocityBudget_;                                // the last energy budget's, read by implicit_velocity
 };
 
 }  // namespace gb

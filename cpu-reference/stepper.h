@@ -30,7 +30,7 @@ enum class Stage : int {
                        // recorded inside vertex_block_descent, run alone only by tests and benchmarks
   EnergyBudget,        // implicit integrator: the factor on the new velocities that keeps the step's energy within
                        // the work done on the film (energy_budget.h)
-  ImplicitVelocity,    // implicit integrator: v = (x - x_t) / h, the free particles' times the energy budget's factor
+  ImplicitVelocity,    // implicit integrator: v = (x - x_t) / h, the free particles' as the energy budget leaves them
   Drainage,
   Count
 };

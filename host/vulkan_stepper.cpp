@@ -122,7 +122,7 @@ size_t energyRegion(const Topology& t) {
 }
 // The slots after the terms (kernels/common.glsl): the volume before the step, then the VelocityBudget's scale,
 // centre and shift.
-constexpr size_t kEnergyTerms = GB_ENERGY_TERMS, kEnergySlots = 8;
+constexpr size_t kEnergyTerms = GB_ENERGY_TERMS, kBudgetSlots = 7, kEnergySlots = 1 + kBudgetSlots;
 size_t reduceFloats(const Topology& t, size_t particles) {
   return energyRegion(t) + 2 * kEnergyTerms * particles + kEnergySlots;
 }
@@ -209,12 +209,12 @@ struct VulkanStepper::Impl {
     return (energyBase + 2 * kEnergyTerms * particles + 1) * sizeof(float);
   }
   void writeVelocityBudget(const VelocityBudget& b) {
-    const std::array<float, 7> slots = {b.scale,     b.centre.x(), b.centre.y(), b.centre.z(),
-                                        b.shift.x(), b.shift.y(),  b.shift.z()};
+    const std::array<float, kBudgetSlots> slots = {b.scale,     b.centre.x(), b.centre.y(), b.centre.z(),
+                                                   b.shift.x(), b.shift.y(),  b.shift.z()};
     buffer(GB_BINDING_REDUCE).write(slots.data(), sizeof slots, velocityBudgetOffset());
   }
   [[nodiscard]] VelocityBudget readVelocityBudget() {
-    std::array<float, 7> slots{};
+    std::array<float, kBudgetSlots> slots{};
     buffer(GB_BINDING_REDUCE).read(slots.data(), sizeof slots, velocityBudgetOffset());
     return {slots[0], Vec3(slots[1], slots[2], slots[3]), Vec3(slots[4], slots[5], slots[6])};
   }

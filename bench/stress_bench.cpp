@@ -111,9 +111,11 @@ double tensionEnergy(const Params& p, const Film& film, const std::vector<float>
   double sum = 0;
   if (p.tensionModel == 1) {
     for (size_t i = 0; i < s.size(); ++i)
-      if (s.alive[i] && s.voronoiArea[i] > 0)
-        sum -= filmTension(p, s.liquid[i] / s.voronoiArea[i]) * double{s.voronoiArea[i]} -
-               filmTensionEnergy(p, s.liquid[i], s.voronoiArea[i]);
+      if (s.alive[i] && s.voronoiArea[i] > 0) {
+        const float surfactant = surfactantLiquid(p, s.mass[i]);
+        sum -= filmTension(p, surfactant / s.voronoiArea[i]) * double{s.voronoiArea[i]} -
+               filmTensionEnergy(p, surfactant, s.voronoiArea[i]);
+      }
     for (size_t t = 0; t < topo.triangleCount(); ++t) {
       const uint32_t* c = &topo.triangles[3 * t];
       const Vec3 twiceAreaNormal =

@@ -45,6 +45,12 @@ inline float particleMass(const Params& p, float voronoiArea, float liquid) {
   return p.tensionModel == 1 ? liquidMass(p, liquid) : p.filmInertia * voronoiArea;
 }
 
+// Physical model: the liquid the particle was made with, which its mass still weighs (particleMass): drainage moves
+// liquid between particles, never mass. The surfactant stays on the surface the particle was made with, so its
+// surfactant per area, which the Gibbs law reads (filmTension), is this liquid over the particle's area, not the
+// liquid it holds now: a film that drains thins without pulling harder.
+inline float surfactantLiquid(const Params& p, float mass) { return mass / p.liquidDensity; }
+
 // Gives particles [first, n) the material of a new film (mass, liquid, thickness, elasticity, at rest),
 // after updating the geometry of the whole film: new particles stitched to an existing film.
 void initialiseNewParticles(const Params& params, Film& film, size_t first);

@@ -203,7 +203,10 @@ void wetTheSeam(const Params& params, const std::vector<uint32_t>& loop, size_t 
     if (!s.alive[i]) continue;
     s.liquid[i] = static_cast<float>(inSeam[i] ? s.liquid[i] + filled * shortfall(i)
                                                : s.liquid[i] * (1.0 - fromFilm / restLiquid));
-    s.mass[i] = particleMass(params, s.voronoiArea[i], s.liquid[i]);  // the physical model weighs the liquid
+    // The physical model's mass is the liquid a particle was made with, and so its surfactant (surfactantLiquid):
+    // the seam is new film, as a strip grown at the wire is, while the rest of the film gives up liquid alone, as
+    // drainage moves it.
+    if (params.tensionModel != 1 || inSeam[i]) s.mass[i] = particleMass(params, s.voronoiArea[i], s.liquid[i]);
     updateFilmState(params, 0.0f, s, i);
   }
 }

@@ -358,7 +358,9 @@ FrameStats Simulation::stats() {
   if (params_.tensionModel == 1) {
     foldInOrder<double>(
         s.size(),
-        [&](size_t i) { return s.alive[i] ? filmTensionEnergy(params_, s.liquid[i], s.voronoiArea[i]) : 0.0; },
+        [&](size_t i) {
+          return s.alive[i] ? filmTensionEnergy(params_, surfactantLiquid(params_, s.mass[i]), s.voronoiArea[i]) : 0.0;
+        },
         [&](double energy) { st.elasticEnergy += energy; });
   } else {
     foldInOrder<double>(

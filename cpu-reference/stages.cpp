@@ -146,7 +146,8 @@ double filmTensionEnergy(const Params& p, double liquid, double area) {
 void updateFilmState(const Params& p, float dt, State& s, size_t i) {
   const float area = s.voronoiArea[i];
   s.thickness[i] = area > 0 ? s.liquid[i] / area : 0.0f;
-  s.elasticity[i] = p.tensionModel == 1 ? filmTension(p, s.thickness[i]) : elasticity(p, s.thickness[i], s.lifetime[i]);
+  s.elasticity[i] = p.tensionModel == 1 ? filmTension(p, area > 0 ? surfactantLiquid(p, s.mass[i]) / area : 0.0f)
+                                        : elasticity(p, s.thickness[i], s.lifetime[i]);
   s.lifetime[i] += dt;
 }
 

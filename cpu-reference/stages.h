@@ -65,13 +65,15 @@ float treeSum(std::vector<float> values);
 // that w_E carries the unit N/m (docs/model.md).
 float elasticity(const Params& p, float thickness, float lifetime);
 
-// Physical model: the film's tension 2 gamma (N/m), gamma following the thickness e through Gibbs-Marangoni
-// elasticity, gamma = gamma_0 + (E_G / 2) ln(e_0 / e) (a thinner, stretched film has less surfactant per area),
-// kept within [gamma_0 / 2, 2 gamma_0].
+// Physical model: the film's tension 2 gamma (N/m), gamma following the surfactant per area through Gibbs-Marangoni
+// elasticity, gamma = gamma_0 + (E_G / 2) ln(e_0 / e) (a stretched film has less surfactant per area), kept within
+// [gamma_0 / 2, 2 gamma_0]. e is the thickness the particle's surfactant gives, surfactantLiquid / area: the film's
+// thickness had none of its liquid drained.
 float filmTension(const Params& p, float thickness);
 
-// Physical model: the tension's potential energy on a particle's area `area` holding `liquid` (J), the W whose
-// derivative dW/da is filmTension at the thickness liquid / a: 2 gamma a less E_G (clamp(a, a_lo, a_hi) - a_lo).
+// Physical model: the tension's potential energy (J) on a particle's area `area` made with `liquid`
+// (surfactantLiquid, m^3), the W whose derivative dW/da is filmTension at the thickness liquid / a: 2 gamma a less
+// E_G (clamp(a, a_lo, a_hi) - a_lo).
 // Where gamma follows the area (between the clamp's areas a_lo and a_hi), 2 gamma a also counts the rise of gamma
 // as if it had held over the whole area, which the tension never did work against. The step freezes gamma, so a
 // film it stretched by da gains E_G da of "2 gamma a" when gamma is refreshed, but none of W: counted as 2 gamma a,

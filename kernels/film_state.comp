@@ -1,6 +1,6 @@
 #version 450
 // updateFilmState (cpu-reference/stages.cpp): thickness e_i = liquid / A_Vor, elasticity Eq. (4) or the
-// physical film tension, age.
+// physical film tension (from the surfactant per area), age.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
@@ -20,11 +20,15 @@ float filmTension(float thicknessValue) {
   return 2.0 * clamp(gamma, 0.5 * gamma0, 2.0 * gamma0);
 }
 
+// surfactantLiquid of cpu-reference/film.h: the liquid the particle was made with, which its mass still weighs.
+float surfactantLiquid(uint i) { return mass[i] / params.liquidDensity; }
+
 void main() {
   const uint i = gl_GlobalInvocationID.x;
   if (i >= pc.count) return;
   const float area = voronoiArea[i];
   thickness[i] = area > 0.0 ? liquid[i] / area : 0.0;
-  elasticity[i] = params.tensionModel == 1 ? filmTension(thickness[i]) : elasticityOf(thickness[i], lifetime[i]);
+  elasticity[i] = params.tensionModel == 1 ? filmTension(area > 0.0 ? surfactantLiquid(i) / area : 0.0)
+                                           : elasticityOf(thickness[i], lifetime[i]);
   lifetime[i] += steps[pc.stepIndex].dt;
 }

@@ -2,10 +2,13 @@
 // (cpu-reference/experiments.cpp) measures one number; the bounds are the unless the comment says.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 
 #include "experiments.h"
+#include "film.h"
 #include "stages.h"
+#include "test_films.h"
 
 namespace gb {
 namespace {
@@ -84,6 +87,34 @@ TEST(PhysicalTension, TheTensionsPotentialHasTheTensionAsItsSlope) {
   const double naiveGain = filmTension(p, static_cast<float>(liquid / (a + da))) * (a + da) -
                            filmTension(p, static_cast<float>(liquid / a)) * a;
   EXPECT_NEAR(naiveGain - potentialGain, p.gibbsElasticity * da, 0.01 * p.gibbsElasticity * da);
+}
+
+// Drainage moves liquid between particles, not surfactant: a particle that lost half its liquid is half as thick
+// (its colour, its bursting) but pulls as before, its surfactant per area unchanged; stretched by 20% it pulls harder
+// by E_G ln 1.2 (Gibbs). Bound 1e-6 of 2 gamma_0: float rounding of the logarithm's argument (E_G / 2 x 1.2e-7 a
+// step) over the few operations of filmTension.
+TEST(PhysicalTension, DrainageThinsTheFilmButLeavesItsTension) {
+  Params p;
+  p.tensionModel = 1;
+  Film film = test::makeHexagon(p);
+  State& s = film.state;
+  const float liquid = 1e-9f;  // m^3
+  s.liquid[0] = liquid;
+  s.mass[0] = particleMass(p, 0.0f, liquid);  // made with this liquid
+  s.voronoiArea[0] = 1.5f * liquid / initialThickness(p);
+  updateFilmState(p, 0.0f, s, 0);
+  const float tension = s.elasticity[0], thickness = s.thickness[0];
+  ASSERT_GT(tension, 2.0f * p.surfaceTension) << "stretched 1.5 times: the Gibbs law, not its clamp";
+  ASSERT_LT(tension, 4.0f * p.surfaceTension);
+
+  s.liquid[0] = 0.5f * liquid;  // drained
+  updateFilmState(p, 0.0f, s, 0);
+  EXPECT_NEAR(s.thickness[0], 0.5f * thickness, 1e-6f * thickness);
+  EXPECT_NEAR(s.elasticity[0], tension, 1e-6f * 2.0f * p.surfaceTension) << "drainage moved no surfactant";
+
+  s.voronoiArea[0] *= 1.2f;  // stretched
+  updateFilmState(p, 0.0f, s, 0);
+  EXPECT_NEAR(s.elasticity[0], tension + p.gibbsElasticity * std::log(1.2f), 1e-6f * 2.0f * p.surfaceTension);
 }
 
 TEST(PhysicalTension, AnUnknownExperimentIsNamed) {

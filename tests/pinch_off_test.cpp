@@ -15,6 +15,7 @@
 #include <sanitizer/allocator_interface.h>
 #endif
 
+#include "film.h"
 #include "mesh_checks.h"
 #include "scripted_gestures.h"
 #include "simulation.h"
@@ -23,8 +24,7 @@ namespace gb {
 namespace {
 
 // A two-wand film pushed forward for `frames` frames, so that it bulges behind the wands.
-std::unique_ptr<Simulation> bulgedFilm(int particles, int frames) {
-  Params p;
+std::unique_ptr<Simulation> bulgedFilm(int particles, int frames, Params p = {}) {
   p.particlesAtFullSolution = particles;
   GestureOptions g;
   g.start = 0.0f;
@@ -93,6 +93,32 @@ TEST(PinchOff, TheSeamIsWettedToTheFilmsThicknessFromTheWireAndThenTheFilm) {
       EXPECT_GE(s.thickness[i], (1.0 - 1e-4) * filmThickness) << "seam particle " << i << ", reserve " << reserve;
     }
   }
+}
+
+// The physical model's mass is the liquid a particle was made with, and so its surfactant (surfactantLiquid). At
+// pinch-off the seam (the cap and the loop's particles) is new film and weighs its liquid, as a strip grown at the
+// wire does, while the rest of the film, which gives up liquid to the seam (a dry wire), keeps its surfactant: its
+// masses are unchanged, to the bit.
+TEST(PinchOff, InThePhysicalModelTheSeamGetsNewSurfactantAndTheRestKeepsIts) {
+  Params p;
+  p.tensionModel = 1;
+  p.solutionReserve = 0.0f;
+  auto sim = bulgedFilm(1500, 60, p);
+  const State before = sim->film().state;
+  const std::vector<uint32_t> onLoop = sim->film().topology.boundary;
+  ASSERT_TRUE(sim->pinch());
+  const State& s = sim->film().state;
+  ASSERT_GT(s.size(), before.size()) << "an open loop is capped with new particles";
+  size_t gaveLiquid = 0;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (i >= before.size() || onLoop[i]) {
+      EXPECT_FLOAT_EQ(s.mass[i], liquidMass(p, s.liquid[i])) << "seam particle " << i << " is new film";
+    } else if (before.alive[i]) {
+      EXPECT_EQ(s.mass[i], before.mass[i]) << "particle " << i << " gave liquid, not surfactant";
+      gaveLiquid += s.liquid[i] < before.liquid[i] ? 1 : 0;
+    }
+  }
+  EXPECT_GT(gaveLiquid, before.size() / 2) << "the dry wire's seam must draw on the film for this to mean something";
 }
 
 TEST(PinchOff, TheFreeBubbleKeepsItsVolumeUnderBoylesPressureAndLeavesTheWands) {

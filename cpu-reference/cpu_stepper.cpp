@@ -36,6 +36,7 @@ void CpuStepper::load(const Params& params, Film& film) {
   params_ = params;
   film_ = &film;
   lastBudget_ = {};
+  drift_ = Vec3::Zero();
   ensureColouring(film.state.alive, film.topology);
   if (params.coarseIterations > 0) ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
 }
@@ -102,9 +103,14 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
       case Stage::ExternalForces:
         forEach(n, [&](size_t i) { computeExternalForces(params_, u, currentPressure(u), s, i); });
         break;
-      case Stage::ImplicitPredict:
-        forEach(n, [&](size_t i) { predictImplicitStep(u, topo, s, i); });
+      case Stage::ExternalDrift:
+        drift_ = filmDrift();
         break;
+      case Stage::ImplicitPredict: {
+        const Vec3 drift = u.closed ? drift_ : Vec3::Zero();
+        forEach(n, [&](size_t i) { predictImplicitStep(u, topo, drift, s, i); });
+        break;
+      }
       case Stage::CoarseCorrection:
         correctCoarsely(u);
         break;
@@ -209,6 +215,18 @@ VelocityBudget CpuStepper::budgetEnergy(const StepUniforms& u) {
   for (size_t c = 0; c < sums.size(); ++c) sums[c] = treeSum(energyTerms_[c]);
   return energyBudget(sums[0], sums[1], sums[2] + gas, sums[3], Vec3(sums[4], sums[5], sums[6]),
                       Vec3(sums[7], sums[8], sums[9]));
+}
+
+Vec3 CpuStepper::filmDrift() {
+  const State& s = film_->state;
+  for (std::vector<float>& terms : driftTerms_) terms.resize(s.size());
+  forEach(s.size(), [&](size_t i) {
+    const std::array<float, kDriftTerms> terms = driftTerms(film_->topology, s, i);
+    for (size_t c = 0; c < kDriftTerms; ++c) driftTerms_[c][i] = terms[c];
+  });
+  std::array<float, kDriftTerms> sums{};
+  for (size_t c = 0; c < kDriftTerms; ++c) sums[c] = treeSum(driftTerms_[c]);
+  return driftAcceleration(sums);
 }
 
 float CpuStepper::currentPressure(const StepUniforms& u) const {

@@ -382,7 +382,18 @@ int solverSweeps(const Params& p, const StepUniforms& u) {
   return u.solverIterations > 0 ? u.solverIterations : p.solverIterations;
 }
 
-void predictImplicitStep(const StepUniforms& u, const Topology& topo, State& s, size_t i) {
+std::array<float, kDriftTerms> driftTerms(const Topology& topo, const State& s, size_t i) {
+  if (!s.alive[i] || topo.boundary[i]) return {};
+  const Vec3 f = s.force.get(i);
+  return {s.mass[i], f.x(), f.y(), f.z()};
+}
+
+Vec3 driftAcceleration(const std::array<float, kDriftTerms>& sums) {
+  if (!(sums[0] > 0.0f)) return Vec3::Zero();
+  return Vec3(sums[1], sums[2], sums[3]) / sums[0];
+}
+
+void predictImplicitStep(const StepUniforms& u, const Topology& topo, const Vec3& drift, State& s, size_t i) {
   if (!s.alive[i]) return;
   const Vec3 x = s.position.get(i);
   s.previousPosition.set(i, x);
@@ -390,7 +401,7 @@ void predictImplicitStep(const StepUniforms& u, const Topology& topo, State& s, 
     if (s.frameParam[i] >= 0.0f) s.position.set(i, framePoint(u.frameNext, s.frameParam[i]));
     return;
   }
-  s.position.set(i, aboveFloor(x + u.dt * s.velocity.get(i)));
+  s.position.set(i, aboveFloor(x + u.dt * s.velocity.get(i) + (u.dt * u.dt) * drift));
 }
 
 VertexBlock objectiveBlock(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo,

@@ -16,9 +16,11 @@
 // step is stable at any h; a fixed number of sweeps leaves the stiffest long waves under-resolved, which
 // acts as numerical damping (docs/model.md measures it).
 
+#include <array>
 #include <limits>
 #include <vector>
 
+#include "shared_step.h"
 #include "stages.h"
 
 namespace gb {
@@ -76,10 +78,22 @@ Vec3 aboveFloor(Vec3 x);
 // Params::solverIterations.
 int solverSweeps(const Params& p, const StepUniforms& u);
 
+// Stage external_drift (a closed film's implicit step), per particle i: its share of the film's drift, its mass and
+// the explicit force on it, {m, f_x, f_y, f_z}; zero for a wire or dead particle. The shares are summed in the tree
+// order of the volume on both backends. Why: a sweep moves one particle at a time against its springs, and a move of
+// every particle together, the film's centre of mass, is the slowest of all to build up that way. Started from
+// x_t + h v_t, a stiff free bubble kept its velocity whatever gravity did (docs/model.md, "The first guess").
+constexpr size_t kDriftTerms = GB_DRIFT_TERMS;
+std::array<float, kDriftTerms> driftTerms(const Topology& topo, const State& s, size_t i);
+
+// The acceleration of a closed film's centre of mass from the sums of driftTerms (m/s^2): sum f / sum m, zero
+// without mass.
+Vec3 driftAcceleration(const std::array<float, kDriftTerms>& sums);
+
 // Stage implicit_predict, per particle i: keeps x_t in previousPosition; a wire particle is placed on the
-// wire frame at the end of the step (or stays, pinned), an interior particle starts from x_t + h v_t (above
-// the floor).
-void predictImplicitStep(const StepUniforms& u, const Topology& topo, State& s, size_t i);
+// wire frame at the end of the step (or stays, pinned), an interior particle starts from x_t + h v_t + h^2 a,
+// a the film's drift (driftAcceleration; zero for an open film, whose wire holds it), above the floor.
+void predictImplicitStep(const StepUniforms& u, const Topology& topo, const Vec3& drift, State& s, size_t i);
 
 // Stage vertex_block_descent, per particle i of the colour being swept: one Newton step on the objective
 // restricted to x_i, then the floor. Reads the external force of the external_forces stage and x_t.

@@ -10,6 +10,7 @@ bool always(const Params&, const StepUniforms&) { return true; }
 bool closedFilm(const Params&, const StepUniforms& u) { return u.closed != 0; }
 bool explicitStep(const Params& p, const StepUniforms&) { return p.integrator == 0; }
 bool implicitStep(const Params& p, const StepUniforms&) { return p.integrator != 0; }
+bool closedImplicitStep(const Params& p, const StepUniforms& u) { return p.integrator != 0 && u.closed != 0; }
 bool budgetedStep(const Params& p, const StepUniforms&) { return p.integrator != 0 && p.energyBudget != 0; }
 // The coarse correction runs inside vertex_block_descent, between its smoothing sweeps (coarse_correction.h),
 // never as a row of its own.
@@ -26,6 +27,7 @@ constexpr std::array kStages = {
     StageSpec{Stage::Integrate, "integrate", explicitStep, "drainage and the next step read the new positions"},
     StageSpec{Stage::ExternalForces, "external_forces", implicitStep,
               "the prediction must not move particles whose normals the forces still read"},
+    StageSpec{Stage::ExternalDrift, "external_drift", closedImplicitStep, "the prediction reads the film's drift"},
     StageSpec{Stage::ImplicitPredict, "implicit_predict", implicitStep,
               "the solver reads x_t, the placed wire and the first guess"},
     StageSpec{Stage::VertexBlockDescent, "vertex_block_descent", implicitStep,

@@ -23,6 +23,7 @@ enum class Stage : int {
   Forces,              // explicit integrator: internal + external forces
   Integrate,           // explicit integrator: Eqs. (12)-(13)
   ExternalForces,      // implicit integrator: the forces kept explicit (gravity, air, Boyle pressure)
+  ExternalDrift,       // implicit integrator, closed film: the acceleration the explicit forces give its centre of mass
   ImplicitPredict,     // implicit integrator: x_t kept, wire placed, first guess
   VertexBlockDescent,  // implicit integrator: solverIterations sweeps over the colours, the coarse correction
                        // after the first half of them (coarseSweepsBefore)

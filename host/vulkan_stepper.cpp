@@ -150,6 +150,7 @@ struct VulkanStepper::Impl {
   std::vector<vk::raii::DescriptorSet> sets;  // [0]: air A front, B back; [1]: swapped
   int airParity = 0;                          // which set is current (Jacobi swap of the air transfer)
   bool volumeInA = true;                      // where the last volume reduction left its result
+  bool driftInA = true;                       // where external_drift's tree sum left the film's drift
   DeviceBuffer readback;                      // host-cached copy of the state store() brings back
 
   explicit Impl(std::shared_ptr<const VulkanContext> context) : ctx(std::move(context)) {
@@ -281,18 +282,25 @@ struct VulkanStepper::Impl {
     volumeInA = fromA;
   }
 
+  // The levels of treeSum over the energy region's blocks of terms (flags 2: only the drift's first blocks); ends
+  // with a barrier. Returns whether the sums are in half A.
+  bool recordEnergyTreeSum(const vk::raii::CommandBuffer& cb, uint32_t stepIndex, uint32_t flags) {
+    bool fromA = true;
+    for (uint32_t n = particles; n > 1; n = (n + 1) / 2) {
+      dispatch(cb, Kernel::EnergyTreeSum, n, stepIndex, (fromA ? 1u : 0u) | flags, energyBase);
+      computeToComputeBarrier(cb);
+      fromA = !fromA;
+    }
+    return fromA;
+  }
+
   // Stage energy_budget: the terms, the volumes before and after for a closed film, the terms' tree sum, the factor.
   void recordEnergyBudget(const vk::raii::CommandBuffer& cb, const StepUniforms& u, uint32_t stepIndex) {
     if (u.closed) recordVolume(cb, stepIndex, true);  // energy_terms keeps it
     dispatch(cb, Kernel::EnergyTerms, particles, stepIndex, volumeInA ? 1u : 0u, energyBase);
     computeToComputeBarrier(cb);                       // the terms are written, the volume before is kept
     if (u.closed) recordVolume(cb, stepIndex, false);  // the volume after: the gas's change, the step's pressure
-    bool fromA = true;
-    for (uint32_t n = particles; n > 1; n = (n + 1) / 2) {  // the levels of treeSum
-      dispatch(cb, Kernel::EnergyTreeSum, n, stepIndex, fromA ? 1u : 0u, energyBase);
-      computeToComputeBarrier(cb);
-      fromA = !fromA;
-    }
+    const bool fromA = recordEnergyTreeSum(cb, stepIndex, 0);
     dispatch(cb, Kernel::EnergyScale, 1, stepIndex, (fromA ? 1u : 0u) | (volumeInA ? 2u : 0u), energyBase);
   }
 
@@ -326,8 +334,13 @@ struct VulkanStepper::Impl {
       case Stage::ExternalForces:
         dispatch(cb, Kernel::ExternalForces, particles, stepIndex, volumeInA ? 1u : 0u);
         break;
+      case Stage::ExternalDrift:
+        dispatch(cb, Kernel::ExternalDrift, particles, stepIndex, 0, energyBase);
+        computeToComputeBarrier(cb);  // every term is written before the sum reads it
+        driftInA = recordEnergyTreeSum(cb, stepIndex, 2u);
+        break;
       case Stage::ImplicitPredict:
-        dispatch(cb, Kernel::ImplicitPredict, particles, stepIndex);
+        dispatch(cb, Kernel::ImplicitPredict, particles, stepIndex, driftInA ? 1u : 0u, energyBase);
         break;
       case Stage::VertexBlockDescent: {
         const int coarseAfter = coarseSweepsBefore(params, u);
@@ -470,6 +483,7 @@ void VulkanStepper::load(const Params& params, Film& film) {
   for (auto& set : sets) m.sets.push_back(std::move(set));
   m.airParity = 0;
   m.volumeInA = true;
+  m.driftInA = true;
   m.ensureStepCapacity(1);
   m.writeDescriptorSets();
 }

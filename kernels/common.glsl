@@ -48,6 +48,7 @@ layout(std430, binding = GB_BINDING_COLOUR_ORDER) readonly buffer ColourOrderBuf
 // its tree sum, each ENERGY_TERMS blocks of `particles` floats (ParticleEnergy of energy_budget.h, GB_ENERGY_TERMS of
 // shared_step.h), then the bubble's volume before the step and the VelocityBudget (scale, centre, shift).
 #define ENERGY_TERMS uint(GB_ENERGY_TERMS)
+#define DRIFT_TERMS uint(GB_DRIFT_TERMS)  // external_drift's terms, in the first blocks (energy_tree_sum's flag 2)
 #define ENERGY_A(c, k) reduce[pc.first + (c) * pc.particles + (k)]
 #define ENERGY_B(c, k) reduce[pc.first + (ENERGY_TERMS + (c)) * pc.particles + (k)]
 #define ENERGY_SLOT(k) reduce[pc.first + 2u * ENERGY_TERMS * pc.particles + (k)]

@@ -57,6 +57,9 @@ struct PushBlock {
 // The energy budget's terms per particle (ParticleEnergy of cpu-reference/energy_budget.h): start, kinetic, held,
 // mass, momentum x, y, z, expected momentum x, y, z.
 #define GB_ENERGY_TERMS 10
+// A closed film's drift terms per particle (driftTerms of cpu-reference/implicit_euler.h): mass, force x, y, z. They
+// use the first blocks of the energy budget's tree sum, before the budget does.
+#define GB_DRIFT_TERMS 4
 
 // Storage buffer bindings of descriptor set 0. A vector attribute is one buffer holding its x, y and z
 // components as three consecutive blocks of `particles` floats (structure of arrays).

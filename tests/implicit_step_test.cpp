@@ -9,6 +9,7 @@
 
 #include "colouring.h"
 #include "cpu_stepper.h"
+#include "film.h"
 #include "implicit_euler.h"
 #include "scripted_gestures.h"
 #include "simulation.h"
@@ -387,6 +388,35 @@ TEST(ImplicitStep, AFreeBubbleKeepsTheExplicitBoyleVolume) {
   }
   std::printf("free bubble: implicit volume within %.3f%% of explicit\n", 100 * worst);
   EXPECT_LT(worst, 0.02);
+}
+
+// A free bubble falls as gravity pulls its centre of mass: with still air's drag off, its momentum after a second is
+// the weight's impulse. Gravity is the only force on it with a net: Boyle's pressure and the springs pull on its
+// centre of mass only as far as the mesh's normals and areas fail to sum to zero. The sweeps move one particle at a
+// time, and a move of all of them together builds up slowest of all: started from x_t + h v_t (before
+// external_drift), this bubble took up only 27% of the weight's impulse. Bound 2% of the impulse: measured 0.01%.
+TEST(ImplicitStep, AFreeBubbleFallsAsGravityPullsItsCentreOfMass) {
+  Params p;
+  p.airDrag = 0.0f;
+  Simulation sim(p, generateSphere(p, Vec3(0, 1.5f, 0), 0.4f, 3), WandState{});
+  auto momentumAndWeight = [&] {
+    const State& s = sim.film().state;
+    Eigen::Vector3d momentum = Eigen::Vector3d::Zero(), weight = Eigen::Vector3d::Zero();
+    for (size_t i = 0; i < s.size(); ++i) {
+      if (!s.alive[i]) continue;
+      momentum += s.mass[i] * s.velocity.get(i).cast<double>();
+      weight += liquidMass(p, s.liquid[i]) * Eigen::Vector3d(p.gravityX, p.gravityY, p.gravityZ);
+    }
+    return std::pair{momentum, weight};
+  };
+  const auto [startMomentum, weight] = momentumAndWeight();
+  constexpr int kFrames = 50;
+  for (int f = 0; f < kFrames; ++f) sim.advanceFrame(WandState{});
+  const Eigen::Vector3d impulse = weight * (kFrames * p.frameTime);
+  const Eigen::Vector3d gained = momentumAndWeight().first - startMomentum;
+  std::printf("free bubble, 1 s: momentum gained (%.5f, %.5f, %.5f) kg m/s, the weight's impulse %.5f\n", gained.x(),
+              gained.y(), gained.z(), impulse.y());
+  EXPECT_LT((gained - impulse).norm(), 0.02 * impulse.norm());
 }
 
 }  // namespace

@@ -193,6 +193,17 @@ TEST(VulkanEquivalence, EveryStageAloneMatchesTheCpuReference) {
   EXPECT_EQ(device->validationErrors(), 0u);
 }
 
+// The film after the step's stages before `stage`, run on the CPU: the input both backends then take for `stage`.
+Film steppedUpTo(Stage stage, const Params& p, Film film, const StepUniforms& u) {
+  CpuStepper prepare;
+  prepare.load(p, film);
+  for (const StageSpec& spec : stepStages()) {
+    if (spec.stage == stage) break;
+    if (spec.runs(p, u)) prepare.runStage(spec.stage, u);
+  }
+  return film;
+}
+
 // A solver pass that moves the film (a sweep, the coarse correction), run on both backends from `before`: the
 // worst position difference in units of 8 ulp(|x|) of the position it started from, and the largest move (m).
 struct PassComparison {
@@ -208,15 +219,16 @@ PassComparison comparePassPositions(const Film& before, const Film& cpuFilm, con
   return {worstUlpRatio(cpuFilm.state.position, gpuFilm.state.position, positionScale, 8), moved};
 }
 
-// The geometry and film state stages on each backend from the same film: the CPU's film, then the GPU's.
-std::pair<Film, Film> filmStateOnBoth(const std::shared_ptr<const VulkanContext>& device, const Params& p,
-                                      const Film& film, const StepUniforms& u) {
+// The given stages on each backend from the same film: the CPU's film, then the GPU's.
+std::pair<Film, Film> stagesOnBoth(const std::shared_ptr<const VulkanContext>& device,
+                                   std::initializer_list<Stage> stages, const Params& p, const Film& film,
+                                   const StepUniforms& u) {
   Film cpuFilm = film, gpuFilm = film;
   CpuStepper cpu;
   VulkanStepper gpu(device);
   cpu.load(p, cpuFilm);
   gpu.load(p, gpuFilm);
-  for (Stage stage : {Stage::Geometry, Stage::FilmState}) {
+  for (Stage stage : stages) {
     cpu.runStage(stage, u);
     gpu.runStage(stage, u);
   }
@@ -239,7 +251,7 @@ TEST(VulkanEquivalence, ThePhysicalFilmStateReadsTheSurfactantNotTheLiquid) {
     const float drained = 0.5f + 1.5f * std::fmod(0.618034f * static_cast<float>(i), 1.0f);
     s.mass[i] = liquidMass(p, s.liquid[i] * drained);
   }
-  const auto [cpuFilm, gpuFilm] = filmStateOnBoth(device, p, film, input.uniforms);
+  const auto [cpuFilm, gpuFilm] = stagesOnBoth(device, {Stage::Geometry, Stage::FilmState}, p, film, input.uniforms);
   size_t unclamped = 0;
   for (size_t i = 0; i < s.size(); ++i) {
     const float tension = cpuFilm.state.elasticity[i];
@@ -268,7 +280,8 @@ TEST(VulkanEquivalence, TheGibbsFloorMatchesTheCpuReference) {
   Params p = input.params;
   p.gibbsFloorThickness = thickness[thickness.size() / 2];
   p.marangoniLifetime = 0.0f;
-  const auto [cpuFilm, gpuFilm] = filmStateOnBoth(device, p, input.film, input.uniforms);
+  const auto [cpuFilm, gpuFilm] =
+      stagesOnBoth(device, {Stage::Geometry, Stage::FilmState}, p, input.film, input.uniforms);
   const float floored = elasticity(p, p.gibbsFloorThickness, 1.0f);
   const size_t n = cpuFilm.state.size();
   size_t held = 0;
@@ -301,13 +314,7 @@ TEST(VulkanEquivalence, EveryImplicitPassAloneMatchesTheCpuReference) {
       {Stage::ImplicitVelocity, "velocity", [](const State& s) { return flatten(s.velocity); }},
   };
   for (const Check& check : checks) {
-    Film before = input.film;
-    CpuStepper prepare;
-    prepare.load(input.params, before);
-    for (const StageSpec& spec : stepStages()) {  // the step's stages up to the one under test, on the CPU
-      if (spec.stage == check.stage) break;
-      if (spec.runs(input.params, u)) prepare.runStage(spec.stage, u);
-    }
+    const Film before = steppedUpTo(check.stage, input.params, input.film, u);
     Film cpuFilm = before, gpuFilm = before;
     CpuStepper cpu;
     VulkanStepper gpu(device);
@@ -368,13 +375,7 @@ TEST(VulkanEquivalence, TheEnergyBudgetMatchesTheCpuReference) {
     test::spin(film, bubble ? Vec3(0, 1, 0) : Vec3(film.state.normal.get(0)), c.spin);
     const Simulation sim(p, film, WandState{});
     const StepUniforms u = sim.uniformsFor(WandState{}, WandState{}, p.frameTime);
-    Film before = sim.film();
-    CpuStepper prepare;
-    prepare.load(p, before);
-    for (const StageSpec& spec : stepStages()) {  // the step up to the budget, on the CPU
-      if (spec.stage == Stage::EnergyBudget) break;
-      if (spec.runs(p, u)) prepare.runStage(spec.stage, u);
-    }
+    const Film before = steppedUpTo(Stage::EnergyBudget, p, sim.film(), u);
     Film cpuFilm = before, gpuFilm = before;
     CpuStepper cpu;
     VulkanStepper gpu(device);
@@ -396,6 +397,33 @@ TEST(VulkanEquivalence, TheEnergyBudgetMatchesTheCpuReference) {
   EXPECT_EQ(device->validationErrors(), 0u);
 }
 
+// A closed film's drift (external_drift: its terms and their tree sum) and the first guess it gives
+// (implicit_predict), on a falling bubble: the stage bound, 1e-5 relative, on the guessed positions. The drift
+// moves each guess by h^2 a = 1.4e-4 m, 1e-4 of the positions: a guess without it fails the bound tenfold.
+TEST(VulkanEquivalence, TheClosedFilmsDriftMatchesTheCpuReference) {
+  GB_REQUIRE_VULKAN(device);
+  Params p;
+  const Simulation sim(p, generateSphere(p, Vec3(0, 1.5f, 0), 0.4f, 3), WandState{});
+  const StepUniforms u = sim.uniformsFor(WandState{}, WandState{}, p.frameTime);
+  const Film before = steppedUpTo(Stage::ExternalDrift, p, sim.film(), u);
+  const auto [cpuFilm, gpuFilm] = stagesOnBoth(device, {Stage::ExternalDrift, Stage::ImplicitPredict}, p, before, u);
+  double drifted = 0;
+  for (size_t i = 0; i < before.state.size(); ++i) {
+    const Vec3 inertial = before.state.position.get(i) + u.dt * before.state.velocity.get(i);
+    drifted = std::max(drifted, static_cast<double>((cpuFilm.state.position.get(i) - inertial).norm()));
+  }
+  const double error =
+      worstRelativeError(flatten(cpuFilm.state.position), flatten(gpuFilm.state.position), kCancellationFloor, 3);
+  std::printf(
+      "stage external_drift + implicit_predict (bubble): the drift moves the guess by %.2e m; position worst "
+      "relative error %.2e\n",
+      drifted, error);
+  EXPECT_EQ(u.closed, 1u);
+  EXPECT_GT(drifted, 1e-4) << "the drift must move the guess for the comparison to mean something";
+  EXPECT_LT(error, kStageTolerance);
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
 // The coarse correction alone (its three kernels: the patch system's rows, its conjugate gradients in one
 // workgroup, the moves), on the film the step has predicted, for both tension models. It moves each patch by
 // ~1e-4 m: like a sweep, the result is a position whose rounding dominates, so it gets the same 8 ulp(|x|).
@@ -406,13 +434,7 @@ TEST(VulkanEquivalence, TheCoarseCorrectionAloneMatchesTheCpuReference) {
     Params p = input.params;
     p.tensionModel = model;
     p.coarseIterations = 20;
-    Film before = input.film;
-    CpuStepper prepare;
-    prepare.load(p, before);
-    for (const StageSpec& spec : stepStages()) {
-      if (spec.stage == Stage::VertexBlockDescent) break;
-      if (spec.runs(p, input.uniforms)) prepare.runStage(spec.stage, input.uniforms);
-    }
+    const Film before = steppedUpTo(Stage::VertexBlockDescent, p, input.film, input.uniforms);
     Film cpuFilm = before, gpuFilm = before;
     CpuStepper cpu;
     VulkanStepper gpu(device);

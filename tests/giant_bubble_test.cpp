@@ -110,7 +110,9 @@ TEST(GiantBubble, DefaultPerformanceBlowsReleasesAndBurstsABubble) {
   // film particle 3.5 m/s against the wands' 2.2 m/s, roundness a second after pinch-off 1.19. Session 10, with the
   // scene's Gibbs floor (1.5 um): area 0.63 -> 3.18 m^2, volume 0.53 m^3, pinch-off at 1.86 s, burst by the floor
   // at 6.66 s, fastest film particle 2.9 m/s, roundness 1.11. Session 11, the seam wetted at pinch-off: area 3.19
-  // m^2, volume 0.53 m^3, pinch-off at 1.86 s, burst by the floor at 6.78 s, 2.9 m/s, roundness 1.13.
+  // m^2, volume 0.53 m^3, pinch-off at 1.86 s, burst by the floor at 6.78 s, 2.9 m/s, roundness 1.13. Session 16,
+  // the free bubble's first guess carrying its drift (gravity now pulls it down as its weight says): area 3.14 m^2,
+  // volume 0.53 m^3, pinch-off at 1.86 s, burst by the floor at 4.18 s, 2.8 m/s, roundness 1.08, 0.8% folded.
   EXPECT_GE(r.peakArea, 3.0 * r.firstArea) << "the bag is not giant: peak area " << r.peakArea << " m^2";
   EXPECT_GE(r.peakVolume, 0.5) << "peak volume " << r.peakVolume << " m^3";
   ASSERT_GE(r.pinchTime, 0.0) << "the wands closed but the film never pinched off";

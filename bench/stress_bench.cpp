@@ -278,31 +278,28 @@ class EnergyLedger {
     std::printf(" | admitted overlapping %zu pairs (%.5f J), %zu of them two springs apart", admitted, energy,
                 nearOnSheet);
   }
-  // Boyle's excess pressure on a closed film pushes each particle along its unit normal times its Voronoi area
-  // (boyleForce); the gradient of the volume is a third of its triangles' area-weighted normals, which sum to zero
-  // over a closed film. Prints the net force of the first and the power the difference does at this frame's
-  // velocities (W).
+  // Boyle's excess pressure on a closed film (boyleForce: the excess times the volume's gradient, whose sum over a
+  // closed film is zero), against what the Voronoi area along the vertex normal, the force until session 16, would
+  // give. Prints the net force of each and the power each does at this frame's velocities (W).
   static void printBoyleMismatch(Simulation& sim) {
     const Film& film = sim.film();
     const State& s = film.state;
     const Topology& topo = film.topology;
     const double excess = sim.lastPressure() - sim.params().pressureCoefficient;
-    Eigen::Vector3d net = Eigen::Vector3d::Zero(), netGradient = Eigen::Vector3d::Zero();
-    double power = 0, powerGradient = 0;
+    Eigen::Vector3d net = Eigen::Vector3d::Zero(), netVoronoi = Eigen::Vector3d::Zero();
+    double power = 0, powerVoronoi = 0;
     for (size_t i = 0; i < s.size(); ++i) {
       if (!s.alive[i]) continue;
-      Eigen::Vector3d gradient = Eigen::Vector3d::Zero();
-      for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k)
-        gradient += s.triangleNormal.get(topo.triangleCorner[k] / 3).cast<double>() / 6.0;
-      const Eigen::Vector3d used = s.voronoiArea[i] * s.normal.get(i).cast<double>();
+      const Eigen::Vector3d used = boyleForce(sim.params(), sim.lastPressure(), topo, s, i).cast<double>();
+      const Eigen::Vector3d voronoi = excess * s.voronoiArea[i] * s.normal.get(i).cast<double>();
       const Eigen::Vector3d v = s.velocity.get(i).cast<double>();
-      net += excess * used;
-      netGradient += excess * gradient;
-      power += excess * used.dot(v);
-      powerGradient += excess * gradient.dot(v);
+      net += used;
+      netVoronoi += voronoi;
+      power += used.dot(v);
+      powerVoronoi += voronoi.dot(v);
     }
-    std::printf(" | boyle dP %.3f net %.4f N (%.4f %.4f %.4f) gradient net %.2e power %+.5f W vs %+.5f W", excess,
-                net.norm(), net.x(), net.y(), net.z(), netGradient.norm(), power, powerGradient);
+    std::printf(" | boyle dP %.3f net %.2e N, Voronoi net %.4f N; power %+.5f W, Voronoi %+.5f W", excess, net.norm(),
+                netVoronoi.norm(), power, powerVoronoi);
   }
   static double gasEnergy(Simulation& sim) {
     const Film& film = sim.film();

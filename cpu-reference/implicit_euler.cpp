@@ -343,8 +343,8 @@ void addAirCoupling(MaskOf<F> m, F coupling, F h, const Vec<F>& n, const Vec<F>&
   b.addOuter(m, addDampingGradient(m, coupling, h, n, dx, b), n);
 }
 // A closed bubble's gas: Boyle's pressure at the iterate's volume, along the normal of the step's start.
-void addGas(const Params& p, const Bubble& bubble, const State& s, size_t i, BlockSum<float>& b) {
-  b.subtractGradient(true, lanesOf(boyleForce(p, bubble.pressure, s, i)));
+void addGas(const Params& p, const Bubble& bubble, const Topology& topo, const State& s, size_t i, BlockSum<float>& b) {
+  b.subtractGradient(true, lanesOf(boyleForce(p, bubble.pressure, topo, s, i)));
   b.addOuter(true, breathingStiffness(bubble, s.voronoiArea[i]), lanesOf(s.normal.get(i)));
 }
 
@@ -412,7 +412,7 @@ VertexBlock objectiveBlock(const Params& p, const StepUniforms& u, const Bubble&
   addInternal<float>(p, u.dt, topo, s, {static_cast<uint32_t>(i)}, {true},
                      ListedRing{topo, s, static_cast<uint32_t>(i)}, x, dx, b);
   addAirCoupling(true, airCoupling(p, u, s, i), u.dt, lanesOf(s.normal.get(i)), dx, b);
-  if (u.closed) addGas(p, bubble, s, i, b);
+  if (u.closed) addGas(p, bubble, topo, s, i, b);
   return blockOf(b);
 }
 
@@ -557,7 +557,7 @@ void solveVertexBlockRun(const Params& p, const StepUniforms& u, const Bubble& b
     std::array<BlockSum<float>, 4> each;
     for (int l = 0; l < 4; ++l) {
       each[l] = laneOf(b, l);
-      if (solved[l]) addGas(p, bubble, s, i[l], each[l]);
+      if (solved[l]) addGas(p, bubble, topo, s, i[l], each[l]);
     }
     b = inLanes(each);
   }

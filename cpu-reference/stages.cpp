@@ -269,8 +269,15 @@ float airCoupling(const Params& p, const StepUniforms& u, const State& s, size_t
   return fullAirCoupling(p, u.frameArea, s.voronoiArea[i]) * std::min(1.0f, airSpeed / stillAir);
 }
 
-Vec3 boyleForce(const Params& p, float pressure, const State& s, size_t i) {
-  return (pressure - p.pressureCoefficient) * s.voronoiArea[i] * s.normal.get(i);
+Vec3 volumeGradient(const Topology& topo, const State& s, size_t i) {
+  Vec3 twiceAreaNormals = Vec3::Zero();
+  for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k)
+    twiceAreaNormals += s.triangleNormal.get(topo.triangleCorner[k] / 3);
+  return twiceAreaNormals / 6.0f;
+}
+
+Vec3 boyleForce(const Params& p, float pressure, const Topology& topo, const State& s, size_t i) {
+  return (pressure - p.pressureCoefficient) * volumeGradient(topo, s, i);
 }
 
 void computeForces(const Params& p, const StepUniforms& u, float pressure, const Topology& topo, State& s, size_t i) {
@@ -278,7 +285,7 @@ void computeForces(const Params& p, const StepUniforms& u, float pressure, const
   const Vec3 n = s.normal.get(i);
   const Vec3 coupling = -airCoupling(p, u, s, i) * s.velocity.get(i).dot(n) * n;  // the film moves with the air
   Vec3 f = internalForce(p, topo, s, i) + externalForce(p, u, pressure, s, i) + drag + coupling;
-  if (u.closed) f += boyleForce(p, pressure, s, i);
+  if (u.closed) f += boyleForce(p, pressure, topo, s, i);
   s.force.set(i, f);
 }
 

@@ -119,11 +119,18 @@ float airCoupling(const Params& p, const StepUniforms& u, const State& s, size_t
 // A_Vor (N s/m). airCoupling fades it out in still air; stableTimeStep bounds the explicit step with it.
 float fullAirCoupling(const Params& p, float frameArea, float voronoiArea);
 
-// Closed bubble, Eqs. (10)-(11): the excess of Boyle's pressure P_cur = P_0 V_0 / V over P_0 on the particle's
-// area, along its normal. It pushes a compressed bubble out and pulls an expanded one in. The implicit step
-// evaluates it at the volume of its current iterate (implicit_euler.h): at the step's start it is unstable
-// at h = 0.02 s for a bubble of tens of centimetres.
-Vec3 boyleForce(const Params& p, float pressure, const State& s, size_t i);
+// dV/dx_i of a closed film's enclosed volume V = sum_t x_a . (x_b x x_c) / 6: a sixth of the twice-area normals of
+// particle i's triangles (the geometry stage's). Over a closed film these sum to zero exactly.
+Vec3 volumeGradient(const Topology& topo, const State& s, size_t i);
+
+// Closed bubble, Eqs. (10)-(11): the excess of Boyle's pressure P_cur = P_0 V_0 / V over P_0 times the volume's
+// gradient (volumeGradient): on a smooth film the particle's area along its normal. It pushes a compressed bubble out
+// and pulls an expanded one in. Taken as the gradient, it is the force of the gas's energy exactly: its sum over the
+// film is zero, and it does the work the gas's energy change says. The Voronoi area along the vertex normal, which it
+// was until session 16, summed to up to 0.17 N on a crumpled bubble and did up to 0.04 W of work the gas never paid
+// for (docs/performance.md, session 16). The implicit step evaluates it at the volume of its current iterate
+// (implicit_euler.h): at the step's start it is unstable at h = 0.02 s for a bubble of tens of centimetres.
+Vec3 boyleForce(const Params& p, float pressure, const Topology& topo, const State& s, size_t i);
 // Explicit integrator: the whole of Eq. (2), internal + external + linear air drag + air coupling (open) or
 // Boyle (closed).
 void computeForces(const Params& p, const StepUniforms& u, float pressure, const Topology& topo, State& s, size_t i);

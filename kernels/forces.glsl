@@ -32,7 +32,7 @@ vec3 internalForce(uint i) {
     const vec3 dir = d / len;
     const float stiffness = 0.5 * (ei + elasticity[j]);
     if (!physical) f += stiffness * (len - restLength[springIndex[k]]) * dir;  // Eq. (3)
-    f += params.springDamping * dot(LOAD3(velocity, j) - vi, dir) * dir;        // Algorithm 1, line 5
+    f += params.springDamping * dot(LOAD3(velocity, j) - vi, dir) * dir;       // Algorithm 1, line 5
   }
   // Self-collision contacts (packed: offsets, neighbours from pc.particles + 1, then their rest distances).
   const uint base = pc.particles + 1u;
@@ -83,7 +83,16 @@ float airCoupling(StepUniformsBlock u, uint i) {
   return params.airPressureGain * u.frameArea * voronoiArea[i] * min(1.0, airSpeed / stillAir);
 }
 
-// boyleForce: the excess of Boyle's pressure over P_0 on the particle's area, Eqs. (10)-(11).
-vec3 boyleForce(float pressure, uint i) {
-  return (pressure - params.pressureCoefficient) * voronoiArea[i] * LOAD3(normal, i);
+// volumeGradient: a sixth of the twice-area normals of particle i's triangles.
+vec3 volumeGradient(uint i) {
+  vec3 twiceAreaNormals = vec3(0.0);
+  for (uint k = triangleOffset[i]; k < triangleOffset[i + 1u]; ++k) {
+    const uint t = triangleCorner[k] / 3u;
+    twiceAreaNormals +=
+        vec3(triangleNormal[t], triangleNormal[pc.triangles + t], triangleNormal[2u * pc.triangles + t]);
+  }
+  return twiceAreaNormals / 6.0;
 }
+
+// boyleForce: the excess of Boyle's pressure over P_0 times the volume's gradient, Eqs. (10)-(11).
+vec3 boyleForce(float pressure, uint i) { return (pressure - params.pressureCoefficient) * volumeGradient(i); }

@@ -110,14 +110,16 @@ Vec3 driftWithinBudget(const Vec3& expected, const Vec3& centre, float speedSqua
 VelocityBudget energyBudget(float start, float kinetic, float held, float mass, const Vec3& momentum,
                             const Vec3& expectedMomentum) {
   const float budget = start + kEnergyBudgetTolerance * std::abs(start);
-  if (!(kinetic + held > budget) || !(mass > 0.0f) || !std::isfinite(budget)) return {};
+  if (!std::isfinite(budget) || !std::isfinite(kinetic + held)) return {.released = 0.0f};
+  if (!(kinetic + held > budget) || !(mass > 0.0f)) return {.released = std::max(0.0f, start - (kinetic + held))};
   const float drift = 0.5f * momentum.squaredNorm() / mass, internal = kinetic - drift;
   const float room = budget - held;  // the kinetic energy the step may end with
   const Vec3 centre = momentum / mass;
   if (room >= drift)  // the wobble holds the excess
-    return {internal > 0.0f ? std::sqrt(std::clamp((room - drift) / internal, 0.0f, 1.0f)) : 1.0f, centre};
+    return {internal > 0.0f ? std::sqrt(std::clamp((room - drift) / internal, 0.0f, 1.0f)) : 1.0f, centre, Vec3::Zero(),
+            0.0f};
   // Not even the drift was paid for: no wobble, and the drift given back as far as the film's own goes.
-  return {0.0f, centre, driftWithinBudget(expectedMomentum / mass, centre, 2.0f * room / mass) - centre};
+  return {0.0f, centre, driftWithinBudget(expectedMomentum / mass, centre, 2.0f * room / mass) - centre, 0.0f};
 }
 
 Vec3 budgetedVelocity(const VelocityBudget& budget, const Vec3& v) {

@@ -14,6 +14,8 @@
 // from the drift too. The positions stay the solver's: a step that gains more potential energy than the motion
 // holds ends at rest, and the next steps take the rest out as it turns into motion.
 
+#include <limits>
+
 #include "shared_step.h"
 #include "stages.h"
 
@@ -56,6 +58,10 @@ struct VelocityBudget {
   float scale = 1.0f;
   Vec3 centre = Vec3::Zero();  // m/s
   Vec3 shift = Vec3::Zero();   // m/s: the drift the step made itself, given back
+  // J: how far the step ended below its budget, the energy its damping and solver took out (0 where the budget acted
+  // or the sums are not finite). The rest-length rules between frames may put back this much (contractSlackSprings).
+  // Infinite where no budget was kept (the explicit integrator, energyBudget 0): the rules are then not held to it.
+  float released = std::numeric_limits<float>::infinity();
   [[nodiscard]] bool acted() const { return scale != 1.0f || shift != Vec3::Zero(); }
 };
 // The budget from the sums of the particles' terms: none when kinetic + held <= start (1 + kEnergyBudgetTolerance).

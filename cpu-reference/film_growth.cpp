@@ -14,6 +14,7 @@
 #include <span>
 #include <stdexcept>
 
+#include "implicit_euler.h"
 #include "pinch_off.h"
 
 namespace gb {
@@ -206,18 +207,45 @@ size_t reshapeSpringsOffTheWire(Film& film, NewRest newRest) {
 }  // namespace
 
 size_t contractSlackSprings(const Params& params, Film& film) {
+  SpringEnergyAllowance unbounded;
+  return contractSlackSprings(params, film, unbounded);
+}
+
+size_t contractSlackSprings(const Params& params, Film& film, SpringEnergyAllowance& allowance) {
   // The physical model's tension does not use rest lengths (tensionModel 1).
   if (params.tensionModel != 0) return 0;
-  const std::vector<float>& rest = film.topology.restLength;
-  const std::vector<float>& thickness = film.state.thickness;
+  Topology& topo = film.topology;
+  const State& s = film.state;
   const float dipThickness = initialThickness(params);
-  return reshapeSpringsOffTheWire(film, [&](size_t k, uint32_t a, uint32_t b, float length) -> std::optional<float> {
-    if (!(length < rest[k])) return std::nullopt;
-    if (std::max(thickness[a], thickness[b]) >= dipThickness) return std::nullopt;
-    if (!params.energyNeutralContraction) return length * (1.0f - params.springPrestrain);  // as taut as new film
-    // Stretched by as much as it was compressed (at most as taut as new film): its spring energy stays as it was.
-    return length - std::min(rest[k] - length, params.springPrestrain * length);
+  struct Contraction {
+    float slack;  // compression over length: the slackest contract first
+    size_t spring;
+    float rest, energy;  // the new rest length, and the spring energy it adds (J)
+  };
+  std::vector<Contraction> candidates;
+  reshapeSpringsOffTheWire(film, [&](size_t k, uint32_t a, uint32_t b, float length) -> std::optional<float> {
+    const float rest = topo.restLength[k];
+    if (!(length < rest)) return std::nullopt;
+    if (std::max(s.thickness[a], s.thickness[b]) >= dipThickness) return std::nullopt;
+    const float taut =
+        params.energyNeutralContraction
+            ? length - std::min(rest - length, params.springPrestrain * length)  // stretched as compressed
+            : length * (1.0f - params.springPrestrain);                          // as taut as new film
+    const float half = 0.5f * springStiffness(s, a, b);
+    candidates.push_back({(rest - length) / length, k, taut,
+                          half * ((length - taut) * (length - taut) - (length - rest) * (length - rest))});
+    return std::nullopt;  // chosen below, within the allowance
   });
+  std::sort(candidates.begin(), candidates.end(), [](const Contraction& x, const Contraction& y) {
+    return x.slack != y.slack ? x.slack > y.slack : x.spring < y.spring;
+  });
+  size_t contracted = 0;
+  for (const Contraction& c : candidates) {
+    if (!allowance.pays(c.energy)) continue;
+    topo.restLength[c.spring] = c.rest;
+    ++contracted;
+  }
+  return contracted;
 }
 
 namespace {
@@ -269,6 +297,11 @@ void mergeInto(State& s, uint32_t a, uint32_t b) {
 }  // namespace
 
 size_t mergeCrowdedParticles(const Params& params, Film& film) {
+  SpringEnergyAllowance unbounded;
+  return mergeCrowdedParticles(params, film, unbounded);
+}
+
+size_t mergeCrowdedParticles(const Params& params, Film& film, SpringEnergyAllowance& allowance) {
   Topology& topo = film.topology;
   State& s = film.state;
   if (!topo.isClosed() || params.tensionModel != 0 || topo.springCount() == 0) return 0;
@@ -319,7 +352,13 @@ size_t mergeCrowdedParticles(const Params& params, Film& film) {
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;  // the two across each merged edge
     triangles.insert(triangles.end(), tri.begin(), tri.end());
   }
-  topo = rebuildTopology(topo, std::move(triangles), s.position, params.springPrestrain);
+  std::vector<size_t> made;
+  topo = rebuildTopology(topo, std::move(triangles), s.position, params.springPrestrain, &made);
+  for (size_t k : made) {  // as taut as new film while the allowance pays, else at their length
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    const float length = (s.position.get(a) - s.position.get(b)).norm(), stretch = length - topo.restLength[k];
+    if (!allowance.pays(0.5f * springStiffness(s, a, b) * stretch * stretch)) topo.restLength[k] = length;
+  }
   return merged;
 }
 

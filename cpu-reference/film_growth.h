@@ -43,6 +43,18 @@ size_t payOutFilmAtWire(const Params& params, Film& film);
 // yieldStretch 0, or below 1: off).
 size_t yieldStretchedSprings(const Params& params, Film& film);
 
+// The spring energy the rest-length rules of a frame may still add (J): VelocityBudget::released, the energy the step
+// before released below its energy budget. Unbounded where no budget was kept.
+struct SpringEnergyAllowance {
+  float joules = std::numeric_limits<float>::infinity();
+  // Takes `energy` from the allowance where it holds that much; a negative energy gives some back.
+  bool pays(float energy) {
+    if (energy > joules) return false;
+    joules -= energy;
+    return true;
+  }
+};
+
 // A soap film cannot be compressed: where it is pushed together it contracts and thickens rather than
 // wrinkling (its surface tension, 2 gamma, never falls to zero). Every spring shorter than its rest length (slack:
 // no tension left) gets the rest length of a new film of its length, as taut as when it was made
@@ -51,8 +63,13 @@ size_t yieldStretchedSprings(const Params& params, Film& film);
 // liquid stays with its particles, so a contracted region thickens. Springs
 // held by the wire follow the wire's rule; the physical model has constant tension and no rest lengths. With
 // Params::energyNeutralContraction a spring is stretched only by as much as it was compressed, so the rule adds no
-// spring energy (docs/model.md "Energy budget"). Returns how many springs contracted.
-size_t contractSlackSprings(const Params& params, Film& film);
+// spring energy (docs/model.md "Energy budget"). Otherwise the springs it contracts put back no more spring energy
+// than `allowance` holds, the energy the last step released below its energy budget (VelocityBudget::released): the
+// film's tension stands in for a surface energy the springs do not hold, and it rounds the bubble no faster than
+// the bubble's motion dissipates, so the film never gains energy from it. The slackest springs contract first; a
+// spring compressed by more than the prestrain gives energy back. Returns how many springs contracted.
+size_t contractSlackSprings(const Params& params, Film& film, SpringEnergyAllowance& allowance);
+size_t contractSlackSprings(const Params& params, Film& film);  // no bound
 
 // Where a closed film stays pushed together because it is too thick to contract (above), its particles merge:
 // a spring between two particles of which one is at least as thick as the dip, shorter than its rest length and
@@ -63,7 +80,10 @@ size_t contractSlackSprings(const Params& params, Film& film);
 // over, and no two merges touch the same one-ring in one call. New springs rest as at creation
 // (rebuildTopology). Returns how many particles merged; the caller refreshes the geometry and reloads the stepper.
 constexpr float kCrowdedEdge = 0.5f;
-size_t mergeCrowdedParticles(const Params& params, Film& film);
+// The springs a merge makes rest as taut as new film while `allowance` pays for their energy, at their length
+// (no energy) after.
+size_t mergeCrowdedParticles(const Params& params, Film& film, SpringEnergyAllowance& allowance);
+size_t mergeCrowdedParticles(const Params& params, Film& film);  // no bound
 
 struct GrowthEvent {
   size_t restLengthsChanged = 0;  // rungs lengthened by the payout

@@ -188,8 +188,11 @@ void Simulation::advanceFrame(const WandState& next) {
     // (and fills the contact lists). The open bag is not contracted: it is slack where the air has not yet filled
     // it, and there it is still being drawn.
     if (!film_.topology.isClosed() && yieldStretchedSprings(params_, film_) > 0) stepper_->updateRestLengths(film_);
-    if (film_.topology.isClosed() && contractSlackSprings(params_, film_) > 0) stepper_->updateRestLengths(film_);
-    if (mergeCrowdedParticles(params_, film_) > 0) reloadFilm();
+    // What contraction and merging add to the springs, the step's dissipation pays (SpringEnergyAllowance).
+    SpringEnergyAllowance allowance{stepper_->lastBudget().released};
+    if (film_.topology.isClosed() && contractSlackSprings(params_, film_, allowance) > 0)
+      stepper_->updateRestLengths(film_);
+    if (mergeCrowdedParticles(params_, film_, allowance) > 0) reloadFilm();
     growFilm(next, wandSpeed);
   }
   const bool tipsTogether =

@@ -146,7 +146,7 @@ Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, co
 }
 
 Topology rebuildTopology(const Topology& previous, std::vector<uint32_t> triangles, const Vec3Array& positions,
-                         float prestrain) {
+                         float prestrain, std::vector<size_t>* made) {
   // An old spring is found in its lower end's old one-ring (a few entries): a sorted copy of every spring cost the
   // merging of a free bubble's crowded particles a millisecond a frame (docs/performance.md, session 11).
   const auto oldRest = [&](uint32_t a, uint32_t b) -> std::optional<float> {
@@ -159,6 +159,7 @@ Topology rebuildTopology(const Topology& previous, std::vector<uint32_t> triangl
   for (size_t k = 0; k < topo.springCount(); ++k) {
     const std::optional<float> rest = oldRest(topo.springEnds[2 * k], topo.springEnds[2 * k + 1]);
     topo.restLength[k] = rest ? *rest : topo.restLength[k] * (1.0f - prestrain);
+    if (!rest && made) made->push_back(k);
   }
   return topo;
 }

@@ -130,9 +130,9 @@ Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, co
 
 // The topology of a changed mesh (new particles and triangles stitched to an old film): springs that the
 // previous topology had keep their rest length; new springs rest `prestrain` shorter than they are now,
-// as at film creation.
+// as at film creation; `made`, if given, gets the new springs' indices.
 Topology rebuildTopology(const Topology& previous, std::vector<uint32_t> triangles, const Vec3Array& positions,
-                         float prestrain);
+                         float prestrain, std::vector<size_t>* made = nullptr);
 
 // Rebuilds only the CSR arrays from the triangles and springs, keeping rest lengths and boundary flags
 // (a hole torn in the film does not make its rim part of the wire).

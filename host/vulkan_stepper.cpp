@@ -121,8 +121,8 @@ size_t energyRegion(const Topology& t) {
   return 2 * std::max<size_t>(t.triangleCount(), 1) + 9 * t.patchRow.size() + 21 * patches;
 }
 // The slots after the terms (kernels/common.glsl): the volume before the step, then the VelocityBudget's scale,
-// centre and shift.
-constexpr size_t kEnergyTerms = GB_ENERGY_TERMS, kBudgetSlots = 7, kEnergySlots = 1 + kBudgetSlots;
+// centre, shift and released energy.
+constexpr size_t kEnergyTerms = GB_ENERGY_TERMS, kBudgetSlots = 8, kEnergySlots = 1 + kBudgetSlots;
 size_t reduceFloats(const Topology& t, size_t particles) {
   return energyRegion(t) + 2 * kEnergyTerms * particles + kEnergySlots;
 }
@@ -217,7 +217,7 @@ struct VulkanStepper::Impl {
   [[nodiscard]] VelocityBudget readVelocityBudget() {
     std::array<float, kBudgetSlots> slots{};
     buffer(GB_BINDING_REDUCE).read(slots.data(), sizeof slots, velocityBudgetOffset());
-    return {slots[0], Vec3(slots[1], slots[2], slots[3]), Vec3(slots[4], slots[5], slots[6])};
+    return {slots[0], Vec3(slots[1], slots[2], slots[3]), Vec3(slots[4], slots[5], slots[6]), slots[7]};
   }
 
   // The implicit solver's colours and the coarse correction's patches (kernels/coarse.glsl), made with the mesh.

@@ -46,7 +46,7 @@ layout(std430, binding = GB_BINDING_COLOUR_ORDER) readonly buffer ColourOrderBuf
 #define REDUCE_B(k) reduce[pc.triangles + (k)]
 // The energy budget's part of the reduce buffer, from pc.first (after the coarse correction's): halves A and B of
 // its tree sum, each ENERGY_TERMS blocks of `particles` floats (ParticleEnergy of energy_budget.h, GB_ENERGY_TERMS of
-// shared_step.h), then the bubble's volume before the step and the VelocityBudget (scale, centre, shift).
+// shared_step.h), then the bubble's volume before the step and the VelocityBudget (scale, centre, shift, released).
 #define ENERGY_TERMS uint(GB_ENERGY_TERMS)
 #define DRIFT_TERMS uint(GB_DRIFT_TERMS)  // external_drift's terms, in the first blocks (energy_tree_sum's flag 2)
 #define ENERGY_A(c, k) reduce[pc.first + (c) * pc.particles + (k)]
@@ -56,6 +56,7 @@ layout(std430, binding = GB_BINDING_COLOUR_ORDER) readonly buffer ColourOrderBuf
 #define ENERGY_VELOCITY_SCALE ENERGY_SLOT(1u)
 #define ENERGY_CENTRE vec3(ENERGY_SLOT(2u), ENERGY_SLOT(3u), ENERGY_SLOT(4u))
 #define ENERGY_SHIFT vec3(ENERGY_SLOT(5u), ENERGY_SLOT(6u), ENERGY_SLOT(7u))
+#define ENERGY_RELEASED ENERGY_SLOT(8u)
 #define DRAIN_OUTFLOW(i) drainage[(i)]
 #define DRAIN_WEIGHT(i) drainage[pc.particles + (i)]
 

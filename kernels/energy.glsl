@@ -86,14 +86,21 @@ vec3 driftWithinBudget(vec3 expected, vec3 centre, float speedSquared) {
   return expected + l * made;
 }
 
-// energyBudget: the factor on the motion about the centre of mass (scale), the centre's velocity and its shift.
+// energyBudget: the factor on the motion about the centre of mass (scale), the centre's velocity, its shift and the
+// energy the step released below its budget.
 void energyBudget(float start, float kinetic, float held, float mass, vec3 momentum, vec3 expectedMomentum,
-                  out float scale, out vec3 centre, out vec3 shift) {
+                  out float scale, out vec3 centre, out vec3 shift, out float released) {
   scale = 1.0;
   centre = vec3(0.0);
   shift = vec3(0.0);
+  released = 0.0;
   const float budget = start + float(GB_ENERGY_BUDGET_TOLERANCE) * abs(start);
-  if (!(kinetic + held > budget) || !(mass > 0.0) || isinf(budget) || isnan(budget)) return;
+  const float ended = kinetic + held;
+  if (isinf(budget) || isnan(budget) || isinf(ended) || isnan(ended)) return;
+  if (!(ended > budget) || !(mass > 0.0)) {
+    released = max(0.0, start - ended);
+    return;
+  }
   const float drift = 0.5 * dot(momentum, momentum) / mass, internal = kinetic - drift;
   const float room = budget - held;
   centre = momentum / mass;

@@ -17,10 +17,10 @@ void main() {
     const float after = (pc.reduceFlags & 2u) != 0u ? REDUCE_A(0u) : REDUCE_B(0u);
     gas = boyleEnergyChange(u.referenceVolume, ENERGY_VOLUME_BEFORE, after);
   }
-  float scale;
+  float scale, released;
   vec3 centre, shift;
   energyBudget(sums[0], sums[1], sums[2] + gas, sums[3], vec3(sums[4], sums[5], sums[6]),
-               vec3(sums[7], sums[8], sums[9]), scale, centre, shift);
+               vec3(sums[7], sums[8], sums[9]), scale, centre, shift, released);
   ENERGY_VELOCITY_SCALE = scale;
   ENERGY_SLOT(2u) = centre.x;
   ENERGY_SLOT(3u) = centre.y;
@@ -28,4 +28,5 @@ void main() {
   ENERGY_SLOT(5u) = shift.x;
   ENERGY_SLOT(6u) = shift.y;
   ENERGY_SLOT(7u) = shift.z;
+  ENERGY_SLOT(8u) = released;
 }

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "cpu_stepper.h"
 #include "scene_file.h"
@@ -79,6 +80,15 @@ TEST(EnergyBudget, TakesTheExcessFromTheMotionAboutTheCentreOfMass) {
   EXPECT_EQ(budgetedVelocity(within, velocities[2]), velocities[2]) << "a step within its budget is left alone";
   EXPECT_FALSE(energyBudget(NAN, kinetic, held, mass, momentum, momentum).acted())
       << "non-finite sums are not the budget's";
+
+  // What a step released below its budget is what the rest-length rules may put back (contractSlackSprings): the
+  // difference itself, nothing where the budget acted (it ended at the budget) or the sums are not finite, and no
+  // bound at all where no budget was kept.
+  EXPECT_FLOAT_EQ(energyBudget(held + kinetic + 0.25f, kinetic, held, mass, momentum, momentum).released, 0.25f);
+  EXPECT_EQ(budget.released, 0.0f);
+  EXPECT_EQ(stopped.released, 0.0f);
+  EXPECT_EQ(energyBudget(NAN, kinetic, held, mass, momentum, momentum).released, 0.0f);
+  EXPECT_EQ(VelocityBudget{}.released, std::numeric_limits<float>::infinity());
 }
 
 TEST(EnergyBudget, GivesBackTheDriftTheStepMadeAndKeepsTheRest) {

@@ -21,6 +21,20 @@ void forEach(size_t n, Body&& body) {
   for (long i = 0; i < count; ++i) body(static_cast<size_t>(i));
 }
 
+// Each particle's N terms (terms(i), computed in parallel into `scratch`), each summed over the particles in the
+// fixed tree order (treeSum) that the GPU's tree sums follow.
+template <size_t N, class Terms>
+std::array<float, N> treeSumsOf(std::array<std::vector<float>, N>& scratch, size_t n, Terms terms) {
+  for (std::vector<float>& column : scratch) column.resize(n);
+  forEach(n, [&](size_t i) {
+    const std::array<float, N> t = terms(i);
+    for (size_t c = 0; c < N; ++c) scratch[c][i] = t[c];
+  });
+  std::array<float, N> sums{};
+  for (size_t c = 0; c < N; ++c) sums[c] = treeSum(scratch[c]);
+  return sums;
+}
+
 }  // namespace
 
 template <class Body>
@@ -196,13 +210,11 @@ void CpuStepper::correctCoarsely(const StepUniforms& u) {
 VelocityBudget CpuStepper::budgetEnergy(const StepUniforms& u) {
   const State& s = film_->state;
   const Topology& topo = film_->topology;
-  for (std::vector<float>& terms : energyTerms_) terms.resize(s.size());
-  forEach(s.size(), [&](size_t i) {
+  const std::array<float, GB_ENERGY_TERMS> sums = treeSumsOf(energyTerms_, s.size(), [&](size_t i) {
     const ParticleEnergy e = particleEnergy(params_, u, topo, s, i);
-    const std::array<float, GB_ENERGY_TERMS> terms = {e.start,        e.kinetic,      e.held,         e.mass,
-                                                      e.momentum.x(), e.momentum.y(), e.momentum.z(), e.expected.x(),
-                                                      e.expected.y(), e.expected.z()};
-    for (size_t c = 0; c < terms.size(); ++c) energyTerms_[c][i] = terms[c];
+    return std::array<float, GB_ENERGY_TERMS>{e.start,        e.kinetic,      e.held,         e.mass,
+                                              e.momentum.x(), e.momentum.y(), e.momentum.z(), e.expected.x(),
+                                              e.expected.y(), e.expected.z()};
   });
   float gas = 0.0f;
   if (u.closed) {  // the volumes before and after the step, as the volume stage sums them
@@ -211,22 +223,13 @@ VelocityBudget CpuStepper::budgetEnergy(const StepUniforms& u) {
     lastVolume_ = volume(*film_, u.volumeOrigin);
     gas = boyleEnergyChange(params_, u.referenceVolume, before, lastVolume_);
   }
-  std::array<float, GB_ENERGY_TERMS> sums{};
-  for (size_t c = 0; c < sums.size(); ++c) sums[c] = treeSum(energyTerms_[c]);
   return energyBudget(sums[0], sums[1], sums[2] + gas, sums[3], Vec3(sums[4], sums[5], sums[6]),
                       Vec3(sums[7], sums[8], sums[9]));
 }
 
 Vec3 CpuStepper::filmDrift() {
-  const State& s = film_->state;
-  for (std::vector<float>& terms : driftTerms_) terms.resize(s.size());
-  forEach(s.size(), [&](size_t i) {
-    const std::array<float, kDriftTerms> terms = driftTerms(film_->topology, s, i);
-    for (size_t c = 0; c < kDriftTerms; ++c) driftTerms_[c][i] = terms[c];
-  });
-  std::array<float, kDriftTerms> sums{};
-  for (size_t c = 0; c < kDriftTerms; ++c) sums[c] = treeSum(driftTerms_[c]);
-  return driftAcceleration(sums);
+  return driftAcceleration(treeSumsOf(driftTerms_, film_->state.size(),
+                                      [&](size_t i) { return driftTerms(film_->topology, film_->state, i); }));
 }
 
 float CpuStepper::currentPressure(const StepUniforms& u) const {

@@ -185,22 +185,30 @@ size_t payOutFilmAtWire(const Params& params, Film& film) {
 
 namespace {
 
-// Gives every living spring not held by the wire the rest length newRest(spring, its ends, its length) returns,
-// where it returns one (the wire's springs follow the wire's own rule, payOutFilmAtWire, which also decides ring
-// insertion). Returns how many changed.
-template <typename NewRest>
-size_t reshapeSpringsOffTheWire(Film& film, NewRest newRest) {
-  Topology& topo = film.topology;
+// Calls body(spring, its ends, its length) for every living spring not held by the wire (the wire's springs follow
+// the wire's own rule, payOutFilmAtWire, which also decides ring insertion).
+template <typename Body>
+void forEachSpringOffTheWire(const Film& film, Body body) {
+  const Topology& topo = film.topology;
   const State& s = film.state;
-  size_t changed = 0;
   for (size_t k = 0; k < topo.springCount(); ++k) {
     const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
     if (!s.alive[a] || !s.alive[b] || topo.boundary[a] || topo.boundary[b]) continue;
-    const std::optional<float> rest = newRest(k, a, b, (s.position.get(a) - s.position.get(b)).norm());
-    if (!rest) continue;
-    topo.restLength[k] = *rest;
-    ++changed;
+    body(k, a, b, (s.position.get(a) - s.position.get(b)).norm());
   }
+}
+
+// Gives every living spring not held by the wire the rest length newRest(spring, its ends, its length) returns,
+// where it returns one. Returns how many changed.
+template <typename NewRest>
+size_t reshapeSpringsOffTheWire(Film& film, NewRest newRest) {
+  size_t changed = 0;
+  forEachSpringOffTheWire(film, [&](size_t k, uint32_t a, uint32_t b, float length) {
+    const std::optional<float> rest = newRest(k, a, b, length);
+    if (!rest) return;
+    film.topology.restLength[k] = *rest;
+    ++changed;
+  });
   return changed;
 }
 
@@ -223,10 +231,10 @@ size_t contractSlackSprings(const Params& params, Film& film, SpringEnergyAllowa
     float rest, energy;  // the new rest length, and the spring energy it adds (J)
   };
   std::vector<Contraction> candidates;
-  reshapeSpringsOffTheWire(film, [&](size_t k, uint32_t a, uint32_t b, float length) -> std::optional<float> {
+  forEachSpringOffTheWire(film, [&](size_t k, uint32_t a, uint32_t b, float length) {
     const float rest = topo.restLength[k];
-    if (!(length < rest)) return std::nullopt;
-    if (std::max(s.thickness[a], s.thickness[b]) >= dipThickness) return std::nullopt;
+    if (!(length < rest)) return;
+    if (std::max(s.thickness[a], s.thickness[b]) >= dipThickness) return;
     const float taut =
         params.energyNeutralContraction
             ? length - std::min(rest - length, params.springPrestrain * length)  // stretched as compressed
@@ -234,7 +242,6 @@ size_t contractSlackSprings(const Params& params, Film& film, SpringEnergyAllowa
     const float half = 0.5f * springStiffness(s, a, b);
     candidates.push_back({(rest - length) / length, k, taut,
                           half * ((length - taut) * (length - taut) - (length - rest) * (length - rest))});
-    return std::nullopt;  // chosen below, within the allowance
   });
   std::sort(candidates.begin(), candidates.end(), [](const Contraction& x, const Contraction& y) {
     return x.slack != y.slack ? x.slack > y.slack : x.spring < y.spring;

@@ -211,7 +211,7 @@ struct VulkanStepper::Impl {
   }
   void writeVelocityBudget(const VelocityBudget& b) {
     const std::array<float, kBudgetSlots> slots = {b.scale,     b.centre.x(), b.centre.y(), b.centre.z(),
-                                                   b.shift.x(), b.shift.y(),  b.shift.z()};
+                                                   b.shift.x(), b.shift.y(),  b.shift.z(),  b.released};
     buffer(GB_BINDING_REDUCE).write(slots.data(), sizeof slots, velocityBudgetOffset());
   }
   [[nodiscard]] VelocityBudget readVelocityBudget() {

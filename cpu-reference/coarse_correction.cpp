@@ -5,6 +5,7 @@
 #include <deque>
 
 #include "colouring.h"
+#include "energy_budget.h"
 
 namespace gb {
 
@@ -150,7 +151,8 @@ Eigen::Matrix3f springCouplingBlock(const Params& p, float h, const Topology& to
   return -(along * dir * dir.transpose() + transverse * Eigen::Matrix3f::Identity());
 }
 
-Eigen::Matrix3f triangleCouplingBlock(const State& s, const Vec3Array& x, const uint32_t* tri, uint32_t c, uint32_t l) {
+Eigen::Matrix3f triangleCouplingBlock(const Params& p, const Topology& topo, const State& s, const Vec3Array& x,
+                                      const uint32_t* tri, uint32_t c, uint32_t l) {
   // Gauss-Newton Hessian of T |n| / 2, n = (x1 - x0) x (x2 - x0): T / (2 |n|) J_c^T (I - n n^T / |n|^2) J_l with
   // J_l v = e_l x v, e_l = x_{l+2} - x_{l+1} the edge facing corner l. J_c^T P J_l = -[e_c]x P [e_l]x, and
   // [a]x (I - n n^T) [b]x = b a^T - (a . b) I + (a x n)(b x n)^T for a unit n: two outer products instead of two
@@ -163,7 +165,13 @@ Eigen::Matrix3f triangleCouplingBlock(const State& s, const Vec3Array& x, const 
   const Vec3 a = edges[c], b = edges[l];
   const Eigen::Matrix3f sandwich =
       b * a.transpose() - a.dot(b) * Eigen::Matrix3f::Identity() + a.cross(n) * b.cross(n).transpose();
-  return -(triangleTension(s, tri) / (2.0f * twiceArea)) * sandwich;
+  // The tension at the triangle's current area (Gibbs's law, triangleTensionAt), and the law's own term
+  // dT/dA grad_c A grad_l A^T with grad_c A = n x e_c / 2.
+  const float area = 0.5f * twiceArea, startTension = triangleTension(s, tri),
+              startArea = triangleAreaAtStart(topo, s, tri);
+  const float tension = triangleTensionAt(p, startTension, startArea, area);
+  const float slope = triangleTensionSlope(p, startTension, startArea, area);
+  return -(tension / (2.0f * twiceArea)) * sandwich + (0.25f * slope) * (a.cross(n) * b.cross(n).transpose());
 }
 
 void fitCoarseSystem(const Topology& topo, CoarseSystem& system) {
@@ -202,7 +210,7 @@ void assembleCoarseRow(const Params& p, const StepUniforms& u, const Bubble& bub
       for (uint32_t l = 0; l < 3; ++l) {
         const uint32_t other = topo.patchOf[tri[l]];
         if (l == c || other == kNoPatch) continue;
-        system.blocks[rowSlot(topo, row, other)] += triangleCouplingBlock(s, s.position, tri, c, l);
+        system.blocks[rowSlot(topo, row, other)] += triangleCouplingBlock(p, topo, s, s.position, tri, c, l);
       }
     }
   }

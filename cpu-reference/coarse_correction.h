@@ -44,7 +44,8 @@ void ensurePatches(const std::vector<uint32_t>& alive, int rings, Topology& topo
 // spring k of i's one-ring (CSR entry), and corner l != c of triangle tri (c i's corner; physical model).
 Eigen::Matrix3f springCouplingBlock(const Params& p, float h, const Topology& topo, const State& s, const Vec3Array& x,
                                     size_t i, uint32_t k);
-Eigen::Matrix3f triangleCouplingBlock(const State& s, const Vec3Array& x, const uint32_t* tri, uint32_t c, uint32_t l);
+Eigen::Matrix3f triangleCouplingBlock(const Params& p, const Topology& topo, const State& s, const Vec3Array& x,
+                                      const uint32_t* tri, uint32_t c, uint32_t l);
 
 // The patch system of one correction, P^T H P in 3x3 blocks laid out as Topology::patchRow, and its right-hand
 // side -P^T g; then its solution.

@@ -10,7 +10,7 @@ namespace gb {
 namespace {
 
 // Particle i's share of the internal energy E, at the step's start and at its end, in one pass over its one-ring:
-// half of each of its springs (k/2 (len - l0)^2) or a third of each of its triangles (mean 2 gamma x area), and half
+// half of each of its springs (k/2 (len - l0)^2) or a third of each of its triangles (triangleTensionEnergy), and half
 // of each contact's penalty (k_c/2 (d_c - len)^2 inside its rest distance d_c).
 struct HeldShares {
   float start = 0.0f, end = 0.0f;
@@ -21,13 +21,11 @@ HeldShares heldShares(const Params& p, const Topology& topo, const State& s, uin
   if (p.tensionModel == 1) {
     for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
       const uint32_t* tri = topo.triangleOf(topo.triangleCorner[k]);
-      const float third = triangleTension(s, tri) / 3.0f;
-      const Vec3 a = s.position.get(tri[0]), a0 = positionAtStepStart(topo, s, tri[0]);
+      const float tension = triangleTension(s, tri), area0 = triangleAreaAtStart(topo, s, tri);
+      const Vec3 a = s.position.get(tri[0]);
       const float area = 0.5f * (s.position.get(tri[1]) - a).cross(s.position.get(tri[2]) - a).norm();
-      const float area0 =
-          0.5f * (positionAtStepStart(topo, s, tri[1]) - a0).cross(positionAtStepStart(topo, s, tri[2]) - a0).norm();
-      h.start += third * area0;
-      h.end += third * area;
+      h.start += tension * area0 / 3.0f;
+      h.end += static_cast<float>(triangleTensionEnergy(p, tension, area0, area)) / 3.0f;
     }
   } else {
     for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
@@ -55,6 +53,12 @@ HeldShares heldShares(const Params& p, const Topology& topo, const State& s, uin
 
 Vec3 positionAtStepStart(const Topology& topo, const State& s, size_t i) {
   return topo.boundary[i] ? s.position.get(i) : s.previousPosition.get(i);
+}
+
+float triangleAreaAtStart(const Topology& topo, const State& s, const uint32_t* corners) {
+  const Vec3 a0 = positionAtStepStart(topo, s, corners[0]);
+  return 0.5f *
+         (positionAtStepStart(topo, s, corners[1]) - a0).cross(positionAtStepStart(topo, s, corners[2]) - a0).norm();
 }
 
 float triangleSignedVolumeAtStart(const Topology& topo, const State& s, size_t t, const Vec3& origin) {

@@ -34,6 +34,9 @@ Vec3 positionAtStepStart(const Topology& topo, const State& s, size_t i);
 // triangleSignedVolume (stages.h) at the step's start: the leaves of a closed bubble's volume before the step.
 float triangleSignedVolumeAtStart(const Topology& topo, const State& s, size_t t, const Vec3& origin);
 
+// The area of the triangle with these corners at the step's start (positionAtStepStart of each).
+float triangleAreaAtStart(const Topology& topo, const State& s, const uint32_t* corners);
+
 // A particle's share of the step's energy (J): at the start (x_t, the wire placed at its end position, v_t),
 // at the end its kinetic energy (v = (x - x_t) / h) and the rest (its share of E at x less the work the
 // explicit forces did on it). Springs, triangles and contacts are shared equally among the particles they join.

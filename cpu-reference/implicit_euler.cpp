@@ -111,18 +111,48 @@ F addDampingGradient(MaskOf<F> m, F coefficient, F h, const Vec<F>& dir, const V
   return coefficient / h;
 }
 
-// Physical model: tension x area of triangle (x, xj, xl), counter-clockwise. grad_x A = 1/2 n x (xl - xj);
-// the Hessian of A in x alone is |xl - xj|^2 / (4 A) n n^T, positive semi-definite.
+// The natural logarithm, lane by lane (std::log in each lane: the same as float code's).
 template <class F>
-void addAreaTension(MaskOf<F> live, F tension, const Vec<F>& x, const Vec<F>& xj, const Vec<F>& xl, BlockSum<F>& b) {
+F logOf(F a) {
+  if constexpr (kLanes<F> == 1)
+    return std::log(a);
+  else
+    return fromLanes<F>([&](int l) { return std::log(a.lane(l)); });
+}
+
+// triangleTensionAt (implicit_euler.h) and its slope dT/dA: E_G / A, or 0 where the tension is clamped or the
+// law does not apply (no Gibbs elasticity, or a degenerate triangle: the tension it started with).
+template <class F>
+struct TriangleTension {
+  F tension, slope;
+};
+template <class F>
+TriangleTension<F> triangleTensionOf(const Params& p, F startTension, F startArea, F area) {
+  const F gibbs(p.gibbsElasticity), lowest(p.surfaceTension), highest(4.0f * p.surfaceTension);
+  const MaskOf<F> follows = F(0.0f) < gibbs && F(0.0f) < startArea && F(0.0f) < area;
+  const F unclamped = startTension + gibbs * logOf(select(follows, area / startArea, F(1.0f)));
+  const MaskOf<F> elastic = follows && lowest < unclamped && unclamped < highest;
+  return {select(follows, min(max(unclamped, lowest), highest), startTension), select(elastic, gibbs / area, F(0.0f))};
+}
+
+// Physical model: the tension energy of triangle (x, xj, xl), counter-clockwise, that had startArea and
+// startTension where the step started (triangleTensionEnergy). grad_x A = 1/2 n x (xl - xj); the Hessian of A in
+// x alone is |xl - xj|^2 / (4 A) n n^T, positive semi-definite, and the Gibbs law adds dT/dA grad A grad A^T: the
+// film's only stiffness in its own plane in this model.
+template <class F>
+void addAreaTension(const Params& p, MaskOf<F> live, F startTension, F startArea, const Vec<F>& x, const Vec<F>& xj,
+                    const Vec<F>& xl, BlockSum<F>& b) {
   const Vec<F> twiceAreaNormal = cross(xj - x, xl - x);
   const F twiceArea = norm(twiceAreaNormal);
   const MaskOf<F> m = live && twiceArea > F(0.0f);
   if (none(m)) return;
   const Vec<F> n = twiceAreaNormal / twiceArea;
   const Vec<F> edge = xl - xj;
-  b.addGradient(m, (tension * F(0.5f)) * cross(n, edge));
-  b.addOuter(m, tension * dot(edge, edge) / (F(2.0f) * twiceArea), n);
+  const TriangleTension<F> t = triangleTensionOf(p, startTension, startArea, F(0.5f) * twiceArea);
+  const Vec<F> areaGradient = F(0.5f) * cross(n, edge);
+  b.addGradient(m, t.tension * areaGradient);
+  b.addOuter(m, t.tension * dot(edge, edge) / (F(2.0f) * twiceArea), n);
+  b.addOuter(m, t.slope, areaGradient);
 }
 
 // a x = b by the adjugate, a given by rows.
@@ -166,6 +196,26 @@ float triangleTension(const State& s, const uint32_t* corners) {
   return (s.elasticity[corners[0]] + s.elasticity[corners[1]] + s.elasticity[corners[2]]) / 3.0f;
 }
 
+float triangleTensionAt(const Params& p, float startTension, float startArea, float area) {
+  return triangleTensionOf(p, startTension, startArea, area).tension;
+}
+
+float triangleTensionSlope(const Params& p, float startTension, float startArea, float area) {
+  return triangleTensionOf(p, startTension, startArea, area).slope;
+}
+
+double triangleTensionEnergy(const Params& p, float startTension, float startArea, double area) {
+  const double gibbs = p.gibbsElasticity, t0 = startTension, a0 = startArea;
+  if (!(gibbs > 0 && a0 > 0 && area > 0)) return t0 * area;
+  // Between the areas where the law reaches its clamps, T = T_0 + E_G ln(A / A_0) integrates to
+  // T_0 A + E_G A_0 (r ln r - r + 1), r = A / A_0; beyond them the tension is constant.
+  const double lower = a0 * std::exp((p.surfaceTension - t0) / gibbs);
+  const double upper = a0 * std::exp((4.0 * p.surfaceTension - t0) / gibbs);
+  const double within = std::clamp(area, lower, upper), r = within / a0;
+  const double beyond = area < lower ? p.surfaceTension : 4.0 * p.surfaceTension;
+  return t0 * within + gibbs * a0 * (r * std::log(r) - r + 1.0) + (area == within ? 0.0 : beyond * (area - within));
+}
+
 namespace {
 
 // The k-th entry of each lane's range [offset[i], offset[i + 1]) of a CSR list, and which lanes have one. A lane
@@ -197,6 +247,12 @@ CornersAfter cornersAfter(const Topology& topo, uint32_t corner) {
   return {tri[(corner + 1) % 3], tri[(corner + 2) % 3]};
 }
 
+// A triangle's tension and area where the step started (triangleTension, triangleAreaAtStart).
+template <class F>
+struct TriangleStart {
+  F tension, area;
+};
+
 // One particle's one-ring read from the topology's lists (objectiveBlock).
 struct ListedRing {
   const Topology& topo;
@@ -213,14 +269,14 @@ struct ListedRing {
   }
   [[nodiscard]] uint32_t triangles() const { return topo.triangleOffset[i + 1] - topo.triangleOffset[i]; }
   [[nodiscard]] bool hasTriangle(uint32_t) const { return true; }
-  // The tension of i's k-th triangle, and its corners after i counter-clockwise.
-  float triangle(uint32_t k, Particles<float>& next, Particles<float>& last) const {
+  // The tension and area of i's k-th triangle where the step started, and its corners after i counter-clockwise.
+  TriangleStart<float> triangle(uint32_t k, Particles<float>& next, Particles<float>& last) const {
     const uint32_t corner = topo.triangleCorner[topo.triangleOffset[i] + k];
     const uint32_t* tri = topo.triangleOf(corner);
     const CornersAfter corners = cornersAfter(topo, corner);
     next = {corners.next};
     last = {corners.last};
-    return triangleTension(s, tri);
+    return {triangleTension(s, tri), triangleAreaAtStart(topo, s, tri)};
   }
 };
 
@@ -241,11 +297,11 @@ struct RunRing {
   }
   [[nodiscard]] uint32_t triangles() const { return runs.triangleSlot[run + 1] - runs.triangleSlot[run]; }
   [[nodiscard]] Mask4 hasTriangle(uint32_t k) const { return Mask4::below(&runs.triangleCount[4 * run], k); }
-  Float4 triangle(uint32_t k, const uint32_t*& next, const uint32_t*& last) const {
+  TriangleStart<Float4> triangle(uint32_t k, const uint32_t*& next, const uint32_t*& last) const {
     const size_t slot = 4 * (runs.triangleSlot[run] + k);
     next = &runs.cornerNext[slot];
     last = &runs.cornerLast[slot];
-    return Float4::load(&runs.triangleTension[slot]);
+    return {Float4::load(&runs.triangleTension[slot]), Float4::load(&runs.triangleStartArea[slot])};
   }
 };
 
@@ -282,9 +338,9 @@ void addInternal(const Params& p, float h, const Topology& topo, const State& s,
   if (physical) {
     for (uint32_t k = 0; k < ring.triangles(); ++k) {
       std::conditional_t<kLanes<F> == 1, Particles<float>, const uint32_t*> next, last;
-      const F tension = ring.triangle(k, next, last);
-      addAreaTension(ring.hasTriangle(k), tension, x, gatherVec<F>(s.position, next), gatherVec<F>(s.position, last),
-                     b);
+      const TriangleStart<F> start = ring.triangle(k, next, last);
+      addAreaTension(p, ring.hasTriangle(k), start.tension, start.area, x, gatherVec<F>(s.position, next),
+                     gatherVec<F>(s.position, last), b);
     }
   }
   // Contacts: penalty k_c/2 (d_c - |x - xj|)^2 inside the pair's rest distance d_c (its transverse Hessian term is
@@ -474,16 +530,18 @@ void layOutSlots(const Params& p, const Topology& topo, const State& s, uint32_t
     for (uint32_t k = 0; k < runs.triangleSlot[r + 1] - runs.triangleSlot[r]; ++k) {
       const size_t slot = 4 * size_t{runs.triangleSlot[r] + k} + l;
       CornersAfter corners{filler, filler};
-      float tension = 0.0f;
+      float tension = 0.0f, startArea = 0.0f;
       if (k < runs.triangleCount[4 * r + l]) {
         const uint32_t corner = topo.triangleCorner[topo.triangleOffset[i] + k];
         const uint32_t* tri = topo.triangleOf(corner);
         corners = cornersAfter(topo, corner);
         tension = triangleTension(s, tri);
+        startArea = triangleAreaAtStart(topo, s, tri);
       }
       runs.cornerNext[slot] = corners.next;
       runs.cornerLast[slot] = corners.last;
       runs.triangleTension[slot] = tension;
+      runs.triangleStartArea[slot] = startArea;
     }
   }
 }
@@ -528,8 +586,8 @@ void layOutSweepRuns(const Params& p, const StepUniforms& u, const Topology& top
   const size_t springSlots = 4 * size_t{runs.springSlot.back()}, triangleSlots = 4 * size_t{runs.triangleSlot.back()};
   for (auto* v : {&runs.springNeighbour, &runs.cornerNext, &runs.cornerLast})
     v->resize(v == &runs.springNeighbour ? springSlots : triangleSlots);
-  for (auto* v : {&runs.springStiffness, &runs.springRest, &runs.triangleTension})
-    v->resize(v == &runs.triangleTension ? triangleSlots : springSlots);
+  for (auto* v : {&runs.springStiffness, &runs.springRest, &runs.triangleTension, &runs.triangleStartArea})
+    v->resize(v == &runs.triangleTension || v == &runs.triangleStartArea ? triangleSlots : springSlots);
 #pragma omp parallel for schedule(static)
   for (long r = 0; r < count; ++r) layOutSlots(p, topo, s, static_cast<uint32_t>(r), runs);
 }

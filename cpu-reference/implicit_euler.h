@@ -53,6 +53,16 @@ float breathingStiffness(const Bubble& bubble, float area);
 float springStiffness(const State& s, size_t i, size_t j);
 float transverseStiffness(float stiffness, float rest, float length);
 float triangleTension(const State& s, const uint32_t* corners);
+// The tension of a triangle whose area went from startArea, where the step started, to area. Its surfactant moves
+// with it, so its gamma follows filmTension's Gibbs law in the triangle's own area (E_G = 2 d gamma / d ln A),
+// from the tension its corners gave it at the start (triangleTension), clamped as filmTension clamps: the
+// physical model's Gibbs elasticity, implicit in the step (docs/model.md).
+float triangleTensionAt(const Params& p, float startTension, float startArea, float area);
+// Its slope dT/dA: E_G / A, or 0 where the tension is clamped or the law does not apply.
+float triangleTensionSlope(const Params& p, float startTension, float startArea, float area);
+// The energy of such a triangle at `area`: startTension x startArea at the start, and its derivative in the area
+// is triangleTensionAt. In double: the Gibbs part is a small difference of large terms near the start.
+double triangleTensionEnergy(const Params& p, float startTension, float startArea, double area);
 
 // The gradient (N) and Hessian (N/m) of the step's objective in x_i with every other particle fixed, summed
 // term by term; the Hessian is projected to be positive semi-definite (docs/model.md "Integrators") and holds
@@ -120,6 +130,7 @@ struct SweepRuns {
   std::vector<float> springStiffness, springRest;  // springStiffness, restLength (springs model only)
   std::vector<uint32_t> cornerNext, cornerLast;    // the triangle's corners after i, counter-clockwise
   std::vector<float> triangleTension;              // triangleTension (physical model only)
+  std::vector<float> triangleStartArea;            // triangleAreaAtStart (physical model only)
   std::vector<uint32_t> scratchFirst, scratchEnd;  // layOutSweepRuns' own, kept to reuse their memory
 };
 void layOutSweepRuns(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, SweepRuns& runs);

@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "coarse_correction.h"
+#include "energy_budget.h"
 
 namespace gb {
 
@@ -90,15 +91,15 @@ double particleObjective(const Params& p, const StepUniforms& u, const Topology&
   return e;
 }
 
-// Physical model: sum over the triangles with a solved corner of T_t A_t, in double.
-double areaObjective(const Topology& topo, const State& s, const std::vector<char>& solved) {
+// Physical model: sum over the triangles with a solved corner of their tension energy (triangleTensionEnergy).
+double areaObjective(const Params& p, const Topology& topo, const State& s, const std::vector<char>& solved) {
   double e = 0;
   for (size_t t = 0; t < topo.triangleCount(); ++t) {
     const uint32_t* tri = &topo.triangles[3 * t];
     if (!solved[tri[0]] && !solved[tri[1]] && !solved[tri[2]]) continue;
     const Vec3 x0 = s.position.get(tri[0]);
-    const double twiceArea = (s.position.get(tri[1]) - x0).cross(s.position.get(tri[2]) - x0).cast<double>().norm();
-    e += triangleTension(s, tri) * 0.5 * twiceArea;
+    const double area = 0.5 * (s.position.get(tri[1]) - x0).cross(s.position.get(tri[2]) - x0).cast<double>().norm();
+    e += triangleTensionEnergy(p, triangleTension(s, tri), triangleAreaAtStart(topo, s, tri), area);
   }
   return e;
 }
@@ -132,7 +133,7 @@ double implicitObjective(const Params& p, const StepUniforms& u, const Topology&
   const std::vector<uint32_t> particles = solvedParticles(topo, s);
   const std::vector<char> solved = solvedFlags(particles, s.size());
   double e = sumSolved(particles, [&](size_t i) { return particleObjective(p, u, topo, s, solved, i); });
-  if (p.tensionModel == 1) e += areaObjective(topo, s, solved);
+  if (p.tensionModel == 1) e += areaObjective(p, topo, s, solved);
   return e;
 }
 
@@ -249,7 +250,7 @@ void ImplicitSolve::hessianProduct(const Vec3Array& v, Vec3Array& out) const {
         const uint32_t corner = topo.triangleCorner[k], c = corner % 3;
         const uint32_t* tri = topo.triangleOf(corner);
         for (uint32_t l = 0; l < 3; ++l)
-          if (l != c) sum += triangleCouplingBlock(s, start_, tri, c, l) * v.get(tri[l]);
+          if (l != c) sum += triangleCouplingBlock(params_, topo, s, start_, tri, c, l) * v.get(tri[l]);
       }
     }
     out.set(i, sum);

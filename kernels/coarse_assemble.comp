@@ -35,9 +35,10 @@ mat3 triangleCouplingBlock(uint t, uint c, uint l) {
   const vec3 edges[3] = vec3[3](x2 - x1, x0 - x2, x1 - x0), n = normal / twiceArea;
   const vec3 a = edges[c], b = edges[l];
   const mat3 sandwich = outerProduct(b, a) - dot(a, b) * mat3(1.0) + outerProduct(cross(a, n), cross(b, n));
-  const float tension =
+  const float startTension =
       (elasticity[triangles[3u * t]] + elasticity[triangles[3u * t + 1u]] + elasticity[triangles[3u * t + 2u]]) / 3.0;
-  return -(tension / (2.0 * twiceArea)) * sandwich;
+  const TriangleTension law = triangleTensionOf(startTension, triangleAreaAtStart(t), 0.5 * twiceArea);
+  return -(law.tension / (2.0 * twiceArea)) * sandwich + (0.25 * law.slope) * outerProduct(cross(a, n), cross(b, n));
 }
 
 void addToBlock(uint slot, mat3 m) {

@@ -49,7 +49,7 @@ layout(std430, binding = GB_BINDING_COLOUR_ORDER) readonly buffer ColourOrderBuf
 // shared_step.h), then the bubble's volume before the step and the VelocityBudget (scale, centre, shift, released).
 #define ENERGY_TERMS uint(GB_ENERGY_TERMS)
 #define DRIFT_TERMS uint(GB_DRIFT_TERMS)  // external_drift's terms, in the first blocks (energy_tree_sum's flag 2)
-#define ENERGY_A(c, k) reduce[pc.first + (c) * pc.particles + (k)]
+#define ENERGY_A(c, k) reduce[pc.first + (c)*pc.particles + (k)]
 #define ENERGY_B(c, k) reduce[pc.first + (ENERGY_TERMS + (c)) * pc.particles + (k)]
 #define ENERGY_SLOT(k) reduce[pc.first + 2u * ENERGY_TERMS * pc.particles + (k)]
 #define ENERGY_VOLUME_BEFORE ENERGY_SLOT(0u)
@@ -62,11 +62,11 @@ layout(std430, binding = GB_BINDING_COLOUR_ORDER) readonly buffer ColourOrderBuf
 
 // Vector attribute access: x, y, z blocks of pc.particles floats each.
 #define LOAD3(buf, i) vec3(buf[(i)], buf[pc.particles + (i)], buf[2u * pc.particles + (i)])
-#define STORE3(buf, i, v)                   \
-  {                                         \
-    const vec3 value_ = (v);                \
-    buf[(i)] = value_.x;                    \
-    buf[pc.particles + (i)] = value_.y;     \
+#define STORE3(buf, i, v)                    \
+  {                                          \
+    const vec3 value_ = (v);                 \
+    buf[(i)] = value_.x;                     \
+    buf[pc.particles + (i)] = value_.y;      \
     buf[2u * pc.particles + (i)] = value_.z; \
   }
 
@@ -76,10 +76,42 @@ float contactRestDistance(uint k) { return uintBitsToFloat(contacts[pc.particles
 // positionAtStepStart of cpu-reference/energy_budget.cpp: x_t, or where the wire put a wire particle.
 vec3 positionAtStepStart(uint i) { return boundary[i] != 0u ? LOAD3(position, i) : LOAD3(previousPosition, i); }
 
+// triangleAreaAtStart of cpu-reference/energy_budget.cpp: triangle t's area at the step's start.
+float triangleAreaAtStart(uint t) {
+  const vec3 a0 = positionAtStepStart(triangles[3u * t]);
+  return 0.5 * length(cross(positionAtStepStart(triangles[3u * t + 1u]) - a0,
+                            positionAtStepStart(triangles[3u * t + 2u]) - a0));
+}
+
+// triangleTensionOf of cpu-reference/implicit_euler.cpp: the physical model's tension of a triangle at `area`,
+// Gibbs's law in its own area from the tension and area it had at the step's start, and its slope dT/dA.
+struct TriangleTension {
+  float tension, slope;
+};
+TriangleTension triangleTensionOf(float startTension, float startArea, float area) {
+  const float gibbs = params.gibbsElasticity, lowest = params.surfaceTension, highest = 4.0 * params.surfaceTension;
+  const bool follows = 0.0 < gibbs && 0.0 < startArea && 0.0 < area;
+  const float unclamped = startTension + gibbs * log(follows ? area / startArea : 1.0);
+  const bool elastic = follows && lowest < unclamped && unclamped < highest;
+  return TriangleTension(follows ? min(max(unclamped, lowest), highest) : startTension, elastic ? gibbs / area : 0.0);
+}
+
+// triangleTensionEnergy of cpu-reference/implicit_euler.cpp (there in double).
+float triangleTensionEnergy(float startTension, float startArea, float area) {
+  const float gibbs = params.gibbsElasticity, t0 = startTension, a0 = startArea;
+  if (!(gibbs > 0.0 && a0 > 0.0 && area > 0.0)) return t0 * area;
+  const float lower = a0 * exp((params.surfaceTension - t0) / gibbs);
+  const float upper = a0 * exp((4.0 * params.surfaceTension - t0) / gibbs);
+  const float within = clamp(area, lower, upper), r = within / a0;
+  const float beyond = area < lower ? params.surfaceTension : 4.0 * params.surfaceTension;
+  return t0 * within + gibbs * a0 * (r * log(r) - r + 1.0) + (area == within ? 0.0 : beyond * (area - within));
+}
+
 // framePoint of cpu-reference/wire_frame.cpp.
 vec3 framePoint(StepUniformsBlock u, float param) {
   const float pi = 3.14159265358979323846;
-  if (u.frameKind == 0 && param < 1.0) return u.frameCenter.xyz + (2.0 * param - 1.0) * u.frameHalfWidth * u.frameAxis.xyz;
+  if (u.frameKind == 0 && param < 1.0)
+    return u.frameCenter.xyz + (2.0 * param - 1.0) * u.frameHalfWidth * u.frameAxis.xyz;
   const float phi = u.frameKind == 0 ? (param - 1.0) * pi : 2.0 * pi * param;
   return u.frameCenter.xyz + u.frameHalfWidth * cos(phi) * u.frameAxis.xyz + u.frameDepth * sin(phi) * u.frameDown.xyz;
 }
@@ -93,5 +125,6 @@ float drainageDirection(vec3 xi, vec3 xj, vec3 g) {
 
 // boylePressure of cpu-reference/stages.cpp, Eq. (11).
 float boylePressure(float referenceVolume, float currentVolume) {
-  return currentVolume > 0.0 ? params.pressureCoefficient * referenceVolume / currentVolume : params.pressureCoefficient;
+  return currentVolume > 0.0 ? params.pressureCoefficient * referenceVolume / currentVolume
+                             : params.pressureCoefficient;
 }

@@ -11,12 +11,11 @@ void heldShares(uint i, out float start, out float end) {
     for (uint k = triangleOffset[i]; k < triangleOffset[i + 1u]; ++k) {
       const uint t = triangleCorner[k] / 3u;
       const uint c0 = triangles[3u * t], c1 = triangles[3u * t + 1u], c2 = triangles[3u * t + 2u];
-      const float third = (elasticity[c0] + elasticity[c1] + elasticity[c2]) / 3.0 / 3.0;
-      const vec3 a = LOAD3(position, c0), a0 = positionAtStepStart(c0);
+      const float tension = (elasticity[c0] + elasticity[c1] + elasticity[c2]) / 3.0, area0 = triangleAreaAtStart(t);
+      const vec3 a = LOAD3(position, c0);
       const float area = 0.5 * length(cross(LOAD3(position, c1) - a, LOAD3(position, c2) - a));
-      const float area0 = 0.5 * length(cross(positionAtStepStart(c1) - a0, positionAtStepStart(c2) - a0));
-      start += third * area0;
-      end += third * area;
+      start += tension * area0 / 3.0;
+      end += triangleTensionEnergy(tension, area0, area) / 3.0;
     }
   } else {
     for (uint k = springOffset[i]; k < springOffset[i + 1u]; ++k) {

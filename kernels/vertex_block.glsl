@@ -5,7 +5,7 @@
 // The gradient and Hessian of the objective in x_i, summed term by term (Block of the C++ twin).
 vec3 gradient;
 mat3 hessian;
-float shortestSpring;  // of the particle's one-ring (m)
+float shortestSpring;             // of the particle's one-ring (m)
 const float kTrustRegion = 0.25;  // largest move per sweep, in shortest one-ring springs
 
 // addDampingGradient: dissipation c/(2h) ((dx_i - dx_j) . dir)^2; returns its Hessian's factor along dir.
@@ -14,15 +14,18 @@ float addDampingGradient(float coefficient, float h, vec3 dir, vec3 relativeDisp
   return coefficient / h;
 }
 
-// addAreaTension: tension x area of triangle (x, xj, xl), counter-clockwise.
-void addAreaTension(float tension, vec3 x, vec3 xj, vec3 xl) {
+// addAreaTension: the tension energy of triangle (x, xj, xl), counter-clockwise, from its start's tension and area.
+void addAreaTension(float startTension, float startArea, vec3 x, vec3 xj, vec3 xl) {
   const vec3 twiceAreaNormal = cross(xj - x, xl - x);
   const float twiceArea = length(twiceAreaNormal);
   if (!(twiceArea > 0.0)) return;
   const vec3 n = twiceAreaNormal / twiceArea;
   const vec3 edge = xl - xj;
-  gradient += tension * 0.5 * cross(n, edge);
-  hessian += tension * dot(edge, edge) / (2.0 * twiceArea) * outerProduct(n, n);
+  const TriangleTension t = triangleTensionOf(startTension, startArea, 0.5 * twiceArea);
+  const vec3 areaGradient = 0.5 * cross(n, edge);
+  gradient += t.tension * areaGradient;
+  hessian += t.tension * dot(edge, edge) / (2.0 * twiceArea) * outerProduct(n, n);
+  hessian += t.slope * outerProduct(areaGradient, areaGradient);
 }
 
 // addInternal: the internal energies and dissipations of particle i at its current position.
@@ -54,8 +57,9 @@ void addInternal(float h, uint i) {
     for (uint k = triangleOffset[i]; k < triangleOffset[i + 1u]; ++k) {
       const uint corner = triangleCorner[k], t = corner / 3u, c = corner % 3u;
       const float tension =
-          (elasticity[triangles[3u * t]] + elasticity[triangles[3u * t + 1u]] + elasticity[triangles[3u * t + 2u]]) / 3.0;
-      addAreaTension(tension, x, LOAD3(position, triangles[3u * t + (c + 1u) % 3u]),
+          (elasticity[triangles[3u * t]] + elasticity[triangles[3u * t + 1u]] + elasticity[triangles[3u * t + 2u]]) /
+          3.0;
+      addAreaTension(tension, triangleAreaAtStart(t), x, LOAD3(position, triangles[3u * t + (c + 1u) % 3u]),
                      LOAD3(position, triangles[3u * t + (c + 2u) % 3u]));
     }
   }
@@ -91,8 +95,8 @@ vec3 solveLinear3(mat3 a, vec3 b) {
   const float c20 = a[0][1] * a[1][2] - a[1][1] * a[0][2], c21 = a[1][0] * a[0][2] - a[0][0] * a[1][2],
               c22 = a[0][0] * a[1][1] - a[1][0] * a[0][1];
   const float det = a[0][0] * c00 + a[1][0] * c10 + a[2][0] * c20;
-  return vec3(c00 * b.x + c01 * b.y + c02 * b.z, c10 * b.x + c11 * b.y + c12 * b.z,
-              c20 * b.x + c21 * b.y + c22 * b.z) / det;
+  return vec3(c00 * b.x + c01 * b.y + c02 * b.z, c10 * b.x + c11 * b.y + c12 * b.z, c20 * b.x + c21 * b.y + c22 * b.z) /
+         det;
 }
 
 // objectiveBlock: the whole block of particle i at the current positions, into gradient, hessian and

@@ -7,6 +7,7 @@
 
 #include "experiments.h"
 #include "film.h"
+#include "implicit_euler.h"
 #include "stages.h"
 #include "test_films.h"
 
@@ -115,6 +116,30 @@ TEST(PhysicalTension, DrainageThinsTheFilmButLeavesItsTension) {
   s.voronoiArea[0] *= 1.2f;  // stretched
   updateFilmState(p, 0.0f, s, 0);
   EXPECT_NEAR(s.elasticity[0], tension + p.gibbsElasticity * std::log(1.2f), 1e-6f * 2.0f * p.surfaceTension);
+}
+
+// Within a step a triangle's gamma follows Gibbs's law in its own area (triangleTensionAt): at its start area it
+// pulls with the tension it started with, stretched 20% harder by E_G ln 1.2, and never beyond filmTension's clamps;
+// triangleTensionEnergy is its potential. Slope bound 1e-4 of 2 gamma_0, as for the particle's potential above.
+TEST(PhysicalTension, ATrianglesTensionEnergyHasItsTensionAsItsSlope) {
+  Params p;
+  const float startTension = 2.2f * p.surfaceTension, startArea = 1e-4f;  // N/m, m^2
+  EXPECT_EQ(triangleTensionAt(p, startTension, startArea, startArea), startTension);
+  EXPECT_NEAR(triangleTensionAt(p, startTension, startArea, 1.2f * startArea),
+              startTension + p.gibbsElasticity * std::log(1.2f), 1e-6f * 2.0f * p.surfaceTension);
+  EXPECT_EQ(triangleTensionAt(p, startTension, startArea, 100.0f * startArea), 4.0f * p.surfaceTension);
+  EXPECT_EQ(triangleTensionAt(p, startTension, startArea, 0.01f * startArea), p.surfaceTension);
+  EXPECT_NEAR(triangleTensionEnergy(p, startTension, startArea, startArea), startTension * startArea,
+              1e-7 * startTension * startArea);
+  for (double stretch : {0.01, 0.1, 0.5, 0.9, 1.0, 1.1, 2.0, 10.0, 100.0}) {
+    const double area = stretch * startArea, da = 1e-4 * area;
+    const double slope = (triangleTensionEnergy(p, startTension, startArea, area + da) -
+                          triangleTensionEnergy(p, startTension, startArea, area - da)) /
+                         (2.0 * da);
+    EXPECT_NEAR(slope, triangleTensionAt(p, startTension, startArea, static_cast<float>(area)),
+                1e-4 * 2.0 * p.surfaceTension)
+        << "stretched " << stretch << " times";
+  }
 }
 
 TEST(PhysicalTension, AnUnknownExperimentIsNamed) {

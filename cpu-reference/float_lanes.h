@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <type_traits>
@@ -156,6 +157,42 @@ inline Float4 select(Mask4 m, Float4 a, Float4 b) {
   return r;
 }
 inline Float4 masked(Mask4 m, Float4 a) { return select(m, a, Float4(0.0f)); }
+#endif
+
+// The natural logarithm of a positive normal float (or four), by the same float operations for one float and in
+// every lane (std::log differs between its scalar and vector forms): x = m 2^e with m in [sqrt(1/2), sqrt(2)),
+// ln x = e ln 2 + 2 atanh(s), s = (m - 1) / (m + 1), |s| < 0.172, summed to s^9 (the next term is below 1e-9 of
+// the result; float rounding, a few 1e-8, dominates).
+template <class F>
+F logFromParts(F m, F e) {
+  const F s = (m - F(1.0f)) / (m + F(1.0f)), s2 = s * s;
+  const F series =
+      F(2.0f) * s * (F(1.0f) + s2 * (F(1.0f / 3.0f) + s2 * (F(0.2f) + s2 * (F(1.0f / 7.0f) + s2 * F(1.0f / 9.0f)))));
+  return e * F(0.693147182f) + series;
+}
+inline float logOf(float x) {
+  const auto bits = std::bit_cast<uint32_t>(x);
+  int e = static_cast<int>(bits >> 23) - 127;
+  float m = std::bit_cast<float>((bits & 0x007fffffu) | 0x3f800000u);  // in [1, 2)
+  if (m > 1.41421356f) {
+    m = 0.5f * m;
+    ++e;
+  }
+  return logFromParts(m, static_cast<float>(e));
+}
+#if defined(__SSE2__)
+inline Float4 logOf(Float4 x) {
+  const __m128i bits = _mm_castps_si128(x.v);
+  __m128i e = _mm_sub_epi32(_mm_srli_epi32(bits, 23), _mm_set1_epi32(127));
+  Float4 m(_mm_castsi128_ps(
+      _mm_or_si128(_mm_and_si128(bits, _mm_set1_epi32(0x007fffff)), _mm_set1_epi32(0x3f800000))));  // in [1, 2)
+  const Mask4 high = Float4(1.41421356f) < m;
+  m = select(high, Float4(0.5f) * m, m);
+  e = _mm_sub_epi32(e, _mm_castps_si128(high.v));  // a true lane is -1
+  return logFromParts(m, Float4(_mm_cvtepi32_ps(e)));
+}
+#else
+inline Float4 logOf(Float4 x) { return Float4::of(logOf(x.v[0]), logOf(x.v[1]), logOf(x.v[2]), logOf(x.v[3])); }
 #endif
 
 // The same names for one float, so that a template on the float type reads the same for both.

@@ -111,15 +111,6 @@ F addDampingGradient(MaskOf<F> m, F coefficient, F h, const Vec<F>& dir, const V
   return coefficient / h;
 }
 
-// The natural logarithm, lane by lane (std::log in each lane: the same as float code's).
-template <class F>
-F logOf(F a) {
-  if constexpr (kLanes<F> == 1)
-    return std::log(a);
-  else
-    return fromLanes<F>([&](int l) { return std::log(a.lane(l)); });
-}
-
 // triangleTensionAt (implicit_euler.h) and its slope dT/dA: E_G / A, or 0 where the tension is clamped or the
 // law does not apply (no Gibbs elasticity, or a degenerate triangle: the tension it started with).
 template <class F>
@@ -207,13 +198,14 @@ float triangleTensionSlope(const Params& p, float startTension, float startArea,
 double triangleTensionEnergy(const Params& p, float startTension, float startArea, double area) {
   const double gibbs = p.gibbsElasticity, t0 = startTension, a0 = startArea;
   if (!(gibbs > 0 && a0 > 0 && area > 0)) return t0 * area;
-  // Between the areas where the law reaches its clamps, T = T_0 + E_G ln(A / A_0) integrates to
-  // T_0 A + E_G A_0 (r ln r - r + 1), r = A / A_0; beyond them the tension is constant.
-  const double lower = a0 * std::exp((p.surfaceTension - t0) / gibbs);
-  const double upper = a0 * std::exp((4.0 * p.surfaceTension - t0) / gibbs);
-  const double within = std::clamp(area, lower, upper), r = within / a0;
-  const double beyond = area < lower ? p.surfaceTension : 4.0 * p.surfaceTension;
-  return t0 * within + gibbs * a0 * (r * std::log(r) - r + 1.0) + (area == within ? 0.0 : beyond * (area - within));
+  // Between the areas where the law reaches its clamps, T = T_0 + E_G ln r, r = A / A_0, integrates to
+  // T_0 A + E_G A_0 (r ln r - r + 1); beyond them the tension is the clamp's, from the area where it was reached.
+  const double r = area / a0, lnR = std::log(r), unclamped = t0 + gibbs * lnR;
+  const double lowest = p.surfaceTension, highest = 4.0 * p.surfaceTension;
+  if (lowest <= unclamped && unclamped <= highest) return t0 * area + gibbs * a0 * (r * lnR - r + 1.0);
+  const double held = unclamped < lowest ? lowest : highest, lnReached = (held - t0) / gibbs;
+  const double reached = std::exp(lnReached);
+  return t0 * a0 * reached + gibbs * a0 * (reached * lnReached - reached + 1.0) + held * (area - a0 * reached);
 }
 
 namespace {

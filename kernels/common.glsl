@@ -100,11 +100,12 @@ TriangleTension triangleTensionOf(float startTension, float startArea, float are
 float triangleTensionEnergy(float startTension, float startArea, float area) {
   const float gibbs = params.gibbsElasticity, t0 = startTension, a0 = startArea;
   if (!(gibbs > 0.0 && a0 > 0.0 && area > 0.0)) return t0 * area;
-  const float lower = a0 * exp((params.surfaceTension - t0) / gibbs);
-  const float upper = a0 * exp((4.0 * params.surfaceTension - t0) / gibbs);
-  const float within = clamp(area, lower, upper), r = within / a0;
-  const float beyond = area < lower ? params.surfaceTension : 4.0 * params.surfaceTension;
-  return t0 * within + gibbs * a0 * (r * log(r) - r + 1.0) + (area == within ? 0.0 : beyond * (area - within));
+  const float r = area / a0, lnR = log(r), unclamped = t0 + gibbs * lnR;
+  const float lowest = params.surfaceTension, highest = 4.0 * params.surfaceTension;
+  if (lowest <= unclamped && unclamped <= highest) return t0 * area + gibbs * a0 * (r * lnR - r + 1.0);
+  const float held = unclamped < lowest ? lowest : highest, lnReached = (held - t0) / gibbs;
+  const float reached = exp(lnReached);
+  return t0 * a0 * reached + gibbs * a0 * (reached * lnReached - reached + 1.0) + held * (area - a0 * reached);
 }
 
 // framePoint of cpu-reference/wire_frame.cpp.

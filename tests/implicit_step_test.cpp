@@ -10,6 +10,7 @@
 #include "colouring.h"
 #include "cpu_stepper.h"
 #include "film.h"
+#include "float_lanes.h"
 #include "implicit_euler.h"
 #include "scripted_gestures.h"
 #include "simulation.h"
@@ -51,6 +52,21 @@ TEST(ImplicitStep, SolveLinear3SolvesASymmetricPositiveSystem) {
     // float32 with a condition number of at most ~100 here: residual within 1e-4 of |b|.
     EXPECT_LT((a * x - b).norm(), 1e-4f * std::max(1.0f, b.norm())) << "case " << k;
   }
+}
+
+// The lanes' logarithm (the physical model's Gibbs law in the sweeps): within 3e-7 relative of std::log, or 3e-7
+// absolute near 1 (float rounding: a few ulp of the terms it sums), and the same bits in all four lanes as for one
+// float, which the lanes' sweep needs to solve each particle as the one-particle block does.
+TEST(ImplicitStep, TheLanesLogarithmIsTheLogarithmInEveryLane) {
+  for (float x = 1e-6f; x < 1e6f; x *= 1.0137f) {
+    const float expected = std::log(x), got = logOf(x);
+    EXPECT_NEAR(got, expected, 3e-7f * std::max(1.0f, std::abs(expected))) << "x = " << x;
+    const Float4 lanes = logOf(Float4::of(x, 1.0f / x, 1.5f * x, x));
+    EXPECT_EQ(lanes.lane(0), got);
+    EXPECT_EQ(lanes.lane(1), logOf(1.0f / x));
+    EXPECT_EQ(lanes.lane(2), logOf(1.5f * x));
+  }
+  EXPECT_EQ(logOf(1.0f), 0.0f);
 }
 
 // The norm of the implicit objective's gradient over the solved particles after `sweeps` sweeps of one step.

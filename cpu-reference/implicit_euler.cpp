@@ -72,35 +72,6 @@ VertexBlock blockOf(const BlockSum<float>& b) {
   return v;
 }
 
-// Four one-particle sums in the lanes of one, and lane l back out.
-BlockSum<Float4> inLanes(const std::array<BlockSum<float>, 4>& b) {
-  const auto pack = [&](auto member) { return Float4::of(b[0].*member, b[1].*member, b[2].*member, b[3].*member); };
-  BlockSum<Float4> r;
-  r.gradient = {Float4::of(b[0].gradient.x, b[1].gradient.x, b[2].gradient.x, b[3].gradient.x),
-                Float4::of(b[0].gradient.y, b[1].gradient.y, b[2].gradient.y, b[3].gradient.y),
-                Float4::of(b[0].gradient.z, b[1].gradient.z, b[2].gradient.z, b[3].gradient.z)};
-  r.xx = pack(&BlockSum<float>::xx);
-  r.xy = pack(&BlockSum<float>::xy);
-  r.xz = pack(&BlockSum<float>::xz);
-  r.yy = pack(&BlockSum<float>::yy);
-  r.yz = pack(&BlockSum<float>::yz);
-  r.zz = pack(&BlockSum<float>::zz);
-  r.shortestSpring = pack(&BlockSum<float>::shortestSpring);
-  return r;
-}
-BlockSum<float> laneOf(const BlockSum<Float4>& b, int l) {
-  BlockSum<float> r;
-  r.gradient = {b.gradient.x.lane(l), b.gradient.y.lane(l), b.gradient.z.lane(l)};
-  r.xx = b.xx.lane(l);
-  r.xy = b.xy.lane(l);
-  r.xz = b.xz.lane(l);
-  r.yy = b.yy.lane(l);
-  r.yz = b.yz.lane(l);
-  r.zz = b.zz.lane(l);
-  r.shortestSpring = b.shortestSpring.lane(l);
-  return r;
-}
-
 // Damping along a direction, dissipation c/(2h) ((dx_i - dx_j) . dir)^2 with dx the displacement over the
 // step: the implicit form of the damping force c ((v_j - v_i) . dir) dir. Its Hessian c/h dir dir^T is
 // returned for the caller to add with the other terms along dir.
@@ -390,10 +361,13 @@ template <class F>
 void addAirCoupling(MaskOf<F> m, F coupling, F h, const Vec<F>& n, const Vec<F>& dx, BlockSum<F>& b) {
   b.addOuter(m, addDampingGradient(m, coupling, h, n, dx, b), n);
 }
-// A closed bubble's gas: Boyle's pressure at the iterate's volume, along the normal of the step's start.
-void addGas(const Params& p, const Bubble& bubble, const Topology& topo, const State& s, size_t i, BlockSum<float>& b) {
-  b.subtractGradient(true, lanesOf(boyleForce(p, bubble.pressure, topo, s, i)));
-  b.addOuter(true, breathingStiffness(bubble, s.voronoiArea[i]), lanesOf(s.normal.get(i)));
+// A closed bubble's gas: Boyle's pressure at the iterate's volume times the volume's gradient at the step's start
+// (boyleForce), and breathingStiffness along the normal n of the step's start, for a particle of Voronoi area A.
+template <class F>
+void addGas(MaskOf<F> m, const Params& p, const Bubble& bubble, const Vec<F>& volumeGradient, F area, const Vec<F>& n,
+            BlockSum<F>& b) {
+  b.subtractGradient(m, F(bubble.pressure - p.pressureCoefficient) * volumeGradient);
+  b.addOuter(m, bubble.volume > 0 ? F(bubble.pressure) * area * F(bubble.areaPerVolume) : F(0.0f), n);
 }
 
 // The Newton step H^-1 g of a block by the adjugate (solveLinear3's operations on the symmetric entries).
@@ -460,7 +434,8 @@ VertexBlock objectiveBlock(const Params& p, const StepUniforms& u, const Bubble&
   addInternal<float>(p, u.dt, topo, s, {static_cast<uint32_t>(i)}, {true},
                      ListedRing{topo, s, static_cast<uint32_t>(i)}, x, dx, b);
   addAirCoupling(true, airCoupling(p, u, s, i), u.dt, lanesOf(s.normal.get(i)), dx, b);
-  if (u.closed) addGas(p, bubble, topo, s, i, b);
+  if (u.closed)
+    addGas<float>(true, p, bubble, lanesOf(volumeGradient(topo, s, i)), s.voronoiArea[i], lanesOf(s.normal.get(i)), b);
   return blockOf(b);
 }
 
@@ -501,6 +476,8 @@ void layOutLane(const Params& p, const StepUniforms& u, const Topology& topo, co
   runs.inertia[lane] = t.inertia;
   runs.drag[lane] = t.drag;
   runs.airCoupling[lane] = solved ? airCoupling(p, u, s, i) : 0.0f;
+  runs.volumeGradient.set(lane, solved && u.closed ? volumeGradient(topo, s, i) : Vec3::Zero());
+  runs.area[lane] = solved ? s.voronoiArea[i] : 0.0f;
   runs.springCount[lane] = solved ? topo.springOffset[i + 1] - topo.springOffset[i] : 0;
   runs.triangleCount[lane] = solved && p.tensionModel == 1 ? topo.triangleOffset[i + 1] - topo.triangleOffset[i] : 0;
 }
@@ -555,8 +532,8 @@ void layOutSweepRuns(const Params& p, const StepUniforms& u, const Topology& top
   }
   const auto count = static_cast<long>(first.size());
   for (auto* v : {&runs.particle, &runs.solved, &runs.springCount, &runs.triangleCount}) v->resize(4 * first.size());
-  for (auto* v : {&runs.target, &runs.start, &runs.normal}) v->resize(4 * first.size());
-  for (auto* v : {&runs.inertia, &runs.drag, &runs.airCoupling}) v->resize(4 * first.size());
+  for (auto* v : {&runs.target, &runs.start, &runs.normal, &runs.volumeGradient}) v->resize(4 * first.size());
+  for (auto* v : {&runs.inertia, &runs.drag, &runs.airCoupling, &runs.area}) v->resize(4 * first.size());
   runs.springSlot.resize(first.size() + 1);
   runs.triangleSlot.resize(first.size() + 1);
 #pragma omp parallel for schedule(static)
@@ -601,16 +578,10 @@ void solveVertexBlockRun(const Params& p, const StepUniforms& u, const Bubble& b
   const Vec<Float4> x = gatherVec<Float4>(s.position, i), dx = x - t.start;
   BlockSum<Float4> b = inertialBlock(t, x);
   addInternal<Float4>(p, u.dt, topo, s, i, solved, RunRing{runs, run}, x, dx, b);
-  addAirCoupling(Mask4::of(solved[0], solved[1], solved[2], solved[3]), Float4::load(&runs.airCoupling[at]),
-                 Float4(u.dt), lanes(runs.normal), dx, b);
-  if (u.closed) {  // the gas, lane by lane (a closed bubble's sweeps only)
-    std::array<BlockSum<float>, 4> each;
-    for (int l = 0; l < 4; ++l) {
-      each[l] = laneOf(b, l);
-      if (solved[l]) addGas(p, bubble, topo, s, i[l], each[l]);
-    }
-    b = inLanes(each);
-  }
+  const Mask4 live = Mask4::of(solved[0], solved[1], solved[2], solved[3]);
+  addAirCoupling(live, Float4::load(&runs.airCoupling[at]), Float4(u.dt), lanes(runs.normal), dx, b);
+  if (u.closed)
+    addGas(live, p, bubble, lanes(runs.volumeGradient), Float4::load(&runs.area[at]), lanes(runs.normal), b);
   const Vec<Float4> step = withinTrustRegionOf(solveSymmetric(b), b.shortestSpring);
   for (int l = 0; l < 4; ++l)  // the lanes' particles share no term, so each moves on its own
     if (solved[l]) applyStep(s, i[l], Vec3(step.x.lane(l), step.y.lane(l), step.z.lane(l)));

@@ -120,10 +120,11 @@ struct SweepRuns {
   // Four per run: the particles (a lane past the colour's end repeats lane 0's), whether each is solved
   // (living, not past the end), and how many springs and triangles of its one-ring are in the run's slots.
   std::vector<uint32_t> particle, solved, springCount, triangleCount;
-  // Four per run, fixed over the step: each solved particle's target y, x_t, the normal n of the step's start,
-  // m / h^2, the still-air drag / h and airCoupling (zeros in a lane not solved).
-  Vec3Array target, start, normal;
-  std::vector<float> inertia, drag, airCoupling;
+  // Four per run, fixed over the step: each solved particle's target y, x_t, the normal n of the step's start, a
+  // closed film's volumeGradient (stages.h), m / h^2, the still-air drag / h, airCoupling and the Voronoi area
+  // (zeros in a lane not solved).
+  Vec3Array target, start, normal, volumeGradient;
+  std::vector<float> inertia, drag, airCoupling, area;
   std::vector<uint32_t> springSlot, triangleSlot;  // run r's slots are [slot[r], slot[r + 1])
   // Four per slot; a lane without a spring (triangle) there holds lane 0's particle and zeros, masked off.
   std::vector<uint32_t> springNeighbour;

@@ -361,13 +361,19 @@ template <class F>
 void addAirCoupling(MaskOf<F> m, F coupling, F h, const Vec<F>& n, const Vec<F>& dx, BlockSum<F>& b) {
   b.addOuter(m, addDampingGradient(m, coupling, h, n, dx, b), n);
 }
+// breathingStiffness (implicit_euler.h) for one particle or four.
+template <class F>
+F breathingStiffnessOf(const Bubble& bubble, F area) {
+  return bubble.volume > 0 ? F(bubble.pressure) * area * F(bubble.areaPerVolume) : F(0.0f);
+}
+
 // A closed bubble's gas: Boyle's pressure at the iterate's volume times the volume's gradient at the step's start
 // (boyleForce), and breathingStiffness along the normal n of the step's start, for a particle of Voronoi area A.
 template <class F>
 void addGas(MaskOf<F> m, const Params& p, const Bubble& bubble, const Vec<F>& volumeGradient, F area, const Vec<F>& n,
             BlockSum<F>& b) {
-  b.subtractGradient(m, F(bubble.pressure - p.pressureCoefficient) * volumeGradient);
-  b.addOuter(m, bubble.volume > 0 ? F(bubble.pressure) * area * F(bubble.areaPerVolume) : F(0.0f), n);
+  b.subtractGradient(m, F(boyleExcess(p, bubble.pressure)) * volumeGradient);
+  b.addOuter(m, breathingStiffnessOf(bubble, area), n);
 }
 
 // The Newton step H^-1 g of a block by the adjugate (solveLinear3's operations on the symmetric entries).
@@ -395,10 +401,7 @@ Bubble bubbleOf(float volume, float pressure) {
   return {volume, pressure, volume > 0 ? std::cbrt(sphereShape / volume) : 0.0f};
 }
 
-float breathingStiffness(const Bubble& bubble, float area) {
-  if (!(bubble.volume > 0)) return 0.0f;
-  return bubble.pressure * area * bubble.areaPerVolume;
-}
+float breathingStiffness(const Bubble& bubble, float area) { return breathingStiffnessOf(bubble, area); }
 
 int solverSweeps(const Params& p, const StepUniforms& u) {
   return u.solverIterations > 0 ? u.solverIterations : p.solverIterations;

@@ -276,8 +276,10 @@ Vec3 volumeGradient(const Topology& topo, const State& s, size_t i) {
   return twiceAreaNormals / 6.0f;
 }
 
+float boyleExcess(const Params& p, float pressure) { return pressure - p.pressureCoefficient; }
+
 Vec3 boyleForce(const Params& p, float pressure, const Topology& topo, const State& s, size_t i) {
-  return (pressure - p.pressureCoefficient) * volumeGradient(topo, s, i);
+  return boyleExcess(p, pressure) * volumeGradient(topo, s, i);
 }
 
 void computeForces(const Params& p, const StepUniforms& u, float pressure, const Topology& topo, State& s, size_t i) {

@@ -131,6 +131,8 @@ Vec3 volumeGradient(const Topology& topo, const State& s, size_t i);
 // for (docs/performance.md, session 16). The implicit step evaluates it at the volume of its current iterate
 // (implicit_euler.h): at the step's start it is unstable at h = 0.02 s for a bubble of tens of centimetres.
 Vec3 boyleForce(const Params& p, float pressure, const Topology& topo, const State& s, size_t i);
+// Its scalar factor, the excess of Boyle's pressure over P_0 (Pa), for a gradient laid out elsewhere.
+float boyleExcess(const Params& p, float pressure);
 // Explicit integrator: the whole of Eq. (2), internal + external + linear air drag + air coupling (open) or
 // Boyle (closed).
 void computeForces(const Params& p, const StepUniforms& u, float pressure, const Topology& topo, State& s, size_t i);

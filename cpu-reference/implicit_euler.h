@@ -114,7 +114,8 @@ void solveVertexBlock(const Params& p, const StepUniforms& u, const Bubble& bubb
 // (float_lanes.h), with their one-rings laid out once per step as below: slot k of a run holds the k-th
 // spring (triangle) of each of its four particles side by side, so that a sweep reads four neighbours'
 // indices with one load, and what the sweeps would recompute unchanged (a spring's stiffness, a triangle's
-// tension: the elasticity is frozen over the step; the corners after i) is there already.
+// tension and area at the step's start: the elasticity is frozen over the step; the corners after i; a closed
+// film's volume gradient, from the start's normals) is there already.
 struct SweepRuns {
   std::vector<uint32_t> colourRuns;  // colour c's runs are [colourRuns[c], colourRuns[c + 1])
   // Four per run: the particles (a lane past the colour's end repeats lane 0's), whether each is solved

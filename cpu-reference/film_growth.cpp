@@ -239,9 +239,8 @@ size_t contractSlackSprings(const Params& params, Film& film, SpringEnergyAllowa
         params.energyNeutralContraction
             ? length - std::min(rest - length, params.springPrestrain * length)  // stretched as compressed
             : length * (1.0f - params.springPrestrain);                          // as taut as new film
-    const float half = 0.5f * springStiffness(s, a, b);
-    candidates.push_back({(rest - length) / length, k, taut,
-                          half * ((length - taut) * (length - taut) - (length - rest) * (length - rest))});
+    candidates.push_back(
+        {(rest - length) / length, k, taut, springEnergy(s, a, b, length, taut) - springEnergy(s, a, b, length, rest)});
   });
   std::sort(candidates.begin(), candidates.end(), [](const Contraction& x, const Contraction& y) {
     return x.slack != y.slack ? x.slack > y.slack : x.spring < y.spring;
@@ -363,8 +362,8 @@ size_t mergeCrowdedParticles(const Params& params, Film& film, SpringEnergyAllow
   topo = rebuildTopology(topo, std::move(triangles), s.position, params.springPrestrain, &made);
   for (size_t k : made) {  // as taut as new film while the allowance pays, else at their length
     const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
-    const float length = (s.position.get(a) - s.position.get(b)).norm(), stretch = length - topo.restLength[k];
-    if (!allowance.pays(0.5f * springStiffness(s, a, b) * stretch * stretch)) topo.restLength[k] = length;
+    const float length = (s.position.get(a) - s.position.get(b)).norm();
+    if (!allowance.pays(springEnergy(s, a, b, length, topo.restLength[k]))) topo.restLength[k] = length;
   }
   return merged;
 }

@@ -150,6 +150,10 @@ F transverseStiffnessOf(F stiffness, F rest, F length) {
 
 float springStiffness(const State& s, size_t i, size_t j) { return 0.5f * (s.elasticity[i] + s.elasticity[j]); }
 
+float springEnergy(const State& s, size_t i, size_t j, float length, float rest) {
+  return 0.5f * springStiffness(s, i, j) * (length - rest) * (length - rest);
+}
+
 float transverseStiffness(float stiffness, float rest, float length) {
   return transverseStiffnessOf(stiffness, rest, length);
 }

@@ -51,6 +51,8 @@ float breathingStiffness(const Bubble& bubble, float area);
 // k (1 - l0/len) (I - dir dir^T) keeps the transverse part only while stretched (projected onto the positive
 // semi-definite cone); a triangle of the physical model pulls with the mean 2 gamma of its corners (N/m).
 float springStiffness(const State& s, size_t i, size_t j);
+// The energy k/2 (length - rest)^2 of the spring between i and j (Eq. 3, k = springStiffness) at this length.
+float springEnergy(const State& s, size_t i, size_t j, float length, float rest);
 float transverseStiffness(float stiffness, float rest, float length);
 float triangleTension(const State& s, const uint32_t* corners);
 // The tension of a triangle whose area went from startArea, where the step started, to area. Its surfactant moves

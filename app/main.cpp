@@ -6,6 +6,7 @@
 
 #include "bench_command.h"
 #include "cli_checks.h"
+#include "evaluate_command.h"
 #include "record_command.h"
 #include "run_command.h"
 #include "scene_file.h"
@@ -123,6 +124,8 @@ int main(int argc, char** argv) {
 
   gb::RecordOptions record;
   CLI::App* recordCmd = gb::addRecordCommand(app, record);
+  gb::EvaluateOptions evaluate;
+  CLI::App* evaluateCmd = gb::addEvaluateCommand(app, evaluate);
   gb::ViewOptions view;
   view.run = run;  // the scene, if any
   view.tool = tool;
@@ -146,6 +149,7 @@ int main(int argc, char** argv) {
   if (viewCmd->parsed()) return gb::runView(view);
   try {
     if (recordCmd->parsed()) return gb::runRecord(record);
+    if (evaluateCmd->parsed()) return gb::runEvaluate(evaluate);
     run.tool.kind = tool == "ring" ? gb::ToolKind::Ring : gb::ToolKind::TwoWands;
     run.durationFromInput = runCmd->count("--duration") == 0 && !sceneSetsDuration;
     if (runCmd->count("--burst-at") > 0) run.burstOnAnyInput = true;

@@ -28,7 +28,7 @@ HandObservation HandHold::update(double t, const std::optional<Vec3d>& measureme
 
 DepthHandSource::DepthHandSource(std::unique_ptr<DepthStream> stream, const DetectionOptions& detection,
                                  const TrackerOptions& tracker)
-    : stream_(std::move(stream)), detectionOptions_(detection), tracker_(tracker) {}
+    : stream_(std::move(stream)), finder_(detection, tracker) {}
 
 std::optional<HandSample> DepthHandSource::next() {
   try {
@@ -54,7 +54,7 @@ std::optional<HandSample> DepthHandSource::nextSample() {
           std::snprintf(text, sizeof text, "no depth frame from the Kinect for %.1f s (unplugged?)", now - lastFrame_);
           throw HandSourceLost(text);
         }
-        return tracker_.update(now, Detection{});
+        return finder_.miss(now);
       }
       case DepthStream::Poll::Frame:
         if (lastFrame_ > 0.0 && frame_.time > lastFrame_ && frame_.time - lastFrame_ < 1.0)
@@ -64,18 +64,15 @@ std::optional<HandSample> DepthHandSource::nextSample() {
         if (observer_) observer_(frame_);
         if (frame_.gravityUp) checkGravity();
         if (!gravityBelieved_) frame_.gravityUp.reset();
-        const Detection detection = detectHands(frame_, detectionOptions_);
-        performerPixels_ = detection.performerPixels;
-        bodyDepth_ = detection.bodyDepth;
-        return tracker_.update(frame_.time, detection);
+        return finder_.update(frame_);
     }
   }
 }
 
 void DepthHandSource::checkGravity() {
-  if (detectionOptions_.gravityUp || framesToGravityCheck_-- > 0) return;
-  const std::optional<FloorPlane> along = floorOf(frame_, detectionOptions_, frame_.gravityUp);
-  const std::optional<FloorPlane> searched = floorOf(frame_, detectionOptions_, std::nullopt);
+  if (finder_.options().gravityUp || framesToGravityCheck_-- > 0) return;
+  const std::optional<FloorPlane> along = floorOf(frame_, finder_.options(), frame_.gravityUp);
+  const std::optional<FloorPlane> searched = floorOf(frame_, finder_.options(), std::nullopt);
   if (!along || !searched) return;  // no floor in view: nothing to check against, the next frame tries again
   framesToGravityCheck_ = kGravityCheckEvery;
   const double degrees = std::acos(std::clamp(along->up.dot(searched->up), -1.0, 1.0)) * 180.0 / std::numbers::pi;
@@ -93,11 +90,12 @@ void DepthHandSource::checkGravity() {
 
 std::string DepthHandSource::whyNoHands() const {
   char text[96];
-  if (performerPixels_ == 0)
-    std::snprintf(text, sizeof text, "no body in the depth band %.1f-%.1f m", detectionOptions_.nearLimit,
-                  detectionOptions_.farLimit);
+  const Detection& d = finder_.detection();
+  if (d.performerPixels == 0)
+    std::snprintf(text, sizeof text, "no body in the depth band %.1f-%.1f m", finder_.options().nearLimit,
+                  finder_.options().farLimit);
   else
-    std::snprintf(text, sizeof text, "a body at %.1f m, no hand held out from it", bodyDepth_);
+    std::snprintf(text, sizeof text, "a body at %.1f m, no hand held out from it", d.bodyDepth);
   return text;
 }
 

@@ -15,7 +15,7 @@
 
 #include "calibration.h"
 #include "freenect_stream.h"
-#include "hand_detector.h"
+#include "hand_finder.h"
 #include "scripted_gestures.h"
 
 namespace gb {
@@ -40,13 +40,10 @@ class DepthHandSource : public HandSource {
 
  private:
   std::unique_ptr<DepthStream> stream_;
-  DetectionOptions detectionOptions_;
-  HandTracker tracker_;
+  HandFinder finder_;
   kinect::DepthFrame frame_;
   double lastFrame_ = 0.0;
   double frameInterval_ = 0.0;  // s between depth frames, smoothed (0: not known yet)
-  int performerPixels_ = 0;     // of the newest detection (0: nobody in the band)
-  double bodyDepth_ = 0.0;      // m, of the newest detection
   std::function<void(const kinect::DepthFrame&)> observer_;
   std::optional<HandSample> nextSample();  // next() but for letting go of a lost camera
   // The accelerometer is believed while it agrees with the floor found in the depth without it: checked on

@@ -17,6 +17,7 @@ packages=(
   mesa-vulkan-drivers                # lavapipe: the software Vulkan device the tests and CI run on
   vulkan-validationlayers            # the tests run with the Khronos validation layer
   libfreenect-dev libfreenect-bin    # Kinect v1 depth capture; fakenect plays recordings back
+  libarchive-dev                     # recordings packed as .tar.gz (giantbubble evaluate, gb_hands_bench)
   libglfw3-dev xvfb xauth            # live window; the window test runs under Xvfb
   ffmpeg                             # MP4 output of rendered frames (optional at run time)
   libtomlplusplus-dev                # scene files

@@ -1,0 +1,71 @@
+#include "evaluate_command.h"
+
+#include <cstdio>
+
+#include "depth_recording.h"
+#include "hand_evaluation.h"
+#include "trajectory_file.h"
+
+namespace gb {
+
+namespace {
+
+void printHeader() {
+  std::printf("%-24s %7s %8s %8s %12s %9s %10s %9s\n", "recording", "frames", "<=10 cm", "<=15 cm", "false/frame",
+              "swapped", "median cm", "ms/frame");
+}
+
+void printScore(const std::string& name, const HandScore& s) {
+  std::printf("%-24s %7ld %7.1f%% %7.1f%% %12.3f %8.1f%% %10.1f %9.1f\n", name.c_str(), s.frames, 100 * s.found10(),
+              100 * s.found15(), s.falsePerFrame(), 100 * s.swappedShare(), 100 * s.medianError(), s.msPerFrame());
+}
+
+}  // namespace
+
+CLI::App* addEvaluateCommand(CLI::App& app, EvaluateOptions& o) {
+  CLI::App* cmd = app.add_subcommand(
+      "evaluate", "score the hands found in depth recordings against their ground truth (hands.csv)");
+  cmd->add_option("recordings", o.recordings, "fakenect recordings: folders or .tar.gz archives of one")->required();
+  cmd->add_option("--truth", o.truth, "the ground truth of a single recording (a trajectory CSV), if not hands.csv");
+  cmd->add_option("--depth-band", o.depthBand, "NEAR FAR: metres from the camera where the performer stands")
+      ->expected(2);
+  cmd->add_flag("--mirrored", o.mirrored, "the depth images are mirrored (the performer's left hand on the left)");
+  cmd->add_flag("--each", o.perRecording, "print a line per recording, not only the total");
+  return cmd;
+}
+
+int runEvaluate(const EvaluateOptions& o) {
+  if (!o.truth.empty() && o.recordings.size() != 1) {
+    std::fprintf(stderr, "error: --truth gives the ground truth of one recording; %zu were given\n",
+                 o.recordings.size());
+    return 1;
+  }
+  if (o.depthBand[0] >= o.depthBand[1]) {
+    std::fprintf(stderr, "error: --depth-band: expected NEAR FAR with NEAR < FAR\n");
+    return 1;
+  }
+  DetectionOptions detection;
+  detection.nearLimit = static_cast<float>(o.depthBand[0]);
+  detection.farLimit = static_cast<float>(o.depthBand[1]);
+  TrackerOptions tracker;
+  tracker.mirrored = o.mirrored;
+  HandScore total;
+  if (o.perRecording) printHeader();
+  try {
+    for (const std::string& path : o.recordings) {
+      DepthRecording recording = readDepthRecording(path);
+      if (!o.truth.empty()) recording.truth = readTrajectory(o.truth);
+      const HandScore score = evaluateRecording(recording, detection, tracker);
+      if (o.perRecording) printScore(recording.name, score);
+      total += score;
+    }
+  } catch (const HandSourceError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
+  if (!o.perRecording) printHeader();
+  printScore(o.recordings.size() == 1 ? "total" : "all " + std::to_string(o.recordings.size()), total);
+  return 0;
+}
+
+}  // namespace gb

@@ -1,0 +1,23 @@
+#pragma once
+// `giantbubble evaluate`: plays depth recordings that carry a ground truth of the hands (hands.csv beside the
+// frames, or --truth) through the hand finder, as fast as it runs, and prints how many true hands were found
+// within 10 and 15 cm, the false hands per frame, the frames with the sides swapped and the detection time.
+
+#include <CLI/CLI.hpp>
+#include <string>
+#include <vector>
+
+namespace gb {
+
+struct EvaluateOptions {
+  std::vector<std::string> recordings;         // folders or .tar.gz archives of fakenect recordings
+  std::string truth;                           // a trajectory CSV for a single recording without hands.csv
+  std::vector<double> depthBand = {0.5, 4.0};  // m
+  bool mirrored = false;
+  bool perRecording = false;  // a line per recording, not only the total
+};
+
+CLI::App* addEvaluateCommand(CLI::App& app, EvaluateOptions& options);
+int runEvaluate(const EvaluateOptions& options);  // the process exit code
+
+}  // namespace gb

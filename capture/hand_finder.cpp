@@ -1,0 +1,15 @@
+#include "hand_finder.h"
+
+namespace gb {
+
+HandFinder::HandFinder(const DetectionOptions& detection, const TrackerOptions& tracker)
+    : options_(detection), tracker_(tracker) {}
+
+HandSample HandFinder::update(const kinect::DepthFrame& frame) {
+  detection_ = detectHands(frame, options_);
+  return tracker_.update(frame.time, detection_);
+}
+
+HandSample HandFinder::miss(double time) { return tracker_.update(time, Detection{}); }
+
+}  // namespace gb

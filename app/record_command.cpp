@@ -12,6 +12,7 @@
 #include "cli_checks.h"
 #include "depth_plot.h"
 #include "interrupt.h"
+#include "output_file.h"
 #include "trajectory_file.h"
 #include "trajectory_metrics.h"
 #include "trajectory_plot.h"
@@ -130,6 +131,8 @@ int runRecord(const RecordOptions& o) {
                  "--report\n");
     return 1;
   }
+  for (const std::string& file : {o.plot, o.depthPlot})  // refused now, not after the recording
+    if (!file.empty()) (void)outputTarget(file);
   const std::string spec = o.input.spec();
   const bool noisy = o.noise.sigma > 0 || o.noise.outlierRate > 0;
   if (noisy && !o.input.scripted()) {

@@ -26,6 +26,15 @@ wait_for_lines() {
   fail "$1 never reached $2 lines"
 }
 
+# Waits (at most 120 s) until FILE holds TEXT.
+wait_for_text() {
+  for _ in $(seq 1200); do
+    grep -qF -- "$2" "$1" 2>/dev/null && return 0
+    sleep 0.1
+  done
+  fail "$1 never held $2"
+}
+
 # Frames in an MP4 as ffprobe decodes them (0 when it cannot be read).
 mp4_frames() {
   ffprobe -v error -count_frames -select_streams v:0 -show_entries stream=nb_read_frames -of csv=p=0 "$1" 2>/dev/null || echo 0
@@ -59,6 +68,11 @@ signal_case() {
   frames=$(mp4_frames run/render.mp4)
   echo "frames simulated: $rows, frames in the MP4: $frames"
   [ "$frames" -eq $((rows + 1)) ] || fail "the MP4 has $frames frames, expected $((rows + 1)) (frame 0 and $rows)"
+}
+
+# Fails unless FILE is the same as its copy in saved/ (a run must not have touched it).
+expect_unchanged() {
+  cmp -s "$1" "saved/$(basename "$1")" || fail "$1 was changed by a run that failed: $(cat log.txt)"
 }
 
 case "$CASE" in
@@ -173,6 +187,76 @@ case "$CASE" in
     [ "$rc" -eq 0 ] || fail "exit status $rc"
     grep -q "the simulation became unstable; a new film is dipped" log.txt || fail "no recovery reported"
     grep -q "presented 50 frames" log.txt || fail "the show did not go on"
+    ;;
+  outputs_only_onto_files)
+    # A FIFO or a folder where an output goes is refused by name, left as it was, and nothing blocks on the FIFO. (A
+    # device is the same case; it is checked in ShowProof.AnOutputIsNeverWrittenOntoAFifoAFolderOrADevice without
+    # writing to one: as root, the old rename replaced /dev/null.)
+    mkfifo fifo.json
+    mkdir folder.json
+    for target in fifo.json folder.json; do
+      timeout 120 "$EXE" bench --sizes 100 --backends cpu --steps 8 --json $target >log.txt 2>&1
+      rc=$?
+      cat log.txt
+      [ "$rc" -eq 1 ] || fail "bench --json $target: exit status $rc"
+      grep -q "error: will not write $target: it is a" log.txt || fail "bench --json $target: the problem is not named"
+      grep -q "results written\|Success" log.txt && fail "bench --json $target: says it succeeded"
+    done
+    [ -p fifo.json ] && [ -d folder.json ] || fail "the FIFO or the folder was replaced"
+    mkdir run
+    mkfifo run/stats.csv
+    timeout 120 "$EXE" run --duration 0.1 "${SMALL[@]}" --out run >log.txt 2>&1
+    rc=$?
+    cat log.txt
+    [ "$rc" -eq 1 ] || fail "a run onto a FIFO stats.csv: exit status $rc (124: it blocked)"
+    grep -q "will not write run/stats.csv: it is a FIFO" log.txt || fail "the FIFO stats.csv is not named"
+    ;;
+  two_runs_one_folder)
+    # A second run into the folder of a run that is going on is refused, naming the first; the first's rows stay whole.
+    trajectory 0 3600 7200 >long.csv
+    "$EXE" run --input trajectory:long.csv "${SMALL[@]}" --out same >first.txt 2>&1 &
+    first=$!
+    wait_for_lines same/stats.csv 4
+    "$EXE" run --scene fig10c "${SMALL[@]}" --duration 0.1 --out same >log.txt 2>&1
+    rc=$?
+    cat log.txt
+    kill -INT "$first"
+    wait "$first"
+    [ "$rc" -eq 1 ] || fail "the second run into the same folder: exit status $rc"
+    grep -q "error: another run is writing into same (process $first: .*giantbubble run --input trajectory:long.csv" \
+      log.txt || fail "the first run is not named"
+    grep -q '"scene": "default"' same/stats.json || fail "stats.json is not the first run's"
+    awk -F, 'NR > 1 && NF != 19 { bad = 1 } END { exit bad }' same/stats.csv || fail "stats.csv has rows cut or mixed"
+    ;;
+  failed_run_keeps_previous)
+    # A run refused for its input, its OSC target or its environment image leaves the previous run's files as they
+    # were; one killed outright leaves stats.json saying "running", one stopped by a full disk "failed: ...".
+    "$EXE" run --duration 0.1 "${SMALL[@]}" --out run >log.txt 2>&1 || fail "the first run failed: $(cat log.txt)"
+    mkdir saved
+    cp run/stats.json run/stats.csv run/wands.csv saved/
+    echo "t,left_x,left_y,left_z,right_x,right_y,right_z" >far.csv
+    echo "0,-1000000,0,2,1000000,0,2" >>far.csv
+    echo "not a picture" >sky.png
+    for bad in "--input trajectory:far.csv" "--osc no-port-here" "--render --environment sky.png"; do
+      # shellcheck disable=SC2086
+      "$EXE" run --duration 0.1 "${SMALL[@]}" $bad --out run >log.txt 2>&1 && fail "run $bad exited 0"
+      echo "run $bad: $(grep error log.txt)"
+      for file in run/stats.json run/stats.csv run/wands.csv; do expect_unchanged $file; done
+    done
+    trajectory 0 3600 7200 >long.csv
+    "$EXE" run --input trajectory:long.csv "${SMALL[@]}" --out run >log.txt 2>&1 &
+    pid=$!
+    wait_for_text run/stats.json '"status": "running"'
+    kill -KILL "$pid"
+    wait "$pid"
+    grep -q '"status": "running"' run/stats.json || fail "a run killed outright left stats.json: $(cat run/stats.json)"
+    (
+      ulimit -f 40
+      trap '' XFSZ
+      exec "$EXE" run --duration 10 "${SMALL[@]}" --out run
+    ) >log.txt 2>&1 && fail "a run on a full disk exited 0"
+    grep -Eq '"status": "failed: failed writing run/(stats|wands)\.csv: File too large"' run/stats.json ||
+      fail "a run stopped by a full disk left stats.json: $(cat run/stats.json)"
     ;;
   *) fail "unknown case $CASE" ;;
 esac

@@ -20,6 +20,7 @@
 #include "run_output.h"
 #include "scene_file.h"
 #include "trajectory_file.h"
+#include "untrusted.h"
 #include "view_command.h"
 #include "wand_input.h"
 
@@ -119,6 +120,51 @@ TEST(ShowProof, AWholeFileIsReplacedAtomicallyAndAnUnwritablePathIsNamed) {
   EXPECT_NE(message.find("cannot write " + (dir / "no_such_folder" / "a.json").string() + ": No such file"),
             std::string::npos)
       << message;
+}
+
+TEST(ShowProof, AnOutputIsNeverWrittenOntoAFifoAFolderOrADevice) {
+  const fs::path dir = scratch("targets");
+  const fs::path fifo = dir / "fifo.json", folder = dir / "folder.json";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  fs::create_directories(folder);
+  for (const auto& [path, kind] : {std::pair{fifo, "a FIFO"}, {folder, "a folder"}}) {
+    const std::string whole = errorOf([&] { writeFileAtomically(path, "x"); });
+    EXPECT_NE(whole.find("will not write " + path.string() + ": it is " + kind), std::string::npos) << whole;
+    const std::string rows = errorOf([&] { RowFile file(path); });  // a FIFO would block the open
+    EXPECT_NE(rows.find("will not write " + path.string() + ": it is " + kind), std::string::npos) << rows;
+  }
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  EXPECT_TRUE(fs::is_directory(folder));
+  // A device is refused by the check alone: no byte is written to /dev/null, which a rename would have replaced.
+  const std::string device = errorOf([] { (void)outputTarget("/dev/null"); });
+  EXPECT_NE(device.find("will not write /dev/null: it is a character device"), std::string::npos) << device;
+}
+
+TEST(ShowProof, AnOutputThroughASymbolicLinkReplacesItsTargetAndKeepsTheLink) {
+  const fs::path dir = scratch("link");
+  std::ofstream(dir / "real.json") << "old\n";
+  fs::create_symlink("real.json", dir / "link.json");
+  writeFileAtomically(dir / "link.json", "new\n");
+  EXPECT_TRUE(fs::is_symlink(dir / "link.json"));
+  EXPECT_EQ(readAll(dir / "real.json"), "new\n");
+}
+
+TEST(ShowProof, ASecondRunIntoTheSameFolderIsRefusedNamingTheFirst) {
+  const fs::path dir = scratch("lock") / "out";
+  {
+    const OutputFolder first(dir);
+    const std::string message = errorOf([&] { const OutputFolder second(dir); });
+    EXPECT_NE(
+        message.find("another run is writing into " + dir.string() + " (process " + std::to_string(::getpid()) + ": "),
+        std::string::npos)
+        << message;
+  }
+  EXPECT_NO_THROW(const OutputFolder again(dir));  // the lock goes with the run that held it
+  EXPECT_NE(errorOf([] { const OutputFolder empty(""); }).find("the output folder's name is empty (--out)"),
+            std::string::npos);
+  std::ofstream(dir / "file") << "x";
+  EXPECT_NE(errorOf([&] { const OutputFolder file(dir / "file"); }).find("is a regular file (--out): give a folder"),
+            std::string::npos);
 }
 
 TEST(ShowProof, Table1AveragesOnlyTheFramesWithAFilm) {
@@ -232,6 +278,35 @@ TEST(ShowProof, ATrajectoryHeaderWithAByteOrderMarkIsRead) {
   std::ofstream(csv)
       << "\xEF\xBB\xBFt,left_x,left_y,left_z,right_x,right_y,right_z\n0,0,0,2,0.3,0,2\n0.1,0,0,2,0.3,0,2\n";
   EXPECT_EQ(readTrajectory(csv).size(), 2u);
+}
+
+// Untrusted input on its way into a message (capture/untrusted.h): paths that are not regular files are named for
+// what they are, and text from files is escaped and cut before it reaches a terminal.
+TEST(Untrusted, APathThatIsNoRegularFileIsNamedForWhatItIs) {
+  const fs::path dir = scratch("kinds");
+  std::ofstream(dir / "file.csv") << "t\n";
+  ASSERT_EQ(::mkfifo((dir / "fifo.csv").c_str(), 0600), 0);
+  fs::create_symlink("/dev/zero", dir / "zero.csv");
+  fs::create_symlink("loop.csv", dir / "loop.csv");
+  EXPECT_EQ(whyNotARegularFile(dir / "file.csv"), "");
+  EXPECT_EQ(whyNotARegularFile(dir / "missing.csv"), "does not exist");
+  EXPECT_EQ(whyNotARegularFile(dir), "is a folder");
+  EXPECT_EQ(whyNotARegularFile(dir / "fifo.csv"), "is a FIFO");
+  EXPECT_EQ(whyNotARegularFile(dir / "zero.csv"), "is a character device");
+  EXPECT_EQ(whyNotARegularFile(dir / "loop.csv"), "cannot be read: Too many levels of symbolic links");
+}
+
+TEST(Untrusted, ControlCharactersAreEscapedAndLongTextIsCut) {
+  EXPECT_EQ(printable("fig10a"), "fig10a");
+  EXPECT_EQ(printable("red\n\x1b[31mtext"), "red\\n\\x1b[31mtext");
+  EXPECT_EQ(printable(std::string("a\0b", 3)), "a\\0b");  // a NUL no longer ends the message
+  EXPECT_EQ(printable("caf\xc3\xa9 \xe2\x80\x94 ok"), "caf\xc3\xa9 \xe2\x80\x94 ok");  // UTF-8 text stays
+  EXPECT_EQ(printable("\xc2\x9b"
+                      "31m"),
+            "\\xc2\\x9b31m");                      // the one-byte CSI (U+009B) is a control character
+  EXPECT_EQ(printable("\xff\xfe"), "\\xff\\xfe");  // bytes that are not UTF-8
+  const std::string field(10 << 20, '7');          // a 10 MB CSV field
+  EXPECT_EQ(printable(field), std::string(kMaxQuotedBytes, '7') + "...(10485760 bytes)");
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "hand_source.h"
+#include "untrusted.h"
 
 #ifndef GB_FREENECT_LIBRARY
 #define GB_FREENECT_LIBRARY "libfreenect.so.0.5"
@@ -56,8 +57,10 @@ bool isKinectDepthHeader(const std::string& header) {
 // Why fakenect could not read this entry's file now (empty when it can).
 std::string fileProblem(const fs::path& folder, const FakenectEntry& e) {
   const fs::path path = folder / e.file;
+  // Checked, not opened: a FIFO would block playback and /dev/zero would never end.
+  if (const std::string why = whyNotARegularFile(path); !why.empty())
+    return "file " + printable(path.string(), 300) + " " + why;
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) return "file " + path.string() + " is missing";
   const auto size = fs::file_size(path, ec);
   if (ec || size == 0) return "file " + path.string() + " is empty";
   if (e.type != 'd') return {};
@@ -65,7 +68,7 @@ std::string fileProblem(const fs::path& folder, const FakenectEntry& e) {
   const long long payload = depthPayload(path, header);
   if (payload < 0) return "depth file " + path.string() + " has no one-line PGM header";
   if (!isKinectDepthHeader(header))
-    return "depth file " + path.string() + " has the header '" + header + "', expected 'P5 640 480 65535'";
+    return "depth file " + path.string() + " has the header '" + printable(header) + "', expected 'P5 640 480 65535'";
   if (payload < static_cast<long long>(kDepthBytes))
     return "depth file " + path.string() + " is truncated: " + std::to_string(payload) + " bytes of depth, expected " +
            std::to_string(kDepthBytes) + " (640x480 16-bit values)";
@@ -77,10 +80,20 @@ std::string fileProblem(const fs::path& folder, const FakenectEntry& e) {
 FakenectIndex readFakenectIndex(const fs::path& folder) {
   const std::string where = "fakenect recording " + folder.string();
   std::error_code ec;
-  if (!fs::is_directory(folder, ec)) throw HandSourceError(where + ": no such folder");
-  std::ifstream in(folder / "INDEX.txt");
-  if (!in)
+  if (!fs::is_directory(folder, ec)) {
+    const std::string why = whyNotARegularFile(folder);
+    throw HandSourceError(where + ": " + (why.empty() ? "is a file, not a folder" : why));
+  }
+  const fs::path indexFile = folder / "INDEX.txt";
+  if (!fs::exists(indexFile, ec) && !ec)
     throw HandSourceError(where + ": no INDEX.txt (not a recording made by fakenect-record or giantbubble record)");
+  if (const std::string why = whyNotARegularFile(indexFile); !why.empty())
+    throw HandSourceError(where + ": INDEX.txt " + why);
+  if (fs::file_size(indexFile, ec) > kMaxIndexBytes)
+    throw HandSourceError(where + ": INDEX.txt is larger than " + std::to_string(kMaxIndexBytes >> 20) +
+                          " MiB (a recording of hours is a few MiB)");
+  std::ifstream in(indexFile);
+  if (!in) throw HandSourceError(where + ": INDEX.txt cannot be read");
   FakenectIndex index;
   index.folder = folder;
   std::string line;
@@ -102,7 +115,8 @@ FakenectIndex readFakenectIndex(const fs::path& folder) {
     int used = 0;
     if (std::sscanf(line.c_str(), "%c-%lf-%u%n", &e.type, &e.time, &timestamp, &used) != 3 ||
         (e.type != 'd' && e.type != 'r' && e.type != 'a') || !std::isfinite(e.time))
-      throw HandSourceError(at + ": '" + line + "' is not a fakenect entry (TYPE-TIME-TIMESTAMP…, TYPE d, r or a)");
+      throw HandSourceError(at + ": '" + printable(line) +
+                            "' is not a fakenect entry (TYPE-TIME-TIMESTAMP…, TYPE d, r or a)");
     // fakenect sleeps through the time between entries: a jump forward would stall playback for as long.
     if (!index.entries.empty() && e.time - index.entries.back().time > kMaxFakenectGap)
       throw HandSourceError(at + ": time jumps " + std::to_string(e.time - index.entries.back().time) +

@@ -51,7 +51,7 @@ trajectory() {
 # gives is capped at 3600 s (180,000 frames) with a note, not taken whole.
 signal_case() {
   local signal=$1 expected=$2
-  trajectory 0 7200 >long.csv
+  trajectory 0 3600 7200 >long.csv
   "$EXE" run --input trajectory:long.csv "${SMALL[@]}" "${RENDER[@]}" --out run >log.txt 2>&1 &
   local pid=$!
   wait_for_lines run/stats.csv 8

@@ -14,6 +14,8 @@
 #include <string>
 
 #include "cli_checks.h"
+#include "experiments.h"
+#include "freenect_stream.h"
 #include "osc_events.h"
 #include "output_file.h"
 #include "png_image.h"
@@ -278,6 +280,109 @@ TEST(ShowProof, ATrajectoryHeaderWithAByteOrderMarkIsRead) {
   std::ofstream(csv)
       << "\xEF\xBB\xBFt,left_x,left_y,left_z,right_x,right_y,right_z\n0,0,0,2,0.3,0,2\n0.1,0,0,2,0.3,0,2\n";
   EXPECT_EQ(readTrajectory(csv).size(), 2u);
+}
+
+TEST(ShowProof, ATrajectoryThatIsNoFileOrHoldsHostileTextIsNamedShortly) {
+  const fs::path dir = scratch("hostile_trajectory");
+  fs::create_symlink("/dev/zero", dir / "zero.csv");
+  fs::create_symlink("loop.csv", dir / "loop.csv");
+  EXPECT_NE(errorOf([&] { (void)readTrajectory(dir / "zero.csv"); }).find("zero.csv: is a character device"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { (void)readTrajectory(dir / "loop.csv"); }).find("Too many levels of symbolic links"),
+            std::string::npos);
+  const std::string header = "t,left_x,left_y,left_z,right_x,right_y,right_z\n";
+  std::ofstream(dir / "long.csv") << header << "0," << std::string(10 << 20, '7') << "x,0,2,0.3,0,2\n";
+  const std::string longField = errorOf([&] { (void)readTrajectory(dir / "long.csv"); });
+  EXPECT_LT(longField.size(), 300u) << "a 10 MB field is quoted, not echoed whole";
+  EXPECT_NE(longField.find("...(10485761 bytes)' is not a number"), std::string::npos) << longField.substr(0, 300);
+  const char nulRow[] = "0,1\0x,0,2,0.3,0,2\n";
+  std::ofstream(dir / "nul.csv") << header << std::string(nulRow, sizeof nulRow - 1);
+  const std::string nul = errorOf([&] { (void)readTrajectory(dir / "nul.csv"); });
+  EXPECT_NE(nul.find("left_x '1\\0x' is not a number"), std::string::npos) << nul;
+  std::ofstream(dir / "far.csv") << header << "0,-1000000,0,2,1000000,0,2\n";
+  const std::string far = errorOf([&] { (void)readTrajectory(dir / "far.csv"); });
+  EXPECT_NE(far.find("line 2: left_x -1000000 m is more than 100 m from the camera (a trajectory is in metres)"),
+            std::string::npos)
+      << far;
+}
+
+TEST(ShowProof, ALongTrajectoryIsReadOnlyAsFarAsTheRunAndTheRowLimitGo) {
+  const fs::path csv = scratch("long_trajectory") / "hands.csv";
+  {
+    std::ofstream out(csv);
+    out << "t,left_x,left_y,left_z,right_x,right_y,right_z\n0,,,,,,\n";  // hands found from t = 1 s
+    for (int k = 1; k <= 1000; ++k) out << k << ",-0.2,0,2,0.2,0,2\n";
+  }
+  std::string cut;
+  // Exact: 1 s without hands, then rows to 1 + 10 s and the first row past it, which the run's end falls before.
+  const auto run = readTrajectory(csv, 0.5, TrajectoryLimits{10.0}, &cut);
+  EXPECT_EQ(run.size(), 13u);
+  EXPECT_EQ(cut,
+            "note: trajectory file " + csv.string() + ", line 15: past the run's end; the rows from here are not read");
+  const auto rows = readTrajectory(csv, 0.5, TrajectoryLimits{1e9, 100}, &cut);
+  EXPECT_EQ(rows.size(), 100u);
+  EXPECT_NE(cut.find("line 102: 100 rows read, the most a trajectory may have"), std::string::npos) << cut;
+  EXPECT_EQ(readTrajectory(csv).size(), 1001u) << "a file within the limits is read whole";
+}
+
+TEST(ShowProof, AFakenectEntryThatIsNoFileIsNamedForWhatItIs) {
+  const fs::path dir = scratch("fakenect_kinds");
+  fs::create_directories(dir / "d-1.000000-100.pgm");
+  std::ofstream(dir / "INDEX.txt") << "d-1.000000-100.pgm\n";
+  const std::string folder = errorOf([&] { (void)readFakenectIndex(dir); });
+  EXPECT_NE(folder.find("INDEX.txt line 1: file " + (dir / "d-1.000000-100.pgm").string() + " is a folder"),
+            std::string::npos)
+      << folder;
+  fs::remove(dir / "d-1.000000-100.pgm");
+  ASSERT_EQ(::mkfifo((dir / "d-1.000000-100.pgm").c_str(), 0600), 0);
+  EXPECT_NE(errorOf([&] { (void)readFakenectIndex(dir); }).find("is a FIFO"), std::string::npos);
+  fs::remove(dir / "d-1.000000-100.pgm");
+  fs::create_symlink("/dev/zero", dir / "d-1.000000-100.pgm");
+  EXPECT_NE(errorOf([&] { (void)readFakenectIndex(dir); }).find("is a character device"), std::string::npos);
+  fs::remove(dir / "INDEX.txt");
+  fs::create_symlink("/dev/zero", dir / "INDEX.txt");  // would be read for ever
+  EXPECT_NE(errorOf([&] { (void)readFakenectIndex(dir); }).find("INDEX.txt is a character device"), std::string::npos);
+}
+
+TEST(ShowProof, AParameterOutOfRangeIsNamedWithTheValueAsGiven) {
+  Params p;
+  // One limit on particles whatever sets them: the parameter as --particles.
+  EXPECT_EQ(errorOf([&] { setParameter(p, "particlesAtFullSolution", 10'000'000); }),
+            "parameter particlesAtFullSolution = 10000000 is out of range [16, 2000000]");
+  EXPECT_EQ(errorOf([&] { setParameter(p, "particlesAtFullSolution", 2e9); }),
+            "parameter particlesAtFullSolution = 2000000000 is out of range [16, 2000000]");
+  EXPECT_EQ(errorOf([&] { setParameter(p, "frameTime", 1e-50); }),
+            "parameter frameTime = 1e-50 is out of range [1e-05, 0.1] s");
+  const std::string scene = errorOf([] {
+    (void)parseScene("name = \"big\"\n[params]\nparticlesAtFullSolution = 50000000\n", "big.toml", fs::current_path());
+  });
+  EXPECT_NE(scene.find("big.toml:3:"), std::string::npos) << scene;
+  EXPECT_NE(scene.find("= 50000000 is out of range [16, 2000000]"), std::string::npos) << scene;
+}
+
+TEST(ShowProof, FilmGenerationNamesTheOptionsAndTheInputsUnits) {
+  Params p;
+  p.solution = 0.01f;
+  p.particlesAtFullSolution = 300;
+  const WandState wands = gestureAt(Gesture::Straight, GestureOptions{}, 0.0);
+  const std::string few = errorOf([&] { Simulation sim(p, WandTool{}, wands); });
+  EXPECT_NE(few.find("a film of 16 particles (particlesAtFullSolution x solution: --particles, --solution) is too few"),
+            std::string::npos)
+      << few;
+  WandState far;
+  far.leftPosition = Vec3(-1e6f, 1.5f, 0);
+  far.rightPosition = Vec3(1e6f, 1.5f, 0);
+  const std::string distant = errorOf([&] { Simulation sim(Params{}, WandTool{}, far); });
+  EXPECT_NE(distant.find("the wands are 1e+06 m from the origin, beyond 1000 m"), std::string::npos) << distant;
+}
+
+TEST(ShowProof, AnExperimentStopsBetweenFramesWhenAsked) {
+  int asked = 0;
+  const auto stopAtThird = [&] { return ++asked == 3; };
+  Params small;
+  small.particlesAtFullSolution = 400;
+  const std::string message = errorOf([&] { (void)runExperiment("flat-disc", small, {}, stopAtThird); });
+  EXPECT_EQ(message.rfind("stopped at t = 0.04", 0), 0u) << message;  // two frames of 0.02 s ran
 }
 
 // Untrusted input on its way into a message (capture/untrusted.h): paths that are not regular files are named for

@@ -10,6 +10,7 @@
 #include "run_command.h"
 #include "scene_file.h"
 #include "thread_policy.h"
+#include "untrusted.h"
 #include "view_command.h"
 
 namespace {
@@ -17,10 +18,12 @@ namespace {
 // Every parameter of the model can be set on the command line as --param NAME=VALUE.
 void applyParameter(gb::Params& p, const std::string& assignment) {
   const auto eq = assignment.find('=');
-  if (eq == std::string::npos) throw CLI::ValidationError("--param", "expected NAME=VALUE, got '" + assignment + "'");
+  if (eq == std::string::npos)
+    throw CLI::ValidationError("--param", "expected NAME=VALUE, got '" + gb::printable(assignment) + "'");
   const std::string name = assignment.substr(0, eq), text = assignment.substr(eq + 1);
   if (!gb::findParamField(name))
-    throw CLI::ValidationError("--param", "unknown parameter '" + name + "' (see docs/model.md for the list)");
+    throw CLI::ValidationError("--param",
+                               "unknown parameter '" + gb::printable(name) + "' (see docs/model.md for the list)");
   size_t used = 0;
   double value = 0;
   try {
@@ -29,7 +32,7 @@ void applyParameter(gb::Params& p, const std::string& assignment) {
     used = 0;
   }
   if (used == 0 || used != text.size())
-    throw CLI::ValidationError("--param", "parameter " + name + ": '" + text + "' is not a number");
+    throw CLI::ValidationError("--param", "parameter " + name + ": '" + gb::printable(text) + "' is not a number");
   try {
     gb::setParameter(p, name, value);
   } catch (const std::invalid_argument& e) {

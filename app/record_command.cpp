@@ -106,7 +106,8 @@ CLI::App* addRecordCommand(CLI::App& app, RecordOptions& o) {
   cmd->add_option("--depth-plot", o.depthPlot,
                   "write one depth frame with the hands found in it as PNG (input kinect or fakenect:DIR): the "
                   "view to set the camera up by");
-  cmd->add_option("--depth-plot-frame", o.depthPlotFrame, "the frame --depth-plot draws, from 0 (default: the last)");
+  cmd->add_option("--depth-plot-frame", o.depthPlotFrame, "the frame --depth-plot draws, from 0 (default: the last)")
+      ->check(CLI::Range(0, 100000000));
   cmd->add_flag("--report", o.report, "print the jitter and lag of both stabilizers on this input");
   cmd->add_option("--duration", o.duration,
                   "seconds to record (default: all of a recorded input, a script's "

@@ -142,7 +142,7 @@ double runDuration(const RunOptions& o, const WandInput& input) {
   if (!o.durationFromInput || !input.length()) return o.duration;
   const double length = std::max(*input.length(), 0.02);
   if (length <= kMaxRunSeconds) return length;
-  std::fprintf(stderr, "note: the input is %.0f s long; the run stops at %.0f s (give --duration for another length)\n",
+  std::fprintf(stderr, "note: the input is %.4g s long; the run stops at %.0f s (give --duration for another length)\n",
                length, kMaxRunSeconds);
   return kMaxRunSeconds;
 }
@@ -181,7 +181,9 @@ struct OpenedRun {
 
 OpenedRun openRun(const RunOptions& o) {
   OpenedRun run;
-  run.input = makeWandInput(o.input, o.gestureOptions);
+  InputOptions input = o.input;
+  input.runSeconds = o.durationFromInput ? kMaxRunSeconds : o.duration;  // a file is read no further than the run
+  run.input = makeWandInput(input, o.gestureOptions);
   std::printf("input: %s\n", run.input->describe().c_str());
   run.duration = runDuration(o, *run.input);
   run.startFrame = run.input->at(0.0);

@@ -140,7 +140,7 @@ case "$CASE" in
     timeout 20 "$EXE" run --scene ./scene.toml >log.txt 2>&1
     rc=$?
     [ "$rc" -ne 124 ] || fail "--scene on a FIFO blocked"
-    grep -q "not a regular file" log.txt || fail "--scene on a FIFO: $(cat log.txt)"
+    grep -q "is a FIFO (a scene is read from a regular file)" log.txt || fail "--scene on a FIFO: $(cat log.txt)"
     ;;
   keys_overflow)
     "$EXE" live --keys 99999999999999999999:b >log.txt 2>&1 && fail "exited 0"
@@ -257,6 +257,58 @@ case "$CASE" in
     ) >log.txt 2>&1 && fail "a run on a full disk exited 0"
     grep -Eq '"status": "failed: failed writing run/(stats|wands)\.csv: File too large"' run/stats.json ||
       fail "a run stopped by a full disk left stats.json: $(cat run/stats.json)"
+    ;;
+  messages_name_the_problem)
+    # Each message names the real problem and the option or file to change.
+    expect_message() {
+      local message=$1
+      shift
+      "$EXE" "$@" >log.txt 2>&1 && fail "giantbubble $* exited 0"
+      grep -qF -- "$message" log.txt || fail "giantbubble $*: $(cat log.txt)"
+      echo "giantbubble $*: $(grep -F -- "$message" log.txt)"
+    }
+    expect_message "trajectory file /dev/zero: is a character device" run --input trajectory:/dev/zero --out run
+    expect_message "--particles, --solution) is too few for its wire" run --solution 0.01 --particles 300 \
+      --backend cpu --out run
+    expect_message "IPv6 is not supported" run --osc "[::1]:9000" --out run
+    expect_message "IPv6 is not supported" run --osc 127.0.0.1:9000:1 --out run
+    expect_message "particlesAtFullSolution = 2000000000 is out of range [16, 2000000]" run \
+      --param particlesAtFullSolution=2e9
+    expect_message "particlesAtFullSolution = 10000000 is out of range [16, 2000000]" run \
+      --param particlesAtFullSolution=10000000
+    expect_message "frameTime = 1e-50 is out of range [1e-05, 0.1] s" run --param frameTime=1e-50
+    expect_message "--keys -5:b: frame -5 is negative" live --keys -5:b
+    expect_message "--depth-plot-frame" record --input script:circles --depth-plot-frame -5 --report
+    trajectory 0 1e308 >forever.csv
+    expect_message "line 3: time 1e+308 s is 1e+308 s after the previous row's (at most 3600 s between rows)" run \
+      --input trajectory:forever.csv --out run
+    ;;
+  long_trajectory_read_as_far_as_the_run)
+    # 200,000 rows (about 17 minutes at 200 per second) for a 0.1 s run: read to the run's end (and a second for the
+    # stabilizer), with a note, not parsed whole.
+    awk 'BEGIN { print "t,left_x,left_y,left_z,right_x,right_y,right_z"; for (k = 0; k < 200000; ++k) printf "%.3f,-0.15,0,2,0.15,0,2\n", k * 0.005 }' >long.csv
+    "$EXE" run --input trajectory:long.csv --duration 0.1 "${SMALL[@]}" --out run >log.txt 2>&1 || fail "$(cat log.txt)"
+    grep -q "note: trajectory file long.csv, line 224: past the run's end; the rows from here are not read" log.txt ||
+      fail "no note that the rest was not read: $(cat log.txt)"
+    grep -q "(222 samples, 1.10 s)" log.txt || fail "not read to the run's end and a second: $(cat log.txt)"
+    ;;
+  terminal_injection)
+    # A scene's name is printed: one holding a newline and an escape sequence is refused, and the message escapes them.
+    printf 'name = "show\\n\\u001b[31mred"\n' >scene.toml
+    "$EXE" run --scene ./scene.toml --out run >log.txt 2>&1 && fail "a name with control characters was taken"
+    cat log.txt
+    grep -qF "name = 'show\n\x1b[31mred' holds control characters" log.txt || fail "the name is not named"
+    grep -q "$(printf '\033')" log.txt && fail "an escape sequence reached the terminal"
+    ;;
+  burst_with_no_film)
+    # B when the film is gone says so instead of "burst".
+    xvfb-run -a "$EXE" live --scene fig11a --frames 120 --width 160 --height 120 --particles 400 --backend cpu \
+      --fixed-step --auto-dip -1 --keys 5:b 110:b >log.txt 2>&1
+    rc=$?
+    cat log.txt
+    [ "$rc" -eq 0 ] || fail "exit status $rc"
+    grep -q "frame 5: burst" log.txt || fail "the first B did not burst the film"
+    grep -q "frame 110: B: no film to burst" log.txt || fail "B with no film is not said"
     ;;
   *) fail "unknown case $CASE" ;;
 esac

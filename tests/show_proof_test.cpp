@@ -1,6 +1,6 @@
-// Show-proofing (issue 14): nothing lost on a full disk, inputs that cannot stall the loop or slip a NaN past a
-// check, messages that say what is wrong. The command-line halves (signals, ffmpeg, live recovery) are in
-// cli_show_proof_test.sh.
+// Show-proofing: nothing lost on a full disk, no output written onto a device or a FIFO, inputs that cannot stall the
+// loop, slip a NaN past a check or grow without bound, messages that say what is wrong. The command-line halves
+// (signals, ffmpeg, live recovery) are in cli_show_proof_test.sh.
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -19,6 +19,8 @@
 #include "osc_events.h"
 #include "output_file.h"
 #include "png_image.h"
+#include "realtime_pacer.h"
+#include "renderer.h"
 #include "run_output.h"
 #include "scene_file.h"
 #include "trajectory_file.h"
@@ -249,7 +251,8 @@ TEST(ShowProof, ASceneThatIsAFolderOrAFifoIsNamedNotReadOrWaitedOn) {
   EXPECT_NE(errorOf([&] { (void)resolveScene(dir.string()); }).find("is a folder"), std::string::npos);
   const fs::path fifo = dir / "scene.toml";
   ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
-  EXPECT_NE(errorOf([&] { (void)resolveScene(fifo.string()); }).find("not a regular file"), std::string::npos);
+  EXPECT_NE(errorOf([&] { (void)resolveScene(fifo.string()); }).find("is a FIFO (a scene is read from a regular file)"),
+            std::string::npos);
 }
 
 TEST(ShowProof, AnIntegerTooLargeForTomlKeepsItsFileAndLine) {
@@ -344,6 +347,13 @@ TEST(ShowProof, AFakenectEntryThatIsNoFileIsNamedForWhatItIs) {
   EXPECT_NE(errorOf([&] { (void)readFakenectIndex(dir); }).find("INDEX.txt is a character device"), std::string::npos);
 }
 
+TEST(ShowProof, ASceneThatIsASymbolicLinkLoopIsNamedAsSuch) {
+  const fs::path dir = scratch("scene_loop");
+  fs::create_symlink("loop.toml", dir / "loop.toml");
+  const std::string message = errorOf([&] { (void)resolveScene((dir / "loop.toml").string()); });
+  EXPECT_NE(message.find("cannot be read: Too many levels of symbolic links"), std::string::npos) << message;
+}
+
 TEST(ShowProof, AParameterOutOfRangeIsNamedWithTheValueAsGiven) {
   Params p;
   // One limit on particles whatever sets them: the parameter as --particles.
@@ -374,6 +384,35 @@ TEST(ShowProof, FilmGenerationNamesTheOptionsAndTheInputsUnits) {
   far.rightPosition = Vec3(1e6f, 1.5f, 0);
   const std::string distant = errorOf([&] { Simulation sim(Params{}, WandTool{}, far); });
   EXPECT_NE(distant.find("the wands are 1e+06 m from the origin, beyond 1000 m"), std::string::npos) << distant;
+}
+
+TEST(ShowProof, AnIpv6OrMalformedOscTargetIsRefusedAsSuch) {
+  for (const char* target : {"[::1]:9000", "::1:9000", "127.0.0.1:9000:1"})
+    EXPECT_NE(errorOf([&] { OscSender sender(target); }).find("IPv6 is not supported"), std::string::npos) << target;
+}
+
+TEST(ShowProof, ANegativeScriptedKeyFrameIsRefused) {
+  std::string why;
+  EXPECT_FALSE(parseKeyPress("-5:b", why));
+  EXPECT_EQ(why, "--keys -5:b: frame -5 is negative (frames count from 0)");
+}
+
+TEST(ShowProof, ASceneNameWithControlCharactersIsRefused) {
+  const std::string message =
+      errorOf([] { (void)parseScene("name = \"show\\n\\u001b[31mred\"\n", "s.toml", fs::current_path()); });
+  EXPECT_NE(message.find("s.toml:1:"), std::string::npos) << message;
+  EXPECT_NE(message.find("name = 'show\\n\\x1b[31mred' holds control characters"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\x1b'), std::string::npos) << "the message itself holds no escape";
+}
+
+TEST(ShowProof, ARenderSizeIsBoundedByTheDevice) {
+  EXPECT_EQ(renderSizeProblem(1280, 720, 4, 16384, 16e9, "gpu"), "");
+  EXPECT_EQ(renderSizeProblem(16384, 16384, 1, 8192, 1e12, "gpu"),
+            "render size 16384x16384 is outside 16..8192 pixels on gpu (--width, --height)");
+  // 16384 x 16384 at one sample: 42 bytes a pixel (renderTargetBytes), 11.3 GB, beyond a quarter of 16 GB.
+  EXPECT_EQ(renderSizeProblem(16384, 16384, 1, 16384, 16e9, "gpu"),
+            "a 16384x16384 image at 1 sample per pixel takes 11.3 GB of render targets, more than a quarter of the "
+            "16.0 GB of gpu: give a smaller --width and --height");
 }
 
 TEST(ShowProof, AnExperimentStopsBetweenFramesWhenAsked) {

@@ -83,17 +83,14 @@ void printSummary(const FrameStats& first, const FrameStats& last, long frames, 
   std::printf("%-28s %s\n", "outputs", outDir.string().c_str());
 }
 
-// A physics experiment of the physical tension model: its measurement next to the analytic value, printed and
-// written to experiment.json.
-int runPhysicsExperiment(const RunOptions& o) {
-  const Measurement m = runExperiment(o.experiment, o.params, [](const std::string& line) {
-    std::printf("%s\n", line.c_str());
-    std::fflush(stdout);
-  });
+// A physics experiment's measurement next to the analytic value, printed and written to experiment.json (and its
+// plot to experiment.svg).
+void reportMeasurement(const RunOptions& o, const Measurement& m) {
   std::printf("\n%-28s %s\n%-28s %.6g %s\n%-28s %.6g %s (%s)\n", "measured", m.quantity.c_str(), "", m.measured,
               m.unit.c_str(), "analytic", m.analytic, m.unit.c_str(), m.law.c_str());
   if (m.analytic != 0) std::printf("%-28s %+.2f%%\n", "difference", 100.0 * m.relativeError());
   const nlohmann::json j = {{"experiment", m.experiment},
+                            {"status", "finished"},
                             {"quantity", m.quantity},
                             {"unit", m.unit},
                             {"measured", m.measured},
@@ -106,7 +103,27 @@ int runPhysicsExperiment(const RunOptions& o) {
     writeExperimentPlot(o.outDir / "experiment.svg", m);
     std::printf("%-28s %s\n", "plot", (o.outDir / "experiment.svg").string().c_str());
   }
-  return 0;
+}
+
+// A physics experiment of the physical tension model. Ctrl-C or SIGTERM stops it between frames, as it stops a run:
+// experiment.json then says "interrupted" (an experiment cut short has no measurement).
+int runPhysicsExperiment(const RunOptions& o) {
+  const InterruptCatcher interrupts;
+  const auto printLine = [](const std::string& line) {
+    std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
+  };
+  try {
+    reportMeasurement(o, runExperiment(o.experiment, o.params, printLine, InterruptCatcher::requested));
+    return 0;
+  } catch (const ExperimentStopped& e) {
+    const int signal = InterruptCatcher::signal();
+    const nlohmann::json j = {{"experiment", o.experiment}, {"status", "interrupted"}};
+    writeFileAtomically(o.outDir / "experiment.json", j.dump(2) + '\n');
+    std::fprintf(stderr, "%s: the experiment %s %s; %s says \"interrupted\"\n", signalName(signal),
+                 o.experiment.c_str(), e.what(), (o.outDir / "experiment.json").string().c_str());
+    return 128 + signal;
+  }
 }
 
 }  // namespace

@@ -9,7 +9,8 @@ CASE=$3
 rm -rf "$OUT"
 mkdir -p "$OUT"
 cd "$OUT" || exit 1
-SMALL=(--particles 400 --backend cpu --ply-every 0 --images-every 0 --no-progress)
+# --no-render: the default scene renders its video; the cases that want frames add RENDER after SMALL (the last wins).
+SMALL=(--particles 400 --backend cpu --ply-every 0 --images-every 0 --no-progress --no-render)
 RENDER=(--render --width 64 --height 48 --render-every 0)
 
 fail() {
@@ -258,6 +259,56 @@ case "$CASE" in
     grep -Eq '"status": "failed: failed writing run/(stats|wands)\.csv: File too large"' run/stats.json ||
       fail "a run stopped by a full disk left stats.json: $(cat run/stats.json)"
     ;;
+  default_scene_renders)
+    # The default scene says what it renders ([render] in scenes/default.toml): any run of it makes its video, not
+    # only `giantbubble run` without an option; options change it, and --no-render turns it off.
+    "$EXE" run --duration 0.1 --particles 400 --backend cpu --ply-every 0 --images-every 0 --no-progress \
+      --width 64 --height 48 --out run >log.txt 2>&1 || fail "$(cat log.txt)"
+    [ "$(mp4_frames run/render.mp4)" -eq 6 ] || fail "no 6-frame render.mp4: $(cat log.txt)"
+    [ -f run/render_00000.png ] && [ ! -f run/render_00001.png ] || fail "not a rendered PNG every 25 frames"
+    "$EXE" run --duration 0.1 "${SMALL[@]}" --out quiet >log.txt 2>&1 || fail "$(cat log.txt)"
+    [ ! -e quiet/render.mp4 ] || fail "--no-render made a video"
+    ;;
+  experiment_options)
+    # A physics experiment builds its own film and runs its own length: an option it would ignore is refused by name,
+    # and Ctrl-C ends it as it ends a run.
+    for args in "--scene catenoid --duration 0.001" "--scene catenoid --input script:circles" \
+      "--scene waves --tool ring" "--scene catenoid --particles 5000" "--scene waves --osc 127.0.0.1:9"; do
+      # shellcheck disable=SC2086
+      "$EXE" run $args --out run >log.txt 2>&1
+      rc=$?
+      echo "run $args: $(head -1 log.txt)"
+      [ "$rc" -eq 1 ] || fail "run $args: exit status $rc"
+      grep -q "does not apply to the physics experiment" log.txt || fail "run $args: $(cat log.txt)"
+    done
+    "$EXE" run --scene minimal-surface --particles 50000 --out run >log.txt 2>&1 &
+    pid=$!
+    for _ in $(seq 600); do grep -q "experiment minimal-surface" log.txt && break; sleep 0.1; done
+    kill -INT "$pid"
+    wait "$pid"
+    rc=$?
+    cat log.txt
+    [ "$rc" -eq 130 ] || fail "the experiment after SIGINT: exit status $rc, expected 130"
+    grep -q "SIGINT: the experiment minimal-surface stopped at t = " log.txt || fail "the stop is not said"
+    grep -q '"status": "interrupted"' run/experiment.json || fail "experiment.json does not say interrupted"
+    ;;
+  exit_codes)
+    # One table (docs/user-guide.md, "Exit status"): a mistake on the command line or in a scene is an error, 1.
+    expect_exit() {
+      local expected=$1
+      shift
+      "$EXE" "$@" >log.txt 2>&1
+      local rc=$?
+      [ "$rc" -eq "$expected" ] || fail "giantbubble $*: exit status $rc, expected $expected: $(cat log.txt)"
+    }
+    expect_exit 0 run --help
+    expect_exit 1 run --no-such-option
+    expect_exit 1 run --particles 99999999
+    expect_exit 1 run --scene no-such-scene
+    expect_exit 1 bench --sizes 10
+    expect_exit 1 run --duration 0.1 "${SMALL[@]}" --out ''
+    grep -q "error: the output folder's name is empty (--out): give a folder" log.txt || fail "--out '': $(cat log.txt)"
+    ;;
   messages_name_the_problem)
     # Each message names the real problem and the option or file to change.
     expect_message() {
@@ -269,7 +320,7 @@ case "$CASE" in
     }
     expect_message "trajectory file /dev/zero: is a character device" run --input trajectory:/dev/zero --out run
     expect_message "--particles, --solution) is too few for its wire" run --solution 0.01 --particles 300 \
-      --backend cpu --out run
+      --backend cpu --no-render --out run
     expect_message "IPv6 is not supported" run --osc "[::1]:9000" --out run
     expect_message "IPv6 is not supported" run --osc 127.0.0.1:9000:1 --out run
     expect_message "particlesAtFullSolution = 2000000000 is out of range [16, 2000000]" run \

@@ -131,7 +131,9 @@ TEST(ShowProof, AnOutputIsNeverWrittenOntoAFifoAFolderOrADevice) {
   const fs::path fifo = dir / "fifo.json", folder = dir / "folder.json";
   ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
   fs::create_directories(folder);
-  for (const auto& [path, kind] : {std::pair{fifo, "a FIFO"}, {folder, "a folder"}}) {
+  for (const auto& target : {std::pair{fifo, "a FIFO"}, {folder, "a folder"}}) {
+    const fs::path& path = target.first;  // not a structured binding: clang 14 cannot capture one in a lambda
+    const std::string kind = target.second;
     const std::string whole = errorOf([&] { writeFileAtomically(path, "x"); });
     EXPECT_NE(whole.find("will not write " + path.string() + ": it is " + kind), std::string::npos) << whole;
     const std::string rows = errorOf([&] { RowFile file(path); });  // a FIFO would block the open

@@ -54,23 +54,24 @@ bool isKinectDepthHeader(const std::string& header) {
          width == kinect::kWidth && height == kinect::kHeight && maxValue > 255 && maxValue <= 65535;
 }
 
-// Why fakenect could not read this entry's file now (empty when it can).
+// Why fakenect could not read this entry's file now (empty when it can). The file's name comes from INDEX.txt: it is
+// quoted escaped (printable).
 std::string fileProblem(const fs::path& folder, const FakenectEntry& e) {
   const fs::path path = folder / e.file;
+  const std::string shown = printable(path.string(), 300);
   // Checked, not opened: a FIFO would block playback and /dev/zero would never end.
-  if (const std::string why = whyNotARegularFile(path); !why.empty())
-    return "file " + printable(path.string(), 300) + " " + why;
+  if (const std::string why = whyNotARegularFile(path); !why.empty()) return "file " + shown + " " + why;
   std::error_code ec;
   const auto size = fs::file_size(path, ec);
-  if (ec || size == 0) return "file " + path.string() + " is empty";
+  if (ec || size == 0) return "file " + shown + " is empty";
   if (e.type != 'd') return {};
   std::string header;
   const long long payload = depthPayload(path, header);
-  if (payload < 0) return "depth file " + path.string() + " has no one-line PGM header";
+  if (payload < 0) return "depth file " + shown + " has no one-line PGM header";
   if (!isKinectDepthHeader(header))
-    return "depth file " + path.string() + " has the header '" + printable(header) + "', expected 'P5 640 480 65535'";
+    return "depth file " + shown + " has the header '" + printable(header) + "', expected 'P5 640 480 65535'";
   if (payload < static_cast<long long>(kDepthBytes))
-    return "depth file " + path.string() + " is truncated: " + std::to_string(payload) + " bytes of depth, expected " +
+    return "depth file " + shown + " is truncated: " + std::to_string(payload) + " bytes of depth, expected " +
            std::to_string(kDepthBytes) + " (640x480 16-bit values)";
   return {};
 }
@@ -400,7 +401,7 @@ DepthStream::Poll DepthStream::poll(kinect::DepthFrame& frame, double timeout) {
       int status = 0;
       const bool got = lib_->pump(frame, 0.0, status);
       ++cursor_;
-      if (status < 0) throw HandSourceLost("fakenect playback failed at " + e.file);
+      if (status < 0) throw HandSourceLost("fakenect playback failed at " + printable(e.file, 300));
       if (e.type == 'a') gravityUp_ = lib_->gravityUp();  // fakenect keeps the entry as its tilt state
       if (got) {
         frame.time = e.time - firstDepthTime_;

@@ -344,6 +344,14 @@ TEST(ShowProof, AFakenectEntryThatIsNoFileIsNamedForWhatItIs) {
   fs::remove(dir / "d-1.000000-100.pgm");
   fs::create_symlink("/dev/zero", dir / "d-1.000000-100.pgm");
   EXPECT_NE(errorOf([&] { (void)readFakenectIndex(dir); }).find("is a character device"), std::string::npos);
+  // A file name from INDEX.txt is quoted escaped: an empty file whose name holds an escape sequence.
+  const std::string painted = "d-1.000000-100\x1b[31m.pgm";
+  fs::remove(dir / "d-1.000000-100.pgm");
+  std::ofstream(dir / painted).flush();
+  std::ofstream(dir / "INDEX.txt") << painted << "\n";
+  const std::string empty = errorOf([&] { (void)readFakenectIndex(dir); });
+  EXPECT_NE(empty.find("d-1.000000-100\\x1b[31m.pgm is empty"), std::string::npos) << empty;
+  EXPECT_EQ(empty.find('\x1b'), std::string::npos) << "no escape sequence reaches the terminal";
   fs::remove(dir / "INDEX.txt");
   fs::create_symlink("/dev/zero", dir / "INDEX.txt");  // would be read for ever
   EXPECT_NE(errorOf([&] { (void)readFakenectIndex(dir); }).find("INDEX.txt is a character device"), std::string::npos);

@@ -146,8 +146,10 @@ std::string resolveInput(const std::string& source, const toml::node& node, cons
     const bool wantsFolder = prefix == std::string("fakenect:");
     const std::string why = whyNotARegularFile(path);
     if (wantsFolder && !std::filesystem::is_directory(path, ec))
-      fail(source, node.source(), "input folder '" + path.string() + "' " + (why.empty() ? "is a file" : why));
-    if (!wantsFolder && !why.empty()) fail(source, node.source(), "input file '" + path.string() + "' " + why);
+      fail(source, node.source(),
+           "input folder '" + printable(path.string(), 300) + "' " + (why.empty() ? "is a file" : why));
+    if (!wantsFolder && !why.empty())
+      fail(source, node.source(), "input file '" + printable(path.string(), 300) + "' " + why);
     return prefix + path.string();
   }
   if (spec != "kinect" && spec != "mouse" && spec.rfind("script:", 0) != 0)
@@ -195,7 +197,7 @@ Scene parseScene(std::string_view text, const std::string& source, const std::fi
   try {
     root = toml::parse(text, source);
   } catch (const toml::parse_error& e) {
-    fail(source, e.source(), std::string(e.description()));
+    fail(source, e.source(), printable(e.description(), 300));  // toml++ may quote the byte it stopped at
   }
   Scene scene;
   RunOptions& run = scene.run;

@@ -79,7 +79,7 @@ std::string fileProblem(const fs::path& folder, const FakenectEntry& e) {
 }  // namespace
 
 FakenectIndex readFakenectIndex(const fs::path& folder) {
-  const std::string where = "fakenect recording " + folder.string();
+  const std::string where = "fakenect recording " + printable(folder.string(), 300);
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) {
     const std::string why = whyNotARegularFile(folder);

@@ -73,7 +73,7 @@ std::string unreadRowsNote(const std::string& at, bool pastTheRunsEnd, std::size
 
 std::vector<HandSample> readTrajectory(const std::filesystem::path& path, double holdTime,
                                        const TrajectoryLimits& limits, std::string* cut) {
-  const std::string file = "trajectory file " + path.string();
+  const std::string file = "trajectory file " + printable(path.string(), 300);
   if (const std::string why = whyNotARegularFile(path); !why.empty()) throw HandSourceError(file + ": " + why);
   std::ifstream in(path);
   if (!in) throw HandSourceError(file + ": cannot be read");

@@ -413,6 +413,11 @@ TEST(ShowProof, ASceneNameWithControlCharactersIsRefused) {
   EXPECT_NE(message.find("s.toml:1:"), std::string::npos) << message;
   EXPECT_NE(message.find("name = 'show\\n\\x1b[31mred' holds control characters"), std::string::npos) << message;
   EXPECT_EQ(message.find('\x1b'), std::string::npos) << "the message itself holds no escape";
+  const std::string input = errorOf([] {
+    (void)parseScene("name = \"s\"\n[input]\nsource = \"trajectory:\\u001b[2Jgone.csv\"\n", "s.toml", "/nowhere");
+  });
+  EXPECT_NE(input.find("input file '/nowhere/\\x1b[2Jgone.csv' does not exist"), std::string::npos) << input;
+  EXPECT_EQ(input.find('\x1b'), std::string::npos) << "a path from a scene is quoted escaped too";
 }
 
 TEST(ShowProof, ARenderSizeIsBoundedByTheDevice) {

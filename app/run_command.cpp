@@ -285,10 +285,7 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
     wandLog.add(t, wands);
     const auto frameStart = std::chrono::steady_clock::now();
     std::string events;
-    if (frame == poke && sim.film().state.size() > 0) {  // nothing to poke once the film is gone
-      sim.startBurst(sim.topParticle());
-      events += "poked ";
-    }
+    if (frame == poke && pokeTop(sim)) events += "poked ";  // nothing to poke once the film is gone
     try {
       sim.advanceFrame(wands.wands);
     } catch (const SimulationUnstable& e) {

@@ -271,6 +271,14 @@ std::string RunRecord::story() const {
   return text;
 }
 
+bool pokeTop(Simulation& sim) {
+  const size_t top = sim.topParticle();
+  const State& s = sim.film().state;
+  if (s.size() == 0 || !s.alive[top] || sim.film().topology.boundary[top]) return false;
+  sim.startBurst(top);
+  return true;
+}
+
 std::string describeEvents(const TopologyEvents& e) {
   std::string words;
   auto add = [&](bool happened, const char* word) {

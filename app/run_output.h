@@ -66,6 +66,10 @@ class RunRecord {
 // result. Replaced by the run's own stats.json when it ends, or left so by a run killed outright (a second Ctrl-C).
 void markRunning(const std::filesystem::path& path, const std::string& scene);
 
+// Pokes the film at its top (Simulation::topParticle), as --burst-at and the live window's B do. False when there is
+// no film to poke: after a burst its particles linger dead until the next dip.
+bool pokeTop(Simulation& sim);
+
 // A frame's topology events as the words of stats.csv and OSC (burst_started burst_finished pinched_off
 // film_grown), space-separated; empty when nothing happened.
 std::string describeEvents(const TopologyEvents& events);

@@ -186,16 +186,6 @@ struct FilmShownTally {
   }
 };
 
-// The B key: pokes the film from above; what it did, in words. After a burst the film's particles may linger dead
-// until the next dip: there is no film to poke then.
-std::string pokeFilm(Simulation& sim) {
-  const size_t top = sim.topParticle();
-  const State& s = sim.film().state;
-  if (s.size() == 0 || !s.alive[top] || sim.film().topology.boundary[top]) return "B: no film to burst";
-  sim.startBurst(top);
-  return "burst";
-}
-
 // A camera that was unplugged is looked for again this often (s of wall time); a recording or a file that
 // ended stays ended, the wands at rest, until R restarts it.
 constexpr double kReopenCameraEvery = 2.0;
@@ -304,7 +294,7 @@ int runView(ViewOptions o) try {
       dipNewFilm(keys.reset ? "reset: new film, performance from its start"
                             : (autoDip ? "auto dip: new film" : "dip: new film"),
                  "film_created");
-    if (keys.burst) say(pokeFilm(*sim));
+    if (keys.burst) say(pokeTop(*sim) ? "burst" : "B: no film to burst");
     if (keys.nextColouring) {
       renderer.setColouring(static_cast<Colouring>((static_cast<int>(renderer.options().colouring) + 1) % 3));
       say(colouringName(renderer.options().colouring));

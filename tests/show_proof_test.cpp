@@ -401,6 +401,18 @@ TEST(ShowProof, AnIpv6OrMalformedOscTargetIsRefusedAsSuch) {
     EXPECT_NE(errorOf([&] { OscSender sender(target); }).find("IPv6 is not supported"), std::string::npos) << target;
 }
 
+TEST(ShowProof, APokeWithNoFilmLeftIsNoPoke) {
+  Params p;
+  p.particlesAtFullSolution = 400;
+  const WandState wands = gestureAt(Gesture::Straight, GestureOptions{}, 0.0);
+  Simulation sim(p, WandTool{}, wands);
+  ASSERT_TRUE(pokeTop(sim));
+  for (int frame = 0; frame < 250 && sim.stats().particles > 0; ++frame) sim.advanceFrame(wands);
+  ASSERT_EQ(sim.stats().particles, 0u) << "the poked film burst within 5 s";
+  EXPECT_GT(sim.film().state.size(), 0u) << "its particles linger, dead";
+  EXPECT_FALSE(pokeTop(sim)) << "nothing to poke: no poked event, no B: burst";
+}
+
 TEST(ShowProof, ANegativeScriptedKeyFrameIsRefused) {
   std::string why;
   EXPECT_FALSE(parseKeyPress("-5:b", why));

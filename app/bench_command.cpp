@@ -155,6 +155,12 @@ FilmRun benchOne(const std::string& backendName, const std::string& device, int 
 }  // namespace
 
 int runBenchmark(const BenchOptions& o) {
+  try {
+    (void)outputTarget(o.json);  // a folder or a device is refused before minutes of measuring, not after
+  } catch (const OutputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
+  }
   std::printf("giantbubble bench: %d substeps per film, sizes", o.steps);
   for (int s : o.sizes) std::printf(" %d", s);
   std::printf("\nmeasuring STREAM triad... ");

@@ -7,10 +7,6 @@
 
 namespace gb {
 
-// The largest film --particles (and bench --sizes) accept: 80 times the paper's largest example (25,650). The
-// old limit, 50 million, ended in std::bad_alloc on a 24 GB machine instead of a film.
-inline constexpr int kMaxParticles = 2'000'000;
-
 // A finite number in [lo, hi].
 class FiniteRange : public CLI::Validator {
  public:

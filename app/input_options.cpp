@@ -64,6 +64,7 @@ SourceOptions sourceOptionsOf(const InputOptions& o, const GestureOptions& gestu
   s.tracker.mirrored = o.mirrored;
   s.calibration = calibrationOf(o);
   s.gesture = gesture;
+  s.trajectory.seconds = o.runSeconds + 1.0;  // a second more for the stabilizer to end on
   return s;
 }
 

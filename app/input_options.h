@@ -3,6 +3,7 @@
 // (--input, or the older --gesture NAME for script:NAME), the stabilizer, the calibration and the depth band.
 
 #include <CLI/CLI.hpp>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,6 +24,8 @@ struct InputOptions {
   double cameraPitch = 0.0;                    // degrees the camera is tilted up
   std::vector<double> depthBand = {0.5, 4.0};  // metres: the performer stands inside this band
   bool mirrored = false;                       // the depth image is mirrored
+  double runSeconds = std::numeric_limits<double>::infinity();  // how long the run lasts once the performer is
+                                                                //   found: a trajectory file is read no further
 
   [[nodiscard]] std::string spec() const;  // script:GESTURE, else --input, else script:straight
   [[nodiscard]] bool scripted() const { return spec().rfind("script:", 0) == 0; }

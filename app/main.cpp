@@ -1,4 +1,6 @@
-// giantbubble: the command line. `giantbubble run` with no arguments is the README's main job.
+// giantbubble: the command line. `giantbubble run` with no arguments is the README's main job: the built-in scene
+// `default`, which renders its video as its [render] table says. Exit codes follow docs/user-guide.md's table:
+// 0 done, 1 an error (the message names it), 3 unstable, 4 validation errors (live), 5 no video, 128 + a signal.
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
@@ -7,10 +9,12 @@
 #include "bench_command.h"
 #include "cli_checks.h"
 #include "evaluate_command.h"
+#include "experiments.h"
 #include "record_command.h"
 #include "run_command.h"
 #include "scene_file.h"
 #include "thread_policy.h"
+#include "untrusted.h"
 #include "view_command.h"
 
 namespace {
@@ -18,10 +22,12 @@ namespace {
 // Every parameter of the model can be set on the command line as --param NAME=VALUE.
 void applyParameter(gb::Params& p, const std::string& assignment) {
   const auto eq = assignment.find('=');
-  if (eq == std::string::npos) throw CLI::ValidationError("--param", "expected NAME=VALUE, got '" + assignment + "'");
+  if (eq == std::string::npos)
+    throw CLI::ValidationError("--param", "expected NAME=VALUE, got '" + gb::printable(assignment) + "'");
   const std::string name = assignment.substr(0, eq), text = assignment.substr(eq + 1);
   if (!gb::findParamField(name))
-    throw CLI::ValidationError("--param", "unknown parameter '" + name + "' (see docs/model.md for the list)");
+    throw CLI::ValidationError("--param",
+                               "unknown parameter '" + gb::printable(name) + "' (see docs/model.md for the list)");
   size_t used = 0;
   double value = 0;
   try {
@@ -30,7 +36,7 @@ void applyParameter(gb::Params& p, const std::string& assignment) {
     used = 0;
   }
   if (used == 0 || used != text.size())
-    throw CLI::ValidationError("--param", "parameter " + name + ": '" + text + "' is not a number");
+    throw CLI::ValidationError("--param", "parameter " + name + ": '" + gb::printable(text) + "' is not a number");
   try {
     gb::setParameter(p, name, value);
   } catch (const std::invalid_argument& e) {
@@ -55,6 +61,22 @@ int listScenes() {
   return 0;
 }
 
+// A physics experiment builds its own film and runs its own length: the options of a performance would be ignored,
+// so they are refused by name.
+void refuseOptionsForAnExperiment(const CLI::App& command, const std::string& experiment) {
+  for (const CLI::Option* option : command.get_options()) {
+    const std::string name = option->get_name();
+    const bool applies = name == "--scene" || name == "--out" || name == "--param" || name == "--no-progress" ||
+                         (name == "--particles" && gb::experimentSizedByParticles(experiment));
+    if (option->count() > 0 && !applies)
+      throw CLI::ValidationError(name, "does not apply to the physics experiment '" + experiment +
+                                           "', which builds its own film and runs its own length (it takes --out, "
+                                           "--param" +
+                                           (gb::experimentSizedByParticles(experiment) ? ", --particles" : "") +
+                                           "; docs/validation.md)");
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -73,7 +95,7 @@ int main(int argc, char** argv) {
       run.scene = scene.name;
     } catch (const std::exception& e) {
       std::fprintf(stderr, "error: %s\n", e.what());
-      return 2;
+      return 1;
     }
   }
   std::string tool = run.tool.kind == gb::ToolKind::Ring ? "ring" : "two-wands";
@@ -137,8 +159,9 @@ int main(int argc, char** argv) {
     for (const std::string& a : view.assignments) applyParameter(view.run.params, a);
     for (const gb::Params* p : {&run.params, &view.run.params})
       if (const auto errors = gb::validate(*p); !errors.empty()) throw CLI::ValidationError("--param", errors.front());
+    if (runCmd->parsed() && !run.experiment.empty()) refuseOptionsForAnExperiment(*runCmd, run.experiment);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    return app.exit(e) == 0 ? 0 : 1;  // --help is 0; any mistake on the command line is an error like any other
   }
   if (app.get_subcommands().empty()) {
     std::fputs(app.help().c_str(), stdout);
@@ -154,12 +177,9 @@ int main(int argc, char** argv) {
     run.durationFromInput = runCmd->count("--duration") == 0 && !sceneSetsDuration;
     if (runCmd->count("--burst-at") > 0) run.burstOnAnyInput = true;
     run.backend = gb::backendFromName(backend);
-    if (argc == 2) {  // `giantbubble run` alone, the README's main job: also the video a newcomer wants to see
-      run.render.enabled = run.renderIfPossible = true;
-      run.render.image.width = 960;
-      run.render.image.height = 540;
-      run.render.pngEvery = 25;
-    }
+    // A scene's own video (the default scene's) is made where a Vulkan device allows, with a note where not;
+    // --render asks for it and fails without one.
+    run.renderIfPossible = runCmd->count("--render") == 0;
     return gb::runSimulation(run);
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "error: out of memory (a smaller film: --particles, or fewer outputs)\n");

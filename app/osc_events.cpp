@@ -20,6 +20,11 @@ OscSender::OscSender(const std::string& target) : address_(std::make_unique<Addr
   if (colon == std::string::npos || colon == 0 || colon + 1 == target.size())
     throw std::invalid_argument("OSC target '" + target + "' is not HOST:PORT");
   const std::string host = target.substr(0, colon), port = target.substr(colon + 1);
+  // Debian's liblo sends over IPv4 only: an IPv6 address would be taken and every message lost with a warning.
+  if (host.front() == '[' || host.find(':') != std::string::npos)
+    throw std::invalid_argument("OSC target '" + target +
+                                "' is not HOST:PORT with an IPv4 address or a host name (IPv6 is not supported: "
+                                "liblo sends over IPv4)");
   // A UDP port is 1 to 65535; liblo would take 99999 and send to 99999 mod 65536.
   if (port.find_first_not_of("0123456789") != std::string::npos || port.size() > 5 || std::stoi(port) < 1 ||
       std::stoi(port) > 65535)

@@ -54,12 +54,21 @@ void RealTimePacer::record(int frames, double simMs, double renderMs) {
   constexpr double step = 0.25;
   if (++sinceRescale_ < kRescaleEvery) return;
   if (spent > wallMs && !imageAtFloor) {
-    renderScale_ = std::max(renderScale_ - step, options_.minRenderScale);
+    // Far behind (a window too large for the machine), one change goes to the scale whose pixels would take the
+    // frames' time (drawing time goes with the square of the scale); near the budget, a gentle step.
+    const bool farBehind = spent > 4.0 * wallMs;
+    const double next = farBehind ? renderScale_ * std::sqrt(wallMs / spent) : renderScale_ - step;
+    renderScale_ = std::max(next, options_.minRenderScale);
     sinceRescale_ = 0;
   } else if (spent < 0.5 * wallMs && sweepsAtTop && renderScale_ < 1.0) {
     renderScale_ = std::min(renderScale_ + step, 1.0);
     sinceRescale_ = 0;
   }
+}
+
+double renderScaleFloor(double minRenderScale, int width, int height) {
+  const double pixels = static_cast<double>(width) * static_cast<double>(height);
+  return std::min(minRenderScale, std::sqrt(kLargestFloorPixels / std::max(pixels, 1.0)));
 }
 
 double RealTimePacer::realTimeFactor(Clock::time_point now) const {

@@ -19,6 +19,12 @@ struct PacerOptions {
   double minRenderScale = 1.0;  // the smallest image, as a fraction of the window's width and height (1: fixed)
 };
 
+// The smallest render scale for a window of width x height pixels: `minRenderScale`, or less for a window so large
+// that even that would draw more than kLargestFloorPixels: dynamic resolution must be able to come down to an image
+// the machine can draw in time, whatever the window's size.
+inline constexpr double kLargestFloorPixels = 1280.0 * 720.0;
+double renderScaleFloor(double minRenderScale, int width, int height);
+
 class RealTimePacer {
  public:
   using Clock = std::chrono::steady_clock;
@@ -37,9 +43,11 @@ class RealTimePacer {
   void record(int frames, double simMs, double renderMs);
 
   [[nodiscard]] int sweeps() const { return sweeps_; }
-  // The fraction of the window's width and height to draw at: lowered a step (0.25) at a time while an iteration
-  // takes longer than its frames, raised when it takes under half of them with the sweeps back at their top; at
-  // most one change per kRescaleEvery iterations, since each costs the renderer new targets and pipelines.
+  // The fraction of the window's width and height to draw at: lowered while an iteration takes longer than its
+  // frames, a step (0.25) at a time or, more than four times behind, at once to the scale whose pixels would take the
+  // frames' time;
+  // raised a step when it takes under half of them with the sweeps back at their top; at most one change per
+  // kRescaleEvery iterations, since each costs the renderer new targets and pipelines.
   [[nodiscard]] double renderScale() const { return renderScale_; }
   static constexpr int kRescaleEvery = 10;
   [[nodiscard]] bool atFloor() const { return sweeps_ == options_.minSweeps; }

@@ -12,6 +12,7 @@
 #include "cli_checks.h"
 #include "depth_plot.h"
 #include "interrupt.h"
+#include "output_file.h"
 #include "trajectory_file.h"
 #include "trajectory_metrics.h"
 #include "trajectory_plot.h"
@@ -105,7 +106,8 @@ CLI::App* addRecordCommand(CLI::App& app, RecordOptions& o) {
   cmd->add_option("--depth-plot", o.depthPlot,
                   "write one depth frame with the hands found in it as PNG (input kinect or fakenect:DIR): the "
                   "view to set the camera up by");
-  cmd->add_option("--depth-plot-frame", o.depthPlotFrame, "the frame --depth-plot draws, from 0 (default: the last)");
+  cmd->add_option("--depth-plot-frame", o.depthPlotFrame, "the frame --depth-plot draws, from 0 (default: the last)")
+      ->check(CLI::Range(0, 100000000));
   cmd->add_flag("--report", o.report, "print the jitter and lag of both stabilizers on this input");
   cmd->add_option("--duration", o.duration,
                   "seconds to record (default: all of a recorded input, a script's "
@@ -130,6 +132,8 @@ int runRecord(const RecordOptions& o) {
                  "--report\n");
     return 1;
   }
+  for (const std::string& file : {o.plot, o.depthPlot})  // refused now, not after the recording
+    if (!file.empty()) (void)outputTarget(file);
   const std::string spec = o.input.spec();
   const bool noisy = o.noise.sigma > 0 || o.noise.outlierRate > 0;
   if (noisy && !o.input.scripted()) {

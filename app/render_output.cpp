@@ -23,7 +23,9 @@ extern char** environ;  // for posix_spawnp: ffmpeg gets this process's environm
 namespace gb {
 
 void addRenderOptions(CLI::App& command, RenderOutputOptions& o) {
-  command.add_flag("--render", o.enabled, "render the film (interference colours, Vulkan) to PNG frames and video");
+  command.add_flag("--render,!--no-render", o.enabled,
+                   "render the film (interference colours, Vulkan) to PNG frames and video; --no-render: not even a "
+                   "scene's own video (the default scene renders one)");
   command.add_option("--width", o.image.width, "rendered image width (pixels)")->check(CLI::Range(16, 16384));
   command.add_option("--height", o.image.height, "rendered image height (pixels)")->check(CLI::Range(16, 16384));
   command

@@ -20,7 +20,7 @@ class App;
 namespace gb {
 
 struct RenderOutputOptions {
-  bool enabled = false;               // --render
+  bool enabled = false;               // --render (or the scene's [render] enabled), --no-render
   RenderOptions image;                // size and colouring (host/renderer.h)
   int samples = 0;                    // --samples: MSAA samples per pixel; 0: the command's own choice (samplesFor)
   int pngEvery = 1;                   // write render_NNNNN.png every N frames (0: none)

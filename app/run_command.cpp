@@ -83,17 +83,14 @@ void printSummary(const FrameStats& first, const FrameStats& last, long frames, 
   std::printf("%-28s %s\n", "outputs", outDir.string().c_str());
 }
 
-// A physics experiment of the physical tension model: its measurement next to the analytic value, printed and
-// written to experiment.json.
-int runPhysicsExperiment(const RunOptions& o) {
-  const Measurement m = runExperiment(o.experiment, o.params, [](const std::string& line) {
-    std::printf("%s\n", line.c_str());
-    std::fflush(stdout);
-  });
+// A physics experiment's measurement next to the analytic value, printed and written to experiment.json (and its
+// plot to experiment.svg).
+void reportMeasurement(const RunOptions& o, const Measurement& m) {
   std::printf("\n%-28s %s\n%-28s %.6g %s\n%-28s %.6g %s (%s)\n", "measured", m.quantity.c_str(), "", m.measured,
               m.unit.c_str(), "analytic", m.analytic, m.unit.c_str(), m.law.c_str());
   if (m.analytic != 0) std::printf("%-28s %+.2f%%\n", "difference", 100.0 * m.relativeError());
   const nlohmann::json j = {{"experiment", m.experiment},
+                            {"status", "finished"},
                             {"quantity", m.quantity},
                             {"unit", m.unit},
                             {"measured", m.measured},
@@ -106,7 +103,27 @@ int runPhysicsExperiment(const RunOptions& o) {
     writeExperimentPlot(o.outDir / "experiment.svg", m);
     std::printf("%-28s %s\n", "plot", (o.outDir / "experiment.svg").string().c_str());
   }
-  return 0;
+}
+
+// A physics experiment of the physical tension model. Ctrl-C or SIGTERM stops it between frames, as it stops a run:
+// experiment.json then says "interrupted" (an experiment cut short has no measurement).
+int runPhysicsExperiment(const RunOptions& o) {
+  const InterruptCatcher interrupts;
+  const auto printLine = [](const std::string& line) {
+    std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
+  };
+  try {
+    reportMeasurement(o, runExperiment(o.experiment, o.params, printLine, InterruptCatcher::requested));
+    return 0;
+  } catch (const ExperimentStopped& e) {
+    const int signal = InterruptCatcher::signal();
+    const nlohmann::json j = {{"experiment", o.experiment}, {"status", "interrupted"}};
+    writeFileAtomically(o.outDir / "experiment.json", j.dump(2) + '\n');
+    std::fprintf(stderr, "%s: the experiment %s %s; %s says \"interrupted\"\n", signalName(signal),
+                 o.experiment.c_str(), e.what(), (o.outDir / "experiment.json").string().c_str());
+    return 128 + signal;
+  }
 }
 
 }  // namespace
@@ -142,7 +159,7 @@ double runDuration(const RunOptions& o, const WandInput& input) {
   if (!o.durationFromInput || !input.length()) return o.duration;
   const double length = std::max(*input.length(), 0.02);
   if (length <= kMaxRunSeconds) return length;
-  std::fprintf(stderr, "note: the input is %.0f s long; the run stops at %.0f s (give --duration for another length)\n",
+  std::fprintf(stderr, "note: the input is %.4g s long; the run stops at %.0f s (give --duration for another length)\n",
                length, kMaxRunSeconds);
   return kMaxRunSeconds;
 }
@@ -154,28 +171,66 @@ long pokeFrame(const RunOptions& o) {
   return std::max(1L, std::lround(o.burstAt / o.params.frameTime));
 }
 
-}  // namespace
+// The input's notes and warnings, on stderr (on a line of their own when the progress bar is on the terminal).
+void passOnMessages(WandInput& input, bool midBar) {
+  for (const std::string& m : input.takeMessages())
+    std::fprintf(stderr, "%s%s\n", midBar && isatty(STDERR_FILENO) ? "\n" : "", m.c_str());
+}
 
-int runSimulation(const RunOptions& o) {
-  std::filesystem::create_directories(o.outDir);
-  if (!o.experiment.empty()) return runPhysicsExperiment(o);
-  std::unique_ptr<WandInput> input = makeWandInput(o.input, o.gestureOptions);
-  std::printf("input: %s\n", input->describe().c_str());
-  auto report = [&](bool midBar) {
-    for (const std::string& m : input->takeMessages())
-      std::fprintf(stderr, "%s%s\n", midBar && isatty(STDERR_FILENO) ? "\n" : "", m.c_str());
-  };
-  const double duration = runDuration(o, *input);
-  WandLog wandLog(o.outDir / "wands.csv");
-  const WandFrame startFrame = input->at(0.0);
-  report(false);
-  wandLog.add(0.0, startFrame);
-  const WandState start = startFrame.wands;
+// The files every run writes into its folder, checked before the first of them is emptied: a folder or a device
+// where one should go stops the run while the previous run's files are still as they were.
+void checkOutputTargets(const RunOptions& o) {
+  for (const char* name : {"stats.json", "stats.csv", "wands.csv", "wands.svg"}) (void)outputTarget(o.outDir / name);
+  if (o.render.enabled && !o.render.video.empty()) (void)outputTarget(o.outDir / o.render.video);
+}
+
+// What a run opens and checks before it writes anything: the hands, the film they make, OSC, the names of its outputs
+// and the renderer with its environment. A run refused while opening them leaves the previous run's files in its
+// folder as they were.
+struct OpenedRun {
+  std::unique_ptr<WandInput> input;
+  double duration = 0;
+  WandFrame startFrame;
+  std::unique_ptr<Simulation> sim;
+  std::unique_ptr<ShowControl> show;
+  std::unique_ptr<RunRenderer> renderer;
+};
+
+OpenedRun openRun(const RunOptions& o) {
+  OpenedRun run;
+  InputOptions input = o.input;
+  input.runSeconds = o.durationFromInput ? kMaxRunSeconds : o.duration;  // a file is read no further than the run
+  run.input = makeWandInput(input, o.gestureOptions);
+  std::printf("input: %s\n", run.input->describe().c_str());
+  run.duration = runDuration(o, *run.input);
+  run.startFrame = run.input->at(0.0);
+  passOnMessages(*run.input, false);
   std::string backendReport;
   std::unique_ptr<Stepper> stepper = makeStepper(o.backend, o.device, backendReport);
   std::printf("%s\n", backendReport.c_str());
-  Simulation sim(o.params, o.tool, start, std::move(stepper));
-  const long frames = std::max(1L, std::lround(duration / o.params.frameTime));
+  run.sim = std::make_unique<Simulation>(o.params, o.tool, run.startFrame.wands, std::move(stepper));
+  run.show = std::make_unique<ShowControl>(o.osc);
+  checkOutputTargets(o);  // before the renderer starts ffmpeg on the video
+  if (o.render.enabled) {
+    try {
+      run.renderer = std::make_unique<RunRenderer>(o.render, o.outDir, *run.sim, o.device);
+    } catch (const std::exception& e) {
+      if (!o.renderIfPossible) throw;
+      std::fprintf(stderr, "note: no rendered frames (%s); the thickness images are still written\n", e.what());
+    }
+  }
+  return run;
+}
+
+// Simulates the frames of an opened run and writes every output; returns the exit code (run_command.h).
+int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
+  WandInput& input = *run.input;
+  Simulation& sim = *run.sim;
+  ShowControl& show = *run.show;
+  RunRenderer* renderer = run.renderer.get();
+  WandLog wandLog(o.outDir / "wands.csv");
+  wandLog.add(0.0, run.startFrame);
+  const long frames = std::max(1L, std::lround(run.duration / o.params.frameTime));
   const long poke = pokeFrame(o);
   if (o.burstAt >= 0 && poke == 0)
     std::printf("note: no poke at %.2f s: the input is not a script (--burst-at pokes any input)\n", o.burstAt);
@@ -184,35 +239,23 @@ int runSimulation(const RunOptions& o) {
               1e3 * o.params.frameTime / sim.substepsPerFrame(), o.params.frameTime, frames);
 
   StatsWriter stats(o.outDir / "stats.csv");
-  RunRecord record;
   const FrameStats first = sim.stats();
   // A performer waited for: the film is made when both hands are found, and the run's time 0 is then.
   const std::string created =
-      input->performerFound().value_or(0.0) > 0.0 ? "performer_found film_created" : "film_created";
+      input.performerFound().value_or(0.0) > 0.0 ? "performer_found film_created" : "film_created";
   stats.write(0, first, sim.substepsPerFrame(), 0.0, created);
   record.start(first);
-  if (const auto found = input->performerFound()) {
+  if (const auto found = input.performerFound()) {
     char seconds[32];
     std::snprintf(seconds, sizeof seconds, "%.3f", *found);
     record.note("performer_found_after_s", seconds);
   }
-  ShowControl show(o.osc);
   show.frame(sim, first, created);
   if (o.plyEvery > 0) writePly(o.outDir / meshName(0), sim.film());
   ImageFraming framing;  // the images frame the film wherever it goes, growing only (no jitter)
   if (o.imageEvery > 0)
     writeThicknessImage(o.outDir / imageName(0), sim.film(), sim.aerosol(), framing.frame(sim.film()));
-  std::unique_ptr<RunRenderer> renderer;
-  if (o.render.enabled) {
-    try {
-      renderer = std::make_unique<RunRenderer>(o.render, o.outDir, sim, o.device);
-      renderer->frame(0, sim, start);
-    } catch (const std::exception& e) {
-      if (!o.renderIfPossible) throw;
-      std::fprintf(stderr, "note: no rendered frames (%s); the thickness images are still written\n", e.what());
-      renderer.reset();
-    }
-  }
+  if (renderer) renderer->frame(0, sim, run.startFrame.wands);
 
   const InterruptCatcher interrupts;  // Ctrl-C or SIGTERM: the frame in flight finishes, then the outputs
   ProgressBar bar(frames);
@@ -237,15 +280,12 @@ int runSimulation(const RunOptions& o) {
                                                    std::chrono::duration<double>(t - o.params.frameTime)));
       sim.setSolverIterations(pacer.sweeps());
     }
-    const WandFrame wands = input->at(t);  // a live camera may wait here for its next frame
-    report(o.progress);
+    const WandFrame wands = input.at(t);  // a live camera may wait here for its next frame
+    passOnMessages(input, o.progress);
     wandLog.add(t, wands);
     const auto frameStart = std::chrono::steady_clock::now();
     std::string events;
-    if (frame == poke && sim.film().state.size() > 0) {  // nothing to poke once the film is gone
-      sim.startBurst(sim.topParticle());
-      events += "poked ";
-    }
+    if (frame == poke && pokeTop(sim)) events += "poked ";  // nothing to poke once the film is gone
     try {
       sim.advanceFrame(wands.wands);
     } catch (const SimulationUnstable& e) {
@@ -295,8 +335,8 @@ int runSimulation(const RunOptions& o) {
   wandLog.close();
   wandLog.writePlot(o.outDir / "wands.svg",
                     "giantbubble run" + (status == "finished" ? "" : " (" + status.substr(0, status.find(':')) + ")") +
-                        ": " + input->describe(),
-                    input->camera());
+                        ": " + input.describe(),
+                    input.camera());
   record.setRealTimeFactor(last.time / std::max(wall, 1e-9));
   record.setEnergyBudget(sim.energyBudgetRecord());
   record.writeJson(o.outDir / "stats.json", o.scene, status);
@@ -312,6 +352,27 @@ int runSimulation(const RunOptions& o) {
   record.printPhases();
   record.printTable1(o.scene);
   return exitCode;
+}
+
+}  // namespace
+
+int runSimulation(const RunOptions& o) {
+  const OutputFolder folder(o.outDir);  // a second run into the same folder is refused while this one lives
+  if (!o.experiment.empty()) return runPhysicsExperiment(o);
+  OpenedRun run = openRun(o);
+  // From here the folder is this run's: stats.json says so first, so that a run that dies before it ends leaves no
+  // earlier "finished" beside rows of its own.
+  markRunning(o.outDir / "stats.json", o.scene);
+  RunRecord record;
+  try {
+    return runFrames(o, run, record);
+  } catch (const std::exception& e) {
+    try {
+      record.writeJson(o.outDir / "stats.json", o.scene, std::string("failed: ") + e.what());
+    } catch (const OutputError&) {  // the disk that stopped the run: stats.json still says "running"
+    }
+    throw;
+  }
 }
 
 }  // namespace gb

@@ -154,6 +154,11 @@ void RunRecord::writeJson(const std::filesystem::path& path, const std::string& 
   writeFileAtomically(path, j.dump(2) + '\n');
 }
 
+void markRunning(const std::filesystem::path& path, const std::string& scene) {
+  const nlohmann::json j = {{"scene", scene}, {"status", "running"}};
+  writeFileAtomically(path, j.dump(2) + '\n');
+}
+
 void RunRecord::note(const std::string& key, const std::string& value) { extra_.emplace_back(key, value); }
 
 void RunRecord::addPhase(const std::string& name, double milliseconds) {
@@ -264,6 +269,14 @@ std::string RunRecord::story() const {
     text += lines;
   }
   return text;
+}
+
+bool pokeTop(Simulation& sim) {
+  const size_t top = sim.topParticle();
+  const State& s = sim.film().state;
+  if (s.size() == 0 || !s.alive[top] || sim.film().topology.boundary[top]) return false;
+  sim.startBurst(top);
+  return true;
 }
 
 std::string describeEvents(const TopologyEvents& e) {

@@ -62,6 +62,14 @@ class RunRecord {
   std::vector<std::pair<std::string, double>> phaseSums_;  // ms over all frames
 };
 
+// stats.json while a run goes on ("status": "running"): the folder's files are being rewritten and are no run's whole
+// result. Replaced by the run's own stats.json when it ends, or left so by a run killed outright (a second Ctrl-C).
+void markRunning(const std::filesystem::path& path, const std::string& scene);
+
+// Pokes the film at its top (Simulation::topParticle), as --burst-at and the live window's B do. False when there is
+// no film to poke: after a burst its particles linger dead until the next dip.
+bool pokeTop(Simulation& sim);
+
 // A frame's topology events as the words of stats.csv and OSC (burst_started burst_finished pinched_off
 // film_grown), space-separated; empty when nothing happened.
 std::string describeEvents(const TopologyEvents& events);

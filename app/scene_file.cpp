@@ -14,6 +14,7 @@
 
 #include "builtin_scenes.h"
 #include "experiments.h"
+#include "untrusted.h"
 
 namespace gb {
 namespace {
@@ -44,7 +45,7 @@ class TableReader {
     for (auto&& [key, node] : table) {
       const auto it = handlers_.find(std::string(key.str()));
       if (it == handlers_.end())
-        fail(source_, key.source(), "unknown key '" + std::string(key.str()) + "'" + in() + known());
+        fail(source_, key.source(), "unknown key '" + printable(key.str()) + "'" + in() + known());
       it->second(node);
     }
   }
@@ -70,8 +71,20 @@ class TableReader {
     if (!choices.empty() && std::find(choices.begin(), choices.end(), v) == choices.end()) {
       std::string list;
       for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
-      fail(source_, node.source(), key + in() + " = '" + v + "' is not one of: " + list);
+      fail(source_, node.source(), key + in() + " = '" + printable(v) + "' is not one of: " + list);
     }
+    return v;
+  }
+  // Text that is printed (a name, a description): one line of at most `maxBytes`, without control characters (a
+  // terminal obeys an escape sequence printed raw).
+  [[nodiscard]] std::string line(const toml::node& node, const std::string& key, size_t maxBytes) const {
+    std::string v = text(node, key);
+    if (v.size() > maxBytes)
+      fail(source_, node.source(),
+           key + in() + " is " + std::to_string(v.size()) + " bytes long, at most " + std::to_string(maxBytes));
+    if (printable(v, v.size()) != v)
+      fail(source_, node.source(),
+           key + in() + " = '" + printable(v) + "' holds control characters (one line of text)");
     return v;
   }
   [[nodiscard]] bool boolean(const toml::node& node, const std::string& key) const {
@@ -129,13 +142,19 @@ std::string resolveInput(const std::string& source, const toml::node& node, cons
     if (spec.rfind(prefix, 0) != 0) continue;
     std::filesystem::path path = spec.substr(prefix.size());
     if (path.is_relative()) path = baseDir / path;
-    if (!std::filesystem::exists(path))
-      fail(source, node.source(), "input file '" + path.string() + "' does not exist");
+    std::error_code ec;
+    const bool wantsFolder = prefix == std::string("fakenect:");
+    const std::string why = whyNotARegularFile(path);
+    if (wantsFolder && !std::filesystem::is_directory(path, ec))
+      fail(source, node.source(),
+           "input folder '" + printable(path.string(), 300) + "' " + (why.empty() ? "is a file" : why));
+    if (!wantsFolder && !why.empty())
+      fail(source, node.source(), "input file '" + printable(path.string(), 300) + "' " + why);
     return prefix + path.string();
   }
   if (spec != "kinect" && spec != "mouse" && spec.rfind("script:", 0) != 0)
     fail(source, node.source(),
-         "input = '" + spec + "' is not kinect, mouse, fakenect:DIR, trajectory:FILE or script:NAME");
+         "input = '" + printable(spec) + "' is not kinect, mouse, fakenect:DIR, trajectory:FILE or script:NAME");
   if (spec.rfind("script:", 0) == 0) {
     try {
       (void)gestureFromName(spec.substr(7));
@@ -151,7 +170,8 @@ void readParams(const std::string& source, const toml::table& table, Params& par
   for (auto&& [key, node] : table) {
     const std::string name(key.str());
     const ParamField* field = findParamField(name);
-    if (!field) fail(source, key.source(), "unknown parameter '" + name + "' in [params] (docs/model.md lists them)");
+    if (!field)
+      fail(source, key.source(), "unknown parameter '" + printable(name) + "' in [params] (docs/model.md lists them)");
     if (!node.is_number()) fail(source, node.source(), name + " in [params] must be a number");
     if (field->integer && !node.is_integer()) fail(source, node.source(), name + " in [params] must be a whole number");
     try {
@@ -177,13 +197,13 @@ Scene parseScene(std::string_view text, const std::string& source, const std::fi
   try {
     root = toml::parse(text, source);
   } catch (const toml::parse_error& e) {
-    fail(source, e.source(), std::string(e.description()));
+    fail(source, e.source(), printable(e.description(), 300));  // toml++ may quote the byte it stopped at
   }
   Scene scene;
   RunOptions& run = scene.run;
   TableReader top(source, "");
-  top.on("name", [&](const toml::node& n) { scene.name = top.text(n, "name"); });
-  top.on("description", [&](const toml::node& n) { scene.description = top.text(n, "description"); });
+  top.on("name", [&](const toml::node& n) { scene.name = top.line(n, "name", 64); });
+  top.on("description", [&](const toml::node& n) { scene.description = top.line(n, "description", 300); });
   top.on("duration", [&](const toml::node& n) { run.duration = top.number(n, "duration", 0.001, 3600.0); });
   bool burstAtSet = false;
   top.on("burst_at", [&](const toml::node& n) {
@@ -265,12 +285,10 @@ Scene parseScene(std::string_view text, const std::string& source, const std::fi
 Scene loadSceneFile(const std::filesystem::path& path) {
   // Checked before opening: a folder opens as an empty file, and a FIFO or a device would block or never end.
   std::error_code ec;
-  const auto status = std::filesystem::status(path, ec);
-  if (!std::filesystem::exists(status)) throw SceneError("scene file '" + path.string() + "' does not exist");
-  if (std::filesystem::is_directory(status))
+  if (std::filesystem::is_directory(path, ec))
     throw SceneError("scene file '" + path.string() + "' is a folder; give a .toml file in it");
-  if (!std::filesystem::is_regular_file(status))
-    throw SceneError("scene file '" + path.string() + "' is not a regular file (a FIFO or a device is not read)");
+  if (const std::string why = whyNotARegularFile(path); !why.empty())
+    throw SceneError("scene file '" + path.string() + "' " + why + " (a scene is read from a regular file)");
   if (std::filesystem::file_size(path, ec) > kMaxSceneBytes)
     throw SceneError("scene file '" + path.string() + "' is larger than " + std::to_string(kMaxSceneBytes / 1024) +
                      " KiB; a scene is a page of settings");

@@ -201,6 +201,10 @@ std::optional<KeyPress> parseKeyPress(const std::string& text, std::string& why)
   KeyPress press{0, text.back()};
   const char* end = text.data() + colon;
   const auto [ptr, ec] = std::from_chars(text.data(), end, press.frame);
+  if (ec == std::errc() && ptr == end && press.frame < 0) {
+    why = "--keys " + text + ": frame " + text.substr(0, colon) + " is negative (frames count from 0)";
+    return std::nullopt;
+  }
   if (ec == std::errc::result_out_of_range || (ec == std::errc() && press.frame > kMaxKeyFrame)) {
     why = "--keys " + text + ": frame " + text.substr(0, colon) + " is too large (at most " +
           std::to_string(kMaxKeyFrame) + ")";
@@ -245,8 +249,9 @@ int runView(ViewOptions o) try {
   bool inputLost = false;
   auto lastReopen = std::chrono::steady_clock::now();
   const auto start = std::chrono::steady_clock::now();
+  const double smallestScale = renderScaleFloor(o.minRenderScale, image.width, image.height);
   RealTimePacer pacer(
-      {run.params.frameTime, sim->solverIterations(), o.minSweeps, 4, o.fixedStep ? 1.0 : o.minRenderScale}, start);
+      {run.params.frameTime, sim->solverIterations(), o.minSweeps, 4, o.fixedStep ? 1.0 : smallestScale}, start);
   auto lastTitle = start;
   auto lastPresented = start;
   FilmShownTally filmShown;
@@ -289,10 +294,7 @@ int runView(ViewOptions o) try {
       dipNewFilm(keys.reset ? "reset: new film, performance from its start"
                             : (autoDip ? "auto dip: new film" : "dip: new film"),
                  "film_created");
-    if (keys.burst && sim->film().state.size() > 0) {
-      sim->startBurst(sim->topParticle());
-      say("burst");
-    }
+    if (keys.burst) say(pokeTop(*sim) ? "burst" : "B: no film to burst");
     if (keys.nextColouring) {
       renderer.setColouring(static_cast<Colouring>((static_cast<int>(renderer.options().colouring) + 1) % 3));
       say(colouringName(renderer.options().colouring));

@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "hand_source.h"
+#include "untrusted.h"
 
 #ifndef GB_FREENECT_LIBRARY
 #define GB_FREENECT_LIBRARY "libfreenect.so.0.5"
@@ -53,21 +54,24 @@ bool isKinectDepthHeader(const std::string& header) {
          width == kinect::kWidth && height == kinect::kHeight && maxValue > 255 && maxValue <= 65535;
 }
 
-// Why fakenect could not read this entry's file now (empty when it can).
+// Why fakenect could not read this entry's file now (empty when it can). The file's name comes from INDEX.txt: it is
+// quoted escaped (printable).
 std::string fileProblem(const fs::path& folder, const FakenectEntry& e) {
   const fs::path path = folder / e.file;
+  const std::string shown = printable(path.string(), 300);
+  // Checked, not opened: a FIFO would block playback and /dev/zero would never end.
+  if (const std::string why = whyNotARegularFile(path); !why.empty()) return "file " + shown + " " + why;
   std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) return "file " + path.string() + " is missing";
   const auto size = fs::file_size(path, ec);
-  if (ec || size == 0) return "file " + path.string() + " is empty";
+  if (ec || size == 0) return "file " + shown + " is empty";
   if (e.type != 'd') return {};
   std::string header;
   const long long payload = depthPayload(path, header);
-  if (payload < 0) return "depth file " + path.string() + " has no one-line PGM header";
+  if (payload < 0) return "depth file " + shown + " has no one-line PGM header";
   if (!isKinectDepthHeader(header))
-    return "depth file " + path.string() + " has the header '" + header + "', expected 'P5 640 480 65535'";
+    return "depth file " + shown + " has the header '" + printable(header) + "', expected 'P5 640 480 65535'";
   if (payload < static_cast<long long>(kDepthBytes))
-    return "depth file " + path.string() + " is truncated: " + std::to_string(payload) + " bytes of depth, expected " +
+    return "depth file " + shown + " is truncated: " + std::to_string(payload) + " bytes of depth, expected " +
            std::to_string(kDepthBytes) + " (640x480 16-bit values)";
   return {};
 }
@@ -75,12 +79,22 @@ std::string fileProblem(const fs::path& folder, const FakenectEntry& e) {
 }  // namespace
 
 FakenectIndex readFakenectIndex(const fs::path& folder) {
-  const std::string where = "fakenect recording " + folder.string();
+  const std::string where = "fakenect recording " + printable(folder.string(), 300);
   std::error_code ec;
-  if (!fs::is_directory(folder, ec)) throw HandSourceError(where + ": no such folder");
-  std::ifstream in(folder / "INDEX.txt");
-  if (!in)
+  if (!fs::is_directory(folder, ec)) {
+    const std::string why = whyNotARegularFile(folder);
+    throw HandSourceError(where + ": " + (why.empty() ? "is a file, not a folder" : why));
+  }
+  const fs::path indexFile = folder / "INDEX.txt";
+  if (!fs::exists(indexFile, ec) && !ec)
     throw HandSourceError(where + ": no INDEX.txt (not a recording made by fakenect-record or giantbubble record)");
+  if (const std::string why = whyNotARegularFile(indexFile); !why.empty())
+    throw HandSourceError(where + ": INDEX.txt " + why);
+  if (fs::file_size(indexFile, ec) > kMaxIndexBytes)
+    throw HandSourceError(where + ": INDEX.txt is larger than " + std::to_string(kMaxIndexBytes >> 20) +
+                          " MiB (a recording of hours is a few MiB)");
+  std::ifstream in(indexFile);
+  if (!in) throw HandSourceError(where + ": INDEX.txt cannot be read");
   FakenectIndex index;
   index.folder = folder;
   std::string line;
@@ -102,7 +116,8 @@ FakenectIndex readFakenectIndex(const fs::path& folder) {
     int used = 0;
     if (std::sscanf(line.c_str(), "%c-%lf-%u%n", &e.type, &e.time, &timestamp, &used) != 3 ||
         (e.type != 'd' && e.type != 'r' && e.type != 'a') || !std::isfinite(e.time))
-      throw HandSourceError(at + ": '" + line + "' is not a fakenect entry (TYPE-TIME-TIMESTAMP…, TYPE d, r or a)");
+      throw HandSourceError(at + ": '" + printable(line) +
+                            "' is not a fakenect entry (TYPE-TIME-TIMESTAMP…, TYPE d, r or a)");
     // fakenect sleeps through the time between entries: a jump forward would stall playback for as long.
     if (!index.entries.empty() && e.time - index.entries.back().time > kMaxFakenectGap)
       throw HandSourceError(at + ": time jumps " + std::to_string(e.time - index.entries.back().time) +
@@ -386,7 +401,7 @@ DepthStream::Poll DepthStream::poll(kinect::DepthFrame& frame, double timeout) {
       int status = 0;
       const bool got = lib_->pump(frame, 0.0, status);
       ++cursor_;
-      if (status < 0) throw HandSourceLost("fakenect playback failed at " + e.file);
+      if (status < 0) throw HandSourceLost("fakenect playback failed at " + printable(e.file, 300));
       if (e.type == 'a') gravityUp_ = lib_->gravityUp();  // fakenect keeps the entry as its tilt state
       if (got) {
         frame.time = e.time - firstDepthTime_;

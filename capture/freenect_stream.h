@@ -42,6 +42,8 @@ struct FakenectIndex {
 
 // The longest pause between two entries of a recording (s): fakenect sleeps through each pause as it plays.
 inline constexpr double kMaxFakenectGap = 10.0;
+// The largest INDEX.txt read (bytes): an hour at 30 frames a second is about 10 MiB of entries.
+inline constexpr std::uintmax_t kMaxIndexBytes = std::uintmax_t{64} << 20;
 
 // Reads and checks a recording: every listed file present and non-empty, every depth file complete with a
 // 'P5 640 480 MAX' header, LF line endings, no pause longer than kMaxFakenectGap.

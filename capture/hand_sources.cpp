@@ -99,8 +99,9 @@ std::string DepthHandSource::whyNoHands() const {
   return text;
 }
 
-ReplayHandSource::ReplayHandSource(std::vector<HandSample> samples, std::string describe)
-    : samples_(std::move(samples)), describe_(std::move(describe)) {}
+ReplayHandSource::ReplayHandSource(std::vector<HandSample> samples, std::string describe,
+                                   std::vector<std::string> messages)
+    : samples_(std::move(samples)), describe_(std::move(describe)), messages_(std::move(messages)) {}
 
 std::optional<HandSample> ReplayHandSource::next() {
   if (next_ >= samples_.size()) return std::nullopt;
@@ -117,12 +118,16 @@ double ReplayHandSource::period() const {
   return *length() / static_cast<double>(samples_.size() - 1);
 }
 
-std::unique_ptr<HandSource> openTrajectory(const std::filesystem::path& path) {
-  std::vector<HandSample> samples = readTrajectory(path);
+std::unique_ptr<HandSource> openTrajectory(const std::filesystem::path& path, const TrajectoryLimits& limits) {
+  std::string cut;
+  std::vector<HandSample> samples = readTrajectory(path, 0.5, limits, &cut);
   char describe[64];
   std::snprintf(describe, sizeof describe, " (%zu samples, %.2f s)", samples.size(),
                 samples.back().time - samples.front().time);
-  return std::make_unique<ReplayHandSource>(std::move(samples), "trajectory file " + path.string() + describe);
+  std::vector<std::string> messages;
+  if (!cut.empty()) messages.push_back(cut);
+  return std::make_unique<ReplayHandSource>(std::move(samples), "trajectory file " + path.string() + describe,
+                                            std::move(messages));
 }
 
 ScriptedHandSource::ScriptedHandSource(Gesture gesture, const GestureOptions& options, const Calibration& calibration,
@@ -244,7 +249,7 @@ std::unique_ptr<HandSource> makeHandSource(const std::string& spec, const Source
     throw HandSourceError("input '" + spec + "': nothing after the colon");
   if (kind == "fakenect" && colon != std::string::npos)
     return std::make_unique<DepthHandSource>(DepthStream::openRecording(argument), o.detection, o.tracker);
-  if (kind == "trajectory" && colon != std::string::npos) return openTrajectory(argument);
+  if (kind == "trajectory" && colon != std::string::npos) return openTrajectory(argument, o.trajectory);
   if (kind == "script" && colon != std::string::npos) {
     try {
       return std::make_unique<ScriptedHandSource>(gestureFromName(argument), o.gesture, o.calibration, 30.0, o.noise);

@@ -17,6 +17,7 @@
 #include "freenect_stream.h"
 #include "hand_finder.h"
 #include "scripted_gestures.h"
+#include "trajectory_file.h"
 
 namespace gb {
 
@@ -59,20 +60,24 @@ class DepthHandSource : public HandSource {
 // Samples already in memory, played in order: a trajectory file, or a recorded session replayed.
 class ReplayHandSource : public HandSource {
  public:
-  ReplayHandSource(std::vector<HandSample> samples, std::string describe);
+  // `messages` are passed on by the first takeMessages(), e.g. a note that the file was not read to its end.
+  ReplayHandSource(std::vector<HandSample> samples, std::string describe, std::vector<std::string> messages = {});
   std::optional<HandSample> next() override;
   [[nodiscard]] std::string describe() const override { return describe_; }
   [[nodiscard]] double period() const override;
   [[nodiscard]] std::optional<double> length() const override;
+  std::vector<std::string> takeMessages() override { return std::exchange(messages_, {}); }
 
  private:
   std::vector<HandSample> samples_;
   std::string describe_;
+  std::vector<std::string> messages_;
   size_t next_ = 0;
 };
 
-// A trajectory CSV (trajectory_file.h), read whole when opened so that a malformed file fails before the run.
-std::unique_ptr<HandSource> openTrajectory(const std::filesystem::path& path);
+// A trajectory CSV (trajectory_file.h), read when opened, as far as `limits` allow, so that a malformed file fails
+// before the run.
+std::unique_ptr<HandSource> openTrajectory(const std::filesystem::path& path, const TrajectoryLimits& limits = {});
 
 // Noise for a scripted source: what a depth camera would add, to measure the stabilizers against the truth.
 struct SourceNoise {
@@ -132,7 +137,8 @@ struct SourceOptions {
   TrackerOptions tracker;
   Calibration calibration;  // carries scripted gestures into camera space
   GestureOptions gesture;
-  SourceNoise noise;  // scripted sources only
+  SourceNoise noise;            // scripted sources only
+  TrajectoryLimits trajectory;  // how much of a trajectory file is read
 };
 
 // Opens "kinect", "fakenect:DIR", "trajectory:FILE" or "script:NAME"; throws HandSourceError with what went wrong.

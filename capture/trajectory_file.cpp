@@ -6,6 +6,8 @@
 #include <optional>
 #include <string>
 
+#include "untrusted.h"
+
 namespace gb {
 
 namespace {
@@ -37,17 +39,49 @@ std::optional<double> number(const std::string& field) {
   return value;
 }
 
+// A row's hand: all three coordinates, none (not measured), or a HandSourceError naming the column.
+std::optional<Vec3d> handOf(const std::vector<std::string>& fields, int hand, const std::string& at) {
+  const char* name = hand == 0 ? "left" : "right";
+  int present = 0;
+  Vec3d p;
+  for (int k = 0; k < 3; ++k) {
+    const std::string& f = fields[1 + 3 * hand + k];
+    const char* column = kColumns[1 + 3 * hand + k];
+    if (f.empty()) continue;
+    const std::optional<double> v = number(f);
+    if (!v) throw HandSourceError(at + ": " + column + " '" + printable(f) + "' is not a number");
+    if (std::abs(*v) > kMaxHandDistance)
+      throw HandSourceError(at + ": " + column + " " + printable(f) + " m is more than " +
+                            std::to_string(static_cast<int>(kMaxHandDistance)) +
+                            " m from the camera (a trajectory is in metres)");
+    p[k] = *v;
+    ++present;
+  }
+  if (present != 0 && present != 3)
+    throw HandSourceError(at + ": the " + name + " hand has " + std::to_string(present) +
+                          " of 3 coordinates (leave all three empty to mark it missing)");
+  return present ? std::optional<Vec3d>(p) : std::nullopt;
+}
+
+// The note for the rows from `at` on, which are not read.
+std::string unreadRowsNote(const std::string& at, bool pastTheRunsEnd, std::size_t rows) {
+  if (pastTheRunsEnd) return "note: " + at + ": past the run's end; the rows from here are not read";
+  return "note: " + at + ": " + std::to_string(rows) + " rows read, the most a trajectory may have; the rest is not";
+}
+
 }  // namespace
 
-std::vector<HandSample> readTrajectory(const std::filesystem::path& path, double holdTime) {
-  const std::string file = "trajectory file " + path.string();
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw HandSourceError(file + ": no such file");
+std::vector<HandSample> readTrajectory(const std::filesystem::path& path, double holdTime,
+                                       const TrajectoryLimits& limits, std::string* cut) {
+  const std::string file = "trajectory file " + printable(path.string(), 300);
+  if (const std::string why = whyNotARegularFile(path); !why.empty()) throw HandSourceError(file + ": " + why);
   std::ifstream in(path);
   if (!in) throw HandSourceError(file + ": cannot be read");
   std::vector<HandSample> samples;
   HandHold hold[2] = {HandHold(holdTime), HandHold(holdTime)};
   bool header = false;
+  std::optional<double> bothHandsFrom;  // the time of the first row with both hands
+  bool pastTheEnd = false;
   std::string line;
   for (int lineNumber = 1; std::getline(in, line); ++lineNumber) {
     if (lineNumber == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 BOM some editors add
@@ -58,36 +92,33 @@ std::vector<HandSample> readTrajectory(const std::filesystem::path& path, double
     if (!header) {
       bool matches = fields.size() == std::size(kColumns);
       for (size_t i = 0; matches && i < fields.size(); ++i) matches = fields[i] == kColumns[i];
-      if (!matches) throw HandSourceError(at + ": expected the header '" + kHeader + "', got '" + line + "'");
+      if (!matches)
+        throw HandSourceError(at + ": expected the header '" + kHeader + "', got '" + printable(line) + "'");
       header = true;
       continue;
+    }
+    if (pastTheEnd || samples.size() == limits.rows) {
+      if (cut) *cut = unreadRowsNote(at, pastTheEnd, limits.rows);
+      break;
     }
     if (fields.size() != std::size(kColumns))
       throw HandSourceError(at + ": " + std::to_string(fields.size()) + " fields, expected 7 (" + kHeader + ")");
     const std::optional<double> t = number(fields[0]);
-    if (!t) throw HandSourceError(at + ": time '" + fields[0] + "' is not a number");
+    if (!t) throw HandSourceError(at + ": time '" + printable(fields[0]) + "' is not a number");
     if (!samples.empty() && *t <= samples.back().time)
-      throw HandSourceError(at + ": time " + fields[0] + " s is not after the previous row's");
+      throw HandSourceError(at + ": time " + printable(fields[0]) + " s is not after the previous row's");
+    if (!samples.empty() && *t - samples.back().time > kMaxTrajectoryGap) {
+      char gap[160];
+      std::snprintf(gap, sizeof gap, ": time %.4g s is %.4g s after the previous row's (at most %.0f s between rows)",
+                    *t, *t - samples.back().time, kMaxTrajectoryGap);
+      throw HandSourceError(at + gap);
+    }
     HandSample s;
     s.time = *t;
-    for (int h = 0; h < 2; ++h) {
-      const char* name = h == 0 ? "left" : "right";
-      int present = 0;
-      Vec3d p;
-      for (int k = 0; k < 3; ++k) {
-        const std::string& f = fields[1 + 3 * h + k];
-        if (f.empty()) continue;
-        const std::optional<double> v = number(f);
-        if (!v) throw HandSourceError(at + ": " + kColumns[1 + 3 * h + k] + " '" + f + "' is not a number");
-        p[k] = *v;
-        ++present;
-      }
-      if (present != 0 && present != 3)
-        throw HandSourceError(at + ": the " + name + " hand has " + std::to_string(present) +
-                              " of 3 coordinates (leave all three empty to mark it missing)");
-      s.hand(h == 0 ? Hand::Left : Hand::Right) = hold[h].update(*t, present ? std::optional<Vec3d>(p) : std::nullopt);
-    }
+    for (int h = 0; h < 2; ++h) s.hand(h == 0 ? Hand::Left : Hand::Right) = hold[h].update(*t, handOf(fields, h, at));
+    if (!bothHandsFrom && s.left.measured && s.right.measured) bothHandsFrom = *t;
     samples.push_back(s);
+    pastTheEnd = bothHandsFrom && *t - *bothHandsFrom > limits.seconds;  // the last row read: the run ends before it
   }
   if (!header) throw HandSourceError(file + ": empty (expected the header '" + std::string(kHeader) + "')");
   if (samples.empty()) throw HandSourceError(file + ": no samples after the header");

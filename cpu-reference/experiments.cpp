@@ -35,11 +35,17 @@ void say(const std::function<void(const std::string&)>& progress, const std::str
   if (progress) progress(line);
 }
 
-void run(Simulation& sim, const WandState& wands, int frames) {
-  for (int f = 0; f < frames; ++f) sim.advanceFrame(wands);
+// One frame, unless the caller asked the experiment to stop.
+void advance(Simulation& sim, const WandState& wands, const StopRequest& stop) {
+  if (stop && stop()) throw ExperimentStopped("stopped at t = " + std::to_string(sim.time()) + " s");
+  sim.advanceFrame(wands);
 }
 
-Measurement flatDisc(const Params& p) {
+void run(Simulation& sim, const WandState& wands, int frames, const StopRequest& stop) {
+  for (int f = 0; f < frames; ++f) advance(sim, wands, stop);
+}
+
+Measurement flatDisc(const Params& p, const StopRequest& stop) {
   const RingFilm ring;
   Simulation sim(p, ring.tool, ring.wands);
   State& s = sim.film().state;
@@ -49,7 +55,7 @@ Measurement flatDisc(const Params& p) {
     if (!sim.film().topology.boundary[i]) s.position.z[i] += 0.03f * std::max(0.0f, 1.0f - r2);
   }
   sim.stepper().load(p, sim.film());
-  run(sim, ring.wands, 50);  // 1 s
+  run(sim, ring.wands, 50, stop);  // 1 s
   double worst = 0;
   for (size_t i = 0; i < s.size(); ++i)
     worst = std::max(worst, static_cast<double>(std::abs(sim.film().state.position.z[i])));
@@ -58,7 +64,7 @@ Measurement flatDisc(const Params& p) {
           0.0,         "a film on a flat ring is flat"};
 }
 
-Measurement minimalSurface(const Params& p) {
+Measurement minimalSurface(const Params& p, const StopRequest& stop) {
   const RingFilm ring;
   Simulation sim(p, ring.tool, ring.wands);
   Film& film = sim.film();
@@ -74,7 +80,7 @@ Measurement minimalSurface(const Params& p) {
   }
   CpuStepper::refreshGeometry(p, film);
   sim.stepper().load(p, film);
-  run(sim, ring.wands, 100);  // 2 s
+  run(sim, ring.wands, 100, stop);  // 2 s
   CpuStepper::refreshGeometry(p, sim.film());
   return {"minimal-surface",
           "mean |H| x ring radius on a saddle wire after 2 s",
@@ -84,11 +90,11 @@ Measurement minimalSurface(const Params& p) {
           "a soap film is a minimal surface: H = 0"};
 }
 
-Measurement catenoid(const Params& p) {
+Measurement catenoid(const Params& p, const StopRequest& stop) {
   const float R = 0.3f, d = R;
   const Vec3 c(0, 1.5f, 0);
   Simulation sim(p, generateTube(p, c, R, d, 64), WandState{});
-  run(sim, WandState{}, 100);  // 2 s
+  run(sim, WandState{}, 100, stop);  // 2 s
   Measurement m{"catenoid",
                 "neck radius between rings of R = 0.3 m, d = R",
                 "m",
@@ -109,23 +115,24 @@ Measurement catenoid(const Params& p) {
 }
 
 // The neck after `seconds` of relaxing, 0 once it has pinched to a tenth of R.
-double neckAfter(const Params& p, float R, float d, double seconds) {
+double neckAfter(const Params& p, float R, float d, double seconds, const StopRequest& stop) {
   const Vec3 c(0, 1.5f, 0);
   Simulation sim(p, generateTube(p, c, R, d, 48), WandState{});
   double neck = R;
   for (long f = 0; f < std::lround(seconds / p.frameTime) && neck > 0.1 * R; ++f) {
-    sim.advanceFrame(WandState{});
+    advance(sim, WandState{}, stop);
     neck = neckRadius(sim.film(), c);
   }
   return neck > 0.1 * R ? neck : 0.0;
 }
 
-Measurement catenoidCritical(const Params& p, const std::function<void(const std::string&)>& progress) {
+Measurement catenoidCritical(const Params& p, const std::function<void(const std::string&)>& progress,
+                             const StopRequest& stop) {
   const float R = 0.3f;
   // Stable catenoids keep a neck above 0.55 R (0.5524 x 1.3255 R = 0.73 R at the fold); past it the film thins
   // to nothing, below 0.4 R within 3 s.
   auto collapses = [&](float d) {
-    const bool c = neckAfter(p, R, d, 3.0) < 0.4 * R;
+    const bool c = neckAfter(p, R, d, 3.0, stop) < 0.4 * R;
     std::ostringstream line;
     line << "d = " << d / R << " R: " << (c ? "collapses into two discs" : "a stable catenoid");
     say(progress, line.str());
@@ -145,10 +152,10 @@ Measurement catenoidCritical(const Params& p, const std::function<void(const std
           "d / 2a = 1.1997 where a cosh(d / 2a) = R has a double root"};
 }
 
-Measurement youngLaplace(const Params& p) {
+Measurement youngLaplace(const Params& p, const StopRequest& stop) {
   const Vec3 c(0, 1.5f, 0);
   Simulation sim(p, generateSphere(p, c, 0.4f, 3), WandState{});
-  run(sim, WandState{}, 50);  // 1 s
+  run(sim, WandState{}, 50, stop);  // 1 s
   const Film& film = sim.film();
   const Vec3 centre = centroid(film.state);
   double radius = 0, tension = 0;
@@ -166,7 +173,7 @@ Measurement youngLaplace(const Params& p) {
           law.str()};
 }
 
-Measurement waves(Params p) {
+Measurement waves(Params p, const StopRequest& stop) {
   p.airDrag = 0.0f;  // the drag of still air would slow the wave
   p.springDamping = 0.0f;
   p.frameTime = 0.005f;
@@ -186,7 +193,7 @@ Measurement waves(Params p) {
   std::vector<std::pair<double, double>> trace = {{0.0, sim.film().state.position.z[middle]}};
   float previous = sim.film().state.position.z[middle];
   for (int f = 1; f <= 400 && crossings.size() < 4; ++f) {
-    sim.advanceFrame(ring.wands);
+    advance(sim, ring.wands, stop);
     const float z = sim.film().state.position.z[middle];
     trace.emplace_back(static_cast<double>(p.frameTime) * f, z);
     if (previous > 0 && z <= 0)
@@ -212,7 +219,7 @@ Measurement waves(Params p) {
   return m;
 }
 
-Measurement bubbleBurst(Params p) {
+Measurement bubbleBurst(Params p, const StopRequest& stop) {
   p.areaWeight = 0.01f;  // initial thickness 1 um
   // A burst is the fastest event there is (the rim runs at 6.3 m/s, three edges a frame): it asks for four
   // implicit steps per frame. At one step the torn film retracts further within each step and the bubble
@@ -223,7 +230,7 @@ Measurement bubbleBurst(Params p) {
   const double start = sim.time();
   double gone = -1;
   for (int f = 0; f < 200 && gone < 0; ++f) {
-    sim.advanceFrame(WandState{});
+    advance(sim, WandState{}, stop);
     if (sim.lastEvents().finished) gone = sim.time() - start;
   }
   if (gone < 0) throw std::runtime_error("bubble-burst: the bubble did not burst completely in 4 s");
@@ -241,17 +248,21 @@ std::vector<std::string> experimentNames() {
   return {"flat-disc", "minimal-surface", "catenoid", "catenoid-critical", "young-laplace", "waves", "bubble-burst"};
 }
 
+bool experimentSizedByParticles(const std::string& name) {
+  return name == "flat-disc" || name == "minimal-surface" || name == "waves";  // the ring films
+}
+
 Measurement runExperiment(const std::string& name, Params params,
-                          const std::function<void(const std::string&)>& progress) {
+                          const std::function<void(const std::string&)>& progress, const StopRequest& stop) {
   const Params p = physical(params);
   say(progress, "experiment " + name + " (physical tension model)");
-  if (name == "flat-disc") return flatDisc(p);
-  if (name == "minimal-surface") return minimalSurface(p);
-  if (name == "catenoid") return catenoid(p);
-  if (name == "catenoid-critical") return catenoidCritical(p, progress);
-  if (name == "young-laplace") return youngLaplace(p);
-  if (name == "waves") return waves(p);
-  if (name == "bubble-burst") return bubbleBurst(p);
+  if (name == "flat-disc") return flatDisc(p, stop);
+  if (name == "minimal-surface") return minimalSurface(p, stop);
+  if (name == "catenoid") return catenoid(p, stop);
+  if (name == "catenoid-critical") return catenoidCritical(p, progress, stop);
+  if (name == "young-laplace") return youngLaplace(p, stop);
+  if (name == "waves") return waves(p, stop);
+  if (name == "bubble-burst") return bubbleBurst(p, stop);
   std::string list;
   for (const std::string& n : experimentNames()) list += (list.empty() ? "" : ", ") + n;
   throw std::invalid_argument("unknown experiment '" + name + "' (experiments: " + list + ")");

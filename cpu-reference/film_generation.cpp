@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <numbers>
 #include <queue>
@@ -130,7 +131,10 @@ PlanarLayout layoutWithCount(const WireFrame& f, size_t target) {
   PlanarLayout layout = layoutForSpacing(f, lo);
   const size_t excess = layout.count() - target;
   if (excess > layout.interior.points.size())
-    throw std::runtime_error("film generation: too few particles for the frame's boundary");
+    throw std::invalid_argument("film generation: a film of " + std::to_string(target) +
+                                " particles (particlesAtFullSolution x solution: --particles, --solution) is too few "
+                                "for its wire, which alone takes " +
+                                std::to_string(layout.boundary.size()) + ": give more particles or a larger solution");
   std::vector<size_t> order(layout.interior.points.size());
   for (size_t k = 0; k < order.size(); ++k) order[k] = k;
   std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) {
@@ -236,6 +240,18 @@ void initialiseFilmMaterial(const Params& params, Film& film) {
 
 Film generateFilm(const Params& params, const WandTool& tool, const WandState& wands) {
   if (const auto errors = validate(params); !errors.empty()) throw std::invalid_argument(errors.front());
+  // Beyond this distance a float's steps are millimetres, and the film's particles would fall on each other: wands
+  // that far away are an input in the wrong units or a broken calibration, and are named as such.
+  constexpr float kFarthestWands = 1000.0f;  // m
+  const float farthest = std::max(wands.leftPosition.norm(), wands.rightPosition.norm());
+  if (!(farthest <= kFarthestWands)) {
+    char message[200];
+    std::snprintf(message, sizeof message,
+                  "film generation: the wands are %.4g m from the origin, beyond %.0f m (an input in other units than "
+                  "metres? a --reach or --performer far off?)",
+                  farthest, kFarthestWands);
+    throw std::invalid_argument(message);
+  }
   Film film;
   film.tool = tool;
   const Vec3 gravity(params.gravityX, params.gravityY, params.gravityZ);

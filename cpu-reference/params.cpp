@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 #include <stdexcept>
 
@@ -63,7 +64,7 @@ constexpr std::array kFields = {GB_REAL(frameTime, 1e-5, 0.1, " s"),
                                 GB_REAL(pinchDistance, 0.0, 10.0, " m"),
                                 GB_REAL(loopSwingRate, 0.1, 1000.0, " rad/s"),
                                 GB_REAL(solution, 0.01, 1.0, ""),
-                                GB_INTEGER(particlesAtFullSolution, 16, 50000000),
+                                GB_INTEGER(particlesAtFullSolution, 16, kMaxParticles),
                                 GB_REAL(solutionReserve, 0.0, 100.0, ""),
                                 GB_REAL(growthStretch, 1.05, 100.0, ""),
                                 GB_REAL(yieldStretch, 0.0, 100.0, ""),
@@ -87,11 +88,17 @@ const ParamField* findParamField(const std::string& name) {
 void setParameter(Params& params, const std::string& name, double value) {
   const ParamField* field = findParamField(name);
   if (!field) throw std::invalid_argument("unknown parameter '" + name + "' (docs/model.md lists them)");
+  if (!(value >= field->lo && value <= field->hi)) {  // NaN too
+    std::ostringstream msg;
+    msg << std::setprecision(10) << "parameter " << name << " = " << value << " is out of range [" << field->lo << ", "
+        << field->hi << "]" << field->unit;
+    throw std::invalid_argument(msg.str());
+  }
   if (field->real) {
     params.*field->real = static_cast<float>(value);
     return;
   }
-  if (!(std::isfinite(value) && value == std::floor(value) && std::abs(value) < 2e9)) {
+  if (value != std::floor(value)) {
     std::ostringstream msg;
     msg << "parameter " << name << " = " << value << " must be a whole number";
     throw std::invalid_argument(msg.str());

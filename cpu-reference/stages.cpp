@@ -82,7 +82,7 @@ uint64_t geometryKey(const Topology& topo, const State& s) {
       mix(lane[0], word);
     }
     uint64_t tail = 0;
-    std::memcpy(&tail, p + k, bytes - k);
+    if (k < bytes) std::memcpy(&tail, p + k, bytes - k);  // an empty array's data() may be null, even for 0 bytes
     mix(lane[0], tail);
   };
   for (const std::vector<float>* axis : {&s.position.x, &s.position.y, &s.position.z})

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstdio>
 #include <cstring>
 #include <optional>
 #include <stdexcept>
@@ -173,8 +174,8 @@ struct Renderer::Impl {
 
   Impl(std::shared_ptr<const VulkanContext> context, const RenderOptions& o, const EnvironmentImage& env)
       : ctx(std::move(context)), options(o), swirls(o.thicknessVariation) {
-    setExtent(o.width, o.height);
     samples = supportedSamples(o.samples);
+    setExtent(o.width, o.height);
     makeTargets();
     makeSamplersAndTextures(env);
     ambient = hemisphereMeans(env);
@@ -211,9 +212,16 @@ struct Renderer::Impl {
   }
 
   void setExtent(int width, int height) {
-    if (width < 16 || height < 16 || width > 16384 || height > 16384)
-      throw std::invalid_argument("render size " + std::to_string(width) + "x" + std::to_string(height) +
-                                  " is outside 16..16384 pixels");
+    const vk::PhysicalDeviceLimits limits = ctx->physical.getProperties().limits;
+    double heapBytes = 0;
+    const vk::PhysicalDeviceMemoryProperties memory = ctx->physical.getMemoryProperties();
+    for (uint32_t h = 0; h < memory.memoryHeapCount; ++h)
+      if (memory.memoryHeaps[h].flags & vk::MemoryHeapFlagBits::eDeviceLocal)
+        heapBytes = std::max(heapBytes, static_cast<double>(memory.memoryHeaps[h].size));
+    const std::string problem =
+        renderSizeProblem(width, height, static_cast<int>(samples), static_cast<int>(limits.maxImageDimension2D),
+                          heapBytes, ctx->info().name);
+    if (!problem.empty()) throw std::invalid_argument(problem);
     options.width = width;
     options.height = height;
     extent = vk::Extent2D(static_cast<uint32_t>(width), static_cast<uint32_t>(height));
@@ -654,6 +662,32 @@ struct Renderer::Impl {
     cb.end();
   }
 };
+
+double renderTargetBytes(int width, int height, int samples) {
+  const double pixels = static_cast<double>(width) * height;
+  const double resolved = 8 + 8 + 2 + 4;                       // opaque, accum, reveal, output
+  const double perSample = 4 + (samples > 1 ? 8 + 8 + 2 : 0);  // depth, and the multisampled colours
+  const double hostRows = 2 * (4 + 4);                         // two frames' read-back and banner rows
+  return pixels * (resolved + perSample * samples + hostRows);
+}
+
+std::string renderSizeProblem(int width, int height, int samples, int largestSide, double heapBytes,
+                              const std::string& device) {
+  const int side = std::min(largestSide, kMaxRenderSide);
+  char text[300];
+  if (width < 16 || height < 16 || width > side || height > side) {
+    std::snprintf(text, sizeof text, "render size %dx%d is outside 16..%d pixels on %s (--width, --height)", width,
+                  height, side, device.c_str());
+    return text;
+  }
+  const double bytes = renderTargetBytes(width, height, samples);
+  if (bytes <= heapBytes / 4) return {};
+  std::snprintf(text, sizeof text,
+                "a %dx%d image at %d sample%s per pixel takes %.1f GB of render targets, more than a quarter of the "
+                "%.1f GB of %s: give a smaller --width and --height",
+                width, height, samples, samples == 1 ? "" : "s", bytes / 1e9, heapBytes / 1e9, device.c_str());
+  return text;
+}
 
 Renderer::Renderer(std::shared_ptr<const VulkanContext> context, const RenderOptions& options,
                    const EnvironmentImage& environment)

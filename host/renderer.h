@@ -48,6 +48,17 @@ struct RenderOptions {
                                      // interference colouring only; 0: the simulated thickness as it is
 };
 
+// The largest image side the renderer draws (pixels), whatever the device allows.
+inline constexpr int kMaxRenderSide = 16384;
+// The memory a width x height image takes at `samples` per pixel (bytes): its colour and depth targets, the
+// multisampled ones, the output and the two frames' read-back and banner rows (16384 x 16384 is 11 GB at 1 sample).
+double renderTargetBytes(int width, int height, int samples);
+// Why `device` cannot draw a width x height image at `samples` per pixel, or empty when it can: a side beyond its
+// largest (and kMaxRenderSide), or targets beyond a quarter of its largest memory heap, which would fail mid-show
+// instead of at the start. Names --width and --height.
+std::string renderSizeProblem(int width, int height, int samples, int largestSide, double heapBytes,
+                              const std::string& device);
+
 // One frame to draw. Everything but the film is optional.
 struct RenderFrame {
   const Film* film = nullptr;

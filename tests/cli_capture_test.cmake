@@ -21,7 +21,7 @@ function(expect_file path)
   endif()
 endfunction()
 
-set(run_args --particles 400 --ply-every 0 --images-every 0 --no-progress --backend cpu)
+set(run_args --particles 400 --ply-every 0 --images-every 0 --no-progress --backend cpu --no-render)
 
 # A scripted performance seen through noise, kept as a trajectory.
 run_ok(${EXE} record --input script:circles --noise 0.01 --outliers 0.03 --trajectory ${OUT}/hands.csv

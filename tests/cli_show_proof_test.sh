@@ -9,7 +9,8 @@ CASE=$3
 rm -rf "$OUT"
 mkdir -p "$OUT"
 cd "$OUT" || exit 1
-SMALL=(--particles 400 --backend cpu --ply-every 0 --images-every 0 --no-progress)
+# --no-render: the default scene renders its video; the cases that want frames add RENDER after SMALL (the last wins).
+SMALL=(--particles 400 --backend cpu --ply-every 0 --images-every 0 --no-progress --no-render)
 RENDER=(--render --width 64 --height 48 --render-every 0)
 
 fail() {
@@ -24,6 +25,15 @@ wait_for_lines() {
     sleep 0.1
   done
   fail "$1 never reached $2 lines"
+}
+
+# Waits (at most 120 s) until FILE holds TEXT.
+wait_for_text() {
+  for _ in $(seq 1200); do
+    grep -qF -- "$2" "$1" 2>/dev/null && return 0
+    sleep 0.1
+  done
+  fail "$1 never held $2"
 }
 
 # Frames in an MP4 as ffprobe decodes them (0 when it cannot be read).
@@ -42,7 +52,7 @@ trajectory() {
 # gives is capped at 3600 s (180,000 frames) with a note, not taken whole.
 signal_case() {
   local signal=$1 expected=$2
-  trajectory 0 7200 >long.csv
+  trajectory 0 3600 7200 >long.csv
   "$EXE" run --input trajectory:long.csv "${SMALL[@]}" "${RENDER[@]}" --out run >log.txt 2>&1 &
   local pid=$!
   wait_for_lines run/stats.csv 8
@@ -59,6 +69,11 @@ signal_case() {
   frames=$(mp4_frames run/render.mp4)
   echo "frames simulated: $rows, frames in the MP4: $frames"
   [ "$frames" -eq $((rows + 1)) ] || fail "the MP4 has $frames frames, expected $((rows + 1)) (frame 0 and $rows)"
+}
+
+# Fails unless FILE is the same as its copy in saved/ (a run must not have touched it).
+expect_unchanged() {
+  cmp -s "$1" "saved/$(basename "$1")" || fail "$1 was changed by a run that failed: $(cat log.txt)"
 }
 
 case "$CASE" in
@@ -126,7 +141,7 @@ case "$CASE" in
     timeout 20 "$EXE" run --scene ./scene.toml >log.txt 2>&1
     rc=$?
     [ "$rc" -ne 124 ] || fail "--scene on a FIFO blocked"
-    grep -q "not a regular file" log.txt || fail "--scene on a FIFO: $(cat log.txt)"
+    grep -q "is a FIFO (a scene is read from a regular file)" log.txt || fail "--scene on a FIFO: $(cat log.txt)"
     ;;
   keys_overflow)
     "$EXE" live --keys 99999999999999999999:b >log.txt 2>&1 && fail "exited 0"
@@ -173,6 +188,178 @@ case "$CASE" in
     [ "$rc" -eq 0 ] || fail "exit status $rc"
     grep -q "the simulation became unstable; a new film is dipped" log.txt || fail "no recovery reported"
     grep -q "presented 50 frames" log.txt || fail "the show did not go on"
+    ;;
+  outputs_only_onto_files)
+    # A FIFO or a folder where an output goes is refused by name, left as it was, and nothing blocks on the FIFO. (A
+    # device is the same case; it is checked in ShowProof.AnOutputIsNeverWrittenOntoAFifoAFolderOrADevice without
+    # writing to one: as root, the old rename replaced /dev/null.)
+    mkfifo fifo.json
+    mkdir folder.json
+    for target in fifo.json folder.json; do
+      timeout 120 "$EXE" bench --sizes 100 --backends cpu --steps 8 --json $target >log.txt 2>&1
+      rc=$?
+      cat log.txt
+      [ "$rc" -eq 1 ] || fail "bench --json $target: exit status $rc"
+      grep -q "error: will not write $target: it is a" log.txt || fail "bench --json $target: the problem is not named"
+      grep -q "results written\|Success" log.txt && fail "bench --json $target: says it succeeded"
+    done
+    [ -p fifo.json ] && [ -d folder.json ] || fail "the FIFO or the folder was replaced"
+    mkdir run
+    mkfifo run/stats.csv
+    timeout 120 "$EXE" run --duration 0.1 "${SMALL[@]}" --out run >log.txt 2>&1
+    rc=$?
+    cat log.txt
+    [ "$rc" -eq 1 ] || fail "a run onto a FIFO stats.csv: exit status $rc (124: it blocked)"
+    grep -q "will not write run/stats.csv: it is a FIFO" log.txt || fail "the FIFO stats.csv is not named"
+    ;;
+  two_runs_one_folder)
+    # A second run into the folder of a run that is going on is refused, naming the first; the first's rows stay whole.
+    trajectory 0 3600 7200 >long.csv
+    "$EXE" run --input trajectory:long.csv "${SMALL[@]}" --out same >first.txt 2>&1 &
+    first=$!
+    wait_for_lines same/stats.csv 4
+    "$EXE" run --scene fig10c "${SMALL[@]}" --duration 0.1 --out same >log.txt 2>&1
+    rc=$?
+    cat log.txt
+    kill -INT "$first"
+    wait "$first"
+    [ "$rc" -eq 1 ] || fail "the second run into the same folder: exit status $rc"
+    grep -q "error: another run is writing into same (process $first: .*giantbubble run --input trajectory:long.csv" \
+      log.txt || fail "the first run is not named"
+    grep -q '"scene": "default"' same/stats.json || fail "stats.json is not the first run's"
+    awk -F, 'NR > 1 && NF != 19 { bad = 1 } END { exit bad }' same/stats.csv || fail "stats.csv has rows cut or mixed"
+    ;;
+  failed_run_keeps_previous)
+    # A run refused for its input, its OSC target or its environment image leaves the previous run's files as they
+    # were; one killed outright leaves stats.json saying "running", one stopped by a full disk "failed: ...".
+    "$EXE" run --duration 0.1 "${SMALL[@]}" --out run >log.txt 2>&1 || fail "the first run failed: $(cat log.txt)"
+    mkdir saved
+    cp run/stats.json run/stats.csv run/wands.csv saved/
+    echo "t,left_x,left_y,left_z,right_x,right_y,right_z" >far.csv
+    echo "0,-1000000,0,2,1000000,0,2" >>far.csv
+    echo "not a picture" >sky.png
+    for bad in "--input trajectory:far.csv" "--osc no-port-here" "--render --environment sky.png"; do
+      # shellcheck disable=SC2086
+      "$EXE" run --duration 0.1 "${SMALL[@]}" $bad --out run >log.txt 2>&1 && fail "run $bad exited 0"
+      echo "run $bad: $(grep error log.txt)"
+      for file in run/stats.json run/stats.csv run/wands.csv; do expect_unchanged $file; done
+    done
+    trajectory 0 3600 7200 >long.csv
+    "$EXE" run --input trajectory:long.csv "${SMALL[@]}" --out run >log.txt 2>&1 &
+    pid=$!
+    wait_for_text run/stats.json '"status": "running"'
+    kill -KILL "$pid"
+    wait "$pid"
+    grep -q '"status": "running"' run/stats.json || fail "a run killed outright left stats.json: $(cat run/stats.json)"
+    (
+      ulimit -f 40
+      trap '' XFSZ
+      exec "$EXE" run --duration 10 "${SMALL[@]}" --out run
+    ) >log.txt 2>&1 && fail "a run on a full disk exited 0"
+    grep -Eq '"status": "failed: failed writing run/(stats|wands)\.csv: File too large"' run/stats.json ||
+      fail "a run stopped by a full disk left stats.json: $(cat run/stats.json)"
+    ;;
+  default_scene_renders)
+    # The default scene says what it renders ([render] in scenes/default.toml): any run of it makes its video, not
+    # only `giantbubble run` without an option; options change it, and --no-render turns it off.
+    "$EXE" run --duration 0.1 --particles 400 --backend cpu --ply-every 0 --images-every 0 --no-progress \
+      --width 64 --height 48 --out run >log.txt 2>&1 || fail "$(cat log.txt)"
+    [ "$(mp4_frames run/render.mp4)" -eq 6 ] || fail "no 6-frame render.mp4: $(cat log.txt)"
+    [ -f run/render_00000.png ] && [ ! -f run/render_00001.png ] || fail "not a rendered PNG every 25 frames"
+    "$EXE" run --duration 0.1 "${SMALL[@]}" --out quiet >log.txt 2>&1 || fail "$(cat log.txt)"
+    [ ! -e quiet/render.mp4 ] || fail "--no-render made a video"
+    ;;
+  experiment_options)
+    # A physics experiment builds its own film and runs its own length: an option it would ignore is refused by name,
+    # and Ctrl-C ends it as it ends a run.
+    for args in "--scene catenoid --duration 0.001" "--scene catenoid --input script:circles" \
+      "--scene waves --tool ring" "--scene catenoid --particles 5000" "--scene waves --osc 127.0.0.1:9"; do
+      # shellcheck disable=SC2086
+      "$EXE" run $args --out run >log.txt 2>&1
+      rc=$?
+      echo "run $args: $(head -1 log.txt)"
+      [ "$rc" -eq 1 ] || fail "run $args: exit status $rc"
+      grep -q "does not apply to the physics experiment" log.txt || fail "run $args: $(cat log.txt)"
+    done
+    "$EXE" run --scene minimal-surface --particles 50000 --out run >log.txt 2>&1 &
+    pid=$!
+    for _ in $(seq 600); do grep -q "experiment minimal-surface" log.txt && break; sleep 0.1; done
+    kill -INT "$pid"
+    wait "$pid"
+    rc=$?
+    cat log.txt
+    [ "$rc" -eq 130 ] || fail "the experiment after SIGINT: exit status $rc, expected 130"
+    grep -q "SIGINT: the experiment minimal-surface stopped at t = " log.txt || fail "the stop is not said"
+    grep -q '"status": "interrupted"' run/experiment.json || fail "experiment.json does not say interrupted"
+    ;;
+  exit_codes)
+    # One table (docs/user-guide.md, "Exit status"): a mistake on the command line or in a scene is an error, 1.
+    expect_exit() {
+      local expected=$1
+      shift
+      "$EXE" "$@" >log.txt 2>&1
+      local rc=$?
+      [ "$rc" -eq "$expected" ] || fail "giantbubble $*: exit status $rc, expected $expected: $(cat log.txt)"
+    }
+    expect_exit 0 run --help
+    expect_exit 1 run --no-such-option
+    expect_exit 1 run --particles 99999999
+    expect_exit 1 run --scene no-such-scene
+    expect_exit 1 bench --sizes 10
+    expect_exit 1 run --duration 0.1 "${SMALL[@]}" --out ''
+    grep -q "error: the output folder's name is empty (--out): give a folder" log.txt || fail "--out '': $(cat log.txt)"
+    ;;
+  messages_name_the_problem)
+    # Each message names the real problem and the option or file to change.
+    expect_message() {
+      local message=$1
+      shift
+      "$EXE" "$@" >log.txt 2>&1 && fail "giantbubble $* exited 0"
+      grep -qF -- "$message" log.txt || fail "giantbubble $*: $(cat log.txt)"
+      echo "giantbubble $*: $(grep -F -- "$message" log.txt)"
+    }
+    expect_message "trajectory file /dev/zero: is a character device" run --input trajectory:/dev/zero --out run
+    expect_message "--particles, --solution) is too few for its wire" run --solution 0.01 --particles 300 \
+      --backend cpu --no-render --out run
+    expect_message "IPv6 is not supported" run --osc "[::1]:9000" --out run
+    expect_message "IPv6 is not supported" run --osc 127.0.0.1:9000:1 --out run
+    expect_message "particlesAtFullSolution = 2000000000 is out of range [16, 2000000]" run \
+      --param particlesAtFullSolution=2e9
+    expect_message "particlesAtFullSolution = 10000000 is out of range [16, 2000000]" run \
+      --param particlesAtFullSolution=10000000
+    expect_message "frameTime = 1e-50 is out of range [1e-05, 0.1] s" run --param frameTime=1e-50
+    expect_message "--keys -5:b: frame -5 is negative" live --keys -5:b
+    expect_message "--depth-plot-frame" record --input script:circles --depth-plot-frame -5 --report
+    trajectory 0 1e308 >forever.csv
+    expect_message "line 3: time 1e+308 s is 1e+308 s after the previous row's (at most 3600 s between rows)" run \
+      --input trajectory:forever.csv --out run
+    ;;
+  long_trajectory_read_as_far_as_the_run)
+    # 200,000 rows (about 17 minutes at 200 per second) for a 0.1 s run: read to the run's end (and a second for the
+    # stabilizer), with a note, not parsed whole.
+    awk 'BEGIN { print "t,left_x,left_y,left_z,right_x,right_y,right_z"; for (k = 0; k < 200000; ++k) printf "%.3f,-0.15,0,2,0.15,0,2\n", k * 0.005 }' >long.csv
+    "$EXE" run --input trajectory:long.csv --duration 0.1 "${SMALL[@]}" --out run >log.txt 2>&1 || fail "$(cat log.txt)"
+    grep -q "note: trajectory file long.csv, line 224: past the run's end; the rows from here are not read" log.txt ||
+      fail "no note that the rest was not read: $(cat log.txt)"
+    grep -q "(222 samples, 1.10 s)" log.txt || fail "not read to the run's end and a second: $(cat log.txt)"
+    ;;
+  terminal_injection)
+    # A scene's name is printed: one holding a newline and an escape sequence is refused, and the message escapes them.
+    printf 'name = "show\\n\\u001b[31mred"\n' >scene.toml
+    "$EXE" run --scene ./scene.toml --out run >log.txt 2>&1 && fail "a name with control characters was taken"
+    cat log.txt
+    grep -qF "name = 'show\n\x1b[31mred' holds control characters" log.txt || fail "the name is not named"
+    grep -q "$(printf '\033')" log.txt && fail "an escape sequence reached the terminal"
+    ;;
+  burst_with_no_film)
+    # B when the film is gone says so instead of "burst".
+    xvfb-run -a "$EXE" live --scene fig11a --frames 120 --width 160 --height 120 --particles 400 --backend cpu \
+      --fixed-step --auto-dip -1 --keys 5:b 110:b >log.txt 2>&1
+    rc=$?
+    cat log.txt
+    [ "$rc" -eq 0 ] || fail "exit status $rc"
+    grep -q "frame 5: burst" log.txt || fail "the first B did not burst the film"
+    grep -q "frame 110: B: no film to burst" log.txt || fail "B with no film is not said"
     ;;
   *) fail "unknown case $CASE" ;;
 esac

@@ -185,7 +185,7 @@ TEST(Fakenect, RecordingsPlayOneAfterAnotherInOneProcess) {
 }
 
 TEST(Fakenect, BadRecordingsAreClearErrorsBeforeFakenectSeesThem) {
-  EXPECT_NE(errorOf([] { DepthStream::openRecording(scratch("absent")); }).find("no such folder"), std::string::npos);
+  EXPECT_NE(errorOf([] { DepthStream::openRecording(scratch("absent")); }).find("does not exist"), std::string::npos);
 
   const fs::path empty = scratch("empty");
   fs::create_directories(empty);
@@ -208,7 +208,7 @@ TEST(Fakenect, BadRecordingsAreClearErrorsBeforeFakenectSeesThem) {
   EXPECT_NE(message.find("truncated"), std::string::npos) << message;
 
   fs::remove(truncated / second);
-  EXPECT_NE(errorOf([&] { DepthStream::openRecording(truncated); }).find("is missing"), std::string::npos);
+  EXPECT_NE(errorOf([&] { DepthStream::openRecording(truncated); }).find("does not exist"), std::string::npos);
 
   std::ofstream(truncated / "INDEX.txt") << "not a fakenect line\n";
   EXPECT_NE(errorOf([&] { DepthStream::openRecording(truncated); }).find("not a fakenect entry"), std::string::npos);

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace gb {
 namespace {
 
@@ -43,6 +45,20 @@ TEST(RealTimePacer, TheImageShrinksFirstThenTheSweepsGoDownAndBothComeBack) {
   for (int k = 0; k < 7; ++k) fixed.record(1, 50.0, 50.0);
   EXPECT_EQ(fixed.sweeps(), 3);
   EXPECT_EQ(fixed.renderScale(), 1.0);
+}
+
+TEST(RealTimePacer, AWindowOfAnySizeComesDownToAnImageTheMachineDraws) {
+  // 16384 x 16384: --min-render-scale 0.5 would still draw 8192 x 8192. The floor keeps at most 1280 x 720's pixels.
+  const double floor = renderScaleFloor(0.5, 16384, 16384);
+  EXPECT_NEAR(floor * floor * 16384.0 * 16384.0, 1280.0 * 720.0, 1.0);  // pixels; 1 pixel of rounding
+  EXPECT_EQ(renderScaleFloor(0.5, 1280, 720), 0.5) << "a window of ordinary size keeps --min-render-scale";
+  // 2 s to draw a frame, 4 frames (80 ms) due: after the first kRescaleEvery iterations it draws 0.2 of the width,
+  // where 25 times fewer pixels take the frames' time, rather than a quarter step every ten frames of 2 s.
+  RealTimePacer pacer({0.02, 10, 3, 4, floor});
+  for (int k = 0; k < RealTimePacer::kRescaleEvery; ++k) pacer.record(4, 10.0, 2000.0);
+  EXPECT_NEAR(pacer.renderScale(), std::sqrt(80.0 / 2010.0), 1e-12);  // exact arithmetic: one change
+  for (int k = 0; k < 10 * RealTimePacer::kRescaleEvery; ++k) pacer.record(4, 10.0, 2000.0);
+  EXPECT_EQ(pacer.renderScale(), floor) << "down to the floor, never below";
 }
 
 }  // namespace

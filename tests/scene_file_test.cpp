@@ -34,6 +34,7 @@ TEST(SceneFile, EveryBuiltInSceneLoadsAndRunsAFewFramesOnTheCpu) {
     run.duration = 0.06;  // three frames
     run.backend = Backend::Cpu;
     run.progress = false;
+    run.render.enabled = false;  // the default scene's video: cli_show_proof_default_scene_renders
     run.outDir = out / name;
     EXPECT_EQ(runSimulation(run), 0) << name;
     EXPECT_TRUE(std::filesystem::exists(out / name / "stats.csv")) << name;

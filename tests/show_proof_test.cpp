@@ -1,6 +1,6 @@
-// Show-proofing (issue 14): nothing lost on a full disk, inputs that cannot stall the loop or slip a NaN past a
-// check, messages that say what is wrong. The command-line halves (signals, ffmpeg, live recovery) are in
-// cli_show_proof_test.sh.
+// Show-proofing: nothing lost on a full disk, no output written onto a device or a FIFO, inputs that cannot stall the
+// loop, slip a NaN past a check or grow without bound, messages that say what is wrong. The command-line halves
+// (signals, ffmpeg, live recovery) are in cli_show_proof_test.sh.
 #include <gtest/gtest.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
@@ -14,12 +14,17 @@
 #include <string>
 
 #include "cli_checks.h"
+#include "experiments.h"
+#include "freenect_stream.h"
 #include "osc_events.h"
 #include "output_file.h"
 #include "png_image.h"
+#include "realtime_pacer.h"
+#include "renderer.h"
 #include "run_output.h"
 #include "scene_file.h"
 #include "trajectory_file.h"
+#include "untrusted.h"
 #include "view_command.h"
 #include "wand_input.h"
 
@@ -121,6 +126,53 @@ TEST(ShowProof, AWholeFileIsReplacedAtomicallyAndAnUnwritablePathIsNamed) {
       << message;
 }
 
+TEST(ShowProof, AnOutputIsNeverWrittenOntoAFifoAFolderOrADevice) {
+  const fs::path dir = scratch("targets");
+  const fs::path fifo = dir / "fifo.json", folder = dir / "folder.json";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  fs::create_directories(folder);
+  for (const auto& target : {std::pair{fifo, "a FIFO"}, {folder, "a folder"}}) {
+    const fs::path& path = target.first;  // not a structured binding: clang 14 cannot capture one in a lambda
+    const std::string kind = target.second;
+    const std::string whole = errorOf([&] { writeFileAtomically(path, "x"); });
+    EXPECT_NE(whole.find("will not write " + path.string() + ": it is " + kind), std::string::npos) << whole;
+    const std::string rows = errorOf([&] { RowFile file(path); });  // a FIFO would block the open
+    EXPECT_NE(rows.find("will not write " + path.string() + ": it is " + kind), std::string::npos) << rows;
+  }
+  EXPECT_TRUE(fs::is_fifo(fifo));
+  EXPECT_TRUE(fs::is_directory(folder));
+  // A device is refused by the check alone: no byte is written to /dev/null, which a rename would have replaced.
+  const std::string device = errorOf([] { (void)outputTarget("/dev/null"); });
+  EXPECT_NE(device.find("will not write /dev/null: it is a character device"), std::string::npos) << device;
+}
+
+TEST(ShowProof, AnOutputThroughASymbolicLinkReplacesItsTargetAndKeepsTheLink) {
+  const fs::path dir = scratch("link");
+  std::ofstream(dir / "real.json") << "old\n";
+  fs::create_symlink("real.json", dir / "link.json");
+  writeFileAtomically(dir / "link.json", "new\n");
+  EXPECT_TRUE(fs::is_symlink(dir / "link.json"));
+  EXPECT_EQ(readAll(dir / "real.json"), "new\n");
+}
+
+TEST(ShowProof, ASecondRunIntoTheSameFolderIsRefusedNamingTheFirst) {
+  const fs::path dir = scratch("lock") / "out";
+  {
+    const OutputFolder first(dir);
+    const std::string message = errorOf([&] { const OutputFolder second(dir); });
+    EXPECT_NE(
+        message.find("another run is writing into " + dir.string() + " (process " + std::to_string(::getpid()) + ": "),
+        std::string::npos)
+        << message;
+  }
+  EXPECT_NO_THROW(const OutputFolder again(dir));  // the lock goes with the run that held it
+  EXPECT_NE(errorOf([] { const OutputFolder empty(""); }).find("the output folder's name is empty (--out)"),
+            std::string::npos);
+  std::ofstream(dir / "file") << "x";
+  EXPECT_NE(errorOf([&] { const OutputFolder file(dir / "file"); }).find("is a regular file (--out): give a folder"),
+            std::string::npos);
+}
+
 TEST(ShowProof, Table1AveragesOnlyTheFramesWithAFilm) {
   const fs::path json = scratch("table1") / "stats.json";
   RunRecord record;
@@ -201,7 +253,8 @@ TEST(ShowProof, ASceneThatIsAFolderOrAFifoIsNamedNotReadOrWaitedOn) {
   EXPECT_NE(errorOf([&] { (void)resolveScene(dir.string()); }).find("is a folder"), std::string::npos);
   const fs::path fifo = dir / "scene.toml";
   ASSERT_EQ(mkfifo(fifo.c_str(), 0600), 0);
-  EXPECT_NE(errorOf([&] { (void)resolveScene(fifo.string()); }).find("not a regular file"), std::string::npos);
+  EXPECT_NE(errorOf([&] { (void)resolveScene(fifo.string()); }).find("is a FIFO (a scene is read from a regular file)"),
+            std::string::npos);
 }
 
 TEST(ShowProof, AnIntegerTooLargeForTomlKeepsItsFileAndLine) {
@@ -232,6 +285,199 @@ TEST(ShowProof, ATrajectoryHeaderWithAByteOrderMarkIsRead) {
   std::ofstream(csv)
       << "\xEF\xBB\xBFt,left_x,left_y,left_z,right_x,right_y,right_z\n0,0,0,2,0.3,0,2\n0.1,0,0,2,0.3,0,2\n";
   EXPECT_EQ(readTrajectory(csv).size(), 2u);
+}
+
+TEST(ShowProof, ATrajectoryThatIsNoFileOrHoldsHostileTextIsNamedShortly) {
+  const fs::path dir = scratch("hostile_trajectory");
+  fs::create_symlink("/dev/zero", dir / "zero.csv");
+  fs::create_symlink("loop.csv", dir / "loop.csv");
+  EXPECT_NE(errorOf([&] { (void)readTrajectory(dir / "zero.csv"); }).find("zero.csv: is a character device"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { (void)readTrajectory(dir / "loop.csv"); }).find("Too many levels of symbolic links"),
+            std::string::npos);
+  const std::string header = "t,left_x,left_y,left_z,right_x,right_y,right_z\n";
+  std::ofstream(dir / "long.csv") << header << "0," << std::string(10 << 20, '7') << "x,0,2,0.3,0,2\n";
+  const std::string longField = errorOf([&] { (void)readTrajectory(dir / "long.csv"); });
+  EXPECT_LT(longField.size(), 300u) << "a 10 MB field is quoted, not echoed whole";
+  EXPECT_NE(longField.find("...(10485761 bytes)' is not a number"), std::string::npos) << longField.substr(0, 300);
+  const char nulRow[] = "0,1\0x,0,2,0.3,0,2\n";
+  std::ofstream(dir / "nul.csv") << header << std::string(nulRow, sizeof nulRow - 1);
+  const std::string nul = errorOf([&] { (void)readTrajectory(dir / "nul.csv"); });
+  EXPECT_NE(nul.find("left_x '1\\0x' is not a number"), std::string::npos) << nul;
+  std::ofstream(dir / "far.csv") << header << "0,-1000000,0,2,1000000,0,2\n";
+  const std::string far = errorOf([&] { (void)readTrajectory(dir / "far.csv"); });
+  EXPECT_NE(far.find("line 2: left_x -1000000 m is more than 100 m from the camera (a trajectory is in metres)"),
+            std::string::npos)
+      << far;
+}
+
+TEST(ShowProof, ALongTrajectoryIsReadOnlyAsFarAsTheRunAndTheRowLimitGo) {
+  const fs::path csv = scratch("long_trajectory") / "hands.csv";
+  {
+    std::ofstream out(csv);
+    out << "t,left_x,left_y,left_z,right_x,right_y,right_z\n0,,,,,,\n";  // hands found from t = 1 s
+    for (int k = 1; k <= 1000; ++k) out << k << ",-0.2,0,2,0.2,0,2\n";
+  }
+  std::string cut;
+  // Exact: 1 s without hands, then rows to 1 + 10 s and the first row past it, which the run's end falls before.
+  const auto run = readTrajectory(csv, 0.5, TrajectoryLimits{10.0}, &cut);
+  EXPECT_EQ(run.size(), 13u);
+  EXPECT_EQ(cut,
+            "note: trajectory file " + csv.string() + ", line 15: past the run's end; the rows from here are not read");
+  const auto rows = readTrajectory(csv, 0.5, TrajectoryLimits{1e9, 100}, &cut);
+  EXPECT_EQ(rows.size(), 100u);
+  EXPECT_NE(cut.find("line 102: 100 rows read, the most a trajectory may have"), std::string::npos) << cut;
+  EXPECT_EQ(readTrajectory(csv).size(), 1001u) << "a file within the limits is read whole";
+}
+
+TEST(ShowProof, AFakenectEntryThatIsNoFileIsNamedForWhatItIs) {
+  const fs::path dir = scratch("fakenect_kinds");
+  fs::create_directories(dir / "d-1.000000-100.pgm");
+  std::ofstream(dir / "INDEX.txt") << "d-1.000000-100.pgm\n";
+  const std::string folder = errorOf([&] { (void)readFakenectIndex(dir); });
+  EXPECT_NE(folder.find("INDEX.txt line 1: file " + (dir / "d-1.000000-100.pgm").string() + " is a folder"),
+            std::string::npos)
+      << folder;
+  fs::remove(dir / "d-1.000000-100.pgm");
+  ASSERT_EQ(::mkfifo((dir / "d-1.000000-100.pgm").c_str(), 0600), 0);
+  EXPECT_NE(errorOf([&] { (void)readFakenectIndex(dir); }).find("is a FIFO"), std::string::npos);
+  fs::remove(dir / "d-1.000000-100.pgm");
+  fs::create_symlink("/dev/zero", dir / "d-1.000000-100.pgm");
+  EXPECT_NE(errorOf([&] { (void)readFakenectIndex(dir); }).find("is a character device"), std::string::npos);
+  // A file name from INDEX.txt is quoted escaped: an empty file whose name holds an escape sequence.
+  const std::string painted = "d-1.000000-100\x1b[31m.pgm";
+  fs::remove(dir / "d-1.000000-100.pgm");
+  std::ofstream(dir / painted).flush();
+  std::ofstream(dir / "INDEX.txt") << painted << "\n";
+  const std::string empty = errorOf([&] { (void)readFakenectIndex(dir); });
+  EXPECT_NE(empty.find("d-1.000000-100\\x1b[31m.pgm is empty"), std::string::npos) << empty;
+  EXPECT_EQ(empty.find('\x1b'), std::string::npos) << "no escape sequence reaches the terminal";
+  fs::remove(dir / "INDEX.txt");
+  fs::create_symlink("/dev/zero", dir / "INDEX.txt");  // would be read for ever
+  EXPECT_NE(errorOf([&] { (void)readFakenectIndex(dir); }).find("INDEX.txt is a character device"), std::string::npos);
+}
+
+TEST(ShowProof, ASceneThatIsASymbolicLinkLoopIsNamedAsSuch) {
+  const fs::path dir = scratch("scene_loop");
+  fs::create_symlink("loop.toml", dir / "loop.toml");
+  const std::string message = errorOf([&] { (void)resolveScene((dir / "loop.toml").string()); });
+  EXPECT_NE(message.find("cannot be read: Too many levels of symbolic links"), std::string::npos) << message;
+}
+
+TEST(ShowProof, AParameterOutOfRangeIsNamedWithTheValueAsGiven) {
+  Params p;
+  // One limit on particles whatever sets them: the parameter as --particles.
+  EXPECT_EQ(errorOf([&] { setParameter(p, "particlesAtFullSolution", 10'000'000); }),
+            "parameter particlesAtFullSolution = 10000000 is out of range [16, 2000000]");
+  EXPECT_EQ(errorOf([&] { setParameter(p, "particlesAtFullSolution", 2e9); }),
+            "parameter particlesAtFullSolution = 2000000000 is out of range [16, 2000000]");
+  EXPECT_EQ(errorOf([&] { setParameter(p, "frameTime", 1e-50); }),
+            "parameter frameTime = 1e-50 is out of range [1e-05, 0.1] s");
+  const std::string scene = errorOf([] {
+    (void)parseScene("name = \"big\"\n[params]\nparticlesAtFullSolution = 50000000\n", "big.toml", fs::current_path());
+  });
+  EXPECT_NE(scene.find("big.toml:3:"), std::string::npos) << scene;
+  EXPECT_NE(scene.find("= 50000000 is out of range [16, 2000000]"), std::string::npos) << scene;
+}
+
+TEST(ShowProof, FilmGenerationNamesTheOptionsAndTheInputsUnits) {
+  Params p;
+  p.solution = 0.01f;
+  p.particlesAtFullSolution = 300;
+  const WandState wands = gestureAt(Gesture::Straight, GestureOptions{}, 0.0);
+  const std::string few = errorOf([&] { Simulation sim(p, WandTool{}, wands); });
+  EXPECT_NE(few.find("a film of 16 particles (particlesAtFullSolution x solution: --particles, --solution) is too few"),
+            std::string::npos)
+      << few;
+  WandState far;
+  far.leftPosition = Vec3(-1e6f, 1.5f, 0);
+  far.rightPosition = Vec3(1e6f, 1.5f, 0);
+  const std::string distant = errorOf([&] { Simulation sim(Params{}, WandTool{}, far); });
+  EXPECT_NE(distant.find("the wands are 1e+06 m from the origin, beyond 1000 m"), std::string::npos) << distant;
+}
+
+TEST(ShowProof, AnIpv6OrMalformedOscTargetIsRefusedAsSuch) {
+  for (const char* target : {"[::1]:9000", "::1:9000", "127.0.0.1:9000:1"})
+    EXPECT_NE(errorOf([&] { OscSender sender(target); }).find("IPv6 is not supported"), std::string::npos) << target;
+}
+
+TEST(ShowProof, APokeWithNoFilmLeftIsNoPoke) {
+  Params p;
+  p.particlesAtFullSolution = 400;
+  const WandState wands = gestureAt(Gesture::Straight, GestureOptions{}, 0.0);
+  Simulation sim(p, WandTool{}, wands);
+  ASSERT_TRUE(pokeTop(sim));
+  for (int frame = 0; frame < 250 && sim.stats().particles > 0; ++frame) sim.advanceFrame(wands);
+  ASSERT_EQ(sim.stats().particles, 0u) << "the poked film burst within 5 s";
+  EXPECT_GT(sim.film().state.size(), 0u) << "its particles linger, dead";
+  EXPECT_FALSE(pokeTop(sim)) << "nothing to poke: no poked event, no B: burst";
+}
+
+TEST(ShowProof, ANegativeScriptedKeyFrameIsRefused) {
+  std::string why;
+  EXPECT_FALSE(parseKeyPress("-5:b", why));
+  EXPECT_EQ(why, "--keys -5:b: frame -5 is negative (frames count from 0)");
+}
+
+TEST(ShowProof, ASceneNameWithControlCharactersIsRefused) {
+  const std::string message =
+      errorOf([] { (void)parseScene("name = \"show\\n\\u001b[31mred\"\n", "s.toml", fs::current_path()); });
+  EXPECT_NE(message.find("s.toml:1:"), std::string::npos) << message;
+  EXPECT_NE(message.find("name = 'show\\n\\x1b[31mred' holds control characters"), std::string::npos) << message;
+  EXPECT_EQ(message.find('\x1b'), std::string::npos) << "the message itself holds no escape";
+  const std::string input = errorOf([] {
+    (void)parseScene("name = \"s\"\n[input]\nsource = \"trajectory:\\u001b[2Jgone.csv\"\n", "s.toml", "/nowhere");
+  });
+  EXPECT_NE(input.find("input file '/nowhere/\\x1b[2Jgone.csv' does not exist"), std::string::npos) << input;
+  EXPECT_EQ(input.find('\x1b'), std::string::npos) << "a path from a scene is quoted escaped too";
+}
+
+TEST(ShowProof, ARenderSizeIsBoundedByTheDevice) {
+  EXPECT_EQ(renderSizeProblem(1280, 720, 4, 16384, 16e9, "gpu"), "");
+  EXPECT_EQ(renderSizeProblem(16384, 16384, 1, 8192, 1e12, "gpu"),
+            "render size 16384x16384 is outside 16..8192 pixels on gpu (--width, --height)");
+  // 16384 x 16384 at one sample: 42 bytes a pixel (renderTargetBytes), 11.3 GB, beyond a quarter of 16 GB.
+  EXPECT_EQ(renderSizeProblem(16384, 16384, 1, 16384, 16e9, "gpu"),
+            "a 16384x16384 image at 1 sample per pixel takes 11.3 GB of render targets, more than a quarter of the "
+            "16.0 GB of gpu: give a smaller --width and --height");
+}
+
+TEST(ShowProof, AnExperimentStopsBetweenFramesWhenAsked) {
+  int asked = 0;
+  const auto stopAtThird = [&] { return ++asked == 3; };
+  Params small;
+  small.particlesAtFullSolution = 400;
+  const std::string message = errorOf([&] { (void)runExperiment("flat-disc", small, {}, stopAtThird); });
+  EXPECT_EQ(message.rfind("stopped at t = 0.04", 0), 0u) << message;  // two frames of 0.02 s ran
+}
+
+// Untrusted input on its way into a message (capture/untrusted.h): paths that are not regular files are named for
+// what they are, and text from files is escaped and cut before it reaches a terminal.
+TEST(Untrusted, APathThatIsNoRegularFileIsNamedForWhatItIs) {
+  const fs::path dir = scratch("kinds");
+  std::ofstream(dir / "file.csv") << "t\n";
+  ASSERT_EQ(::mkfifo((dir / "fifo.csv").c_str(), 0600), 0);
+  fs::create_symlink("/dev/zero", dir / "zero.csv");
+  fs::create_symlink("loop.csv", dir / "loop.csv");
+  EXPECT_EQ(whyNotARegularFile(dir / "file.csv"), "");
+  EXPECT_EQ(whyNotARegularFile(dir / "missing.csv"), "does not exist");
+  EXPECT_EQ(whyNotARegularFile(dir), "is a folder");
+  EXPECT_EQ(whyNotARegularFile(dir / "fifo.csv"), "is a FIFO");
+  EXPECT_EQ(whyNotARegularFile(dir / "zero.csv"), "is a character device");
+  EXPECT_EQ(whyNotARegularFile(dir / "loop.csv"), "cannot be read: Too many levels of symbolic links");
+}
+
+TEST(Untrusted, ControlCharactersAreEscapedAndLongTextIsCut) {
+  EXPECT_EQ(printable("fig10a"), "fig10a");
+  EXPECT_EQ(printable("red\n\x1b[31mtext"), "red\\n\\x1b[31mtext");
+  EXPECT_EQ(printable(std::string("a\0b", 3)), "a\\0b");  // a NUL no longer ends the message
+  EXPECT_EQ(printable("caf\xc3\xa9 \xe2\x80\x94 ok"), "caf\xc3\xa9 \xe2\x80\x94 ok");  // UTF-8 text stays
+  EXPECT_EQ(printable("\xc2\x9b"
+                      "31m"),
+            "\\xc2\\x9b31m");                      // the one-byte CSI (U+009B) is a control character
+  EXPECT_EQ(printable("\xff\xfe"), "\\xff\\xfe");  // bytes that are not UTF-8
+  const std::string field(10 << 20, '7');          // a 10 MB CSV field
+  EXPECT_EQ(printable(field), std::string(kMaxQuotedBytes, '7') + "...(10485760 bytes)");
 }
 
 }  // namespace

@@ -56,12 +56,13 @@ void writeDepthPlot(const std::filesystem::path& path, const kinect::DepthFrame&
       const Vec3d p = kinect::pixelToCamera(u, v, z);
       if (detection.floor && std::abs(detection.floor->heightOf(p)) < 0.05)
         c.set(u, v, grey / 3, static_cast<uint8_t>(std::min(255, grey / 2 + 90)), grey / 3);
+      else if (detection.body.at(u / 2, v / 2) < BodyDepth::kBackground)
+        c.set(u, v, static_cast<uint8_t>(std::min(255, grey / 2 + 110)), static_cast<uint8_t>(grey * 3 / 4), grey / 3);
       else
         c.set(u, v, grey, grey, grey);
     }
-  for (const Vec3d& e : detection.extrema) c.cross(e, 5, 255, 255, 255);
   if (detection.centre) c.cross(*detection.centre, 8, 0, 230, 230);
-  if (detection.head) c.ring(*detection.head, 10, 240, 220, 0);
+  for (const DetectedHand& h : detection.hands) c.cross(h.position, 5, 255, 255, 255);
   if (hands.left.measured) c.ring(hands.left.position, 14, 230, 40, 40);
   if (hands.right.measured) c.ring(hands.right.position, 14, 60, 90, 255);
   writePng(path, kWidth, kHeight, c.rgb);

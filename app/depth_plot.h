@@ -1,7 +1,8 @@
 #pragma once
 // A depth frame as a picture a performer can set the camera up by: depth in grey (near bright), no reading in
-// dark blue, the floor the detector found in green, the performer's geodesic extrema as small white crosses,
-// the head in yellow, the torso's centre in cyan, and the hands (the tracker's left red, right blue) as rings.
+// dark blue, the floor the detector found in green, the body taken for the performer in orange, its centre in
+// cyan, every hand the forest found as a small white cross, and the hands the tracker reports (left red, right
+// blue) as rings.
 // The image is the camera's own view, unmirrored: the performer's left hand appears on the image's right.
 
 #include <filesystem>

@@ -30,6 +30,7 @@ CLI::App* addEvaluateCommand(CLI::App& app, EvaluateOptions& o) {
   cmd->add_option("--depth-band", o.depthBand, "NEAR FAR: metres from the camera where the performer stands")
       ->expected(2);
   cmd->add_flag("--mirrored", o.mirrored, "the depth images are mirrored (the performer's left hand on the left)");
+  cmd->add_option("--forest", o.forest, "a hand forest model (gb_train_hand_forest) instead of the built-in one");
   cmd->add_flag("--each", o.perRecording, "print a line per recording, not only the total");
   return cmd;
 }
@@ -45,8 +46,18 @@ int runEvaluate(const EvaluateOptions& o) {
     return 1;
   }
   DetectionOptions detection;
-  detection.nearLimit = static_cast<float>(o.depthBand[0]);
-  detection.farLimit = static_cast<float>(o.depthBand[1]);
+  detection.segmentation.nearLimit = static_cast<float>(o.depthBand[0]);
+  detection.segmentation.farLimit = static_cast<float>(o.depthBand[1]);
+  HandForest forest;
+  if (!o.forest.empty()) {
+    try {
+      forest = readHandForest(o.forest);
+    } catch (const std::runtime_error& e) {
+      std::fprintf(stderr, "error: %s\n", e.what());
+      return 1;
+    }
+    detection.forest = &forest;
+  }
   TrackerOptions tracker;
   tracker.mirrored = o.mirrored;
   HandScore total;
@@ -64,7 +75,7 @@ int runEvaluate(const EvaluateOptions& o) {
     return 1;
   }
   if (!o.perRecording) printHeader();
-  printScore(o.recordings.size() == 1 ? "total" : "all " + std::to_string(o.recordings.size()), total);
+  if (!o.perRecording || o.recordings.size() > 1) printScore("all " + std::to_string(o.recordings.size()), total);
   return 0;
 }
 

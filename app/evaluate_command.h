@@ -15,6 +15,7 @@ struct EvaluateOptions {
   std::vector<double> depthBand = {0.5, 4.0};  // m
   bool mirrored = false;
   bool perRecording = false;  // a line per recording, not only the total
+  std::string forest;         // a hand forest model file instead of the built-in one
 };
 
 CLI::App* addEvaluateCommand(CLI::App& app, EvaluateOptions& options);

@@ -59,8 +59,8 @@ SourceOptions sourceOptionsOf(const InputOptions& o, const GestureOptions& gestu
   if (o.depthBand.size() != 2 || o.depthBand[0] >= o.depthBand[1])
     throw std::invalid_argument("--depth-band: expected NEAR FAR with NEAR < FAR");
   SourceOptions s;
-  s.detection.nearLimit = static_cast<float>(o.depthBand[0]);
-  s.detection.farLimit = static_cast<float>(o.depthBand[1]);
+  s.detection.segmentation.nearLimit = static_cast<float>(o.depthBand[0]);
+  s.detection.segmentation.farLimit = static_cast<float>(o.depthBand[1]);
   s.tracker.mirrored = o.mirrored;
   s.calibration = calibrationOf(o);
   s.gesture = gesture;

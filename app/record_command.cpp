@@ -156,11 +156,15 @@ int runRecord(const RecordOptions& o) {
   if (!o.fakenect.empty()) fakenect = std::make_unique<FakenectWriter>(o.fakenect);
   const double base = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
   kinect::DepthFrame plotted;
+  Detection plottedDetection;
+  HandSample plottedHands;
   int frames = 0;
+  bool plotNext = false;  // the frame just read is the one to plot
   if (depth)
     depth->onFrame([&, base](const kinect::DepthFrame& f) {
       if (fakenect) fakenect->write(f, base + f.time);
-      if (o.depthPlotFrame < 0 || frames == o.depthPlotFrame) plotted = f;
+      plotNext = o.depthPlotFrame < 0 || frames == o.depthPlotFrame;
+      if (plotNext) plotted = f;
       ++frames;
     });
   std::unique_ptr<TrajectoryWriter> trajectory;
@@ -182,13 +186,20 @@ int runRecord(const RecordOptions& o) {
       if (!samples.empty() && duration >= 0 && s->time - samples.front().time > duration + 1e-9) break;
       samples.push_back(*s);
       if (trajectory) trajectory->write(*s);
+      if (depth && plotNext) {
+        plottedDetection = depth->detection();  // as the performance saw it: the room and the hands so far
+        plottedHands = *s;
+        plotNext = false;
+      }
       const double elapsed = s->time - samples.front().time;
       if (live && elapsed - lastProgress >= 1.0) {
         lastProgress = elapsed;
-        std::fprintf(
-            stderr, "%.0f s, %zu frames, left hand %s, right hand %s%s\n", elapsed, samples.size(),
-            s->left.measured ? "seen" : "not seen", s->right.measured ? "seen" : "not seen",
-            s->left.seen() || s->right.seen() ? "" : " (nobody found yet: stand 2-3 m in front of the camera)");
+        // Which body is taken and why, and what to change, so that a performer can set up by it.
+        const std::string why =
+            depth ? depth->detection().why + (depth->detection().advice.empty() ? "" : "; " + depth->detection().advice)
+                  : "";
+        std::fprintf(stderr, "%.0f s, %zu frames, left hand %s, right hand %s: %s\n", elapsed, samples.size(),
+                     s->left.measured ? "seen" : "not seen", s->right.measured ? "seen" : "not seen", why.c_str());
       }
     }
   } catch (const HandSourceLost& e) {
@@ -221,11 +232,11 @@ int runRecord(const RecordOptions& o) {
       std::fprintf(stderr, "error: --depth-plot-frame %d: the input had %d depth frames\n", o.depthPlotFrame, frames);
       return 1;
     }
-    const Detection detection = detectHands(plotted, sourceOptions.detection);
-    HandTracker tracker(sourceOptions.tracker);  // one frame: identity from the side of the torso alone
-    writeDepthPlot(o.depthPlot, plotted, detection, tracker.update(plotted.time, detection));
-    std::printf("depth plot written to %s (%s, %zu hands)\n", o.depthPlot.c_str(),
-                detection.performerPixels > 0 ? "performer found" : "nobody found", detection.hands.size());
+    writeDepthPlot(o.depthPlot, plotted, plottedDetection, plottedHands);
+    std::printf("depth plot written to %s: %s; hands reported: %s%s\n", o.depthPlot.c_str(),
+                plottedDetection.why.c_str(), plottedHands.left.measured ? "left " : "",
+                plottedHands.right.measured ? "right" : (plottedHands.left.measured ? "" : "none"));
+    if (!plottedDetection.advice.empty()) std::printf("advice: %s\n", plottedDetection.advice.c_str());
   }
   if (o.report) {
     if (samples.size() < 10) {

@@ -16,7 +16,7 @@
 #include <string>
 
 #include "depth_plot.h"
-#include "hand_detector.h"
+#include "hand_finder.h"
 #include "synthetic_depth.h"
 
 namespace {
@@ -44,7 +44,7 @@ Tally runSequence(const std::string& sequence, double pitch, double distance, do
   scene.cameraPitch = pitch;
   scene.cameraHeight = test::cameraHeightFor(pitch, distance);
   scene.wallDistance = distance + 1.0;
-  HandTracker tracker;
+  HandFinder finder;
   Tally tally;
   bool swapped[2] = {false, false};
   const int frames = static_cast<int>(seconds * 30.0);
@@ -56,8 +56,8 @@ Tally runSequence(const std::string& sequence, double pitch, double distance, do
     test::SyntheticScene s = test::renderScene(pose, scene, t);
     if (accelerometer) s.frame.gravityUp = s.up;
     const auto start = std::chrono::steady_clock::now();
-    const Detection d = detectHands(s.frame, DetectionOptions{});
-    const HandSample out = tracker.update(t, d);
+    const HandSample out = finder.update(s.frame);
+    const Detection& d = finder.detection();
     tally.detectSeconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     ++tally.frames;
     const Vec3d truth[2] = {s.leftHand, s.rightHand};

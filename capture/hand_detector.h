@@ -1,88 +1,73 @@
 #pragma once
-// Hands from a depth frame, without a skeleton tracker (libfreenect gives depth only), after Plagemann,
-// Ganapathi, Koller and Thrun, "Real-time identification and localization of body parts from depth images"
-// (ICRA 2010), on a half-resolution grid (320 x 240):
-//   1. floor: the lowest large horizontal layer along gravity (accelerometer, else a tilt search), refined by
-//      a plane fit (floor_plane.h); points near or under it are dropped;
-//   2. performer: the pixels in the depth band joined into connected bodies (neighbours closer than a depth
-//      step); the performer is the largest body of a person's height and width, preferring the expected
-//      distance;
-//   3. extrema: accumulative geodesic extrema of the performer's surface graph (edges between neighbouring
-//      pixels, weighted by their 3D distance) from the torso's centre: the farthest point, then the farthest
-//      from the centre and every extremum found so far, and so on;
-//   4. hands: the extrema far enough along the body from the centre (an arm's length), not feet (near the
-//      floor), not the head (above the shoulders, central, the nearest such); each one's side is the side of
-//      the torso its geodesic path leaves by, its position the centroid of the surface around its tip pushed
-//      back to the hand's centre, its confidence from its geodesic length, size and side;
-//   5. identity over time (HandTracker): sides from the torso, kept through crossings by motion prediction;
-//      a swap costs more than a miss.
-// docs/capture.md describes the method and what it cannot see.
+// Hands from a depth frame, without a skeleton tracker (libfreenect gives depth only):
+//   1. the performer's pixels (performer_segmentation.h): the floor and the room dropped, the person in front
+//      taken among the bodies left;
+//   2. which of them are a hand, the performer's left or right (hand_forest.h): a randomized decision forest
+//      over depth-comparison features, as the Kinect SDK's skeleton tracker finds body parts, trained on real
+//      Kinect depth;
+//   3. where each hand is: the modes of its pixels' density over the surface (mean shift), pushed back from
+//      the surface to the hand's centre;
+//   4. identity over time (HandTracker): each hand takes the mode of its side where it was going, else its
+//      side's strongest mode when that is sure.
+// docs/capture.md describes the method, how it was trained and judged, and what it cannot see.
 
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "floor_plane.h"
+#include "hand_forest.h"
 #include "hand_source.h"
 #include "kinect_depth.h"
+#include "performer_segmentation.h"
 
 namespace gb {
 
 struct DetectionOptions {
-  float nearLimit = 0.5f;          // depth band (m): the Kinect sees nothing nearer than ~0.5 m;
-  float farLimit = 4.0f;           //   its depth is too coarse beyond ~4 m
-  int minPerformerPixels = 3000;   // smallest body taken for a person, in full-resolution pixels
-  float depthJump = 0.07f;         // neighbouring half-resolution pixels further apart (m) are not joined
-  double expectedDistance = 0.0;   // m from the camera where the performer stands (0: anywhere in the band)
-  std::optional<Vec3d> gravityUp;  // camera-space up when known; else the frame's accelerometer or a search
-  double floorClearance = 0.07;    // m: points this close over the floor (or under it) are floor
-  double minHandGeodesic = 0.45;   // m along the body from the torso's centre: nearer extrema are not hands
-  double handRadius = 0.10;        // m: surface within this distance of a tip forms the hand
-  double surfaceToCentre = 0.02;   // m: the hand's centre lies this far behind its visible surface
-  int extrema = 10;                // accumulative geodesic extrema looked at per frame
+  SegmentationOptions segmentation;
+  const HandForest* forest = nullptr;  // the hand forest; nullptr: HandForest::builtin()
+  ModeOptions modes;
 };
 
-// A found hand. side: +1 when its arm leaves the torso on the camera's +x side, -1 on -x, 0 unknown.
+// A hand found in one frame. side: +1 when it is the forest's left hand (the camera's +x side of a performer
+// facing an unmirrored camera), -1 its right hand.
 struct DetectedHand {
-  Vec3d position;           // camera space (m)
-  int pixels = 0;           // half-resolution surface points that made it
-  double confidence = 1.0;  // 0..1
-  double geodesic = 0.0;    // m along the body from the torso's centre
+  Vec3d position;           // camera space (m): the hand's centre
+  double confidence = 1.0;  // 0..1: how much sure hand surface is around it (a whole hand: 1)
   int side = 0;
-  double sideConfidence = 0.0;  // 0..1: how far from the torso's middle its arm leaves (full at 10 cm)
+  double sideConfidence = 0.0;  // 0..1: how much more of its hand surface is of its side than of the other
 };
 
 struct Detection {
-  std::vector<DetectedHand> hands;  // 0, 1 or 2, most confident first
-  int performerPixels = 0;          // 0: nobody in the band (full-resolution pixels)
+  std::vector<DetectedHand> hands;  // every hand mode of either side, most confident first
+  int performerPixels = 0;          // 0: nobody taken for the performer (full-resolution pixels)
   double bodyDepth = 0.0;           // median depth of the performer (m)
-  double bodyCentreX = 0.0;         // camera-space x of the torso's centre (m)
-  std::optional<Vec3d> centre;      // the torso's centre (camera space)
-  std::optional<Vec3d> head;        // the extremum taken for the head
-  std::vector<Vec3d> extrema;       // every geodesic extremum looked at, in order
+  std::optional<Vec3d> centre;      // the performer's median point (camera space)
   std::optional<FloorPlane> floor;  // the floor when in view
+  BodyDepth body;                   // the performer's depth on the half-resolution grid (0 elsewhere)
+  std::string why;                  // which body was taken for the performer and why, or why none was
+  std::string advice;               // what the performer should change to be found (empty: nothing)
 };
 
+// Hands of the performer that `segmenter` takes in this frame (it learns the room as it goes).
+Detection detectHands(const kinect::DepthFrame& frame, PerformerSegmenter& segmenter, const DetectionOptions& options);
+// One frame on its own: a room never seen before.
 Detection detectHands(const kinect::DepthFrame& frame, const DetectionOptions& options);
-// The floor detectHands would find along gravityUp (nothing: searched for), for checking an accelerometer.
-std::optional<FloorPlane> floorOf(const kinect::DepthFrame& frame, const DetectionOptions& options,
-                                  const std::optional<Vec3d>& gravityUp);
 
 struct TrackerOptions {
-  bool mirrored = false;      // the depth image is mirrored (the performer's left hand on the image's left)
-  double maxHandSpeed = 6.0;  // m/s: a detection further than this allows from a hand's prediction is not it
-  double jumpMargin = 0.10;   // m, added to that distance (detection noise)
-  double holdTime = 0.5;      // s, confidence decay while a hand is not seen (HandHold)
-  double missCost = 0.25;     // m-equivalent cost of leaving a hand without a detection
-  double newHandCost = 0.15;  // cost of a hand's first sighting: never free (a known hand near its detection
-                              //   keeps it), below a miss (a new hand on its own side is taken)
-  double sideCost = 0.6;      // cost of giving a hand a detection whose arm leaves the torso on the other side
-                              //   (> missCost: a swap costs more than a miss)
+  bool mirrored = false;          // the depth image is mirrored (the performer's left hand on the image's left)
+  double holdTime = 0.5;          // s, confidence decay while a hand is not seen (HandHold)
+  double newConfidence = 0.6;     // a hand not followed is taken from this confidence
+  double followConfidence = 0.3;  // a followed hand from this, near where it was going
+  double followTime = 0.3;        // s: a hand seen this recently is followed
+  double maxHandSpeed = 4.0;      // m/s: a followed hand's detection within this speed of its prediction is near
+  double jumpMargin = 0.10;       // m, added to that distance (detection noise)
 };
 
-// Left/right identity over time. Each frame, every way of giving the detections to the two hands is costed:
-// distance from where each hand is predicted to be (its last position carried on by its velocity), a miss
-// for a known hand left without one, the first sighting of a hand, and the torso-side evidence against a
-// hand; the cheapest wins. A hand with no detection is held (HandHold).
+// Left/right identity over time. The forest tells the sides (it learned them from whole bodies, crossed arms
+// included), so each hand takes a detection of its side: a followed hand the one nearest to where it was
+// going, from a lower confidence; else (a new hand, or a followed one with nothing of its side near) the
+// strongest, only when it is sure. A hand with no detection is held (HandHold).
 class HandTracker {
  public:
   explicit HandTracker(const TrackerOptions& options = {});
@@ -95,9 +80,13 @@ class HandTracker {
   double lastSeen_[2] = {0.0, 0.0};
   HandHold hold_[2];
   [[nodiscard]] Vec3d predicted(int hand, double time) const;
-  [[nodiscard]] int sideOf(int hand) const;  // camera-x side (+1/-1) where that hand's arm leaves the torso
-  // The cost of giving detection d to hand h; infinity when out of reach.
-  [[nodiscard]] double cost(int hand, double time, const DetectedHand& d, const Detection& detection) const;
+  [[nodiscard]] bool followed(int hand, double time) const;
+  [[nodiscard]] int sideOf(int hand) const;  // the DetectedHand::side of that hand
+  // How far from where a followed hand was going its detection may lie (m).
+  [[nodiscard]] double reach(int hand, double time) const;
+  // Whether hand h takes detection d now.
+  [[nodiscard]] bool takes(int hand, double time, const DetectedHand& d) const;
+  void record(int hand, double time, const Vec3d& p);
 };
 
 }  // namespace gb

@@ -20,6 +20,14 @@ bool near(const std::optional<Vec3d>& a, const std::optional<Vec3d>& b, double r
   return a && b && (*a - *b).norm() <= radius;
 }
 
+// Where a true hand is, measured or not (a hand out of the camera's view is not expected to be found, but a hand
+// reported near it is not false either).
+std::optional<Vec3d> whereIs(const HandSample& s, int hand) {
+  const HandObservation& o = s.hand(hand == 0 ? Hand::Left : Hand::Right);
+  if (!o.seen()) return std::nullopt;
+  return o.position;
+}
+
 }  // namespace
 
 HandScore& HandScore::operator+=(const HandScore& o) {
@@ -45,6 +53,7 @@ double HandScore::medianError() const {
 void scoreFrame(const HandSample& reported, const HandSample& truth, HandScore& score) {
   const std::optional<Vec3d> found[2] = {measuredHand(reported, 0), measuredHand(reported, 1)};
   const std::optional<Vec3d> real[2] = {measuredHand(truth, 0), measuredHand(truth, 1)};
+  const std::optional<Vec3d> known[2] = {whereIs(truth, 0), whereIs(truth, 1)};
   if (!real[0] && !real[1]) return;
   ++score.frames;
   bool swapped = false;
@@ -59,9 +68,9 @@ void scoreFrame(const HandSample& reported, const HandSample& truth, HandScore& 
     }
     if (!found[h]) continue;
     ++score.reported;
-    const bool own = near(found[h], real[h], kFoundFar), other = near(found[h], real[1 - h], kFoundFar);
+    const bool own = near(found[h], known[h], kFoundFar), other = near(found[h], known[1 - h], kFoundFar);
     if (!own && !other) ++score.falseHands;
-    if (!own && other) swapped = true;
+    if (!own && near(found[h], real[1 - h], kFoundFar)) swapped = true;
   }
   if (swapped) ++score.swappedFrames;
 }

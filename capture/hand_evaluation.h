@@ -6,7 +6,8 @@
 // 10 or 15 cm of it in 3D. A reported hand within 15 cm of neither true hand is a false hand. A frame is
 // swapped when a reported hand lies within 15 cm of the other side's true hand and not within 15 cm of its
 // own. Only hands measured in the frame count (a hand held from an earlier frame is not reported), and only
-// frames whose ground truth gives a hand.
+// frames whose ground truth gives a hand. A true hand not measured but placed (out of the camera's view) is
+// not expected, and a hand reported within 15 cm of it is not false.
 
 #include <vector>
 

@@ -3,10 +3,10 @@
 namespace gb {
 
 HandFinder::HandFinder(const DetectionOptions& detection, const TrackerOptions& tracker)
-    : options_(detection), tracker_(tracker) {}
+    : options_(detection), segmenter_(detection.segmentation), tracker_(tracker) {}
 
 HandSample HandFinder::update(const kinect::DepthFrame& frame) {
-  detection_ = detectHands(frame, options_);
+  detection_ = detectHands(frame, segmenter_, options_);
   return tracker_.update(frame.time, detection_);
 }
 

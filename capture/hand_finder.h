@@ -20,6 +20,7 @@ class HandFinder {
 
  private:
   DetectionOptions options_;
+  PerformerSegmenter segmenter_;
   HandTracker tracker_;
   Detection detection_;
 };

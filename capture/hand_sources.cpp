@@ -70,9 +70,10 @@ std::optional<HandSample> DepthHandSource::nextSample() {
 }
 
 void DepthHandSource::checkGravity() {
-  if (finder_.options().gravityUp || framesToGravityCheck_-- > 0) return;
-  const std::optional<FloorPlane> along = floorOf(frame_, finder_.options(), frame_.gravityUp);
-  const std::optional<FloorPlane> searched = floorOf(frame_, finder_.options(), std::nullopt);
+  const SegmentationOptions& segmentation = finder_.options().segmentation;
+  if (segmentation.gravityUp || framesToGravityCheck_-- > 0) return;
+  const std::optional<FloorPlane> along = floorOf(frame_, segmentation, frame_.gravityUp);
+  const std::optional<FloorPlane> searched = floorOf(frame_, segmentation, std::nullopt);
   if (!along || !searched) return;  // no floor in view: nothing to check against, the next frame tries again
   framesToGravityCheck_ = kGravityCheckEvery;
   const double degrees = std::acos(std::clamp(along->up.dot(searched->up), -1.0, 1.0)) * 180.0 / std::numbers::pi;
@@ -89,14 +90,10 @@ void DepthHandSource::checkGravity() {
 }
 
 std::string DepthHandSource::whyNoHands() const {
-  char text[96];
   const Detection& d = finder_.detection();
-  if (d.performerPixels == 0)
-    std::snprintf(text, sizeof text, "no body in the depth band %.1f-%.1f m", finder_.options().nearLimit,
-                  finder_.options().farLimit);
-  else
-    std::snprintf(text, sizeof text, "a body at %.1f m, no hand held out from it", d.bodyDepth);
-  return text;
+  std::string why = d.performerPixels == 0 ? d.why : d.why + ", no hand found on it";
+  if (!d.advice.empty()) why += " (" + d.advice + ")";
+  return why;
 }
 
 ReplayHandSource::ReplayHandSource(std::vector<HandSample> samples, std::string describe,

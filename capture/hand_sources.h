@@ -34,6 +34,8 @@ class DepthHandSource : public HandSource {
   // "no body in the depth band 0.5-4.0 m", or where the body is when it has no hand.
   [[nodiscard]] std::string whyNoHands() const override;
   std::vector<std::string> takeMessages() override { return std::exchange(messages_, {}); }
+  // What the newest frame showed: the performer taken and why, the hands found.
+  [[nodiscard]] const Detection& detection() const { return finder_.detection(); }
 
   static constexpr double kFrameTimeout = 0.1;  // s without a frame (or 2.5 frame intervals, if longer): a
                                                 //   sample with both hands held

@@ -56,10 +56,9 @@ TEST(Fakenect, ASyntheticSessionPlayedThroughLibfreenectsFakenectGivesTheSameHan
   const std::vector<kinect::DepthFrame> frames = writeSession(dir, 12);
 
   // Straight from the frames, without libfreenect.
-  HandTracker direct;
+  HandFinder direct;
   std::vector<HandSample> expected;
-  for (const kinect::DepthFrame& f : frames)
-    expected.push_back(direct.update(f.time, detectHands(f, DetectionOptions{})));
+  for (const kinect::DepthFrame& f : frames) expected.push_back(direct.update(f));
 
   // Through fakenect, the code path of a live camera.
   DepthHandSource played(DepthStream::openRecording(dir), DetectionOptions{}, TrackerOptions{});

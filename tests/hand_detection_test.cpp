@@ -3,7 +3,8 @@
 #include <cmath>
 #include <string>
 
-#include "hand_detector.h"
+#include "hand_evaluation.h"
+#include "hand_finder.h"
 #include "synthetic_depth.h"
 
 namespace gb {
@@ -44,7 +45,7 @@ TEST(FloorRemoval, FindsTheFloorOfACameraTiltedUpToTwentyDegrees) {
     const test::SyntheticScene s = test::renderScene(test::namedPose("forward"), scene);
     for (const bool accelerometer : {false, true}) {
       DetectionOptions o;
-      if (accelerometer) o.gravityUp = s.up;
+      if (accelerometer) o.segmentation.gravityUp = s.up;
       const Detection d = detectHands(s.frame, o);
       ASSERT_TRUE(d.floor) << pitch;
       EXPECT_LT(std::acos(std::min(1.0, d.floor->up.dot(s.up))) * 180.0 / 3.14159265, 1.0) << pitch;
@@ -57,50 +58,55 @@ TEST(FloorRemoval, FindsTheFloorOfACameraTiltedUpToTwentyDegrees) {
   }
 }
 
-// Both hands within 10 cm (the benchmark's criterion; typical errors are 1-3 cm) in every pose of the benchmark
-// but the crossing, at three tilts, with furniture, a wall 1 m behind the performer and Kinect noise.
+// The hands the finder reports after a few frames of a still pose (the room and the performer settled).
+HandSample handsOfPose(const test::BodyPose& pose, test::SceneOptions scene, test::SyntheticScene& last) {
+  HandFinder finder;
+  HandSample out;
+  for (int i = 0; i < 3; ++i) {
+    scene.seed = static_cast<unsigned>(i + 1);
+    last = test::renderScene(pose, scene, i / 30.0);
+    out = finder.update(last.frame);
+  }
+  return out;
+}
+
+// Both hands within 10 cm (the benchmark's criterion; measured 0.2-3.8 cm) in every pose of the synthetic
+// benchmark but the crossing, at three tilts, with furniture, a wall 1 m behind the performer and Kinect noise.
+// The forest never saw these capsule bodies: it learned real people.
 TEST(HandDetection, FindsBothHandsInEveryPoseAtEveryTilt) {
-  for (const std::string pose : {"forward", "arms-out", "together", "overhead"}) {
+  for (const std::string pose : {"forward", "arms-out", "together", "overhead", "one-arm-down"}) {
     for (const double pitch : {0.0, 10.0, 20.0}) {
       test::SceneOptions scene;
       scene.cameraPitch = pitch;
       scene.cameraHeight = test::cameraHeightFor(pitch, 2.6);
       scene.wallDistance = 3.6;
-      const test::SyntheticScene s = test::renderScene(test::namedPose(pose), scene);
-      const Detection d = detectHands(s.frame, DetectionOptions{});
-      ASSERT_EQ(d.hands.size(), 2u) << pose << " at " << pitch;
-      HandTracker tracker;
-      const HandSample out = tracker.update(0.0, d);
+      test::SyntheticScene s;
+      const HandSample out = handsOfPose(test::namedPose(pose), scene, s);
       ASSERT_TRUE(out.left.measured && out.right.measured) << pose << " at " << pitch;
       EXPECT_LT((out.left.position - s.leftHand).norm(), 0.10) << pose << " at " << pitch;
       EXPECT_LT((out.right.position - s.rightHand).norm(), 0.10) << pose << " at " << pitch;
-      EXPECT_GT(out.left.confidence, 0.5) << pose << " at " << pitch;
+      EXPECT_GT(std::min(out.left.confidence, out.right.confidence), 0.5) << pose << " at " << pitch;
     }
   }
 }
 
-// Arms held out sideways at the body's depth: nothing stands in front of the body, which defeated the old
-// nearest-extremity detector; the geodesic extrema find them, on their own sides, within 5 cm.
+// Arms held out sideways at the body's depth (nothing stands in front of the body), the camera tilted down 13
+// degrees: each hand on its own side within 5 cm (measured 2-3 cm).
 TEST(HandDetection, ArmsOutSidewaysAtBodyDepthAreFound) {
   test::SceneOptions scene;
-  scene.cameraPitch = 13.0;  // the tilt of the recording in issue 15
+  scene.cameraPitch = 13.0;
   scene.cameraHeight = test::cameraHeightFor(13.0, 2.6);
-  const test::SyntheticScene s = test::renderScene(test::namedPose("arms-out"), scene);
-  const Detection d = detectHands(s.frame, DetectionOptions{});
-  ASSERT_EQ(d.hands.size(), 2u);
-  for (const DetectedHand& h : d.hands) {
-    const bool left = h.position.x() > 0.0;
-    EXPECT_LT((h.position - (left ? s.leftHand : s.rightHand)).norm(), 0.05);
-    EXPECT_EQ(h.side, left ? 1 : -1);
-    EXPECT_GT(h.sideConfidence, 0.9);
-  }
-  ASSERT_TRUE(d.head);
-  EXPECT_NEAR(d.head->x(), 0.0, 0.1);
+  test::SyntheticScene s;
+  const HandSample out = handsOfPose(test::namedPose("arms-out"), scene, s);
+  ASSERT_TRUE(out.left.measured && out.right.measured);
+  EXPECT_LT((out.left.position - s.leftHand).norm(), 0.05);
+  EXPECT_LT((out.right.position - s.rightHand).norm(), 0.05);
 }
 
-// The simple scene of the fakenect tests (level camera, no noise): both hands within 3 cm (the visible cap's
-// centroid pushed back 2 cm lands within a centimetre or two of a 5 cm sphere's centre).
-TEST(HandDetection, FindsBothHandsOfTheSimpleSceneWithinThreeCentimetres) {
+// The simple scene of the fakenect tests (level camera, no noise): both hands within 5 cm (measured 0.3-3 cm).
+// The hand's centre is its front pushed back by what the real hands of the training data measured (4.7 cm);
+// these hands are 5 cm spheres at the end of a capsule arm, shaped unlike a real hand.
+TEST(HandDetection, FindsBothHandsOfTheSimpleSceneWithinFiveCentimetres) {
   const std::vector<std::pair<Vec3d, Vec3d>> poses = {
       {{0.25, 0.05, 2.0}, {-0.25, 0.0, 1.95}},   // both forward
       {{0.35, 0.3, 2.0}, {-0.15, -0.2, 2.15}},   // one high, one low and near the body
@@ -110,29 +116,26 @@ TEST(HandDetection, FindsBothHandsOfTheSimpleSceneWithinThreeCentimetres) {
     test::SyntheticPerformer performer;
     performer.leftHand = left;
     performer.rightHand = right;
-    const Detection d = detectHands(test::renderPerformer(performer), DetectionOptions{});
-    ASSERT_EQ(d.hands.size(), 2u) << left.transpose() << " / " << right.transpose();
-    HandTracker tracker;
-    const HandSample s = tracker.update(0.0, d);
-    ASSERT_TRUE(s.left.measured && s.right.measured);
-    EXPECT_LT((s.left.position - left).norm(), 0.03) << s.left.position.transpose() << " vs " << left.transpose();
-    EXPECT_LT((s.right.position - right).norm(), 0.03) << s.right.position.transpose() << " vs " << right.transpose();
+    HandFinder finder;
+    HandSample s;
+    for (int i = 0; i < 3; ++i) s = finder.update(test::renderPerformer(performer, i / 30.0, static_cast<uint32_t>(i)));
+    ASSERT_TRUE(s.left.measured && s.right.measured) << left.transpose() << " / " << right.transpose();
+    EXPECT_LT((s.left.position - left).norm(), 0.05) << s.left.position.transpose() << " vs " << left.transpose();
+    EXPECT_LT((s.right.position - right).norm(), 0.05) << s.right.position.transpose() << " vs " << right.transpose();
   }
 }
 
-// An arm hanging at the side, the knees and the feet are not hands; a room without a person has nobody in it.
-TEST(HandDetection, NoFalseHandOnTheLegsAndNobodyIsNothing) {
+// An arm hanging at the side: the hanging hand is found where it is (a real performer's idle hand hangs so),
+// nothing on a leg or a foot; a room without a person has nobody in it.
+TEST(HandDetection, TheHangingHandIsFoundAndNothingOnTheLegs) {
   test::SceneOptions scene;
   scene.cameraPitch = 13.0;
   scene.cameraHeight = test::cameraHeightFor(13.0, 2.6);
-  const test::SyntheticScene s = test::renderScene(test::namedPose("one-arm-down"), scene);
-  const Detection one = detectHands(s.frame, DetectionOptions{});
-  ASSERT_GE(one.hands.size(), 1u);
-  for (const DetectedHand& h : one.hands) {
-    // Either the raised left hand or the hanging right one where it is: nothing on a leg.
-    const double nearest = std::min((h.position - s.leftHand).norm(), (h.position - s.rightHand).norm());
-    EXPECT_LT(nearest, 0.10) << h.position.transpose();
-  }
+  test::SyntheticScene s;
+  const HandSample out = handsOfPose(test::namedPose("one-arm-down"), scene, s);
+  ASSERT_TRUE(out.left.measured && out.right.measured);
+  EXPECT_LT((out.left.position - s.leftHand).norm(), 0.10);
+  EXPECT_LT((out.right.position - s.rightHand).norm(), 0.10);
 
   test::BodyPose away;
   away.feet = Vec3d(0.0, 0.0, 9.0);  // beyond the band and the wall: an empty room with furniture
@@ -144,75 +147,88 @@ TEST(HandDetection, NoFalseHandOnTheLegsAndNobodyIsNothing) {
   EXPECT_EQ(detectHands(nothing, DetectionOptions{}).performerPixels, 0);
 }
 
-// Hands crossing in front of the chest and back, twice, seen through the detector and the tracker: a reported
-// hand is never the other one (0 swaps: issue 15's target), at most 2% of the frames report a hand more than
-// 10 cm from its own (the benchmark's false-hand target), and occlusion while the hands pass costs some
-// frames (at least 70% of the hands are found here; gb_depth_bench measures all motions together).
+// Hands crossing in front of the chest and back, twice, seen through the finder and scored as real depth is
+// (hand_evaluation.h: found within 15 cm on its own side, false when near neither hand, swapped when near the
+// other's): no frame swapped, at most 0.05 false hands per frame and at least 85% of the hands found (issue
+// 32's targets; measured 99.6%, 0 and 0). While one hand passes behind the other the forest finds the hidden
+// hand's visible forearm, 8-12 cm from it.
 TEST(HandTracking, CrossingInFrontOfTheChestKeepsEachHandsIdentity) {
   test::SceneOptions scene;
   scene.cameraPitch = 10.0;
   scene.cameraHeight = test::cameraHeightFor(10.0, 2.5);
-  HandTracker tracker;
-  int found = 0, expected = 0, falseHands = 0, swapped = 0;
-  constexpr int kFrames = 120;
-  for (int i = 0; i < kFrames; ++i) {
+  HandFinder finder;
+  HandScore score;
+  for (int i = 0; i < 120; ++i) {
     const double t = i / 30.0;
     test::BodyPose pose = test::sequencePose("crossing", t);
     pose.feet.z() = 2.5;
     scene.seed = static_cast<unsigned>(i + 1);
     const test::SyntheticScene s = test::renderScene(pose, scene, t);
-    const HandSample out = tracker.update(t, detectHands(s.frame, DetectionOptions{}));
-    const Vec3d truth[2] = {s.leftHand, s.rightHand};
-    for (int h = 0; h < 2; ++h) {
-      const HandObservation& o = out.hand(h == 0 ? Hand::Left : Hand::Right);
-      ++expected;
-      if (!o.measured) continue;
-      const bool own = (o.position - truth[h]).norm() < 0.10;
-      found += own;
-      falseHands += !own;
-      swapped += !own && (o.position - truth[1 - h]).norm() < 0.10;
-    }
+    HandSample truth;
+    truth.time = t;
+    truth.left = HandHold().update(t, s.leftHand);
+    truth.right = HandHold().update(t, s.rightHand);
+    scoreFrame(finder.update(s.frame), truth, score);
   }
-  EXPECT_EQ(swapped, 0);
-  EXPECT_LE(falseHands, 0.02 * kFrames);
-  EXPECT_GE(found, 0.7 * expected);
+  EXPECT_EQ(score.swappedFrames, 0);
+  EXPECT_LE(score.falsePerFrame(), 0.05);
+  EXPECT_GE(score.found15(), 0.85);
 }
 
-Detection handsAt(std::initializer_list<Vec3d> points) {
+// Detections as the forest gives them: each with its side (+1 the forest's left hand, -1 its right hand).
+Detection handsAt(std::initializer_list<std::pair<Vec3d, int>> hands, double confidence = 1.0) {
   Detection d;
   d.performerPixels = 20000;
   d.bodyDepth = 2.4;
-  for (const Vec3d& p : points) d.hands.push_back({p, 500});
+  for (const auto& [p, side] : hands) d.hands.push_back({p, confidence, side, 1.0});
   return d;
 }
 
-TEST(HandTracker, KeepsIdentityWhenTheHandsCrossAndNeverJumps) {
+// Each hand takes the strongest detection of its side, whatever the order and wherever it is (the forest tells
+// the sides from the whole body: a hand crossed over to the other side is still its own); a mirrored image
+// swaps the sides.
+TEST(HandTracker, EachHandTakesItsOwnSidesDetection) {
   HandTracker tracker;
-  // The left hand (camera +x) sweeps to the right in front of the right hand sweeping to the left.
   for (int i = 0; i <= 30; ++i) {
-    const double t = i / 30.0, x = 0.3 - 0.6 * t;
-    Detection d = handsAt({{x, 0.0, 1.7}, {-x, 0.0, 2.0}});
-    if (i % 2) std::swap(d.hands[0], d.hands[1]);  // detection order carries no identity
+    const double t = i / 30.0, x = 0.3 - 0.6 * t;  // the left hand sweeps across the right one
+    Detection d = handsAt({{{x, 0.0, 1.7}, 1}, {{-x, 0.0, 2.0}, -1}});
+    if (i % 2) std::swap(d.hands[0], d.hands[1]);  // the order carries no identity
     const HandSample s = tracker.update(t, d);
     ASSERT_TRUE(s.left.measured && s.right.measured);
     EXPECT_NEAR(s.left.position.x(), x, 1e-12) << t;
     EXPECT_NEAR(s.right.position.z(), 2.0, 1e-12) << t;
   }
-  // A detection across the room the next frame is not the left hand: it is held where it was.
-  const HandSample jump = tracker.update(1.0 + 1.0 / 30, handsAt({{1.5, 0.0, 1.0}, {0.3, 0.0, 2.0}}));
-  EXPECT_FALSE(jump.left.measured);
-  EXPECT_NEAR(jump.left.position.x(), -0.3, 1e-12);
-  EXPECT_TRUE(jump.right.measured);
+  TrackerOptions mirrored;
+  mirrored.mirrored = true;
+  HandTracker other(mirrored);
+  const HandSample m = other.update(0.0, handsAt({{{0.3, 0.0, 2.0}, 1}}));
+  EXPECT_TRUE(m.right.measured);
+  EXPECT_FALSE(m.left.seen());
 }
 
-TEST(HandTracker, HoldsALostHandWithDecayingConfidenceAndTakesItBackNearby) {
+// A hand not followed is taken only when the forest is sure (newConfidence); a followed hand also from a lower
+// confidence near where it was going (followConfidence), but not when it jumps across the room.
+TEST(HandTracker, AFollowedHandIsTakenFromLowerConfidenceOnlyNearItsPath) {
   TrackerOptions o;
   HandTracker tracker(o);
-  tracker.update(0.0, handsAt({{0.25, 0.0, 1.8}, {-0.25, 0.0, 1.8}}));
+  const double unsure = 0.5 * (o.followConfidence + o.newConfidence);
+  EXPECT_FALSE(tracker.update(0.0, handsAt({{{0.25, 0.0, 1.8}, 1}}, unsure)).left.measured);
+  EXPECT_TRUE(tracker.update(1 / 30.0, handsAt({{{0.25, 0.0, 1.8}, 1}}, 1.0)).left.measured);
+  EXPECT_TRUE(tracker.update(2 / 30.0, handsAt({{{0.27, 0.0, 1.8}, 1}}, unsure)).left.measured);
+  const HandSample jump = tracker.update(3 / 30.0, handsAt({{{-0.6, 0.8, 1.8}, 1}}, unsure));
+  EXPECT_FALSE(jump.left.measured);
+  EXPECT_NEAR(jump.left.position.x(), 0.27, 1e-12);                                            // held where it was
+  EXPECT_TRUE(tracker.update(4 / 30.0, handsAt({{{-0.6, 0.8, 1.8}, 1}}, 1.0)).left.measured);  // sure: it moved
+}
+
+TEST(HandTracker, HoldsALostHandWithDecayingConfidenceAndTakesItBack) {
+  TrackerOptions o;
+  HandTracker tracker(o);
+  tracker.update(0.0, handsAt({{{0.25, 0.0, 1.8}, 1}, {{-0.25, 0.0, 1.8}, -1}}));
   // Occlusion: the right hand disappears for 0.5 s, then a frame goes missing altogether (no detection at all).
   double previous = 1.0;
   for (int i = 1; i <= 15; ++i) {
-    const HandSample s = tracker.update(i / 30.0, handsAt({{0.25, 0.0, 1.8}}));
+    const HandSample s = tracker.update(i / 30.0, handsAt({{{0.25, 0.0, 1.8}, 1}}));
     EXPECT_TRUE(s.left.measured);
     EXPECT_FALSE(s.right.measured);
     EXPECT_EQ(s.right.position, Vec3d(-0.25, 0.0, 1.8));
@@ -223,45 +239,9 @@ TEST(HandTracker, HoldsALostHandWithDecayingConfidenceAndTakesItBackNearby) {
   const HandSample both = tracker.update(16 / 30.0, Detection{});
   EXPECT_FALSE(both.left.measured || both.right.measured);
   EXPECT_TRUE(both.left.seen() && both.right.seen());
-  const HandSample back = tracker.update(17 / 30.0, handsAt({{0.25, 0.0, 1.8}, {-0.2, 0.05, 1.75}}));
+  const HandSample back = tracker.update(17 / 30.0, handsAt({{{0.25, 0.0, 1.8}, 1}, {{-0.2, 0.05, 1.75}, -1}}));
   EXPECT_TRUE(back.left.measured && back.right.measured);
   EXPECT_EQ(back.right.position, Vec3d(-0.2, 0.05, 1.75));
-}
-
-// A hand seen before keeps a detection near it: a never-seen hand's first sighting costs something, so it
-// cannot take the detection (issue 15: wands swapped sides mid-take), and it must lie on its own side.
-TEST(HandTracker, ANeverSeenHandDoesNotStealTheOtherHandsDetection) {
-  HandTracker tracker;
-  Detection first = handsAt({{0.2, 0.0, 1.8}});
-  first.bodyCentreX = 0.0;
-  ASSERT_TRUE(tracker.update(0.0, first).left.measured);
-  for (int i = 1; i <= 10; ++i) {
-    // The left hand drifts across the body's middle; the right one is never seen.
-    Detection d = handsAt({{0.2 - 0.04 * i, 0.0, 1.8}});
-    d.bodyCentreX = 0.0;
-    const HandSample s = tracker.update(i / 30.0, d);
-    EXPECT_TRUE(s.left.measured) << i;
-    EXPECT_FALSE(s.right.seen()) << i;
-  }
-}
-
-TEST(HandTracker, FirstSightingTakesItsSideFromTheArmOrTheBody) {
-  HandTracker tracker;
-  Detection d = handsAt({{-0.2, 0.0, 1.8}});
-  d.bodyCentreX = 0.0;
-  const HandSample s = tracker.update(0.0, d);
-  EXPECT_TRUE(s.right.measured);  // camera -x: the performer's right
-  EXPECT_FALSE(s.left.seen());
-  EXPECT_EQ(s.left.confidence, 0.0);
-  TrackerOptions mirrored;
-  mirrored.mirrored = true;
-  HandTracker other(mirrored);
-  EXPECT_TRUE(other.update(0.0, d).left.measured);
-  // The arm's side, when the detector is sure of it, outweighs where the hand is (a hand crossed over).
-  d.hands[0].side = 1;
-  d.hands[0].sideConfidence = 1.0;
-  HandTracker crossed;
-  EXPECT_TRUE(crossed.update(0.0, d).left.measured);
 }
 
 }  // namespace

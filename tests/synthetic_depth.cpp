@@ -155,8 +155,11 @@ void castProjectorShadows(std::vector<double>& z) {
   }
 }
 
+}  // namespace
+
 // Kinect v1 depth noise: no reading at some depth edges and at random pixels, Gaussian error growing as z^2
-// (Khoshelham and Elberink 2012: sigma = 1.425 mm z^2 / m^2), then the 11-bit disparity quantisation.
+// (Khoshelham and Elberink 2012: sigma = 1.425 mm z^2 / m^2); the 11-bit disparity quantisation follows when
+// the depth is written as raw values.
 void addKinectNoise(std::vector<double>& z, unsigned seed) {
   castProjectorShadows(z);
   std::mt19937 random(seed);
@@ -178,8 +181,6 @@ void addKinectNoise(std::vector<double>& z, unsigned seed) {
     }
   z = std::move(noisy);
 }
-
-}  // namespace
 
 double cameraHeightFor(double pitch, double distance) {
   constexpr double kTop = 2.2, kHalfFieldDeg = 21.5;  // Kinect v1: 43 degrees vertical field of view
@@ -241,6 +242,51 @@ SyntheticScene renderScene(const BodyPose& pose, const SceneOptions& options, do
   scene.up = Vec3d(0.0, camera.ey.y(), camera.ez.y());  // scene +y in camera axes
   scene.floorDistance = options.cameraHeight;
   return scene;
+}
+
+const std::vector<std::string>& roomLayouts() {
+  static const std::vector<std::string> names = {"living-room", "office", "close-wall"};
+  return names;
+}
+
+std::vector<double> renderRoom(const std::string& layout, double d, double cameraPitch, double cameraHeight) {
+  const CameraFrame camera(cameraPitch, cameraHeight);
+  SceneCanvas canvas{camera};
+  const auto chair = [&](double x, double z) {
+    const Vec3d c(x, 0.0, z);
+    canvas.box(c + Vec3d(-0.22, 0.42, -0.22), c + Vec3d(0.22, 0.47, 0.22));  // seat
+    canvas.box(c + Vec3d(-0.22, 0.47, 0.18), c + Vec3d(0.22, 0.95, 0.22));   // back
+    for (const double dx : {-0.2, 0.18})
+      for (const double dz : {-0.2, 0.18}) canvas.box(c + Vec3d(dx, 0.0, dz), c + Vec3d(dx + 0.03, 0.42, dz + 0.03));
+  };
+  double wall = 0.0;
+  if (layout == "living-room") {
+    wall = std::max(d + 1.4, 3.4);
+    canvas.box(Vec3d(-1.0, 0.0, wall - 0.8), Vec3d(1.0, 0.45, wall));   // sofa seat
+    canvas.box(Vec3d(-1.0, 0.45, wall - 0.25), Vec3d(1.0, 0.9, wall));  // and back
+    chair(-1.2, d + 0.2);
+    canvas.box(Vec3d(0.9, 0.0, d + 0.2), Vec3d(1.7, 0.75, d + 0.8));  // table
+    canvas.box(Vec3d(-2.4, 0.0, 0.5), Vec3d(-2.2, 3.0, wall));        // side wall
+  } else if (layout == "office") {
+    wall = std::max(d + 2.0, 4.5);
+    canvas.box(Vec3d(-1.6, 0.0, wall - 0.4), Vec3d(-0.4, 1.9, wall));  // shelves
+    canvas.box(Vec3d(0.3, 0.0, wall - 0.4), Vec3d(1.3, 1.1, wall));    // a cupboard
+    canvas.box(Vec3d(0.7, 0.72, d - 0.9), Vec3d(1.6, 0.76, d - 0.2));  // desk top
+    canvas.box(Vec3d(1.5, 0.0, d - 0.9), Vec3d(1.6, 0.72, d - 0.2));   // and its side
+    chair(-0.9, d + 1.0);
+    chair(0.9, d + 0.9);
+  } else if (layout == "close-wall") {
+    wall = d + 0.5;
+    canvas.box(Vec3d(-1.3, 0.0, wall - 0.1), Vec3d(-1.2, 2.1, wall));  // door frame
+    canvas.box(Vec3d(-1.3, 2.0, wall - 0.1), Vec3d(-0.4, 2.1, wall));
+    canvas.capsule({Vec3d(1.3, 0.0, wall - 0.3), Vec3d(1.3, 1.8, wall - 0.3), 0.03});  // coat rack
+    canvas.sphere(Vec3d(1.3, 1.6, wall - 0.3), 0.25);                                  // a coat on it
+  } else {
+    throw std::invalid_argument("unknown room layout " + layout);
+  }
+  canvas.plane(Vec3d::UnitZ(), wall);
+  canvas.plane(Vec3d::UnitY(), 0.0);  // the floor
+  return canvas.depth;
 }
 
 BodyPose namedPose(const std::string& name) {

@@ -84,6 +84,21 @@ BodyPose blendPoses(const BodyPose& a, const BodyPose& b, double s);  // s in [0
 // the chest and back, twice a cycle), "together", "overhead", "one-arm-down" (the right arm hangs; its hand
 // is not expected to be found). presented(): whether a hand is expected to be found in that motion.
 const std::vector<std::string>& sequenceNames();
+
+// An empty room around the place where a performer would stand (feet `performerDepth` m in front of the camera
+// along the floor), for compositing recorded performers into (tests/depth_composite.h). Layouts:
+//   "living-room"  a back wall, a sofa against it behind the performer, a chair and a table beside, a side wall;
+//   "office"       a far back wall with shelves, a desk in front of the performer to one side, office chairs;
+//   "close-wall"   a wall half a metre behind the performer, a door frame and a coat rack beside it.
+// Depth per full-resolution pixel (m, 0 for no reading), without noise.
+std::vector<double> renderRoom(const std::string& layout, double performerDepth, double cameraPitch,
+                               double cameraHeight);
+const std::vector<std::string>& roomLayouts();
+
+// Kinect v1's faults on a clean depth image (m per full-resolution pixel): the projector's shadow beside near
+// edges, holes at depth edges and a few elsewhere, depth noise growing with the square of the depth. They
+// differ with `seed`, as they do from one real frame to the next.
+void addKinectNoise(std::vector<double>& depth, unsigned seed);
 BodyPose sequencePose(const std::string& sequence, double t);
 bool presented(const std::string& sequence, Hand hand);
 

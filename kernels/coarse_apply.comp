@@ -5,6 +5,7 @@
 #include "common.glsl"
 #include "forces.glsl"
 #include "vertex_block.glsl"
+// After the headers above: coarse.glsl reads the push constants and buffers they declare.
 #include "coarse.glsl"
 
 void main() {

@@ -6,6 +6,7 @@
 #include "common.glsl"
 #include "forces.glsl"
 #include "vertex_block.glsl"
+// After the headers above: coarse.glsl reads the push constants and buffers they declare.
 #include "coarse.glsl"
 
 // springCouplingBlock: the off-diagonal block of spring k of i's one-ring.

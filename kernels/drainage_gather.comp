@@ -10,7 +10,8 @@ void main() {
   float received = 0.0;
   for (uint k = springOffset[j]; k < springOffset[j + 1u]; ++k) {
     const uint i = springNeighbour[k];
-    if (DRAIN_WEIGHT(i) > 0.0) received += DRAIN_OUTFLOW(i) * drainageDirection(LOAD3(position, i), xj, g) / DRAIN_WEIGHT(i);
+    if (DRAIN_WEIGHT(i) > 0.0)
+      received += DRAIN_OUTFLOW(i) * drainageDirection(LOAD3(position, i), xj, g) / DRAIN_WEIGHT(i);
   }
   liquid[j] = liquid[j] - DRAIN_OUTFLOW(j) + received;
 }

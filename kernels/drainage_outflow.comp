@@ -12,5 +12,6 @@ void main() {
   for (uint k = springOffset[i]; k < springOffset[i + 1u]; ++k)
     weight += drainageDirection(xi, LOAD3(position, springNeighbour[k]), g);
   DRAIN_WEIGHT(i) = weight;
-  DRAIN_OUTFLOW(i) = liquid[i] * min(1.0, steps[pc.stepIndex].drainageDt * params.drainageRate * weight / params.sticky);
+  DRAIN_OUTFLOW(i) =
+      liquid[i] * min(1.0, steps[pc.stepIndex].drainageDt * params.drainageRate * weight / params.sticky);
 }

@@ -21,7 +21,7 @@ void main() {
     return;
   }
   vec3 v = LOAD3(velocity, i) + u.dt * LOAD3(force, i) / mass[i];  // Eq. (12)
-  vec3 xNew = x + u.dt * v;                                          // Eq. (13)
+  vec3 xNew = x + u.dt * v;                                        // Eq. (13)
   if (xNew.y < 0.0) {  // the floor, y = 0: the film lands and slides, it does not pass through
     xNew.y = 0.0;
     v.y = max(v.y, 0.0);

@@ -24,5 +24,6 @@ void main() {
   triangleNormal[pc.triangles + t] = doubleAreaNormal.y;
   triangleNormal[2u * pc.triangles + t] = doubleAreaNormal.z;
   const float area = 0.5 * length(doubleAreaNormal);
-  for (uint c = 0u; c < 3u; ++c) cornerArea[3u * t + c] = mixedVoronoiCorner(x[c], x[(c + 1u) % 3u], x[(c + 2u) % 3u], area);
+  for (uint c = 0u; c < 3u; ++c)
+    cornerArea[3u * t + c] = mixedVoronoiCorner(x[c], x[(c + 1u) % 3u], x[(c + 2u) % 3u], area);
 }

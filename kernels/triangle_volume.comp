@@ -1,6 +1,7 @@
 #version 450
-// triangleSignedVolume (cpu-reference/stages.cpp) for every triangle, into the reduce buffer's half A: the leaves of the
-// volume's tree sum. pc.reduceFlags bit 2: at the step's start instead (triangleSignedVolumeAtStart, the energy budget).
+// triangleSignedVolume (cpu-reference/stages.cpp) for every triangle, into the reduce buffer's half A: the leaves of
+// the volume's tree sum. pc.reduceFlags bit 2: at the step's start instead (triangleSignedVolumeAtStart, the energy
+// budget).
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 

@@ -82,7 +82,8 @@ TEST(FilmGeneration, SpringsRestAtTheirPrestrainedInitialLengths) {
   const Film film = generateFilm(p, WandTool{}, restingWands());
   const Topology& topo = film.topology;
   for (size_t k = 0; k < topo.springCount(); ++k) {
-    const float d = (film.state.position.get(topo.springEnds[2 * k]) - film.state.position.get(topo.springEnds[2 * k + 1])).norm();
+    const float d =
+        (film.state.position.get(topo.springEnds[2 * k]) - film.state.position.get(topo.springEnds[2 * k + 1])).norm();
     EXPECT_FLOAT_EQ(d * (1.0f - p.springPrestrain), topo.restLength[k]);
   }
   // Triangles are well shaped: no edge is more than three times the median one.

@@ -1,4 +1,4 @@
-// The implicit step's solver, chosen by measurement (issue 12; docs/model.md "Integrators"): vertex block
+// The implicit step's solver, chosen by measurement (docs/model.md "Why vertex block descent"): vertex block
 // descent against Chebyshev-accelerated VBD, Chebyshev-accelerated block Jacobi and Newton with matrix-free
 // preconditioned conjugate gradients (cpu-reference/solver_comparison.h), on one step of two films: the default
 // film mid-stroke (the default run at 1.5 s, wands moving at 0.6 m/s) and fig11b's 25,650-particle ring film

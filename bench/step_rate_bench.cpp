@@ -1,5 +1,5 @@
-// Implicit frames per second of one film on the CPU backend (issue 12's targets for the physical tension model
-// and for 1,000,000 particles): the straight stroke is started at once and run for a few frames so the wands
+// Implicit frames per second of one film on the CPU backend (docs/performance.md's figures for the physical tension
+// model and for 1,000,000 particles): the straight stroke is started at once and run for a few frames so the wands
 // move, then the program times (1) the stepper alone, one implicit step of h = 0.02 s at a time on the moving
 // wands' uniforms, and (2) whole frames (Simulation::advanceFrame: the step plus the per-frame contact search,
 // film growth and burst checks). Per-stage milliseconds of the stepper come from its host timer. Each part also

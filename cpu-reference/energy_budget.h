@@ -6,7 +6,7 @@
 //   H(x_{t+h}, v_{t+h}) <= H(x_t with the wire placed, v_t) + sum_i f_ext,i . (x_{t+h} - x_t)
 //
 // for a convex E (Gast et al. 2015). A fixed number of sweeps stops short of the solution: the long waves
-// keep the first guess x_t + h v_t, which stretches a swinging, crumpled film (docs/performance.md, session 14).
+// keep the first guess x_t + h v_t, which stretches a swinging, crumpled film (the stress runs).
 // Stage energy_budget checks the inequality after the sweeps; where the step broke it by more than
 // kEnergyBudgetTolerance, the free particles' new velocities relative to their centre of mass are scaled down by
 // the one factor that brings H back to the budget (implicit_velocity applies it): the film keeps its momentum (a

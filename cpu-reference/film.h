@@ -39,7 +39,7 @@ inline float liquidMass(const Params& p, float liquid) { return p.liquidDensity 
 // The mass of a particle with that Voronoi area and liquid, its inertia: the paper's film has a chosen inertia
 // per area (filmInertia, 0.1 kg/m^2, about 30 times a 3.5 um film's liquid); we read the difference as the air
 // the film drags along (added mass), which it must accelerate but which weighs nothing in air, so gravity
-// pulls on liquidMass only (docs/model.md, "Weight and inertia"). The physical model (tensionModel 1) is its
+// pulls on liquidMass only (docs/model.md, "The film"). The physical model (tensionModel 1) is its
 // liquid alone.
 inline float particleMass(const Params& p, float voronoiArea, float liquid) {
   return p.tensionModel == 1 ? liquidMass(p, liquid) : p.filmInertia * voronoiArea;

@@ -34,8 +34,8 @@ inline Vec<F> gatherVec(const Vec3Array& a, const Index& i) {
 }
 
 // A block while its terms are summed: the symmetric Hessian as its six distinct entries in locals, so that the
-// sum stays in registers. (Summing 3x3 matrices built per term went through the stack, and reading those
-// temporaries back was the sweep's largest cost: docs/performance.md, session 8.) Entry (r, c) gets
+// sum stays in registers. (Summing 3x3 matrices built per term goes through the stack, and reading those
+// temporaries back costs more than the sweep's arithmetic.) Entry (r, c) gets
 // scale (d_r d_c) per term, the same float operations as an outer-product matrix, so the sum equals the
 // matrix sum bit for bit.
 template <class F>

@@ -36,8 +36,8 @@ struct Bubble {
   float areaPerVolume = 0.0f;  // A_total / V of a sphere of this volume, (36 pi / V)^(1/3) (1/m); 0 without one
 };
 // A closed film's gas at an iterate: its volume and Boyle's pressure, with the sphere's area per volume that
-// breathingStiffness takes, worked out once per sweep rather than at every particle (a cube root each: 4% of the
-// default run's time, docs/performance.md, session 11).
+// breathingStiffness takes, worked out once per sweep rather than at every particle (a cube root each would be 4%
+// of the default run's time).
 Bubble bubbleOf(float volume, float pressure);
 
 // The stiffness of the bubble's breathing seen by one particle of area A: P A A_total / V, the pressure change

@@ -1,5 +1,5 @@
 #pragma once
-// The candidate solvers of issue 12 for the implicit step's objective (implicit_euler.h), built on the CPU to
+// Candidate solvers for the implicit step's objective (implicit_euler.h), built on the CPU to
 // measure the choice of vertex block descent against them (bench/solver_bench.cpp, docs/model.md
 // "Integrators"). All of them use the particles' 3x3 blocks of objectiveBlock, so they solve the same
 // objective with the same projected Hessian:

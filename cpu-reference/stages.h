@@ -1,7 +1,7 @@
 #pragma once
 // The stages of one simulation step (ARCHITECTURE.md "The step"), each a function of one element that
-// reads explicit inputs and writes only that element's outputs. kernels/ will hold a compute shader of the
-// same name per stage; this file is the definition both backends follow.
+// reads explicit inputs and writes only that element's outputs. This file is the definition both backends
+// follow: each stage's GLSL kernel(s) in kernels/ (kernel_list.h) run the function of the same name per element.
 //
 // Gather, never scatter: every per-particle result is summed by the particle itself over its CSR one-ring,
 // in CSR order. Propagation (air transfer) is a Jacobi sweep from a front buffer into a back buffer.
@@ -12,7 +12,8 @@
 
 namespace gb {
 
-// What a step needs besides the state: computed once per step on the host (push constants on the GPU).
+// What a step needs besides the state: computed once per step on the host (on the GPU one StepUniformsBlock per
+// step of a batch, in a storage buffer: kernels/shared_step.h).
 struct StepUniforms {
   float dt = 0.0f;                   // substep length (s)
   WandState wands;                   // wand tips at the start of the step, the air sources of Eq. (5)
@@ -45,7 +46,7 @@ void fitTriangleArrays(const Topology& topo, State& s);
 // the geometry computed for one holds for the other. The CPU stepper's geometry stage skips its work when the film
 // still has the key of the geometry last computed: `giantbubble run` computes it for each frame's figures
 // (Simulation::stats) and the next step would compute it again from the same positions (0.6 ms of a 10 ms frame of
-// the default film, docs/performance.md, session 11).
+// the default film).
 uint64_t geometryKey(const Topology& topo, const State& s);
 
 // Signed volume of the tetrahedron (origin, triangle t); their sum is the enclosed volume of a closed
@@ -126,9 +127,9 @@ Vec3 volumeGradient(const Topology& topo, const State& s, size_t i);
 // Closed bubble, Eqs. (10)-(11): the excess of Boyle's pressure P_cur = P_0 V_0 / V over P_0 times the volume's
 // gradient (volumeGradient): on a smooth film the particle's area along its normal. It pushes a compressed bubble out
 // and pulls an expanded one in. Taken as the gradient, it is the force of the gas's energy exactly: its sum over the
-// film is zero, and it does the work the gas's energy change says. The Voronoi area along the vertex normal, which it
-// was until session 16, summed to up to 0.17 N on a crumpled bubble and did up to 0.04 W of work the gas never paid
-// for (docs/performance.md, session 16). The implicit step evaluates it at the volume of its current iterate
+// film is zero, and it does the work the gas's energy change says. The Voronoi area along the vertex normal, its
+// smooth-film approximation, sums to up to 0.17 N on a crumpled bubble and does up to 0.04 W of work the gas never
+// pays for. The implicit step evaluates it at the volume of its current iterate
 // (implicit_euler.h): at the step's start it is unstable at h = 0.02 s for a bubble of tens of centimetres.
 Vec3 boyleForce(const Params& p, float pressure, const Topology& topo, const State& s, size_t i);
 // Its scalar factor, the excess of Boyle's pressure over P_0 (Pa), for a gradient laid out elsewhere.

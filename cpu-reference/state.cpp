@@ -147,8 +147,8 @@ Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, co
 
 Topology rebuildTopology(const Topology& previous, std::vector<uint32_t> triangles, const Vec3Array& positions,
                          float prestrain, std::vector<size_t>* made) {
-  // An old spring is found in its lower end's old one-ring (a few entries): a sorted copy of every spring cost the
-  // merging of a free bubble's crowded particles a millisecond a frame (docs/performance.md, session 11).
+  // An old spring is found in its lower end's old one-ring (a few entries): a sorted copy of every spring would cost
+  // the merging of a free bubble's crowded particles a millisecond a frame.
   const auto oldRest = [&](uint32_t a, uint32_t b) -> std::optional<float> {
     if (a >= previous.particleCount()) return std::nullopt;  // appended since: all its springs are new
     for (uint32_t k = previous.springOffset[a]; k < previous.springOffset[a + 1]; ++k)

@@ -186,12 +186,12 @@ TEST(Dynamics, ANonFiniteStateStopsWithAClearError) {
   }
 }
 
-// The explicit step's bound includes the air coupling (docs/model.md "Air coupling", "Stability"): at 1,000 Pa s/m^3
-// (100x the default) the coupling's damping rate kappa Area_wm / filmInertia is ~4,000/s, seven times the film's
-// spring frequency, and semi-implicit Euler damps stably only while dt x rate < 2. A bound without it takes
-// 15 substeps per frame here (dt x rate ~ 13: a particle went non-finite at 0.16 s when tried); with it (141), at the
-// default safety, the stroke runs with no instability stop and the film, pushed towards the air's speed, never outruns
-// the wands' peak by more than 4x.
+// The explicit step's bound includes the air coupling (docs/model.md "Air coupling", "The explicit reference and its
+// stability bound"): at 1,000 Pa s/m^3 (100x the default) the coupling's damping rate kappa Area_wm / filmInertia is
+// ~4,000/s, seven times the film's spring frequency, and semi-implicit Euler damps stably only while dt x rate < 2. A
+// bound without it takes 15 substeps per frame here (dt x rate ~ 13: a particle went non-finite at 0.16 s when tried);
+// with it (141), at the default safety, the stroke runs with no instability stop and the film, pushed towards the air's
+// speed, never outruns the wands' peak by more than 4x.
 TEST(Dynamics, TheExplicitBoundHoldsWithStrongAirCoupling) {
   Params p;
   p.particlesAtFullSolution = 200;

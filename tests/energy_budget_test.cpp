@@ -93,7 +93,7 @@ TEST(EnergyBudget, TakesTheExcessFromTheMotionAboutTheCentreOfMass) {
 
 TEST(EnergyBudget, GivesBackTheDriftTheStepMadeAndKeepsTheRest) {
   // A bubble of 0.3 kg flying at 1.3 m/s whose step was not paid for (the first after the pinch-off at h = 0.04 s
-  // gained 1.07 J against 0.30 J of kinetic energy, docs/performance.md session 15): the wobble goes, but the drift
+  // gains 1.07 J against 0.30 J of kinetic energy, docs/model.md "Energy budget"): the wobble goes, but the drift
   // it had and gravity's pull stay, to float rounding (1e-6 m/s).
   const float mass = 0.3f, h = 0.04f;
   const Vec3 flying(0.0f, 0.0f, 1.3f), pulled = flying + h * Vec3(0.0f, -9.81f, 0.0f);
@@ -146,9 +146,9 @@ Vec3 centreOfFilm(const State& s) {
 TEST(EnergyBudget, ABubbleBlownOffTheWandsKeepsFlyingAtTwoFrameSteps) {
   // The default performance at the live loop's two-frame step (h = 0.04 s) and its floor of 3 sweeps, as `live`
   // steps when the machine is behind. The first step after the pinch-off (1.88 s) gains more energy than all the
-  // bubble's motion holds. Session 14's budget took the drift too and stopped the bubble dead there: in `run` with
-  // these parameters its centre stayed at z = 0.80 m at 2 s, 0.79 m at 3 s and 0.72 m at 4 s (docs/performance.md,
-  // session 15). It must fly on: bound 0.8 m from 2.0 to 3.5 s, against 1.55 m with the budget and 1.41 m without.
+  // bubble's motion holds. A budget that took the drift too would stop the bubble dead there: in `run` with these
+  // parameters its centre would stay at z = 0.80 m at 2 s, 0.79 m at 3 s and 0.72 m at 4 s. It must fly on: bound
+  // 0.8 m from 2.0 to 3.5 s, against 1.55 m with the budget and 1.41 m without.
   const Scene scene = resolveScene("default");
   Params p = scene.run.params;
   p.frameTime = 0.04f;

@@ -521,7 +521,7 @@ struct SceneCase {
 class VulkanScene : public ::testing::TestWithParam<SceneCase> {};
 
 // Whole scenes over 500 steps (frames of the implicit step) on both backends: each particle within 1 mm, and
-// area, volume and energy within 0.1% (the bounds). Differences start at the ulp level and grow only
+// area, volume and energy within 0.1% (the required bounds). Differences start at the ulp level and grow only
 // as fast as the film's own dynamics amplify them. The bubble floats without gravity: with it, it would
 // burst on the floor within the 10 s. The stroke draws no new film (a dry wire, solutionReserve 0): a grown,
 // slack film crumples when the wands stop, and crumpling amplifies any difference chaotically (measured:

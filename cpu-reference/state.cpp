@@ -9,31 +9,25 @@ namespace gb {
 
 namespace {
 
-// Calls visit(array, value of a new particle) for every per-particle array of the state: the one list of
-// them, so that no attribute is forgotten when the state grows.
-template <class Visit>
-void forEachParticleArray(State& s, Visit&& visit) {
-  for (Vec3Array* a :
-       {&s.position, &s.velocity, &s.force, &s.normal, &s.airInflow, &s.airFlow, &s.airFlowNext, &s.previousPosition}) {
-    visit(a->x, 0.0f);
-    visit(a->y, 0.0f);
-    visit(a->z, 0.0f);
-  }
-  for (std::vector<float>* a : {&s.mass, &s.liquid, &s.voronoiArea, &s.thickness, &s.elasticity, &s.lifetime,
-                                &s.frameParam, &s.drainOutflow, &s.drainWeight})
-    visit(*a, 0.0f);
-  visit(s.alive, 1u);
+// A new particle's value of an array (its line of device_data.h), as the array's element type.
+template <class Values>
+typename Values::value_type createdValue(const Values&, const ParticleArrayInfo& info) {
+  return static_cast<typename Values::value_type>(info.created);
 }
 
 }  // namespace
 
 void State::resize(size_t n) {
-  forEachParticleArray(*this, [n](auto& array, auto value) { array.assign(n, value); });
+  forEachParticleArray(*this, [n](auto& array, const ParticleArrayInfo& info) {
+    forEachComponent(array, [&](auto& values, int) { values.assign(n, createdValue(values, info)); });
+  });
 }
 
 void State::append(size_t count) {
   const size_t n = size() + count;
-  forEachParticleArray(*this, [n](auto& array, auto value) { array.resize(n, value); });
+  forEachParticleArray(*this, [n](auto& array, const ParticleArrayInfo& info) {
+    forEachComponent(array, [&](auto& values, int) { values.resize(n, createdValue(values, info)); });
+  });
 }
 
 Vec3 centroid(const State& s) {

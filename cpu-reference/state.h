@@ -7,6 +7,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "shared_step.h"
+
 namespace gb {
 
 using Vec3 = Eigen::Vector3f;
@@ -30,27 +32,41 @@ struct Vec3Array {
   }
 };
 
+// How a per-particle array of State travels between the host and the Vulkan stepper (kernels/device_data.h).
+enum class Transfer {
+  ReadBack,    // load() uploads it, store() brings it back
+  UploadOnly,  // load() uploads it; the device only reads it, or uses it as scratch
+  WithMesh     // uploaded with the mesh: load() and updateTopology()
+};
+
+// A per-particle array of `Components` elements a particle: a Vec3Array for three, else a vector.
+template <class Element, int Components>
+struct ParticleArrayOf {
+  using type = std::vector<Element>;
+};
+template <>
+struct ParticleArrayOf<float, 3> {
+  using type = Vec3Array;
+};
+template <class Element, int Components>
+using ParticleArray = typename ParticleArrayOf<Element, Components>::type;
+
 // Per-particle state. Indices are stable: a removed particle is flagged dead, never renumbered implicitly.
 struct State {
-  Vec3Array position;               // x_i (m)
-  Vec3Array velocity;               // v_i (m/s)
-  Vec3Array force;                  // total force of Eq. (2) of the last step (N)
-  Vec3Array normal;                 // unit vertex normal n_i
-  Vec3Array airInflow;              // direct air inflow of Eq. (5) (m^3/s)
-  Vec3Array airFlow;                // transferred air flow of Eqs. (7)-(8) (m^3/s), Jacobi front buffer
-  Vec3Array airFlowNext;            // Jacobi back buffer of the air transfer
-  Vec3Array previousPosition;       // x_t, the position at the start of an implicit step (implicit_euler.h)
-  std::vector<float> mass;          // m_i (kg), fixed at creation from the film inertia
-  std::vector<float> liquid;        // liquid volume carried by the particle (m^3); w_e of Section 5.1
-  std::vector<float> voronoiArea;   // mixed Voronoi area A_Vor(p_i) (m^2)
-  std::vector<float> thickness;     // e_i = liquid / A_Vor (m)
-  std::vector<float> elasticity;    // E_i of Eq. (4) (N/m)
-  std::vector<float> lifetime;      // time since the particle was created (s)
-  std::vector<float> drainOutflow;  // liquid particle i sends downhill this step (m^3), drainage pass 1
-  std::vector<float> drainWeight;   // sum of d_dir of Eq. (14) over i's neighbours, drainage pass 1
-  std::vector<float> frameParam;    // wire-frame coordinate of a boundary particle (see wire_frame.h); negative:
-                                    // the particle is pinned where it is (fixed rings, film_shapes.h)
-  std::vector<uint32_t> alive;      // 1 while the particle exists (uint32: the GPU reads it as a uint)
+  // One array per line of kernels/device_data.h, named and explained there: the list that the device's buffers,
+  // their bindings and their uploads and read-backs follow too (forEachParticleArray).
+#define GB_ELEMENT_float float
+#define GB_ELEMENT_uint uint32_t
+#define GB_BUFFER(binding, NAME, element, declarator, access)
+#define GB_PARTICLE_ARRAY(binding, NAME, name, components, element, access, transfer, created) \
+  ParticleArray<GB_ELEMENT_##element, components> name;
+#define GB_PARTICLE_BLOCK(NAME, block, name, transfer) std::vector<float> name;
+#include "device_data.h"
+#undef GB_BUFFER
+#undef GB_PARTICLE_ARRAY
+#undef GB_PARTICLE_BLOCK
+#undef GB_ELEMENT_float
+#undef GB_ELEMENT_uint
   // Per triangle, written by the geometry stage's first pass and gathered by its second:
   Vec3Array triangleNormal;       // (x1 - x0) x (x2 - x0): twice the area times the unit normal
   std::vector<float> cornerArea;  // mixed Voronoi area of each corner, 3 per triangle
@@ -61,6 +77,44 @@ struct State {
   // and values (film growth, pinch-off caps).
   void append(size_t count);
 };
+
+// Where a per-particle array of State lives on the device and how it travels (its line of device_data.h).
+struct ParticleArrayInfo {
+  int binding;     // its buffer (gpu::Binding)
+  int block;       // its first block of `particles` elements in that buffer
+  int components;  // 3 for a Vec3Array (its x, y and z blocks), else 1
+  Transfer transfer;
+  float created;  // a new particle's value
+};
+
+// Calls visit(array, info) for every per-particle array of `state` (a State or a const State), in the order of
+// kernels/device_data.h: the one list of them, so that no attribute is left out when the state grows, is uploaded,
+// is read back or is saved.
+template <class S, class Visit>
+void forEachParticleArray(S& state, Visit&& visit) {
+#define GB_BUFFER(binding, NAME, element, declarator, access)
+#define GB_PARTICLE_ARRAY(binding, NAME, name, components, element, access, transfer, created) \
+  visit(state.name, ParticleArrayInfo{binding, 0, components, Transfer::transfer, created});
+#define GB_PARTICLE_BLOCK(NAME, block, name, transfer) \
+  visit(state.name, ParticleArrayInfo{gpu::GB_BINDING_##NAME, block, 1, Transfer::transfer, 0});
+#include "device_data.h"
+#undef GB_BUFFER
+#undef GB_PARTICLE_ARRAY
+#undef GB_PARTICLE_BLOCK
+}
+
+// Calls f(component, c) for each float or uint vector of a per-particle array: x, y and z of a Vec3Array (c = 0, 1,
+// 2), or the array itself (c = 0).
+template <class Array, class F>
+void forEachComponent(Array& array, F&& f) {
+  if constexpr (requires { array.x; }) {
+    f(array.x, 0);
+    f(array.y, 1);
+    f(array.z, 2);
+  } else {
+    f(array, 0);
+  }
+}
 
 // Mean position of the living particles (double accumulation); the origin when none lives.
 Vec3 centroid(const State& s);

@@ -4,11 +4,14 @@
 // shaders and is checked against it.
 
 #include <array>
+#include <cstdint>
+#include <initializer_list>
 #include <span>
 #include <string>
 
 #include "energy_budget.h"
 #include "film.h"
+#include "shared_step.h"
 #include "stages.h"
 
 namespace gb {
@@ -38,13 +41,22 @@ enum class Stage : int {
 inline constexpr int kStageCount = static_cast<int>(Stage::Count);
 
 // One row of the step: the stage, its name (the C++ stage, its GLSL kernel(s) and the tests use it), when it
-// runs, and why a barrier follows it (nullptr: the next stage reads nothing it wrote).
+// runs, the device's buffers it reads and writes (bits of gpu::Binding, kernels/device_data.h), and why a barrier
+// follows it (nullptr: no stage before the next barrier reads what it wrote or writes what it read; a test checks
+// this against the buffers).
 struct StageSpec {
   Stage stage;
   const char* name;
   bool (*runs)(const Params& params, const StepUniforms& uniforms);
+  uint32_t reads, writes;
   const char* barrierAfter;
 };
+// The set of the device's buffers `bindings`, as bits.
+constexpr uint32_t bufferSet(std::initializer_list<gpu::Binding> bindings) {
+  uint32_t bits = 0;
+  for (const gpu::Binding b : bindings) bits |= 1u << b;
+  return bits;
+}
 // The one list of the step's stages, in order: CpuStepper::step, VulkanStepper's recording and both
 // backends' timing walk it (ARCHITECTURE.md "The step").
 std::span<const StageSpec> stepStages();

@@ -1,4 +1,4 @@
-// Declarations every stage shares: the parameter block, the substep uniforms, push constants and the
+// Declarations every stage shares: the parameter block, the step uniforms, push constants and the
 // structure-of-arrays buffers, plus the functions of cpu-reference/stages.cpp that several stages need.
 // Each function has the name and the float operations of its C++ twin.
 
@@ -8,57 +8,37 @@
 layout(local_size_x_id = 0) in;
 layout(push_constant) uniform Push { PushBlock pc; };
 
-layout(std430, binding = GB_BINDING_PARAMS) readonly buffer ParamsBuffer { Params params; };
-layout(std430, binding = GB_BINDING_STEPS) readonly buffer StepsBuffer { StepUniformsBlock steps[]; };
-layout(std430, binding = GB_BINDING_POSITION) buffer PositionBuffer { float position[]; };
-layout(std430, binding = GB_BINDING_VELOCITY) buffer VelocityBuffer { float velocity[]; };
-layout(std430, binding = GB_BINDING_FORCE) buffer ForceBuffer { float force[]; };
-layout(std430, binding = GB_BINDING_NORMAL) buffer NormalBuffer { float normal[]; };
-layout(std430, binding = GB_BINDING_AIR_INFLOW) buffer AirInflowBuffer { float airInflow[]; };
-layout(std430, binding = GB_BINDING_AIR_FLOW) buffer AirFlowBuffer { float airFlow[]; };
-layout(std430, binding = GB_BINDING_AIR_FLOW_NEXT) buffer AirFlowNextBuffer { float airFlowNext[]; };
-layout(std430, binding = GB_BINDING_MASS) readonly buffer MassBuffer { float mass[]; };
-layout(std430, binding = GB_BINDING_LIQUID) buffer LiquidBuffer { float liquid[]; };
-layout(std430, binding = GB_BINDING_VORONOI_AREA) buffer VoronoiAreaBuffer { float voronoiArea[]; };
-layout(std430, binding = GB_BINDING_THICKNESS) buffer ThicknessBuffer { float thickness[]; };
-layout(std430, binding = GB_BINDING_ELASTICITY) buffer ElasticityBuffer { float elasticity[]; };
-layout(std430, binding = GB_BINDING_LIFETIME) buffer LifetimeBuffer { float lifetime[]; };
-layout(std430, binding = GB_BINDING_FRAME_PARAM) readonly buffer FrameParamBuffer { float frameParam[]; };
-layout(std430, binding = GB_BINDING_ALIVE) readonly buffer AliveBuffer { uint alive[]; };
-layout(std430, binding = GB_BINDING_TRIANGLES) readonly buffer TrianglesBuffer { uint triangles[]; };
-layout(std430, binding = GB_BINDING_REST_LENGTH) readonly buffer RestLengthBuffer { float restLength[]; };
-layout(std430, binding = GB_BINDING_SPRING_OFFSET) readonly buffer SpringOffsetBuffer { uint springOffset[]; };
-layout(std430, binding = GB_BINDING_SPRING_INDEX) readonly buffer SpringIndexBuffer { uint springIndex[]; };
-layout(std430, binding = GB_BINDING_SPRING_NEIGHBOUR) readonly buffer SpringNeighbourBuffer { uint springNeighbour[]; };
-layout(std430, binding = GB_BINDING_TRIANGLE_OFFSET) readonly buffer TriangleOffsetBuffer { uint triangleOffset[]; };
-layout(std430, binding = GB_BINDING_TRIANGLE_CORNER) readonly buffer TriangleCornerBuffer { uint triangleCorner[]; };
-layout(std430, binding = GB_BINDING_BOUNDARY) readonly buffer BoundaryBuffer { uint boundary[]; };
-layout(std430, binding = GB_BINDING_REDUCE) buffer ReduceBuffer { float reduce[]; };
-layout(std430, binding = GB_BINDING_DRAINAGE) buffer DrainageBuffer { float drainage[]; };
-layout(std430, binding = GB_BINDING_TRIANGLE_NORMAL) buffer TriangleNormalBuffer { float triangleNormal[]; };
-layout(std430, binding = GB_BINDING_CORNER_AREA) buffer CornerAreaBuffer { float cornerArea[]; };
-layout(std430, binding = GB_BINDING_CONTACTS) readonly buffer ContactsBuffer { uint contacts[]; };
-layout(std430, binding = GB_BINDING_PREVIOUS_POSITION) buffer PreviousPositionBuffer { float previousPosition[]; };
-layout(std430, binding = GB_BINDING_COLOUR_ORDER) readonly buffer ColourOrderBuffer { uint colourOrder[]; };
+// The storage buffers, declared from their one list (device_data.h).
+#define GB_WRITABLE
+#define GB_BUFFER(b, NAME, element, declarator, access) \
+  layout(std430, binding = b) access buffer NAME##_BUFFER { element declarator; };
+#define GB_PARTICLE_ARRAY(b, NAME, name, components, element, access, transfer, created) \
+  layout(std430, binding = b) access buffer NAME##_BUFFER { element name[]; };
+#define GB_PARTICLE_BLOCK(NAME, block, name, transfer) const uint name##Block = block;
+#include "device_data.h"
+#undef GB_BUFFER
+#undef GB_PARTICLE_ARRAY
+#undef GB_PARTICLE_BLOCK
 
-// The two halves of the reduce buffer (tree sum ping-pong) and of the drainage buffer.
+// The reduce buffer's regions (shared_step.h). The volume's tree sum, halves A and B:
 #define REDUCE_A(k) reduce[(k)]
-#define REDUCE_B(k) reduce[pc.triangles + (k)]
-// The energy budget's part of the reduce buffer, from pc.first (after the coarse correction's): halves A and B of
-// its tree sum, each ENERGY_TERMS blocks of `particles` floats (ParticleEnergy of energy_budget.h, GB_ENERGY_TERMS of
-// shared_step.h), then the bubble's volume before the step and the VelocityBudget (scale, centre, shift, released).
+#define REDUCE_B(k) reduce[reduceHalfB(pc.triangles) + (k)]
+// The energy budget's terms from pc.first on, halves A and B of ENERGY_TERMS blocks of `particles` floats each
+// (ParticleEnergy of energy_budget.h); external_drift's DRIFT_TERMS use the first blocks. Then the slots.
 #define ENERGY_TERMS uint(GB_ENERGY_TERMS)
-#define DRIFT_TERMS uint(GB_DRIFT_TERMS)  // external_drift's terms, in the first blocks (energy_tree_sum's flag 2)
+#define DRIFT_TERMS uint(GB_DRIFT_TERMS)
 #define ENERGY_A(c, k) reduce[pc.first + (c)*pc.particles + (k)]
 #define ENERGY_B(c, k) reduce[pc.first + (ENERGY_TERMS + (c)) * pc.particles + (k)]
-#define ENERGY_SLOT(k) reduce[pc.first + 2u * ENERGY_TERMS * pc.particles + (k)]
-#define ENERGY_VOLUME_BEFORE ENERGY_SLOT(0u)
-#define ENERGY_VELOCITY_SCALE ENERGY_SLOT(1u)
-#define ENERGY_CENTRE vec3(ENERGY_SLOT(2u), ENERGY_SLOT(3u), ENERGY_SLOT(4u))
-#define ENERGY_SHIFT vec3(ENERGY_SLOT(5u), ENERGY_SLOT(6u), ENERGY_SLOT(7u))
-#define ENERGY_RELEASED ENERGY_SLOT(8u)
-#define DRAIN_OUTFLOW(i) drainage[(i)]
-#define DRAIN_WEIGHT(i) drainage[pc.particles + (i)]
+#define ENERGY_SLOT(k) reduce[reduceEnergySlotsAt(pc.first, pc.particles) + uint(k)]
+#define ENERGY_VOLUME_BEFORE ENERGY_SLOT(GB_SLOT_VOLUME_BEFORE)
+#define ENERGY_VELOCITY_SCALE ENERGY_SLOT(GB_SLOT_SCALE)
+#define ENERGY_CENTRE \
+  vec3(ENERGY_SLOT(GB_SLOT_CENTRE), ENERGY_SLOT(GB_SLOT_CENTRE + 1), ENERGY_SLOT(GB_SLOT_CENTRE + 2))
+#define ENERGY_SHIFT vec3(ENERGY_SLOT(GB_SLOT_SHIFT), ENERGY_SLOT(GB_SLOT_SHIFT + 1), ENERGY_SLOT(GB_SLOT_SHIFT + 2))
+#define ENERGY_RELEASED ENERGY_SLOT(GB_SLOT_RELEASED)
+// The drainage passes' two arrays (drainOutflowBlock, drainWeightBlock from device_data.h).
+#define DRAIN_OUTFLOW(i) drainage[drainOutflowBlock * pc.particles + (i)]
+#define DRAIN_WEIGHT(i) drainage[drainWeightBlock * pc.particles + (i)]
 
 // Vector attribute access: x, y, z blocks of pc.particles floats each.
 #define LOAD3(buf, i) vec3(buf[(i)], buf[pc.particles + (i)], buf[2u * pc.particles + (i)])

@@ -49,8 +49,8 @@ vec3 internalForce(uint i) {
   return f;
 }
 
-// The volume the last tree sum left in half A or B (reduceFlags bit 0).
-float currentVolume() { return (pc.reduceFlags & 1u) != 0u ? REDUCE_A(0u) : REDUCE_B(0u); }
+// The volume the last tree sum left in half A or B (GB_REDUCE_VOLUME_IN_A).
+float currentVolume() { return (pc.reduceFlags & GB_REDUCE_VOLUME_IN_A) != 0u ? REDUCE_A(0u) : REDUCE_B(0u); }
 
 // The Boyle pressure at that volume (P_0 for an open film).
 float currentPressure(StepUniformsBlock u) {

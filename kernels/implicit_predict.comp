@@ -1,7 +1,7 @@
 #version 450
 // predictImplicitStep (cpu-reference/implicit_euler.cpp): keeps x_t, places the wire's particles on the wire
 // frame at the end of the step, starts an interior particle from x_t + h v_t + h^2 a above the floor, a a closed
-// film's drift from external_drift's sums (in half A of the energy region when pc.reduceFlags is 1).
+// film's drift from external_drift's sums (in half A of the energy terms with GB_REDUCE_ENERGY_IN_A).
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
@@ -10,7 +10,7 @@ vec3 driftAcceleration(float mass, vec3 force) { return mass > 0.0 ? force / mas
 
 // CpuStepper::filmDrift's result: the drift from the sums that external_drift's tree sum left.
 vec3 filmDrift() {
-  const bool inA = (pc.reduceFlags & 1u) != 0u;
+  const bool inA = (pc.reduceFlags & GB_REDUCE_ENERGY_IN_A) != 0u;
   const float m = inA ? ENERGY_A(0u, 0u) : ENERGY_B(0u, 0u);
   const vec3 f = inA ? vec3(ENERGY_A(1u, 0u), ENERGY_A(2u, 0u), ENERGY_A(3u, 0u))
                      : vec3(ENERGY_B(1u, 0u), ENERGY_B(2u, 0u), ENERGY_B(3u, 0u));

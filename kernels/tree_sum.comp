@@ -8,7 +8,7 @@ void main() {
   const uint k = gl_GlobalInvocationID.x;
   const uint n = pc.count;
   if (k >= (n + 1u) / 2u) return;
-  if ((pc.reduceFlags & 1u) != 0u) {
+  if ((pc.reduceFlags & GB_REDUCE_VOLUME_IN_A) != 0u) {
     REDUCE_B(k) = 2u * k + 1u < n ? REDUCE_A(2u * k) + REDUCE_A(2u * k + 1u) : REDUCE_A(2u * k);
   } else {
     REDUCE_A(k) = 2u * k + 1u < n ? REDUCE_B(2u * k) + REDUCE_B(2u * k + 1u) : REDUCE_B(2u * k);

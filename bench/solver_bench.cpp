@@ -123,7 +123,7 @@ void vulkanVbd(const Case& c, const Snapshot& snap) {
     Film film = snap.film;
     stepper.load(c.params, film);
     StepUniforms u = snap.uniforms;
-    u.solverIterations = sweeps;
+    u.solverSweeps = sweeps;
     stepper.run(std::span(&u, 1));  // warm-up
     double best = 1e30;
     for (int run = 0; run < 3; ++run) {

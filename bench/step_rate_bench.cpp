@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
     else if (flag == "--frames")
       frames = value;
     else if (flag == "--sweeps")
-      p.solverIterations = value;
+      p.solverSweeps = value;
     else if (flag == "--coarse")
       p.coarseIterations = value;
     else if (flag == "--budget")
@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
   auto t0 = Clock::now();
   Simulation sim(p, WandTool{}, wandsAt(0));
   std::printf("%zu particles, %s tension, %d sweeps: film made in %.1f s\n", sim.film().state.size(),
-              p.tensionModel ? "physical" : "springs", p.solverIterations, secondsSince(t0));
+              p.tensionModel ? "physical" : "springs", p.solverSweeps, secondsSince(t0));
   int frame = 0;
   while (frame < 5) sim.advanceFrame(wandsAt(++frame));  // the wands are moving
 

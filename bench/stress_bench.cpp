@@ -15,7 +15,7 @@
 //                                                and pressure are found again, so the run is close to, not equal to,
 //                                                the uninterrupted one)
 //   --trace-from F --trace-to F                  prints each frame's energy terms and what changed them (EnergyLedger)
-//   --param NAME=VALUE                           changes a parameter (e.g. solverIterations=30, collisionStiffness=0,
+//   --param NAME=VALUE                           changes a parameter (e.g. solverSweeps=30, collisionStiffness=0,
 //                                                energyBudget=0, energyNeutralContraction=1: docs/model.md
 //                                                "Energy budget" says what each does)
 #include <algorithm>
@@ -128,7 +128,7 @@ double tensionEnergy(const Params& p, const Film& film, const std::vector<float>
   for (size_t k = 0; k < topo.springCount(); ++k) {
     const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
     const double stretch = (s.position.get(a) - s.position.get(b)).cast<double>().norm() - rest[k];
-    sum += 0.25 * (elasticity[a] + elasticity[b]) * stretch * stretch;
+    sum += springEnergyOf<double>(0.5f * (elasticity[a] + elasticity[b]), stretch);
   }
   return sum;
 }

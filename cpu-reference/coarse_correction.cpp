@@ -11,11 +11,10 @@ namespace gb {
 
 namespace {
 
-// A patch moves at most half the shortest spring of its particles: twice a particle's trust region
-// (implicit_euler.h). At a particle's quarter spring the correction was cut short on a film bulged by 5 cm (21.8% of
+// A patch moves at most half the shortest spring of its particles: kPatchTrustScale times a particle's trust region
+// (shared_formulas.h). At a particle's quarter spring the correction was cut short on a film bulged by 5 cm (21.8% of
 // the step's pull-back left undone against 17.3%, coarse_correction_test); at a whole spring the physical model's
 // 9,500-particle stress run gained 3.24% over a rest (frame 1,099), at half a spring at most 0.62%.
-constexpr float kPatchTrustScale = 2.0f;
 
 // Breadth first from seed over solver particles that no patch holds yet, up to `rings` springs away.
 void growPatch(const std::vector<uint32_t>& alive, const Topology& topo, uint32_t seed, uint32_t patch, int rings,
@@ -103,7 +102,7 @@ uint32_t rowSlot(const Topology& topo, uint32_t row, uint32_t column) {
 }  // namespace
 
 int coarseSweepsBefore(const Params& p, const StepUniforms& u) {
-  return p.coarseIterations > 0 ? solverSweeps(p, u) / 2 : -1;
+  return p.coarseIterations > 0 ? sweepsThisStep(p, u) / 2 : -1;
 }
 
 void groupIntoPatches(const std::vector<uint32_t>& alive, int rings, Topology& topo) {
@@ -183,8 +182,8 @@ void fitCoarseSystem(const Topology& topo, CoarseSystem& system) {
     a->resize(patches);
 }
 
-void assembleCoarseRow(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo,
-                       const State& s, size_t patch, CoarseSystem& system) {
+void coarseAssemble(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, const State& s,
+                    size_t patch, CoarseSystem& system) {
   const auto row = static_cast<uint32_t>(patch);
   for (uint32_t slot = topo.patchRowOffset[row]; slot < topo.patchRowOffset[row + 1]; ++slot)
     system.blocks[slot].setZero();
@@ -244,7 +243,7 @@ void precondition(const Topology& topo, CoarseSystem& system) {
 
 }  // namespace
 
-void solveCoarseSystem(const Topology& topo, int iterations, CoarseSystem& system) {
+void coarseSolve(const Topology& topo, int iterations, CoarseSystem& system) {
   const size_t patches = system.rightHandSide.size();
   system.solution.resize(patches);
   system.residual = system.rightHandSide;
@@ -269,7 +268,7 @@ void solveCoarseSystem(const Topology& topo, int iterations, CoarseSystem& syste
   }
 }
 
-void applyCoarseCorrection(const Topology& topo, const CoarseSystem& system, State& s, size_t i) {
+void coarseApply(const Topology& topo, const CoarseSystem& system, State& s, size_t i) {
   const uint32_t patch = topo.patchOf[i];
   if (patch == kNoPatch || !s.alive[i]) return;
   const Vec3 move = withinTrustRegion(system.solution.get(patch), kPatchTrustScale * system.shortestSpring[patch]);

@@ -62,17 +62,17 @@ void fitCoarseSystem(const Topology& topo, CoarseSystem& system);
 
 // Pass 1, per patch: its row of P^T H P and its entry of -P^T g at the film's current positions, gathered over its
 // particles in increasing index and over each one's springs (and triangles) in CSR order.
-void assembleCoarseRow(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo,
-                       const State& s, size_t patch, CoarseSystem& system);
+void coarseAssemble(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, const State& s,
+                    size_t patch, CoarseSystem& system);
 
 // Pass 2: `iterations` of conjugate gradients from d = 0, preconditioned by the inverse diagonal blocks; the dot
 // products are tree sums (treeSum) over the patches in order. Stops early when the search direction has no
 // curvature left (the system is solved to float precision).
-void solveCoarseSystem(const Topology& topo, int iterations, CoarseSystem& system);
+void coarseSolve(const Topology& topo, int iterations, CoarseSystem& system);
 
 // Pass 3, per particle i: moves a solver particle by its patch's d, shortened to the patch's shortest spring, then
 // onto the floor. A non-finite move is left unapplied for the stability
 // check to report.
-void applyCoarseCorrection(const Topology& topo, const CoarseSystem& system, State& s, size_t i);
+void coarseApply(const Topology& topo, const CoarseSystem& system, State& s, size_t i);
 
 }  // namespace gb

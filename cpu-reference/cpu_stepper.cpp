@@ -57,7 +57,7 @@ void CpuStepper::load(const Params& params, Film& film) {
 
 float CpuStepper::volume(const Film& film, const Vec3& origin) {
   return sumOverTriangles(film.topology.triangleCount(),
-                          [&](size_t t) { return triangleSignedVolume(film.topology, film.state, t, origin); });
+                          [&](size_t t) { return triangleVolume(film.topology, film.state, t, origin); });
 }
 
 template <class Leaf>
@@ -70,10 +70,10 @@ float CpuStepper::sumOverTriangles(size_t triangles, Leaf leaf) {
 void CpuStepper::refreshGeometry(const Params& params, Film& film) {
   State& s = film.state;
   fitTriangleArrays(film.topology, s);
-  forEach(film.topology.triangleCount(), [&](size_t t) { computeTriangleGeometry(film.topology, s, t); });
+  forEach(film.topology.triangleCount(), [&](size_t t) { triangleGeometry(film.topology, s, t); });
   forEach(s.size(), [&](size_t i) {
-    computeVertexGeometry(film.topology, s, i);
-    updateFilmState(params, 0.0f, s, i);
+    vertexGeometry(film.topology, s, i);
+    filmState(params, 0.0f, s, i);
   });
   film.geometryKey = geometryKey(film.topology, s);
 }
@@ -90,8 +90,8 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
         const uint64_t key = geometryKey(topo, s);
         if (key == film_->geometryKey && s.cornerArea.size() == 3 * topo.triangleCount()) break;  // computed
         fitTriangleArrays(topo, s);
-        forEach(topo.triangleCount(), [&](size_t t) { computeTriangleGeometry(topo, s, t); });
-        forEach(n, [&](size_t i) { computeVertexGeometry(topo, s, i); });
+        forEach(topo.triangleCount(), [&](size_t t) { triangleGeometry(topo, s, t); });
+        forEach(n, [&](size_t i) { vertexGeometry(topo, s, i); });
         film_->geometryKey = key;
         break;
       }
@@ -99,30 +99,30 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
         result = volume(*film_, u.volumeOrigin);
         break;
       case Stage::FilmState:
-        forEach(n, [&](size_t i) { updateFilmState(params_, u.dt, s, i); });
+        forEach(n, [&](size_t i) { filmState(params_, u.dt, s, i); });
         break;
       case Stage::AirInflow:
-        forEach(n, [&](size_t i) { computeAirInflow(params_, u, s, i); });
+        forEach(n, [&](size_t i) { airInflow(params_, u, s, i); });
         break;
       case Stage::AirTransfer:
-        forEach(n, [&](size_t i) { transferAirFlow(params_, topo, s, i); });
+        forEach(n, [&](size_t i) { airTransfer(params_, topo, s, i); });
         std::swap(s.airFlow, s.airFlowNext);  // Jacobi: the new air becomes the front buffer
         break;
       case Stage::Forces:
-        forEach(n, [&](size_t i) { computeForces(params_, u, currentPressure(u), topo, s, i); });
+        forEach(n, [&](size_t i) { forces(params_, u, currentPressure(u), topo, s, i); });
         break;
       case Stage::Integrate:
-        forEach(n, [&](size_t i) { integrateParticle(u, topo, s, i); });
+        forEach(n, [&](size_t i) { integrate(u, topo, s, i); });
         break;
       case Stage::ExternalForces:
-        forEach(n, [&](size_t i) { computeExternalForces(params_, u, currentPressure(u), s, i); });
+        forEach(n, [&](size_t i) { externalForces(params_, u, currentPressure(u), s, i); });
         break;
       case Stage::ExternalDrift:
         drift_ = filmDrift();
         break;
       case Stage::ImplicitPredict: {
         const Vec3 drift = u.closed ? drift_ : Vec3::Zero();
-        forEach(n, [&](size_t i) { predictImplicitStep(u, topo, drift, s, i); });
+        forEach(n, [&](size_t i) { implicitPredict(u, topo, drift, s, i); });
         break;
       }
       case Stage::CoarseCorrection:
@@ -136,12 +136,12 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
         result = lastBudget_.scale;
         break;
       case Stage::ImplicitVelocity: {
-        forEach(n, [&](size_t i) { finishImplicitStep(u, topo, lastBudget_, s, i); });
+        forEach(n, [&](size_t i) { implicitVelocity(u, topo, lastBudget_, s, i); });
         break;
       }
       case Stage::Drainage:  // two Jacobi passes: every outflow is known before anyone gathers
-        forEach(n, [&](size_t i) { computeDrainageOutflow(params_, u.drainageDt, topo, s, i); });
-        forEach(n, [&](size_t i) { gatherDrainage(params_, topo, s, i); });
+        forEach(n, [&](size_t i) { drainageOutflow(params_, u.drainageDt, topo, s, i); });
+        forEach(n, [&](size_t i) { drainageGather(params_, topo, s, i); });
         break;
       case Stage::Count:
         break;
@@ -153,7 +153,7 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
 
 void CpuStepper::sweep(const StepUniforms& u) {
   layOutSweepRuns(params_, u, film_->topology, film_->state, sweepRuns_);
-  const int sweeps = solverSweeps(params_, u), before = coarseSweepsBefore(params_, u);
+  const int sweeps = sweepsThisStep(params_, u), before = coarseSweepsBefore(params_, u);
   if (before < 0) return runSweeps(u, 0, sweeps);
   runSweeps(u, 0, before);
   runStage(Stage::CoarseCorrection, u);
@@ -175,7 +175,7 @@ void CpuStepper::runSweeps(const StepUniforms& u, int from, int to) {
                      // thread, their sum on one, in the fixed order both backends add in
 #pragma omp for schedule(static)
       for (long t = 0; t < triangles; ++t)
-        triangleVolumes_[t] = triangleSignedVolume(topo, s, static_cast<size_t>(t), u.volumeOrigin);
+        triangleVolumes_[t] = triangleVolume(topo, s, static_cast<size_t>(t), u.volumeOrigin);
 #pragma omp single
       {
         lastVolume_ = treeSum(triangleVolumes_);  // first: Boyle's pressure reads it
@@ -186,7 +186,7 @@ void CpuStepper::runSweeps(const StepUniforms& u, int from, int to) {
       const auto first = static_cast<long>(runs.colourRuns[c]), last = static_cast<long>(runs.colourRuns[c + 1]);
 #pragma omp for schedule(static)
       for (long r = first; r < last; ++r)
-        solveVertexBlockRun(params_, u, bubble, topo, s, runs, static_cast<uint32_t>(r));
+        vertexBlockDescentRun(params_, u, bubble, topo, s, runs, static_cast<uint32_t>(r));
     }
   }
 }
@@ -202,34 +202,34 @@ void CpuStepper::correctCoarsely(const StepUniforms& u) {
   }
   fitCoarseSystem(topo, coarse_);
   forEach(coarse_.shortestSpring.size(),
-          [&](size_t patch) { assembleCoarseRow(params_, u, bubble, topo, s, patch, coarse_); });
-  solveCoarseSystem(topo, params_.coarseIterations, coarse_);
-  forEach(s.size(), [&](size_t i) { applyCoarseCorrection(topo, coarse_, s, i); });
+          [&](size_t patch) { coarseAssemble(params_, u, bubble, topo, s, patch, coarse_); });
+  coarseSolve(topo, params_.coarseIterations, coarse_);
+  forEach(s.size(), [&](size_t i) { coarseApply(topo, coarse_, s, i); });
 }
 
 VelocityBudget CpuStepper::budgetEnergy(const StepUniforms& u) {
   const State& s = film_->state;
   const Topology& topo = film_->topology;
   const std::array<float, GB_ENERGY_TERMS> sums = treeSumsOf(energyTerms_, s.size(), [&](size_t i) {
-    const ParticleEnergy e = particleEnergy(params_, u, topo, s, i);
+    const ParticleEnergy e = energyTerms(params_, u, topo, s, i);
     return std::array<float, GB_ENERGY_TERMS>{e.start,        e.kinetic,      e.held,         e.mass,
                                               e.momentum.x(), e.momentum.y(), e.momentum.z(), e.expected.x(),
                                               e.expected.y(), e.expected.z()};
   });
   float gas = 0.0f;
   if (u.closed) {  // the volumes before and after the step, as the volume stage sums them
-    const float before = sumOverTriangles(
-        topo.triangleCount(), [&](size_t t) { return triangleSignedVolumeAtStart(topo, s, t, u.volumeOrigin); });
+    const float before = sumOverTriangles(topo.triangleCount(),
+                                          [&](size_t t) { return triangleVolumeAtStart(topo, s, t, u.volumeOrigin); });
     lastVolume_ = volume(*film_, u.volumeOrigin);
     gas = boyleEnergyChange(params_, u.referenceVolume, before, lastVolume_);
   }
-  return energyBudget(sums[0], sums[1], sums[2] + gas, sums[3], Vec3(sums[4], sums[5], sums[6]),
-                      Vec3(sums[7], sums[8], sums[9]));
+  return energyScale(sums[0], sums[1], sums[2] + gas, sums[3], Vec3(sums[4], sums[5], sums[6]),
+                     Vec3(sums[7], sums[8], sums[9]));
 }
 
 Vec3 CpuStepper::filmDrift() {
   return driftAcceleration(treeSumsOf(driftTerms_, film_->state.size(),
-                                      [&](size_t i) { return driftTerms(film_->topology, film_->state, i); }));
+                                      [&](size_t i) { return externalDrift(film_->topology, film_->state, i); }));
 }
 
 float CpuStepper::currentPressure(const StepUniforms& u) const {

@@ -37,7 +37,7 @@ class CpuStepper final : public Stepper {
   // Stage energy_budget: every particle's share of the step's energy, summed in the fixed tree order, and for a
   // closed film the gas's energy change between the volumes before and after.
   VelocityBudget budgetEnergy(const StepUniforms& u);
-  // Stage external_drift: every particle's driftTerms summed in the fixed tree order, the film's drift.
+  // Stage external_drift: every particle's externalDrift summed in the fixed tree order, the film's drift.
   Vec3 filmDrift();
   // The tree sum (treeSum) of leaf(t) over the triangles, each computed in parallel: the volume's reduction.
   template <class Leaf>
@@ -54,7 +54,7 @@ class CpuStepper final : public Stepper {
   SweepRuns sweepRuns_;                 // the implicit step's one-rings, laid out again every step
   CoarseSystem coarse_;                 // the implicit step's patch system, assembled again every step
   std::array<std::vector<float>, GB_ENERGY_TERMS> energyTerms_;  // energy_budget's per-particle terms (ParticleEnergy)
-  std::array<std::vector<float>, kDriftTerms> driftTerms_;       // external_drift's per-particle terms (driftTerms)
+  std::array<std::vector<float>, kDriftTerms> driftTerms_;       // external_drift's per-particle terms (externalDrift)
   Vec3 drift_ = Vec3::Zero();  // a closed film's drift (external_drift), read by implicit_predict
 };
 

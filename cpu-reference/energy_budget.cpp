@@ -30,21 +30,20 @@ HeldShares heldShares(const Params& p, const Topology& topo, const State& s, uin
   } else {
     for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
       const uint32_t j = topo.springNeighbour[k];
-      const float quarter = 0.25f * springStiffness(s, i, j), rest = topo.restLength[topo.springIndex[k]];
+      const float stiffness = springStiffness(s, i, j), rest = topo.restLength[topo.springIndex[k]];
       const float stretch0 = (positionAtStepStart(topo, s, j) - xi0).norm() - rest;
       const float stretch = (s.position.get(j) - xi).norm() - rest;
-      h.start += quarter * stretch0 * stretch0;
-      h.end += quarter * stretch * stretch;
+      h.start += 0.5f * springEnergyOf(stiffness, stretch0);  // each end's half
+      h.end += 0.5f * springEnergyOf(stiffness, stretch);
     }
   }
   const uint32_t base = static_cast<uint32_t>(s.size()) + 1;
-  const float quarter = 0.25f * p.collisionStiffness;
   for (uint32_t k = topo.contacts[i]; k < topo.contacts[i + 1]; ++k) {
     const uint32_t j = topo.contacts[base + k];
     const float rest = contactRestDistance(topo.contacts, s.size(), k);
     const float len0 = (xi0 - positionAtStepStart(topo, s, j)).norm(), len = (xi - s.position.get(j)).norm();
-    if (len0 < rest) h.start += quarter * (rest - len0) * (rest - len0);
-    if (len < rest) h.end += quarter * (rest - len) * (rest - len);
+    if (len0 < rest) h.start += 0.5f * springEnergyOf(p.collisionStiffness, rest - len0);
+    if (len < rest) h.end += 0.5f * springEnergyOf(p.collisionStiffness, rest - len);
   }
   return h;
 }
@@ -61,13 +60,13 @@ float triangleAreaAtStart(const Topology& topo, const State& s, const uint32_t* 
          (positionAtStepStart(topo, s, corners[1]) - a0).cross(positionAtStepStart(topo, s, corners[2]) - a0).norm();
 }
 
-float triangleSignedVolumeAtStart(const Topology& topo, const State& s, size_t t, const Vec3& origin) {
+float triangleVolumeAtStart(const Topology& topo, const State& s, size_t t, const Vec3& origin) {
   const uint32_t* tri = &topo.triangles[3 * t];
   return coneVolume(positionAtStepStart(topo, s, tri[0]), positionAtStepStart(topo, s, tri[1]),
                     positionAtStepStart(topo, s, tri[2]), origin);
 }
 
-ParticleEnergy particleEnergy(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, size_t i) {
+ParticleEnergy energyTerms(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, size_t i) {
   if (!s.alive[i]) return {};
   const auto index = static_cast<uint32_t>(i);
   ParticleEnergy e;
@@ -111,8 +110,8 @@ Vec3 driftWithinBudget(const Vec3& expected, const Vec3& centre, float speedSqua
   return expected + l * made;
 }
 
-VelocityBudget energyBudget(float start, float kinetic, float held, float mass, const Vec3& momentum,
-                            const Vec3& expectedMomentum) {
+VelocityBudget energyScale(float start, float kinetic, float held, float mass, const Vec3& momentum,
+                           const Vec3& expectedMomentum) {
   const float budget = start + kEnergyBudgetTolerance * std::abs(start);
   if (!std::isfinite(budget) || !std::isfinite(kinetic + held)) return {.released = 0.0f};
   if (!(kinetic + held > budget) || !(mass > 0.0f)) return {.released = std::max(0.0f, start - (kinetic + held))};

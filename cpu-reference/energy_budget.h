@@ -31,8 +31,8 @@ inline constexpr float kEnergyBudgetTolerance = static_cast<float>(GB_ENERGY_BUD
 // wire put it at the step's end (the wands' work is done before the step).
 Vec3 positionAtStepStart(const Topology& topo, const State& s, size_t i);
 
-// triangleSignedVolume (stages.h) at the step's start: the leaves of a closed bubble's volume before the step.
-float triangleSignedVolumeAtStart(const Topology& topo, const State& s, size_t t, const Vec3& origin);
+// triangleVolume (stages.h) at the step's start: the leaves of a closed bubble's volume before the step.
+float triangleVolumeAtStart(const Topology& topo, const State& s, size_t t, const Vec3& origin);
 
 // The area of the triangle with these corners at the step's start (positionAtStepStart of each).
 float triangleAreaAtStart(const Topology& topo, const State& s, const uint32_t* corners);
@@ -49,7 +49,7 @@ struct ParticleEnergy {
   Vec3 momentum = Vec3::Zero();  // m v (kg m/s)
   Vec3 expected = Vec3::Zero();  // m v_t + h f (kg m/s)
 };
-ParticleEnergy particleEnergy(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, size_t i);
+ParticleEnergy energyTerms(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, size_t i);
 
 // The isothermal gas's energy change P0 (V0 ln(V0 / V) + V - V0) from volume `before` to `after` (J), taken
 // as a difference so that float keeps it: its first-order term is the excess pressure's work, tiny next to P0 V.
@@ -78,8 +78,8 @@ struct VelocityBudget {
 // than all its motion holds; the positions keep the rest, which the next steps take out as it turns into motion. An
 // open film has no drift of its own (its wire sets it): there the drift is slowed to what is left. No budget when
 // the sums are not finite: the simulation's instability check reports that, not the budget.
-VelocityBudget energyBudget(float start, float kinetic, float held, float mass, const Vec3& momentum,
-                            const Vec3& expectedMomentum);
+VelocityBudget energyScale(float start, float kinetic, float held, float mass, const Vec3& momentum,
+                           const Vec3& expectedMomentum);
 // The centre's velocity on the way from `expected` to `centre` nearest `centre` whose squared speed is at most
 // `speedSquared`; where none is, the one of least speed on that way.
 Vec3 driftWithinBudget(const Vec3& expected, const Vec3& centre, float speedSquared);

@@ -76,7 +76,7 @@ Measurement minimalSurface(const Params& p, const StopRequest& stop) {
     const Vec3 d = film.state.position.get(i) - ring.wands.rightPosition;
     const float r2 = d.squaredNorm() / (a * a);
     film.state.position.z[i] += h * r2 * r2 * std::cos(2.0f * std::atan2(d.y(), d.x()));
-    if (film.topology.boundary[i]) film.state.frameParam[i] = -1.0f;  // pinned on the bent wire
+    if (film.topology.boundary[i]) film.state.wireParam[i] = -1.0f;  // pinned on the bent wire
   }
   CpuStepper::refreshGeometry(p, film);
   sim.stepper().load(p, film);

@@ -63,7 +63,7 @@ Film generateFilm(const Params& params, const WandTool& tool, const WandState& w
 
 // A film spanning two coaxial rings of the given radius, `separation` apart along z around `center` (the
 // catenoid experiment): `around` particles per ring, rows about as far apart as neighbours on a ring. The
-// rings are pinned (frameParam -1); normals point away from the axis.
+// rings are pinned (wireParam -1); normals point away from the axis.
 Film generateTube(const Params& params, const Vec3& center, float radius, float separation, int around);
 
 // A closed spherical film (an icosphere with outward normals): a free bubble for tests and pressure scenes.

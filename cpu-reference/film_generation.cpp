@@ -113,7 +113,7 @@ struct PlanarLayout {
 PlanarLayout layoutForSpacing(const WireFrame& f, float spacing) {
   PlanarLayout layout;
   layout.boundaryU = wireParameters(f, spacing);
-  for (float u : layout.boundaryU) layout.boundary.push_back(toPlane(f, framePoint(f, u)));
+  for (float u : layout.boundaryU) layout.boundary.push_back(toPlane(f, wirePoint(f, u)));
   layout.interior = hexLatticeInside(layout.boundary, spacing);
   return layout;
 }
@@ -227,7 +227,7 @@ void initialiseNewParticles(const Params& params, Film& film, size_t first) {
     s.lifetime[i] = 0.0f;
     s.alive[i] = 1u;
     s.velocity.set(i, Vec3::Zero());
-    updateFilmState(params, 0.0f, s, i);
+    filmState(params, 0.0f, s, i);
   }
 }
 
@@ -268,8 +268,8 @@ Film generateFilm(const Params& params, const WandTool& tool, const WandState& w
   State& s = film.state;
   s.resize(layout.count());
   for (size_t k = 0; k < layout.boundary.size(); ++k) {
-    s.position.set(k, framePoint(frame, layout.boundaryU[k]));
-    s.frameParam[k] = layout.boundaryU[k];
+    s.position.set(k, wirePoint(frame, layout.boundaryU[k]));
+    s.wireParam[k] = layout.boundaryU[k];
   }
   for (size_t k = 0; k < layout.interior.points.size(); ++k)
     s.position.set(layout.boundary.size() + k, fromPlane(frame, layout.interior.points[k]));
@@ -350,7 +350,7 @@ Film generateTube(const Params& params, const Vec3& center, float radius, float 
     }
   film.topology = buildTopology(film.state.size(), std::move(triangles), film.state.position);
   for (size_t i = 0; i < film.state.size(); ++i)
-    if (film.topology.boundary[i]) film.state.frameParam[i] = -1.0f;
+    if (film.topology.boundary[i]) film.state.wireParam[i] = -1.0f;
   initialiseFilmMaterial(params, film);
   // Outward: the first triangle's normal points away from the axis, or all are turned.
   computeGeometry(film.topology, film.state);

@@ -417,7 +417,7 @@ GrowthEvent growFilmAtWire(const Params& params, const WireFrame& frame, float w
   std::vector<float> oldU;
   std::vector<Vec3> released;
   for (uint32_t i : loop) {
-    oldU.push_back(s.frameParam[i]);
+    oldU.push_back(s.wireParam[i]);
     released.push_back(releasedPosition(film, frame, i, fraction));
   }
   for (size_t k = 0; k < loop.size(); ++k) s.position.set(loop[k], released[k]);
@@ -426,8 +426,8 @@ GrowthEvent growFilmAtWire(const Params& params, const WireFrame& frame, float w
   for (size_t k = 0; k < newU.size(); ++k) {
     const auto i = static_cast<uint32_t>(first + k);
     newRing.push_back(i);
-    s.position.set(i, framePoint(frame, newU[k]));
-    s.frameParam[i] = newU[k];
+    s.position.set(i, wirePoint(frame, newU[k]));
+    s.wireParam[i] = newU[k];
   }
 
   std::vector<uint32_t> strip = triangulateStrip(WireUnrolling(frame), loop, oldU, newRing, newU, spacing);

@@ -5,7 +5,7 @@
 // lane's result is the same bit for bit as the same formula in float: written once as a template on the
 // float type, a formula gives the same numbers for one particle and for four. (This also needs the compiler
 // not to contract a * b + c into a fused operation in either; it does not in ISO C++ mode without FMA flags,
-// the project's build, and ImplicitStep.TheLanesSolveEveryParticleAsSolveVertexBlockDoes would see it.)
+// the project's build, and ImplicitStep.TheLanesSolveEveryParticleAsVertexBlockDescentDoes would see it.)
 //
 // SSE2 where the compiler targets it (every x86-64), else four plain floats.
 

@@ -12,11 +12,9 @@ namespace gb {
 
 namespace {
 
-constexpr float kTrustRegion = 0.25f;  // largest move per sweep, in shortest one-ring springs
-
 // The block's terms are written once, as templates on the float type F (float_lanes.h): float sums one
 // particle's block (objectiveBlock), Float4 four particles' of one colour in the lanes of a register
-// (solveVertexBlockRun, the CPU stepper's sweeps). A lane's terms are the float ones operation for operation; a
+// (vertexBlockDescentRun, the CPU stepper's sweeps). A lane's terms are the float ones operation for operation; a
 // term a lane does not have (a shorter one-ring, a degenerate spring or triangle, a contact out of range) adds
 // +0 there.
 template <class F>
@@ -90,7 +88,7 @@ struct TriangleTension {
 };
 template <class F>
 TriangleTension<F> triangleTensionOf(const Params& p, F startTension, F startArea, F area) {
-  const F gibbs(p.gibbsElasticity), lowest(p.surfaceTension), highest(4.0f * p.surfaceTension);
+  const F gibbs(p.gibbsElasticity), lowest(lowestTension(p.surfaceTension)), highest(highestTension(p.surfaceTension));
   const MaskOf<F> follows = F(0.0f) < gibbs && F(0.0f) < startArea && F(0.0f) < area;
   const F unclamped = startTension + gibbs * logOf(select(follows, area / startArea, F(1.0f)));
   const MaskOf<F> elastic = follows && lowest < unclamped && unclamped < highest;
@@ -151,7 +149,7 @@ F transverseStiffnessOf(F stiffness, F rest, F length) {
 float springStiffness(const State& s, size_t i, size_t j) { return 0.5f * (s.elasticity[i] + s.elasticity[j]); }
 
 float springEnergy(const State& s, size_t i, size_t j, float length, float rest) {
-  return 0.5f * springStiffness(s, i, j) * (length - rest) * (length - rest);
+  return springEnergyOf(springStiffness(s, i, j), length - rest);
 }
 
 float transverseStiffness(float stiffness, float rest, float length) {
@@ -176,7 +174,7 @@ double triangleTensionEnergy(const Params& p, float startTension, float startAre
   // Between the areas where the law reaches its clamps, T = T_0 + E_G ln r, r = A / A_0, integrates to
   // T_0 A + E_G A_0 (r ln r - r + 1); beyond them the tension is the clamp's, from the area where it was reached.
   const double r = area / a0, lnR = std::log(r), unclamped = t0 + gibbs * lnR;
-  const double lowest = p.surfaceTension, highest = 4.0 * p.surfaceTension;
+  const double lowest = lowestTension(p.surfaceTension), highest = highestTension(p.surfaceTension);
   if (lowest <= unclamped && unclamped <= highest) return t0 * area + gibbs * a0 * (r * lnR - r + 1.0);
   const double held = unclamped < lowest ? lowest : highest, lnReached = (held - t0) / gibbs;
   const double reached = std::exp(lnReached);
@@ -247,7 +245,7 @@ struct ListedRing {
   }
 };
 
-// Four particles' one-rings read from a run of SweepRuns (solveVertexBlockRun).
+// Four particles' one-rings read from a run of SweepRuns (vertexBlockDescentRun).
 struct RunRing {
   const SweepRuns& runs;
   uint32_t run;
@@ -407,11 +405,11 @@ Bubble bubbleOf(float volume, float pressure) {
 
 float breathingStiffness(const Bubble& bubble, float area) { return breathingStiffnessOf(bubble, area); }
 
-int solverSweeps(const Params& p, const StepUniforms& u) {
-  return u.solverIterations > 0 ? u.solverIterations : p.solverIterations;
+int sweepsThisStep(const Params& p, const StepUniforms& u) {
+  return u.solverSweeps > 0 ? u.solverSweeps : p.solverSweeps;
 }
 
-std::array<float, kDriftTerms> driftTerms(const Topology& topo, const State& s, size_t i) {
+std::array<float, kDriftTerms> externalDrift(const Topology& topo, const State& s, size_t i) {
   if (!s.alive[i] || topo.boundary[i]) return {};
   const Vec3 f = s.force.get(i);
   return {s.mass[i], f.x(), f.y(), f.z()};
@@ -422,12 +420,12 @@ Vec3 driftAcceleration(const std::array<float, kDriftTerms>& sums) {
   return Vec3(sums[1], sums[2], sums[3]) / sums[0];
 }
 
-void predictImplicitStep(const StepUniforms& u, const Topology& topo, const Vec3& drift, State& s, size_t i) {
+void implicitPredict(const StepUniforms& u, const Topology& topo, const Vec3& drift, State& s, size_t i) {
   if (!s.alive[i]) return;
   const Vec3 x = s.position.get(i);
   s.previousPosition.set(i, x);
   if (topo.boundary[i]) {
-    if (s.frameParam[i] >= 0.0f) s.position.set(i, framePoint(u.frameNext, s.frameParam[i]));
+    if (s.wireParam[i] >= 0.0f) s.position.set(i, wirePoint(u.wireNext, s.wireParam[i]));
     return;
   }
   s.position.set(i, aboveFloor(x + u.dt * s.velocity.get(i) + (u.dt * u.dt) * drift));
@@ -461,8 +459,8 @@ Vec3 aboveFloor(Vec3 x) {
   return x;
 }
 
-void solveVertexBlock(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, State& s,
-                      size_t i) {
+void vertexBlockDescent(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, State& s,
+                        size_t i) {
   if (!s.alive[i]) return;  // died in a burst since the colouring was made
   applyStep(s, i, trustedNewtonStep(objectiveBlock(p, u, bubble, topo, s, i)));
 }
@@ -568,8 +566,8 @@ void layOutSweepRuns(const Params& p, const StepUniforms& u, const Topology& top
   for (long r = 0; r < count; ++r) layOutSlots(p, topo, s, static_cast<uint32_t>(r), runs);
 }
 
-void solveVertexBlockRun(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, State& s,
-                         const SweepRuns& runs, uint32_t run) {
+void vertexBlockDescentRun(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, State& s,
+                           const SweepRuns& runs, uint32_t run) {
   const size_t at = 4 * size_t{run};
   const auto lanes = [&](const Vec3Array& a) {
     return Vec<Float4>{Float4::load(&a.x[at]), Float4::load(&a.y[at]), Float4::load(&a.z[at])};
@@ -602,7 +600,7 @@ double implicitResidual(const Params& p, const StepUniforms& u, const Bubble& bu
   return std::sqrt(sum);
 }
 
-void finishImplicitStep(const StepUniforms& u, const Topology& topo, const VelocityBudget& budget, State& s, size_t i) {
+void implicitVelocity(const StepUniforms& u, const Topology& topo, const VelocityBudget& budget, State& s, size_t i) {
   if (!s.alive[i]) return;
   const Vec3 v = (s.position.get(i) - s.previousPosition.get(i)) / u.dt;
   s.velocity.set(i, topo.boundary[i] ? v : budgetedVelocity(budget, v));

@@ -87,8 +87,8 @@ Vec3 withinTrustRegion(Vec3 step, float shortestSpring);
 Vec3 aboveFloor(Vec3 x);
 
 // Vertex block descent sweeps of a step: the step's own count (the live loop lowers it under load), else
-// Params::solverIterations.
-int solverSweeps(const Params& p, const StepUniforms& u);
+// Params::solverSweeps.
+int sweepsThisStep(const Params& p, const StepUniforms& u);
 
 // Stage external_drift (a closed film's implicit step), per particle i: its share of the film's drift, its mass and
 // the explicit force on it, {m, f_x, f_y, f_z}; zero for a wire or dead particle. The shares are summed in the tree
@@ -96,21 +96,21 @@ int solverSweeps(const Params& p, const StepUniforms& u);
 // every particle together, the film's centre of mass, is the slowest of all to build up that way. Started from
 // x_t + h v_t, a stiff free bubble kept its velocity whatever gravity did (docs/model.md, "The first guess").
 constexpr size_t kDriftTerms = GB_DRIFT_TERMS;
-std::array<float, kDriftTerms> driftTerms(const Topology& topo, const State& s, size_t i);
+std::array<float, kDriftTerms> externalDrift(const Topology& topo, const State& s, size_t i);
 
-// The acceleration of a closed film's centre of mass from the sums of driftTerms (m/s^2): sum f / sum m, zero
+// The acceleration of a closed film's centre of mass from the sums of externalDrift (m/s^2): sum f / sum m, zero
 // without mass.
 Vec3 driftAcceleration(const std::array<float, kDriftTerms>& sums);
 
 // Stage implicit_predict, per particle i: keeps x_t in previousPosition; a wire particle is placed on the
 // wire frame at the end of the step (or stays, pinned), an interior particle starts from x_t + h v_t + h^2 a,
 // a the film's drift (driftAcceleration; zero for an open film, whose wire holds it), above the floor.
-void predictImplicitStep(const StepUniforms& u, const Topology& topo, const Vec3& drift, State& s, size_t i);
+void implicitPredict(const StepUniforms& u, const Topology& topo, const Vec3& drift, State& s, size_t i);
 
 // Stage vertex_block_descent, per particle i of the colour being swept: one Newton step on the objective
 // restricted to x_i, then the floor. Reads the external force of the external_forces stage and x_t.
-void solveVertexBlock(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, State& s,
-                      size_t i);
+void vertexBlockDescent(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, State& s,
+                        size_t i);
 
 // The CPU stepper's sweeps take the particles of a colour four at a time, in the lanes of a vector register
 // (float_lanes.h), with their one-rings laid out once per step as below: slot k of a run holds the k-th
@@ -139,9 +139,9 @@ struct SweepRuns {
 };
 void layOutSweepRuns(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, SweepRuns& runs);
 
-// solveVertexBlock for the four particles of run r of SweepRuns, each particle's result the same bit for bit.
-void solveVertexBlockRun(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, State& s,
-                         const SweepRuns& runs, uint32_t run);
+// vertexBlockDescent for the four particles of run r of SweepRuns, each particle's result the same bit for bit.
+void vertexBlockDescentRun(const Params& p, const StepUniforms& u, const Bubble& bubble, const Topology& topo, State& s,
+                           const SweepRuns& runs, uint32_t run);
 
 // Diagnostic (CPU, double): the norm of the objective's gradient over the solved particles, in N: zero when
 // the step is solved exactly (docs/model.md's convergence figures, tests).
@@ -151,6 +151,6 @@ double implicitResidual(const Params& p, const StepUniforms& u, const Bubble& bu
 struct VelocityBudget;
 // Stage implicit_velocity, per particle i: v = (x - x_t) / h, the implicit Euler velocity, a free particle's as the
 // energy budget leaves it (energy_budget.h; unchanged without one).
-void finishImplicitStep(const StepUniforms& u, const Topology& topo, const VelocityBudget& budget, State& s, size_t i);
+void implicitVelocity(const StepUniforms& u, const Topology& topo, const VelocityBudget& budget, State& s, size_t i);
 
 }  // namespace gb

@@ -26,7 +26,7 @@ void requireRange(std::vector<std::string>& errors, const char* name, T value, T
 // In the order of shared_params.h, each with its valid range.
 constexpr std::array kFields = {GB_REAL(frameTime, 1e-5, 0.1, " s"),
                                 GB_INTEGER(integrator, 0, 1),
-                                GB_INTEGER(solverIterations, 1, 1000),
+                                GB_INTEGER(solverSweeps, 1, 1000),
                                 GB_INTEGER(coarseIterations, 0, 1000),
                                 GB_INTEGER(coarsePatchRings, 1, 100),
                                 GB_INTEGER(energyBudget, 0, 1),

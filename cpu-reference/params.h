@@ -6,12 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "shared_formulas.h"
 #include "shared_params.h"
 
 namespace gb {
 
 // Initial film thickness e0 (m): the paper's area weight w_e read as liquid per rest area, w_e x 100 um.
-inline float initialThickness(const Params& p) { return p.areaWeight * 100e-6f; }
+inline float initialThickness(const Params& p) { return initialThicknessOf(p.areaWeight); }
 
 // The largest film (particlesAtFullSolution), whatever sets it: --particles, --param, a scene's [params], bench
 // --sizes. 80 times the paper's largest example (25,650); 50 million ended in std::bad_alloc on a 24 GB machine

@@ -56,8 +56,7 @@ namespace {
 
 double signedVolume(const Film& film, const Vec3& origin) {
   double v = 0;
-  for (size_t t = 0; t < film.topology.triangleCount(); ++t)
-    v += triangleSignedVolume(film.topology, film.state, t, origin);
+  for (size_t t = 0; t < film.topology.triangleCount(); ++t) v += triangleVolume(film.topology, film.state, t, origin);
   return v;
 }
 
@@ -207,7 +206,7 @@ void wetTheSeam(const Params& params, const std::vector<uint32_t>& loop, size_t 
     // the seam is new film, as a strip grown at the wire is, while the rest of the film gives up liquid alone, as
     // drainage moves it.
     if (params.tensionModel != 1 || inSeam[i]) s.mass[i] = particleMass(params, s.voronoiArea[i], s.liquid[i]);
-    updateFilmState(params, 0.0f, s, i);
+    filmState(params, 0.0f, s, i);
   }
 }
 

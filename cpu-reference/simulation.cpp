@@ -10,6 +10,7 @@
 
 #include "collision.h"
 #include "film_growth.h"
+#include "implicit_euler.h"
 
 namespace gb {
 
@@ -125,9 +126,9 @@ StepUniforms Simulation::uniformsBetween(const WandState& a, const WandState& b,
   u.leftInflowWeight = 1.0f;
   u.wandAlignment = wandAlignment(u.wands);
   const WireFrame frameNow = frameHanging(a, hangA);
-  u.frameArea = frameNow.area();
-  u.airVolume = frameNow.height() * u.frameArea;  // Eq. (6)
-  u.frameNext = frameHanging(b, hangB);
+  u.wireArea = frameNow.area();
+  u.airVolume = frameNow.height() * u.wireArea;  // Eq. (6)
+  u.wireNext = frameHanging(b, hangB);
   u.closed = film_.topology.isClosed() ? 1u : 0u;
   u.volumeOrigin = u.closed ? film_.volumeOrigin : frameNow.center;
   u.referenceVolume = film_.referenceVolume;
@@ -160,7 +161,7 @@ void Simulation::advanceFrame(const WandState& next) {
     const float t1 = static_cast<float>(k + 1) / static_cast<float>(substeps_);
     substepUniforms_.push_back(
         uniformsBetween(interpolate(wands_, next, t0), interpolate(wands_, next, t1), dt, hangAt(t0), hangAt(t1)));
-    substepUniforms_.back().solverIterations = solverIterations_;
+    substepUniforms_.back().solverSweeps = solverSweeps_;
   }
   substepUniforms_.back().drainageDt = params_.frameTime;  // the frame's drainage, after its last substep
   const auto started = Clock::now();
@@ -371,7 +372,7 @@ FrameStats Simulation::stats() {
         [&](size_t k) {
           const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
           const double stretch = (s.position.get(a) - s.position.get(b)).cast<double>().norm() - topo.restLength[k];
-          return 0.25 * (s.elasticity[a] + s.elasticity[b]) * stretch * stretch;
+          return springEnergyOf<double>(springStiffness(s, a, b), stretch);
         },
         [&](double energy) { st.elasticEnergy += energy; });
   }

@@ -99,11 +99,9 @@ class Simulation {
   // again when the step is the longest yet, and from then on reach as far as it can move the film.
   void setFrameTime(float h);
   // Implicit solver sweeps per step from now on (the live loop lowers them when a frame runs over its
-  // budget); 0 returns to Params::solverIterations.
-  void setSolverIterations(int sweeps) { solverIterations_ = sweeps; }
-  [[nodiscard]] int solverIterations() const {
-    return solverIterations_ > 0 ? solverIterations_ : params_.solverIterations;
-  }
+  // budget); 0 returns to Params::solverSweeps.
+  void setSolverSweeps(int sweeps) { solverSweeps_ = sweeps; }
+  [[nodiscard]] int solverSweeps() const { return solverSweeps_ > 0 ? solverSweeps_ : params_.solverSweeps; }
   [[nodiscard]] float lastPressure() const { return pressure_; }
   // How often the implicit step's energy budget took energy back (energy_budget.h): frames, and the smallest factor
   // it left on the film's wobble (1: never).
@@ -151,7 +149,7 @@ class Simulation {
   std::array<bool, 2> wandArmed_{true, true};  // a tip bursts a free bubble it touches once armed
   double time_ = 0;
   int substeps_ = 1;
-  int solverIterations_ = 0;  // 0: Params::solverIterations
+  int solverSweeps_ = 0;  // 0: Params::solverSweeps
   float pressure_ = 0;
   float contactHorizon_;           // the longest step taken (s): what the contact search must reach across
   ContactHistory contactHistory_;  // the last contact list, for the pairs' rest distances (collision.h)

@@ -73,7 +73,7 @@ double particleObjective(const Params& p, const StepUniforms& u, const Topology&
     double spring = p.springDamping / (2 * h) * std::pow(dot(relative, dir), 2);
     if (p.tensionModel != 1) {
       const double stretch = static_cast<double>(len) - topo.restLength[topo.springIndex[k]];
-      spring += 0.5 * springStiffness(s, i, j) * stretch * stretch;
+      spring += springEnergyOf<double>(springStiffness(s, i, j), stretch);
     }
     e += (solved[j] ? 0.5 : 1.0) * spring;
   }
@@ -172,8 +172,8 @@ void ImplicitSolve::vbdSweep() {
     const auto count = static_cast<long>(topo.colourOffset[c + 1] - first);
 #pragma omp parallel for schedule(static)
     for (long k = 0; k < count; ++k)
-      solveVertexBlock(params_, uniforms_, Bubble{}, topo, film_.state,
-                       topo.colourOrder[first + static_cast<size_t>(k)]);
+      vertexBlockDescent(params_, uniforms_, Bubble{}, topo, film_.state,
+                         topo.colourOrder[first + static_cast<size_t>(k)]);
   }
 }
 

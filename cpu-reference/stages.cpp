@@ -32,7 +32,7 @@ float mixedVoronoiCorner(const Vec3& xi, const Vec3& xj, const Vec3& xk, float a
 
 }  // namespace
 
-void computeTriangleGeometry(const Topology& topo, State& s, size_t t) {
+void triangleGeometry(const Topology& topo, State& s, size_t t) {
   const uint32_t* tri = &topo.triangles[3 * t];
   const Vec3 x[3] = {s.position.get(tri[0]), s.position.get(tri[1]), s.position.get(tri[2])};
   const Vec3 doubleAreaNormal = (x[1] - x[0]).cross(x[2] - x[0]);
@@ -41,7 +41,7 @@ void computeTriangleGeometry(const Topology& topo, State& s, size_t t) {
   for (int c = 0; c < 3; ++c) s.cornerArea[3 * t + c] = mixedVoronoiCorner(x[c], x[(c + 1) % 3], x[(c + 2) % 3], area);
 }
 
-void computeVertexGeometry(const Topology& topo, State& s, size_t i) {
+void vertexGeometry(const Topology& topo, State& s, size_t i) {
   Vec3 normalSum = Vec3::Zero();
   float area = 0.0f;
   for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
@@ -94,15 +94,15 @@ uint64_t geometryKey(const Topology& topo, const State& s) {
 
 void computeGeometry(const Topology& topo, State& s) {
   fitTriangleArrays(topo, s);
-  for (size_t t = 0; t < topo.triangleCount(); ++t) computeTriangleGeometry(topo, s, t);
-  for (size_t i = 0; i < s.size(); ++i) computeVertexGeometry(topo, s, i);
+  for (size_t t = 0; t < topo.triangleCount(); ++t) triangleGeometry(topo, s, t);
+  for (size_t i = 0; i < s.size(); ++i) vertexGeometry(topo, s, i);
 }
 
 float coneVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& origin) {
   return (a - origin).dot((b - origin).cross(c - origin)) / 6.0f;
 }
 
-float triangleSignedVolume(const Topology& topo, const State& s, size_t t, const Vec3& origin) {
+float triangleVolume(const Topology& topo, const State& s, size_t t, const Vec3& origin) {
   const uint32_t* tri = &topo.triangles[3 * t];
   return coneVolume(s.position.get(tri[0]), s.position.get(tri[1]), s.position.get(tri[2]), origin);
 }
@@ -120,7 +120,7 @@ float treeSum(std::vector<float> v) {
 
 // ---- film state ------------------------------------------------------------------------------------------
 
-float elasticity(const Params& p, float thickness, float lifetime) {
+float elasticityOf(const Params& p, float thickness, float lifetime) {
   const float x = thickness / p.elasticityThickness;                                      // e_i / k
   if (lifetime < p.marangoniLifetime) return p.elasticityWeight * 2.0f * x / (x + 2.0f);  // Marangoni
   const float g = std::max(x, p.gibbsFloorThickness / p.elasticityThickness);             // held below the floor
@@ -130,7 +130,7 @@ float elasticity(const Params& p, float thickness, float lifetime) {
 float filmTension(const Params& p, float thickness) {
   const float gamma0 = p.surfaceTension;
   const float gamma = gamma0 + 0.5f * p.gibbsElasticity * std::log(initialThickness(p) / std::max(thickness, 1e-12f));
-  return 2.0f * std::clamp(gamma, 0.5f * gamma0, 2.0f * gamma0);
+  return 2.0f * std::clamp(gamma, kLowestGammaFactor * gamma0, kHighestGammaFactor * gamma0);
 }
 
 double filmTensionEnergy(const Params& p, double liquid, double area) {
@@ -139,32 +139,33 @@ double filmTensionEnergy(const Params& p, double liquid, double area) {
   if (!(gibbs > 0)) return tension * a;
   // gamma = gamma_0 + (E_G / 2) ln(a e_0 / liquid) reaches gamma_0 / 2 at a_lo and 2 gamma_0 at a_hi. The constant
   // of integration makes W = 2 gamma a below a_lo (a thick film, gamma at its floor).
-  const double lower = liquid / e0 * std::exp(-gamma0 / gibbs), upper = liquid / e0 * std::exp(2.0 * gamma0 / gibbs);
+  const double lower = liquid / e0 * std::exp(2.0 * (kLowestGammaFactor - 1.0) * gamma0 / gibbs);
+  const double upper = liquid / e0 * std::exp(2.0 * (kHighestGammaFactor - 1.0) * gamma0 / gibbs);
   return tension * a - gibbs * (std::clamp(a, lower, upper) - lower);
 }
 
-void updateFilmState(const Params& p, float dt, State& s, size_t i) {
+void filmState(const Params& p, float dt, State& s, size_t i) {
   const float area = s.voronoiArea[i];
   s.thickness[i] = area > 0 ? s.liquid[i] / area : 0.0f;
   s.elasticity[i] = p.tensionModel == 1 ? filmTension(p, area > 0 ? surfactantLiquid(p, s.mass[i]) / area : 0.0f)
-                                        : elasticity(p, s.thickness[i], s.lifetime[i]);
+                                        : elasticityOf(p, s.thickness[i], s.lifetime[i]);
   s.lifetime[i] += dt;
 }
 
 // ---- air ------------------------------------------------------------------------------------------------
 
-Vec3 airInflow(const Params& p, const StepUniforms& u, const Vec3& x) {
+Vec3 airInflowAt(const Params& p, const StepUniforms& u, const Vec3& x) {
   const float dLeft = (x - u.wands.leftPosition).norm(), dRight = (x - u.wands.rightPosition).norm();
   const Vec3 sources = u.leftInflowWeight * u.wands.leftVelocity / (dLeft + p.airInflowDistance) +
                        u.wands.rightVelocity / (dRight + p.airInflowDistance);
   return -u.airVolume * u.wandAlignment * sources;
 }
 
-void computeAirInflow(const Params& p, const StepUniforms& u, State& s, size_t i) {
-  s.airInflow.set(i, airInflow(p, u, s.position.get(i)));
+void airInflow(const Params& p, const StepUniforms& u, State& s, size_t i) {
+  s.airInflow.set(i, airInflowAt(p, u, s.position.get(i)));
 }
 
-void transferAirFlow(const Params& p, const Topology& topo, State& s, size_t i) {
+void airTransfer(const Params& p, const Topology& topo, State& s, size_t i) {
   if (topo.boundary[i] || p.airTransfer == 0) {  // Algorithm 2, line 2: the end particles take the new inflow
     s.airFlowNext.set(i, s.airInflow.get(i));
     return;
@@ -258,15 +259,14 @@ Vec3 externalForce(const Params& p, const StepUniforms& u, float pressure, const
   return f;
 }
 
-float fullAirCoupling(const Params& p, float frameArea, float voronoiArea) {
-  return p.airPressureGain * frameArea * voronoiArea;
+float fullAirCoupling(const Params& p, float wireArea, float voronoiArea) {
+  return p.airPressureGain * wireArea * voronoiArea;
 }
 
 float airCoupling(const Params& p, const StepUniforms& u, const State& s, size_t i) {
-  if (u.closed || !(u.frameArea > 0)) return 0.0f;
-  constexpr float stillAir = 0.05f;  // m/s: below this air speed the coupling fades out (still air: drag only)
-  const float airSpeed = std::abs((s.airFlow.get(i) + s.airInflow.get(i)).dot(s.normal.get(i))) / u.frameArea;
-  return fullAirCoupling(p, u.frameArea, s.voronoiArea[i]) * std::min(1.0f, airSpeed / stillAir);
+  if (u.closed || !(u.wireArea > 0)) return 0.0f;
+  const float airSpeed = std::abs((s.airFlow.get(i) + s.airInflow.get(i)).dot(s.normal.get(i))) / u.wireArea;
+  return fullAirCoupling(p, u.wireArea, s.voronoiArea[i]) * std::min(1.0f, airSpeed / kStillAirSpeed);
 }
 
 Vec3 volumeGradient(const Topology& topo, const State& s, size_t i) {
@@ -282,7 +282,7 @@ Vec3 boyleForce(const Params& p, float pressure, const Topology& topo, const Sta
   return boyleExcess(p, pressure) * volumeGradient(topo, s, i);
 }
 
-void computeForces(const Params& p, const StepUniforms& u, float pressure, const Topology& topo, State& s, size_t i) {
+void forces(const Params& p, const StepUniforms& u, float pressure, const Topology& topo, State& s, size_t i) {
   const Vec3 drag = -p.airDrag * s.voronoiArea[i] * s.velocity.get(i);  // still air resists
   const Vec3 n = s.normal.get(i);
   const Vec3 coupling = -airCoupling(p, u, s, i) * s.velocity.get(i).dot(n) * n;  // the film moves with the air
@@ -291,21 +291,21 @@ void computeForces(const Params& p, const StepUniforms& u, float pressure, const
   s.force.set(i, f);
 }
 
-void computeExternalForces(const Params& p, const StepUniforms& u, float pressure, State& s, size_t i) {
+void externalForces(const Params& p, const StepUniforms& u, float pressure, State& s, size_t i) {
   s.force.set(i, externalForce(p, u, pressure, s, i));
 }
 
 // ---- integration ----------------------------------------------------------------------------------------
 
-void integrateParticle(const StepUniforms& u, const Topology& topo, State& s, size_t i) {
+void integrate(const StepUniforms& u, const Topology& topo, State& s, size_t i) {
   if (!s.alive[i]) return;
   const Vec3 x = s.position.get(i);
   if (topo.boundary[i]) {
-    if (s.frameParam[i] < 0.0f) {  // pinned where it is (the fixed rings of the validation scenes)
+    if (s.wireParam[i] < 0.0f) {  // pinned where it is (the fixed rings of the validation scenes)
       s.velocity.set(i, Vec3::Zero());
       return;
     }
-    const Vec3 xNext = framePoint(u.frameNext, s.frameParam[i]);
+    const Vec3 xNext = wirePoint(u.wireNext, s.wireParam[i]);
     s.velocity.set(i, (xNext - x) / u.dt);
     s.position.set(i, xNext);
     return;
@@ -329,7 +329,7 @@ float drainageDirection(const Vec3& xi, const Vec3& xj, const Vec3& g) {
   return along > 0 ? along / (d.norm() * g.norm()) : 0.0f;
 }
 
-void computeDrainageOutflow(const Params& p, float dt, const Topology& topo, State& s, size_t i) {
+void drainageOutflow(const Params& p, float dt, const Topology& topo, State& s, size_t i) {
   const Vec3 g(p.gravityX, p.gravityY, p.gravityZ), xi = s.position.get(i);
   float weight = 0.0f;
   for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k)
@@ -338,7 +338,7 @@ void computeDrainageOutflow(const Params& p, float dt, const Topology& topo, Sta
   s.drainOutflow[i] = s.liquid[i] * std::min(1.0f, dt * p.drainageRate * weight / p.sticky);
 }
 
-void gatherDrainage(const Params& p, const Topology& topo, State& s, size_t j) {
+void drainageGather(const Params& p, const Topology& topo, State& s, size_t j) {
   const Vec3 g(p.gravityX, p.gravityY, p.gravityZ), xj = s.position.get(j);
   float received = 0.0f;
   for (uint32_t k = topo.springOffset[j]; k < topo.springOffset[j + 1]; ++k) {
@@ -377,7 +377,7 @@ float areaHessianDiagonal(const Topology& topo, const State& s, size_t i) {
 
 float stableTimeStep(const Params& p, const Topology& topo, const State& s, float pressure, float volume) {
   const float eMax = elasticityBound(p);
-  const float tensionMax = 4.0f * p.surfaceTension;  // filmTension is at most 2 x 2 gamma_0
+  const float tensionMax = highestTension(p.surfaceTension);
   float dt = std::numeric_limits<float>::infinity();
   const bool closed = topo.isClosed();
   // The air coupling's frame area Area_wm is at most the film's area: the film spans the planar wire frame.

@@ -4,7 +4,7 @@
 // follow: each stage's GLSL kernel(s) in kernels/ (kernel_list.h) run the function of the same name per element.
 //
 // Gather, never scatter: every per-particle result is summed by the particle itself over its CSR one-ring,
-// in CSR order. Propagation (air transfer) is a Jacobi sweep from a front buffer into a back buffer.
+// in CSR order. Propagation (air transfer) is a Jacobi pass from a front buffer into a back buffer.
 
 #include "params.h"
 #include "state.h"
@@ -19,25 +19,25 @@ struct StepUniforms {
   WandState wands;                   // wand tips at the start of the step, the air sources of Eq. (5)
   float leftInflowWeight = 1.0f;     // weight of the left source of Eq. (5); the ring's frame has both at its hand
   float airVolume = 0.0f;            // V_wm = H_wire * Area_wm, Eq. (6) (m^3)
-  float frameArea = 0.0f;            // Area_wm (m^2): the air flow over it is the air's speed (airCoupling)
+  float wireArea = 0.0f;             // Area_wm (m^2): the air flow over it is the air's speed (airCoupling)
   float wandAlignment = 0.0f;        // MAX(cos(theta), 0) of Eq. (5)
-  WireFrame frameNext;               // the wire frame at the end of the step, for the boundary particles
+  WireFrame wireNext;                // the wire frame at the end of the step, for the boundary particles
   Vec3 volumeOrigin = Vec3::Zero();  // apex of the cone decomposition of the (swept) volume
   uint32_t closed = 0;               // 1 once the film is a closed bubble: Eqs. (10)-(11) replace Eq. (9)
   float referenceVolume = 0.0f;      // V_0 of Eq. (11), the volume when the bubble closed (m^3)
   float drainageDt = 0.0f;           // drainage runs in this step over this time, 0: not in this step. Liquid
                                      // drains over seconds, so once per frame is enough (Simulation)
-  int solverIterations = 0;          // implicit integrator: vertex block descent sweeps in this step (the live
+  int solverSweeps = 0;              // implicit integrator: vertex block descent sweeps in this step (the live
                                      // loop lowers it when a frame runs over its budget)
 };
 
 // ---- Stage 1-2: geometry -------------------------------------------------------------------------------
 // Pass 1, per triangle t: its area-weighted normal and the mixed Voronoi area (Meyer et al. 2003) of each of
 // its corners. Each triangle is computed once instead of once per corner.
-void computeTriangleGeometry(const Topology& topo, State& s, size_t t);
+void triangleGeometry(const Topology& topo, State& s, size_t t);
 // Pass 2, per particle i: unit vertex normal (sum of its triangles' area-weighted normals) and mixed Voronoi
 // area (sum of its corners' areas), gathered in CSR order.
-void computeVertexGeometry(const Topology& topo, State& s, size_t i);
+void vertexGeometry(const Topology& topo, State& s, size_t i);
 // Both passes over the whole film, serially: for code outside the step (film creation, pinch-off, tests).
 void computeGeometry(const Topology& topo, State& s);
 // Sizes the per-triangle arrays for the topology.
@@ -51,9 +51,9 @@ uint64_t geometryKey(const Topology& topo, const State& s);
 
 // Signed volume of the tetrahedron (origin, triangle t); their sum is the enclosed volume of a closed
 // film and the volume swept between an open film and the apex.
-float triangleSignedVolume(const Topology& topo, const State& s, size_t t, const Vec3& origin);
-// The signed volume of the cone from `origin` to the triangle (a, b, c), the one formula of triangleSignedVolume and
-// of the energy budget's triangleSignedVolumeAtStart.
+float triangleVolume(const Topology& topo, const State& s, size_t t, const Vec3& origin);
+// The signed volume of the cone from `origin` to the triangle (a, b, c), the one formula of triangleVolume and
+// of the energy budget's triangleVolumeAtStart.
 float coneVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& origin);
 
 // Pairwise sum with a fixed tree shape (level by level, a[k] = a[2k] + a[2k+1]): the reduction both
@@ -64,7 +64,7 @@ float treeSum(std::vector<float> values);
 // Eq. (4): elasticity from thickness e (m) and lifetime (s). Marangoni while young, Gibbs after, the Gibbs
 // branch held at its value at Params::gibbsFloorThickness for thinner film. The paper's formulas are divided by k so
 // that w_E carries the unit N/m (docs/model.md).
-float elasticity(const Params& p, float thickness, float lifetime);
+float elasticityOf(const Params& p, float thickness, float lifetime);
 
 // Physical model: the film's tension 2 gamma (N/m), gamma following the surfactant per area through Gibbs-Marangoni
 // elasticity, gamma = gamma_0 + (E_G / 2) ln(e_0 / e) (a stretched film has less surfactant per area), kept within
@@ -88,18 +88,18 @@ Vec3 areaTensionForce(const Topology& topo, const State& s, size_t i);
 
 // Thickness e_i = liquid / A_Vor, elasticity E_i (the paper) or the film tension 2 gamma_i (physical
 // model: the same N/m slot), and the particle's age.
-void updateFilmState(const Params& p, float dt, State& s, size_t i);
+void filmState(const Params& p, float dt, State& s, size_t i);
 
 // ---- Stage 4: air inflow (Section 5.2.1) ---------------------------------------------------------------
 // Eq. (5): air flow (m^3/s) at a point, created by the moving wands.
-Vec3 airInflow(const Params& p, const StepUniforms& u, const Vec3& position);
-void computeAirInflow(const Params& p, const StepUniforms& u, State& s, size_t i);
+Vec3 airInflowAt(const Params& p, const StepUniforms& u, const Vec3& position);
+void airInflow(const Params& p, const StepUniforms& u, State& s, size_t i);
 
 // ---- Stage 5: air flow transfer (Section 5.2.2, Algorithm 2) --------------------------------------------
 // Eqs. (7)-(8) as a Jacobi gather: particle i receives the air of each neighbour j whose air points towards
 // it (a_dir > lambda_air), weighted by a_dir; its own old air is dropped ("delete air_i"). End (boundary)
 // particles are assigned the fresh inflow instead. Reads airFlow, writes airFlowNext[i].
-void transferAirFlow(const Params& p, const Topology& topo, State& s, size_t i);
+void airTransfer(const Params& p, const Topology& topo, State& s, size_t i);
 
 // ---- Stage 6: forces, Eq. (2) --------------------------------------------------------------------------
 // Internal forces on particle i, the ones the implicit step takes into its energy: surface tension Eq. (3)
@@ -118,7 +118,7 @@ Vec3 externalForce(const Params& p, const StepUniforms& u, float pressure, const
 float airCoupling(const Params& p, const StepUniforms& u, const State& s, size_t i);
 // The air coupling at full strength (air at or above 5 cm/s) for a frame of area Area_wm (m^2): kappa Area_wm
 // A_Vor (N s/m). airCoupling fades it out in still air; stableTimeStep bounds the explicit step with it.
-float fullAirCoupling(const Params& p, float frameArea, float voronoiArea);
+float fullAirCoupling(const Params& p, float wireArea, float voronoiArea);
 
 // dV/dx_i of a closed film's enclosed volume V = sum_t x_a . (x_b x x_c) / 6: a sixth of the twice-area normals of
 // particle i's triangles (the geometry stage's). Over a closed film these sum to zero exactly.
@@ -136,9 +136,9 @@ Vec3 boyleForce(const Params& p, float pressure, const Topology& topo, const Sta
 float boyleExcess(const Params& p, float pressure);
 // Explicit integrator: the whole of Eq. (2), internal + external + linear air drag + air coupling (open) or
 // Boyle (closed).
-void computeForces(const Params& p, const StepUniforms& u, float pressure, const Topology& topo, State& s, size_t i);
+void forces(const Params& p, const StepUniforms& u, float pressure, const Topology& topo, State& s, size_t i);
 // Implicit integrator: the external forces only (drag and the internal forces are in the solver).
-void computeExternalForces(const Params& p, const StepUniforms& u, float pressure, State& s, size_t i);
+void externalForces(const Params& p, const StepUniforms& u, float pressure, State& s, size_t i);
 
 // Eq. (11), Boyle's law: P_cur = P_0 V_0 / V_cur.
 float boylePressure(const Params& p, float referenceVolume, float currentVolume);
@@ -153,7 +153,7 @@ double boyleGasEnergy(const Params& p, double referenceVolume, double currentVol
 // Interior particles integrate their force and stop at the floor (y = 0), keeping their sliding velocity;
 // boundary particles are carried to the wire frame at the end of the step, with the velocity that motion
 // implies.
-void integrateParticle(const StepUniforms& u, const Topology& topo, State& s, size_t i);
+void integrate(const StepUniforms& u, const Topology& topo, State& s, size_t i);
 
 // ---- Stage 8: position-dependent drainage (Section 6.2, Eqs. 14-15) --------------------------------------
 // Eq. (14): how closely the direction from sender x_i to receiver x_j follows gravity g, MAX(cos, 0).
@@ -161,12 +161,12 @@ float drainageDirection(const Vec3& xi, const Vec3& xj, const Vec3& g);
 
 // Pass 1: particle i sends out_i = w_i min(1, dt rate D_i / Sticky) of its liquid (dt: StepUniforms::drainageDt), D_i =
 // sum of d_dir(i->k) over its neighbours; stores out_i and D_i.
-void computeDrainageOutflow(const Params& p, float dt, const Topology& topo, State& s, size_t i);
+void drainageOutflow(const Params& p, float dt, const Topology& topo, State& s, size_t i);
 
 // Pass 2, Eq. (15) as a gather: particle j keeps what it did not send and receives out_i d_dir(i->j) / D_i
 // from each neighbour i. What leaves a particle is exactly what its downhill neighbours receive, so the
 // total liquid is conserved to float rounding.
-void gatherDrainage(const Params& p, const Topology& topo, State& s, size_t j);
+void drainageGather(const Params& p, const Topology& topo, State& s, size_t j);
 
 // ---- Stability -----------------------------------------------------------------------------------------
 // Largest elasticity Eq. (4) can give the film: the Gibbs peak 0.5 w_E, or the Marangoni value of a young

@@ -28,7 +28,7 @@ enum class Stage : int {
   ExternalForces,      // implicit integrator: the forces kept explicit (gravity, air, Boyle pressure)
   ExternalDrift,       // implicit integrator, closed film: the acceleration the explicit forces give its centre of mass
   ImplicitPredict,     // implicit integrator: x_t kept, wire placed, first guess
-  VertexBlockDescent,  // implicit integrator: solverIterations sweeps over the colours, the coarse correction
+  VertexBlockDescent,  // implicit integrator: solverSweeps sweeps over the colours, the coarse correction
                        // after the first half of them (coarseSweepsBefore)
   CoarseCorrection,    // implicit integrator: the iterate corrected by rigid moves of patches (coarse_correction.h);
                        // recorded inside vertex_block_descent, run alone only by tests and benchmarks

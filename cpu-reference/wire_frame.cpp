@@ -18,7 +18,7 @@ float WireFrame::area() const {
 
 float WireFrame::height() const { return kind == ToolKind::TwoWands ? depth : 2.0f * halfWidth; }
 
-Vec3 framePoint(const WireFrame& f, float u) {
+Vec3 wirePoint(const WireFrame& f, float u) {
   constexpr float pi = std::numbers::pi_v<float>;
   if (f.kind == ToolKind::TwoWands && u < 1.0f) return f.center + (2.0f * u - 1.0f) * f.halfWidth * f.axis;
   // Along an arc the direction from the centre is the spherical linear interpolation between the
@@ -98,9 +98,9 @@ WireFrame makeWireFrame(const WandTool& tool, const WandState& wands, float stri
 std::vector<float> evenlySpacedParameters(const WireFrame& f, float u0, float u1, int n) {
   constexpr int samples = 2048;
   std::vector<float> length(samples + 1, 0.0f);
-  Vec3 prev = framePoint(f, u0);
+  Vec3 prev = wirePoint(f, u0);
   for (int k = 1; k <= samples; ++k) {
-    const Vec3 p = framePoint(f, u0 + (u1 - u0) * static_cast<float>(k) / samples);
+    const Vec3 p = wirePoint(f, u0 + (u1 - u0) * static_cast<float>(k) / samples);
     length[k] = length[k - 1] + (p - prev).norm();
     prev = p;
   }
@@ -119,9 +119,9 @@ std::vector<float> evenlySpacedParameters(const WireFrame& f, float u0, float u1
 float frameArcLength(const WireFrame& f, float u0, float u1) {
   constexpr int samples = 2048;
   float len = 0.0f;
-  Vec3 prev = framePoint(f, u0);
+  Vec3 prev = wirePoint(f, u0);
   for (int k = 1; k <= samples; ++k) {
-    const Vec3 p = framePoint(f, u0 + (u1 - u0) * static_cast<float>(k) / samples);
+    const Vec3 p = wirePoint(f, u0 + (u1 - u0) * static_cast<float>(k) / samples);
     len += (p - prev).norm();
     prev = p;
   }

@@ -1,6 +1,6 @@
 #pragma once
 // The wire frame that holds the film (Figure 1): two wand tips joined by a loop of string, or a single ring.
-// A boundary particle keeps a fixed frame coordinate u and is placed at framePoint(frame, u) every step, so
+// A boundary particle keeps a fixed frame coordinate u and is placed at wirePoint(frame, u) every step, so
 // the film's edge follows the wands.
 
 #include <vector>
@@ -46,7 +46,7 @@ struct WireFrame {
 };
 
 // Position on the frame of the boundary particle with frame coordinate u.
-Vec3 framePoint(const WireFrame& frame, float u);
+Vec3 wirePoint(const WireFrame& frame, float u);
 
 // Length of the bottom string of a two-wand loop hanging to depth b below tips 2a apart (half-ellipse
 // perimeter, Ramanujan's approximation), and its inverse.

@@ -21,7 +21,7 @@ using enum gpu::Binding;
 // The shared layouts are what the shaders expect (kernels/shared_step.h): sizes and the offsets std430
 // gives the same declarations.
 static_assert(sizeof(StepUniformsBlock) == 176 && offsetof(StepUniformsBlock, dt) == 128 &&
-              offsetof(StepUniformsBlock, frameKind) == 156 && offsetof(StepUniformsBlock, closed) == 160);
+              offsetof(StepUniformsBlock, wireKind) == 156 && offsetof(StepUniformsBlock, closed) == 160);
 static_assert(sizeof(PushBlock) == 32);
 static_assert(alignof(Params) == 4 && sizeof(Params) % 4 == 0,
               "Params must stay a block of 4-byte scalars, whose std430 layout is the C layout");
@@ -36,21 +36,21 @@ StepUniformsBlock toBlock(const StepUniforms& u) {
   b.leftVelocity = toVec4(u.wands.leftVelocity);
   b.rightPosition = toVec4(u.wands.rightPosition);
   b.rightVelocity = toVec4(u.wands.rightVelocity);
-  b.frameCenter = toVec4(u.frameNext.center);
-  b.frameAxis = toVec4(u.frameNext.axis);
-  b.frameDown = toVec4(u.frameNext.down);
+  b.wireCenter = toVec4(u.wireNext.center);
+  b.wireAxis = toVec4(u.wireNext.axis);
+  b.wireDown = toVec4(u.wireNext.down);
   b.volumeOrigin = toVec4(u.volumeOrigin);
   b.dt = u.dt;
   b.leftInflowWeight = u.leftInflowWeight;
   b.airVolume = u.airVolume;
   b.wandAlignment = u.wandAlignment;
-  b.frameHalfWidth = u.frameNext.halfWidth;
-  b.frameDepth = u.frameNext.depth;
+  b.wireHalfWidth = u.wireNext.halfWidth;
+  b.wireDepth = u.wireNext.depth;
   b.referenceVolume = u.referenceVolume;
-  b.frameKind = static_cast<int>(u.frameNext.kind);
+  b.wireKind = static_cast<int>(u.wireNext.kind);
   b.closed = u.closed;
   b.drainageDt = u.drainageDt;
-  b.frameArea = u.frameArea;
+  b.wireArea = u.wireArea;
   return b;
 }
 
@@ -339,7 +339,7 @@ struct VulkanStepper::Impl {
         break;
       case Stage::VertexBlockDescent: {
         const int coarseAfter = coarseSweepsBefore(params, u);
-        for (int sweep = 0; sweep < solverSweeps(params, u); ++sweep) {
+        for (int sweep = 0; sweep < sweepsThisStep(params, u); ++sweep) {
           if (sweep > 0) computeToComputeBarrier(cb);  // the volume and the next colours read the last positions
           if (sweep == coarseAfter) {
             recordStage(cb, Stage::CoarseCorrection, u, stepIndex);

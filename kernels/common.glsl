@@ -2,6 +2,7 @@
 // structure-of-arrays buffers, plus the functions of cpu-reference/stages.cpp that several stages need.
 // Each function has the name and the float operations of its C++ twin.
 
+#include "shared_formulas.h"
 #include "shared_params.h"
 #include "shared_step.h"
 
@@ -69,7 +70,8 @@ struct TriangleTension {
   float tension, slope;
 };
 TriangleTension triangleTensionOf(float startTension, float startArea, float area) {
-  const float gibbs = params.gibbsElasticity, lowest = params.surfaceTension, highest = 4.0 * params.surfaceTension;
+  const float gibbs = params.gibbsElasticity, lowest = lowestTension(params.surfaceTension),
+              highest = highestTension(params.surfaceTension);
   const bool follows = 0.0 < gibbs && 0.0 < startArea && 0.0 < area;
   const float unclamped = startTension + gibbs * log(follows ? area / startArea : 1.0);
   const bool elastic = follows && lowest < unclamped && unclamped < highest;
@@ -81,20 +83,19 @@ float triangleTensionEnergy(float startTension, float startArea, float area) {
   const float gibbs = params.gibbsElasticity, t0 = startTension, a0 = startArea;
   if (!(gibbs > 0.0 && a0 > 0.0 && area > 0.0)) return t0 * area;
   const float r = area / a0, lnR = log(r), unclamped = t0 + gibbs * lnR;
-  const float lowest = params.surfaceTension, highest = 4.0 * params.surfaceTension;
+  const float lowest = lowestTension(params.surfaceTension), highest = highestTension(params.surfaceTension);
   if (lowest <= unclamped && unclamped <= highest) return t0 * area + gibbs * a0 * (r * lnR - r + 1.0);
   const float held = unclamped < lowest ? lowest : highest, lnReached = (held - t0) / gibbs;
   const float reached = exp(lnReached);
   return t0 * a0 * reached + gibbs * a0 * (reached * lnReached - reached + 1.0) + held * (area - a0 * reached);
 }
 
-// framePoint of cpu-reference/wire_frame.cpp.
-vec3 framePoint(StepUniformsBlock u, float param) {
+// wirePoint of cpu-reference/wire_frame.cpp.
+vec3 wirePoint(StepUniformsBlock u, float param) {
   const float pi = 3.14159265358979323846;
-  if (u.frameKind == 0 && param < 1.0)
-    return u.frameCenter.xyz + (2.0 * param - 1.0) * u.frameHalfWidth * u.frameAxis.xyz;
-  const float phi = u.frameKind == 0 ? (param - 1.0) * pi : 2.0 * pi * param;
-  return u.frameCenter.xyz + u.frameHalfWidth * cos(phi) * u.frameAxis.xyz + u.frameDepth * sin(phi) * u.frameDown.xyz;
+  if (u.wireKind == 0 && param < 1.0) return u.wireCenter.xyz + (2.0 * param - 1.0) * u.wireHalfWidth * u.wireAxis.xyz;
+  const float phi = u.wireKind == 0 ? (param - 1.0) * pi : 2.0 * pi * param;
+  return u.wireCenter.xyz + u.wireHalfWidth * cos(phi) * u.wireAxis.xyz + u.wireDepth * sin(phi) * u.wireDown.xyz;
 }
 
 // drainageDirection of cpu-reference/stages.cpp, Eq. (14).

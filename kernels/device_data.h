@@ -34,7 +34,7 @@ GB_PARTICLE_ARRAY(12, THICKNESS, thickness, 1, float, GB_WRITABLE, ReadBack, 0) 
 GB_PARTICLE_ARRAY(13, ELASTICITY, elasticity, 1, float, GB_WRITABLE, ReadBack, 0)
 GB_PARTICLE_ARRAY(14, LIFETIME, lifetime, 1, float, GB_WRITABLE, ReadBack, 0)  // time since creation (s)
 // Wire-frame coordinate of an end particle (wire_frame.h); negative: pinned where it is (fixed rings).
-GB_PARTICLE_ARRAY(15, FRAME_PARAM, frameParam, 1, float, readonly, UploadOnly, 0)
+GB_PARTICLE_ARRAY(15, WIRE_PARAM, wireParam, 1, float, readonly, UploadOnly, 0)
 // 1 while the particle exists: a removed particle is flagged dead, never renumbered.
 GB_PARTICLE_ARRAY(16, ALIVE, alive, 1, uint, readonly, WithMesh, 1)
 GB_BUFFER(17, TRIANGLES, uint, triangles[], readonly)               // Topology::triangles

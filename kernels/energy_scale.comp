@@ -19,8 +19,8 @@ void main() {
   }
   float scale, released;
   vec3 centre, shift;
-  energyBudget(sums[0], sums[1], sums[2] + gas, sums[3], vec3(sums[4], sums[5], sums[6]),
-               vec3(sums[7], sums[8], sums[9]), scale, centre, shift, released);
+  energyScale(sums[0], sums[1], sums[2] + gas, sums[3], vec3(sums[4], sums[5], sums[6]),
+              vec3(sums[7], sums[8], sums[9]), scale, centre, shift, released);
   ENERGY_VELOCITY_SCALE = scale;
   for (int c = 0; c < 3; ++c) {
     ENERGY_SLOT(GB_SLOT_CENTRE + c) = centre[c];

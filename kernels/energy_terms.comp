@@ -1,5 +1,5 @@
 #version 450
-// Stage energy_budget, pass 1 (cpu-reference/energy_budget.cpp, particleEnergy): every particle's terms into half A
+// Stage energy_budget, pass 1 (cpu-reference/energy_budget.cpp, energyTerms): every particle's terms into half A
 // of the budget's tree sum. Invocation 0 also keeps the bubble's volume before the step, which
 // the host reduced just before (in half A of the volume's sum with GB_REDUCE_VOLUME_IN_A).
 #extension GL_GOOGLE_include_directive : require
@@ -11,6 +11,6 @@ void main() {
   if (i >= pc.count) return;
   if (i == 0u) ENERGY_VOLUME_BEFORE = (pc.reduceFlags & GB_REDUCE_VOLUME_IN_A) != 0u ? REDUCE_A(0u) : REDUCE_B(0u);
   float terms[GB_ENERGY_TERMS];
-  particleEnergy(i, steps[pc.stepIndex].dt, steps[pc.stepIndex].closed != 0u, terms);
+  energyTerms(i, steps[pc.stepIndex].dt, steps[pc.stepIndex].closed != 0u, terms);
   for (uint c = 0u; c < ENERGY_TERMS; ++c) ENERGY_A(c, i) = terms[c];
 }

@@ -1,5 +1,5 @@
 #version 450
-// updateFilmState (cpu-reference/stages.cpp): thickness e_i = liquid / A_Vor, elasticity Eq. (4) or the
+// filmState (cpu-reference/stages.cpp): thickness e_i = liquid / A_Vor, elasticity Eq. (4) or the
 // physical film tension (from the surfactant per area), age.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
@@ -15,9 +15,9 @@ float elasticityOf(float thicknessValue, float age) {
 // filmTension of cpu-reference/stages.cpp: 2 gamma, gamma from the thickness through Gibbs-Marangoni elasticity.
 float filmTension(float thicknessValue) {
   const float gamma0 = params.surfaceTension;
-  const float e0 = params.areaWeight * 100e-6;  // initialThickness
+  const float e0 = initialThicknessOf(params.areaWeight);
   const float gamma = gamma0 + 0.5 * params.gibbsElasticity * log(e0 / max(thicknessValue, 1e-12));
-  return 2.0 * clamp(gamma, 0.5 * gamma0, 2.0 * gamma0);
+  return 2.0 * clamp(gamma, kLowestGammaFactor * gamma0, kHighestGammaFactor * gamma0);
 }
 
 // surfactantLiquid of cpu-reference/film.h: the liquid the particle was made with, which its mass still weighs.

@@ -77,10 +77,9 @@ vec3 externalForce(StepUniformsBlock u, float pressure, uint i) {
 
 // airCoupling: kappa Area_wm A_Vor on an open film, the damping of its normal speed towards the air's.
 float airCoupling(StepUniformsBlock u, uint i) {
-  if (u.closed != 0u || !(u.frameArea > 0.0)) return 0.0;
-  const float stillAir = 0.05;  // m/s, as the C++ twin
-  const float airSpeed = abs(dot(LOAD3(airFlow, i) + LOAD3(airInflow, i), LOAD3(normal, i))) / u.frameArea;
-  return params.airPressureGain * u.frameArea * voronoiArea[i] * min(1.0, airSpeed / stillAir);
+  if (u.closed != 0u || !(u.wireArea > 0.0)) return 0.0;
+  const float airSpeed = abs(dot(LOAD3(airFlow, i) + LOAD3(airInflow, i), LOAD3(normal, i))) / u.wireArea;
+  return params.airPressureGain * u.wireArea * voronoiArea[i] * min(1.0, airSpeed / kStillAirSpeed);
 }
 
 // volumeGradient: a sixth of the twice-area normals of particle i's triangles.

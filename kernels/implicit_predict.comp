@@ -1,5 +1,5 @@
 #version 450
-// predictImplicitStep (cpu-reference/implicit_euler.cpp): keeps x_t, places the wire's particles on the wire
+// implicitPredict (cpu-reference/implicit_euler.cpp): keeps x_t, places the wire's particles on the wire
 // frame at the end of the step, starts an interior particle from x_t + h v_t + h^2 a above the floor, a a closed
 // film's drift from external_drift's sums (in half A of the energy terms with GB_REDUCE_ENERGY_IN_A).
 #extension GL_GOOGLE_include_directive : require
@@ -25,7 +25,7 @@ void main() {
   const vec3 x = LOAD3(position, i);
   STORE3(previousPosition, i, x);
   if (boundary[i] != 0u) {
-    if (frameParam[i] >= 0.0) STORE3(position, i, framePoint(u, frameParam[i]));
+    if (wireParam[i] >= 0.0) STORE3(position, i, wirePoint(u, wireParam[i]));
     return;
   }
   const vec3 drift = u.closed != 0u ? filmDrift() : vec3(0.0);

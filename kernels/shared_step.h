@@ -19,21 +19,21 @@ struct StepUniformsBlock {
   vec4 leftVelocity;
   vec4 rightPosition;
   vec4 rightVelocity;
-  vec4 frameCenter;  // wire frame at the end of the substep (boundary particles)
-  vec4 frameAxis;
-  vec4 frameDown;
+  vec4 wireCenter;  // wire frame at the end of the substep (boundary particles)
+  vec4 wireAxis;
+  vec4 wireDown;
   vec4 volumeOrigin;  // apex of the volume's cone decomposition
   float dt;           // substep (s)
   float leftInflowWeight;
   float airVolume;      // V_wm of Eq. (6)
   float wandAlignment;  // MAX(cos theta, 0) of Eq. (5)
-  float frameHalfWidth;
-  float frameDepth;
+  float wireHalfWidth;
+  float wireDepth;
   float referenceVolume;  // V_0 of Eq. (11)
-  int frameKind;          // ToolKind: 0 two wands, 1 ring
+  int wireKind;           // ToolKind: 0 two wands, 1 ring
   uint closed;            // 1 for a closed bubble
   float drainageDt;       // drainage time of this substep, 0: no drainage
-  float frameArea;        // Area_wm of Eq. (6): turns the air flow into the air's speed (air coupling)
+  float wireArea;         // Area_wm of Eq. (6): turns the air flow into the air's speed (air coupling)
   uint pad2;
 };
 
@@ -66,7 +66,7 @@ struct PushBlock {
 // The energy budget's terms per particle (ParticleEnergy of cpu-reference/energy_budget.h): start, kinetic, held,
 // mass, momentum x, y, z, expected momentum x, y, z.
 #define GB_ENERGY_TERMS 10
-// A closed film's drift terms per particle (driftTerms of cpu-reference/implicit_euler.h): mass, force x, y, z. They
+// A closed film's drift terms per particle (externalDrift of cpu-reference/implicit_euler.h): mass, force x, y, z. They
 // use the first blocks of the energy terms' region, before the budget does.
 #define GB_DRIFT_TERMS 4
 
@@ -105,8 +105,8 @@ GB_REGION uint reduceCoarseVectorsAt(uint triangleCount, uint rowEntries) {
 GB_REGION uint reduceEnergyTermsAt(uint triangleCount, uint rowEntries, uint patchCount) {
   return reduceCoarseVectorsAt(triangleCount, rowEntries) + uint(GB_COARSE_VECTOR_FLOATS) * patchCount;
 }
-GB_REGION uint reduceEnergySlotsAt(uint energyTerms, uint particleCount) {
-  return energyTerms + 2u * uint(GB_ENERGY_TERMS) * particleCount;
+GB_REGION uint reduceEnergySlotsAt(uint termsAt, uint particleCount) {
+  return termsAt + 2u * uint(GB_ENERGY_TERMS) * particleCount;
 }
 #undef GB_REGION
 #ifdef __cplusplus

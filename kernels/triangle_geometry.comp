@@ -1,5 +1,5 @@
 #version 450
-// computeTriangleGeometry (cpu-reference/stages.cpp), the geometry stage's first pass: triangle t's
+// triangleGeometry (cpu-reference/stages.cpp), the geometry stage's first pass: triangle t's
 // area-weighted normal and the mixed Voronoi area of each corner (Meyer et al. 2003).
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"

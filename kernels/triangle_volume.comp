@@ -1,6 +1,6 @@
 #version 450
-// triangleSignedVolume (cpu-reference/stages.cpp) for every triangle, into the reduce buffer's half A: the leaves of
-// the volume's tree sum. GB_REDUCE_AT_STEP_START: at the step's start instead (triangleSignedVolumeAtStart, the energy
+// triangleVolume (cpu-reference/stages.cpp) for every triangle, into the reduce buffer's half A: the leaves of
+// the volume's tree sum. GB_REDUCE_AT_STEP_START: at the step's start instead (triangleVolumeAtStart, the energy
 // budget).
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"

@@ -5,8 +5,7 @@
 // The gradient and Hessian of the objective in x_i, summed term by term (Block of the C++ twin).
 vec3 gradient;
 mat3 hessian;
-float shortestSpring;             // of the particle's one-ring (m)
-const float kTrustRegion = 0.25;  // largest move per sweep, in shortest one-ring springs
+float shortestSpring;  // of the particle's one-ring (m)
 
 // addDampingGradient: dissipation c/(2h) ((dx_i - dx_j) . dir)^2; returns its Hessian's factor along dir.
 float addDampingGradient(float coefficient, float h, vec3 dir, vec3 relativeDisplacement) {

@@ -97,7 +97,7 @@ BulgeStep bulgeStep() {
   const StepUniforms u = sim.uniformsFor(wands, wands, p.frameTime);
   auto solve = [&](int sweeps, int coarseIterations, bool stopBeforeSweeps) {
     Params q = p;
-    q.solverIterations = sweeps;
+    q.solverSweeps = sweeps;
     q.coarseIterations = coarseIterations;
     Film film = start;
     CpuStepper stepper;

@@ -100,7 +100,7 @@ TEST(Dynamics, InternalForcesSumToZero) {
   Eigen::Vector3d total = Eigen::Vector3d::Zero();
   double magnitude = 0;
   for (size_t i = 0; i < s.size(); ++i) {
-    computeForces(p, StepUniforms{}, p.pressureCoefficient, film.topology, s, i);
+    forces(p, StepUniforms{}, p.pressureCoefficient, film.topology, s, i);
     total += s.force.get(i).cast<double>();
     magnitude += s.force.get(i).cast<double>().norm();
   }
@@ -239,7 +239,7 @@ TEST(Dynamics, WandsFarApartOrTogetherStillGiveFiniteFrames) {
   together.leftPosition = together.rightPosition;
   for (const WandState& w : {apart, together}) {
     const StepUniforms u = sim.uniformsFor(w, w, 0.001f);
-    for (float uu : {0.0f, 0.5f, 1.0f, 1.5f}) EXPECT_TRUE(framePoint(u.frameNext, uu).allFinite());
+    for (float uu : {0.0f, 0.5f, 1.0f, 1.5f}) EXPECT_TRUE(wirePoint(u.wireNext, uu).allFinite());
     EXPECT_TRUE(std::isfinite(u.airVolume));
   }
 }

@@ -54,7 +54,7 @@ PerformanceRecord performDefaultScene(int sweeps = 0, double seconds = 0, float 
   const Scene scene = resolveScene("default");
   RunOptions run = scene.run;
   EXPECT_EQ(run.input.spec(), "script:giant");
-  if (sweeps > 0) run.params.solverIterations = sweeps;
+  if (sweeps > 0) run.params.solverSweeps = sweeps;
   if (gibbsFloorThickness >= 0) run.params.gibbsFloorThickness = gibbsFloorThickness;
   const GestureOptions& g = run.gestureOptions;
   Simulation sim(run.params, run.tool, gestureAt(Gesture::Giant, g, 0.0));
@@ -65,7 +65,7 @@ PerformanceRecord performDefaultScene(int sweeps = 0, double seconds = 0, float 
   for (long f = 1; f <= frames;) {
     if (liveSeed > 0) {
       const int stepFrames = std::uniform_int_distribution<int>(1, 2)(live);
-      sim.setSolverIterations(std::uniform_int_distribution<int>(3, 6)(live));
+      sim.setSolverSweeps(std::uniform_int_distribution<int>(3, 6)(live));
       sim.setFrameTime(run.params.frameTime * static_cast<float>(stepFrames));
       f += stepFrames - 1;
     }
@@ -214,7 +214,7 @@ TEST(GiantBubble, TheRingBlowsAsTwoWandsHeldTogetherAtItsHand) {
   const float d = (x - w.rightPosition).norm();
   const Vec3 expected = -2.0f * u.airVolume * w.rightVelocity / (d + p.airInflowDistance);
   // Float rounding of a few products: 1e-5 relative.
-  EXPECT_LT((airInflow(p, u, x) - expected).norm(), 1e-5f * expected.norm());
+  EXPECT_LT((airInflowAt(p, u, x) - expected).norm(), 1e-5f * expected.norm());
 }
 
 // Figure 14d: a single ring raised from bottom to top draws a bubble out of its wet wire. The bound,

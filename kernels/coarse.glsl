@@ -1,4 +1,4 @@
-// Where the coarse correction's lists and patch system lie (cpu-reference/coarse_correction.h, Topology's patch
+// Where the coarse correction's lists and patch system lie (cpu-reference/solver/coarse_correction.h, Topology's patch
 // lists and CoarseSystem): the lists after the colour order in the solver's list buffer, the patch system in the
 // reduce buffer's coarse regions (shared_step.h). P = pc.patches, M = pc.solverParticles, R = the patch rows'
 // entries.

@@ -1,5 +1,5 @@
 #version 450
-// coarseApply (cpu-reference/coarse_correction.cpp), per particle: a solver particle moves by its patch's
+// coarseApply (cpu-reference/solver/coarse_correction.cpp), per particle: a solver particle moves by its patch's
 // solution, shortened to the trust region of the patch's shortest spring, then onto the floor.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"

@@ -1,5 +1,5 @@
 #version 450
-// coarseAssemble (cpu-reference/coarse_correction.cpp), one patch per invocation: its row of the patch system
+// coarseAssemble (cpu-reference/solver/coarse_correction.cpp), one patch per invocation: its row of the patch system
 // P^T H P and its entry of -P^T g at the current positions, gathered over its particles and their one-rings in the
 // C++ twin's order.
 #extension GL_GOOGLE_include_directive : require

@@ -1,5 +1,5 @@
 #version 450
-// coarseSolve (cpu-reference/coarse_correction.cpp): block-Jacobi preconditioned conjugate gradients on the
+// coarseSolve (cpu-reference/solver/coarse_correction.cpp): block-Jacobi preconditioned conjugate gradients on the
 // patch system, params.coarseIterations of them from d = 0, in one workgroup (the host dispatches one): its
 // invocations share the patches, and the dot products are the C++ twin's tree sums, level by level between
 // barriers.

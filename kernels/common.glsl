@@ -1,5 +1,5 @@
 // Declarations every stage shares: the parameter block, the step uniforms, push constants and the
-// structure-of-arrays buffers, plus the functions of cpu-reference/stages.cpp that several stages need.
+// structure-of-arrays buffers, plus the functions of cpu-reference/stages/stages.cpp that several stages need.
 // Each function has the name and the float operations of its C++ twin.
 
 #include "shared_formulas.h"
@@ -54,17 +54,17 @@ layout(push_constant) uniform Push { PushBlock pc; };
 // contactRestDistance: the rest distance of the k-th partner entry, stored after the partners (C++ twin).
 float contactRestDistance(uint k) { return uintBitsToFloat(contacts[pc.particles + 1u + contacts[pc.particles] + k]); }
 
-// positionAtStepStart of cpu-reference/energy_budget.cpp: x_t, or where the wire put a wire particle.
+// positionAtStepStart of cpu-reference/solver/energy_budget.cpp: x_t, or where the wire put a wire particle.
 vec3 positionAtStepStart(uint i) { return boundary[i] != 0u ? LOAD3(position, i) : LOAD3(previousPosition, i); }
 
-// triangleAreaAtStart of cpu-reference/energy_budget.cpp: triangle t's area at the step's start.
+// triangleAreaAtStart of cpu-reference/solver/energy_budget.cpp: triangle t's area at the step's start.
 float triangleAreaAtStart(uint t) {
   const vec3 a0 = positionAtStepStart(triangles[3u * t]);
   return 0.5 * length(cross(positionAtStepStart(triangles[3u * t + 1u]) - a0,
                             positionAtStepStart(triangles[3u * t + 2u]) - a0));
 }
 
-// triangleTensionOf of cpu-reference/implicit_euler.cpp: the physical model's tension of a triangle at `area`,
+// triangleTensionOf of cpu-reference/solver/implicit_euler.cpp: the physical model's tension of a triangle at `area`,
 // Gibbs's law in its own area from the tension and area it had at the step's start, and its slope dT/dA.
 struct TriangleTension {
   float tension, slope;
@@ -78,7 +78,7 @@ TriangleTension triangleTensionOf(float startTension, float startArea, float are
   return TriangleTension(follows ? min(max(unclamped, lowest), highest) : startTension, elastic ? gibbs / area : 0.0);
 }
 
-// triangleTensionEnergy of cpu-reference/implicit_euler.cpp (there in double).
+// triangleTensionEnergy of cpu-reference/solver/implicit_euler.cpp (there in double).
 float triangleTensionEnergy(float startTension, float startArea, float area) {
   const float gibbs = params.gibbsElasticity, t0 = startTension, a0 = startArea;
   if (!(gibbs > 0.0 && a0 > 0.0 && area > 0.0)) return t0 * area;
@@ -90,7 +90,7 @@ float triangleTensionEnergy(float startTension, float startArea, float area) {
   return t0 * a0 * reached + gibbs * a0 * (reached * lnReached - reached + 1.0) + held * (area - a0 * reached);
 }
 
-// wirePoint of cpu-reference/wire_frame.cpp.
+// wirePoint of cpu-reference/model/wire_frame.cpp.
 vec3 wirePoint(StepUniformsBlock u, float param) {
   const float pi = 3.14159265358979323846;
   if (u.wireKind == 0 && param < 1.0) return u.wireCenter.xyz + (2.0 * param - 1.0) * u.wireHalfWidth * u.wireAxis.xyz;
@@ -98,14 +98,14 @@ vec3 wirePoint(StepUniformsBlock u, float param) {
   return u.wireCenter.xyz + u.wireHalfWidth * cos(phi) * u.wireAxis.xyz + u.wireDepth * sin(phi) * u.wireDown.xyz;
 }
 
-// drainageDirection of cpu-reference/stages.cpp, Eq. (14).
+// drainageDirection of cpu-reference/stages/stages.cpp, Eq. (14).
 float drainageDirection(vec3 xi, vec3 xj, vec3 g) {
   const vec3 d = xj - xi;
   const float along = dot(d, g);
   return along > 0.0 ? along / (length(d) * length(g)) : 0.0;
 }
 
-// boylePressure of cpu-reference/stages.cpp, Eq. (11).
+// boylePressure of cpu-reference/stages/stages.cpp, Eq. (11).
 float boylePressure(float referenceVolume, float currentVolume) {
   return currentVolume > 0.0 ? params.pressureCoefficient * referenceVolume / currentVolume
                              : params.pressureCoefficient;

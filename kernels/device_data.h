@@ -1,6 +1,6 @@
 // The data of the Vulkan stepper: the storage buffers of descriptor set 0, one line each in binding order, and the
 // per-particle arrays of State they hold. The one list (an X-macro file like kernel_list.h, read as C++ and as
-// GLSL): it makes State's arrays (cpu-reference/state.h), the binding numbers (GB_BINDING_<NAME>, shared_step.h),
+// GLSL): it makes State's arrays (cpu-reference/model/state.h), the binding numbers (GB_BINDING_<NAME>, shared_step.h),
 // the GLSL declarations (common.glsl) and the Vulkan stepper's buffers, uploads and read-backs
 // (host/vulkan_stepper.cpp). An includer defines the three macros, includes this file and undefines them.
 //

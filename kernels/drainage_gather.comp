@@ -1,5 +1,5 @@
 #version 450
-// drainageGather (cpu-reference/stages.cpp): drainage pass 2, Eq. (15) as a gather; conserves liquid.
+// drainageGather (cpu-reference/stages/stages.cpp): drainage pass 2, Eq. (15) as a gather; conserves liquid.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 

@@ -1,5 +1,5 @@
 #version 450
-// drainageOutflow (cpu-reference/stages.cpp): drainage pass 1, the liquid particle i sends downhill
+// drainageOutflow (cpu-reference/stages/stages.cpp): drainage pass 1, the liquid particle i sends downhill
 // (Eqs. 14-15) and the sum of its d_dir.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"

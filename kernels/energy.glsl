@@ -1,5 +1,5 @@
-// The implicit step's energy budget (cpu-reference/energy_budget.h): each function has its C++ twin's name and float
-// operations.
+// The implicit step's energy budget (cpu-reference/solver/energy_budget.h): each function has its C++ twin's name and
+// float operations.
 
 // heldShares: particle i's share of the internal energy at the step's start and at its end, in one pass over its
 // one-ring: half of each spring (a third of each triangle) and half of each contact's penalty.

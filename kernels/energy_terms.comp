@@ -1,5 +1,5 @@
 #version 450
-// Stage energy_budget, pass 1 (cpu-reference/energy_budget.cpp, energyTerms): every particle's terms into half A
+// Stage energy_budget, pass 1 (cpu-reference/solver/energy_budget.cpp, energyTerms): every particle's terms into half A
 // of the budget's tree sum. Invocation 0 also keeps the bubble's volume before the step, which
 // the host reduced just before (in half A of the volume's sum with GB_REDUCE_VOLUME_IN_A).
 #extension GL_GOOGLE_include_directive : require

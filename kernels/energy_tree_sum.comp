@@ -1,5 +1,5 @@
 #version 450
-// Stage energy_budget, pass 2 (and external_drift's): one level of treeSum (cpu-reference/stages.cpp) over the
+// Stage energy_budget, pass 2 (and external_drift's): one level of treeSum (cpu-reference/stages/stages.cpp) over the
 // blocks of terms at once, out[k] = in[2k] + in[2k+1] (or in[2k] alone for the odd last element);
 // GB_REDUCE_ENERGY_IN_A: reads half A; GB_REDUCE_DRIFT_ONLY: sums only the drift's first DRIFT_TERMS blocks.
 #extension GL_GOOGLE_include_directive : require

@@ -1,4 +1,4 @@
-// The force functions of cpu-reference/stages.cpp that forces.comp and external_forces.comp share, each
+// The force functions of cpu-reference/stages/stages.cpp that forces.comp and external_forces.comp share, each
 // with the name and the float operations of its C++ twin. Include after common.glsl.
 
 // areaTensionForce: -sum_t T_t grad_i A_t over i's triangles (physical model).
@@ -58,7 +58,7 @@ float currentPressure(StepUniformsBlock u) {
   return boylePressure(u.referenceVolume, currentVolume());
 }
 
-// liquidMass (cpu-reference/film.h): the mass gravity pulls on, the particle's liquid.
+// liquidMass (cpu-reference/model/film.h): the mass gravity pulls on, the particle's liquid.
 float liquidMass(uint i) { return params.liquidDensity * liquid[i]; }
 
 // externalForce: gravity, and the air force, Eq. (9) open or Eqs. (10)-(11) closed.

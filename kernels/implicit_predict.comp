@@ -1,11 +1,11 @@
 #version 450
-// implicitPredict (cpu-reference/implicit_euler.cpp): keeps x_t, places the wire's particles on the wire
+// implicitPredict (cpu-reference/solver/implicit_euler.cpp): keeps x_t, places the wire's particles on the wire
 // frame at the end of the step, starts an interior particle from x_t + h v_t + h^2 a above the floor, a a closed
 // film's drift from external_drift's sums (in half A of the energy terms with GB_REDUCE_ENERGY_IN_A).
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
-// driftAcceleration of cpu-reference/implicit_euler.cpp: sum f / sum m, zero without mass.
+// driftAcceleration of cpu-reference/solver/implicit_euler.cpp: sum f / sum m, zero without mass.
 vec3 driftAcceleration(float mass, vec3 force) { return mass > 0.0 ? force / mass : vec3(0.0); }
 
 // CpuStepper::filmDrift's result: the drift from the sums that external_drift's tree sum left.

@@ -1,5 +1,5 @@
 #version 450
-// integrate (cpu-reference/stages.cpp): semi-implicit Euler, Eqs. (12)-(13); boundary particles
+// integrate (cpu-reference/stages/stages.cpp): semi-implicit Euler, Eqs. (12)-(13); boundary particles
 // are carried to the wire frame at the end of the substep.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"

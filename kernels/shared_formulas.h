@@ -33,10 +33,10 @@ GB_FORMULA float lowestTension(float surfaceTension) { return 2.0f * (kLowestGam
 GB_FORMULA float highestTension(float surfaceTension) { return 2.0f * (kHighestGammaFactor * surfaceTension); }
 
 // The largest move of a particle in one sweep of vertex block descent, in its shortest one-ring springs
-// (withinTrustRegion; cpu-reference/implicit_euler.cpp says why).
+// (withinTrustRegion; cpu-reference/solver/implicit_euler.cpp says why).
 GB_CONST float kTrustRegion = 0.25f;
 // A coarse-correction patch moves at most this many trust regions of its shortest spring: half a spring
-// (cpu-reference/coarse_correction.cpp says why).
+// (cpu-reference/solver/coarse_correction.cpp says why).
 GB_CONST float kPatchTrustScale = 2.0f;
 
 // Below this normal air speed (m/s) the air coupling fades out: still air only drags (airCoupling).

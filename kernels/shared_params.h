@@ -1,4 +1,4 @@
-// One definition of the model's parameter block, compiled as C++ (cpu-reference/params.h includes it)
+// One definition of the model's parameter block, compiled as C++ (cpu-reference/model/params.h includes it)
 // and as GLSL (every compute shader includes it). Every parameter of the paper (Table 2 and Sections 5-7)
 // in SI units, the paper's symbol in the comment; docs/model.md maps the paper's scale to SI.
 // Only 4-byte scalars, so the std430 layout is the C layout with no padding (checked by a test).

@@ -13,7 +13,7 @@ struct alignas(16) vec4 {
 using uint = uint32_t;
 #endif
 
-// StepUniforms of cpu-reference/stages.h, one per step of a submitted batch.
+// StepUniforms of cpu-reference/stages/stages.h, one per step of a submitted batch.
 struct StepUniformsBlock {
   vec4 leftPosition;  // wand tips at the start of the substep (Eq. 5)
   vec4 leftVelocity;
@@ -61,13 +61,13 @@ struct PushBlock {
 #define GB_REDUCE_AT_STEP_START 4u  // triangle_volume: the volume at the step's start (the energy budget's)
 #define GB_REDUCE_DRIFT_ONLY 8u     // energy_tree_sum: only external_drift's first GB_DRIFT_TERMS blocks
 
-// The energy budget's slack (cpu-reference/energy_budget.h says why this much), one value for both backends.
+// The energy budget's slack (cpu-reference/solver/energy_budget.h says why this much), one value for both backends.
 #define GB_ENERGY_BUDGET_TOLERANCE 1e-4
-// The energy budget's terms per particle (ParticleEnergy of cpu-reference/energy_budget.h): start, kinetic, held,
-// mass, momentum x, y, z, expected momentum x, y, z.
+// The energy budget's terms per particle (ParticleEnergy of cpu-reference/solver/energy_budget.h): start, kinetic,
+// held, mass, momentum x, y, z, expected momentum x, y, z.
 #define GB_ENERGY_TERMS 10
-// A closed film's drift terms per particle (externalDrift of cpu-reference/implicit_euler.h): mass, force x, y, z. They
-// use the first blocks of the energy terms' region, before the budget does.
+// A closed film's drift terms per particle (externalDrift of cpu-reference/solver/implicit_euler.h): mass, force x, y,
+// z. They use the first blocks of the energy terms' region, before the budget does.
 #define GB_DRIFT_TERMS 4
 
 // The reduce buffer (GB_BINDING_REDUCE) holds, one after the other, with T triangles, R patch-row entries, P patches

@@ -1,5 +1,5 @@
 #version 450
-// One level of treeSum (cpu-reference/stages.cpp): out[k] = in[2k] + in[2k+1] (or in[2k] alone for the
+// One level of treeSum (cpu-reference/stages/stages.cpp): out[k] = in[2k] + in[2k+1] (or in[2k] alone for the
 // odd last element), for k < ceil(n/2). The host dispatches levels until one value is left.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"

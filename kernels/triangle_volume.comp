@@ -1,5 +1,5 @@
 #version 450
-// triangleVolume (cpu-reference/stages.cpp) for every triangle, into the reduce buffer's half A: the leaves of
+// triangleVolume (cpu-reference/stages/stages.cpp) for every triangle, into the reduce buffer's half A: the leaves of
 // the volume's tree sum. GB_REDUCE_AT_STEP_START: at the step's start instead (triangleVolumeAtStart, the energy
 // budget).
 #extension GL_GOOGLE_include_directive : require

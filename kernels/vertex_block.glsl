@@ -1,4 +1,4 @@
-// The implicit step's per-particle block (objectiveBlock of cpu-reference/implicit_euler.cpp): the gradient and
+// The implicit step's per-particle block (objectiveBlock of cpu-reference/solver/implicit_euler.cpp): the gradient and
 // Hessian of the step's objective in x_i with every other particle fixed. Included by the kernels that solve
 // (vertex_block_descent) or gather (coarse_assemble) the blocks; each function has its C++ twin's name.
 

@@ -1,5 +1,5 @@
-// The implicit step's coarse correction (cpu-reference/coarse_correction.h): its patches, and what it adds to the
-// sweeps on a film-wide mode.
+// The implicit step's coarse correction (cpu-reference/solver/coarse_correction.h): its patches, and what it adds to
+// the sweeps on a film-wide mode.
 #include "coarse_correction.h"
 
 #include <gtest/gtest.h>

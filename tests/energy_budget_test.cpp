@@ -1,5 +1,5 @@
-// The implicit step's energy budget (cpu-reference/energy_budget.h): its formulas, and a step that would give a film
-// energy nobody put in.
+// The implicit step's energy budget (cpu-reference/solver/energy_budget.h): its formulas, and a step that would give a
+// film energy nobody put in.
 #include "energy_budget.h"
 
 #include <gtest/gtest.h>

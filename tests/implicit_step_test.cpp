@@ -1,4 +1,4 @@
-// The implicit step (cpu-reference/implicit_euler.h): its colouring, its solver, and the film it drives at
+// The implicit step (cpu-reference/solver/implicit_euler.h): its colouring, its solver, and the film it drives at
 // real arm speeds, under random abuse, and against the explicit reference integrator.
 #include <gtest/gtest.h>
 

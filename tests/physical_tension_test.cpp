@@ -1,5 +1,6 @@
 // The physical tension model (tensionModel 1) against soap-film physics (docs/validation.md). Each experiment
-// (cpu-reference/experiments.cpp) measures one number; the bounds are the required ones unless the comment says why.
+// (cpu-reference/simulation/experiments.cpp) measures one number; the bounds are the required ones unless the comment
+// says why.
 #include <gtest/gtest.h>
 
 #include <cmath>

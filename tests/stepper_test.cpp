@@ -1,4 +1,4 @@
-// The stage table (cpu-reference/stepper.cpp): its barriers against what each stage reads and writes of the
+// The stage table (cpu-reference/stages/stepper.cpp): its barriers against what each stage reads and writes of the
 // device's buffers (kernels/device_data.h).
 #include "stepper.h"
 

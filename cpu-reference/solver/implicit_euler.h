@@ -46,7 +46,7 @@ Bubble bubbleOf(float volume, float pressure);
 // overshoot; it changes how fast the sweeps converge, not what they converge to.
 float breathingStiffness(const Bubble& bubble, float area);
 
-// The terms of the objective that the solvers of solver_comparison.h also build their Hessian from:
+// The terms of the objective that the solvers of research/solver_comparison.h also build their Hessian from:
 // the paper's spring between i and j has stiffness (E_i + E_j) / 2 (N/m), and its Hessian k dir dir^T +
 // k (1 - l0/len) (I - dir dir^T) keeps the transverse part only while stretched (projected onto the positive
 // semi-definite cone); a triangle of the physical model pulls with the mean 2 gamma of its corners (N/m).

@@ -10,9 +10,9 @@
 //   (P^T H P) d = -P^T g,   x_i += d_patch(i),
 //
 // H the projected Hessian of the step's objective (objectiveBlock's diagonal blocks and the springs' and
-// triangles' off-diagonal blocks, as Newton-PCG in solver_comparison.h uses them), g its gradient at the iterate.
-// Springs inside a patch cancel (a rigid move does not stretch them), so the patch system holds the inertia and
-// the springs across patch borders: it is small (329 patches, 987 unknowns on the default film) and is solved by
+// triangles' off-diagonal blocks, as Newton-PCG in research/solver_comparison.h uses them), g its gradient at the
+// iterate. Springs inside a patch cancel (a rigid move does not stretch them), so the patch system holds the inertia
+// and the springs across patch borders: it is small (329 patches, 987 unknowns on the default film) and is solved by
 // block-Jacobi preconditioned conjugate gradients. The correction leaves jumps at the patch borders, which the
 // sweeps after it smooth away.
 

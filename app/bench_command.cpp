@@ -36,7 +36,7 @@ double streamTriadGBs() {
   return 24.0 * static_cast<double>(n) / best / 1e9;
 }
 
-// What one particle-step asks of memory and the FPU, counted from the code of cpu-reference/stages.cpp
+// What one particle-step asks of memory and the FPU, counted from the code of cpu-reference/stages/stages.cpp
 // (the shaders are line-by-line ports). s = springs per particle (2 S / N), t = triangles per particle
 // (3 T / N). Bytes are those the code loads and stores, whether or not a cache serves them.
 struct Cost {

@@ -12,9 +12,9 @@ namespace gb {
 struct BenchOptions {
   std::vector<int> sizes = {10000, 25650, 100000, 1000000};  // particles
   std::vector<std::string> backends = {"cpu", "vulkan"};
-  int steps = 64;                                             // substeps timed per film (batches of 8)
+  int steps = 64;  // substeps timed per film (batches of 8)
   std::filesystem::path json = "bench.json";
-  std::string device;                                         // Vulkan device request
+  std::string device;  // Vulkan device request
 };
 
 int runBenchmark(const BenchOptions& options);

@@ -1,5 +1,5 @@
 #pragma once
-// Ctrl-C (SIGINT) and SIGTERM end a run cleanly instead of killing it (issue 14): while an InterruptCatcher
+// Ctrl-C (SIGINT) and SIGTERM end a run cleanly instead of killing it: while an InterruptCatcher
 // lives, the first signal only sets a flag that the run loop reads between frames, so the frame in flight
 // finishes, stats.json is written with status "interrupted" and the video is closed playable. The handler is
 // one-shot: a second Ctrl-C kills the program at once, for a run that hangs.

@@ -1,5 +1,5 @@
 #pragma once
-// How a run writes its files so that nothing is lost without a word (issue 14): a whole file (stats.json, a PLY,
+// How a run writes its files so that nothing is lost without a word: a whole file (stats.json, a PLY,
 // bench --json) is written beside its name as NAME.partial, flushed, closed, checked and renamed over NAME, so a
 // reader sees the old file or the new one, never half of one; a file that grows row by row as the run goes
 // (stats.csv, wands.csv) checks every row. Every failure is an OutputError naming the file and the reason

@@ -13,7 +13,7 @@ namespace gb {
 
 struct PacerOptions {
   double frameTime = 0.02;      // h (s)
-  int sweeps = 10;              // the solver's sweeps when there is time (Params::solverIterations)
+  int sweeps = 6;               // the solver's sweeps when there is time (Params::solverSweeps' default)
   int minSweeps = 3;            // the floor: fewer sweeps leave the film visibly soft (docs/model.md)
   int maxCatchUp = 4;           // frames simulated at most per loop iteration before the lag is dropped
   double minRenderScale = 1.0;  // the smallest image, as a fraction of the window's width and height (1: fixed)

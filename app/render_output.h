@@ -36,7 +36,7 @@ void addRenderOptions(CLI::App& command, RenderOutputOptions& options);
 
 // The MSAA samples per pixel to draw with on `device` (its VulkanContext type, "CPU" for lavapipe): --samples when
 // given; else the image's own (4), except on a CPU driver, which draws without multisampling. Lavapipe offers 1 or 4
-// samples, and four cost the README's main job 1.6 times the wall time (docs/performance.md, session 11) for edges
+// samples, and four cost the README's main job 1.6 times the wall time for edges
 // that differ only along the string and the wands at 960x540; a live show there is also scaled up from a smaller
 // image, so its edges are soft whatever the samples.
 int samplesFor(const RenderOutputOptions& options, const std::string& deviceType);

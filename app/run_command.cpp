@@ -264,7 +264,7 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
   int exitCode = 0;
   long done = 0;
   const auto runStart = std::chrono::steady_clock::now();
-  RealTimePacer pacer({o.params.frameTime, sim.solverIterations(), 3, 1}, runStart);
+  RealTimePacer pacer({o.params.frameTime, sim.solverSweeps(), 3, 1}, runStart);
   for (long frame = 1; frame <= frames; ++frame) {
     if (const int signal = InterruptCatcher::signal()) {
       status = "interrupted";
@@ -278,7 +278,7 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
     if (o.realtime) {  // the frame is shown when the wall clock reaches it: wait when ahead
       std::this_thread::sleep_until(runStart + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                                    std::chrono::duration<double>(t - o.params.frameTime)));
-      sim.setSolverIterations(pacer.sweeps());
+      sim.setSolverSweeps(pacer.sweeps());
     }
     const WandFrame wands = input.at(t);  // a live camera may wait here for its next frame
     passOnMessages(input, o.progress);

@@ -1,7 +1,7 @@
 #pragma once
 // A picture of the film for people: each triangle filled with its corners' thickness colour (blue thin,
 // red thick, as the paper's Figure 8), seen from the front (looking along -z, y up) with a depth test,
-// written as PNG. Droplets are drawn as white dots. Not the renderer (issue 5): a quick honest look.
+// written as PNG. Droplets are drawn as white dots. Not the renderer (host/renderer.h): a quick honest look.
 
 #include <filesystem>
 

@@ -250,8 +250,8 @@ int runView(ViewOptions o) try {
   auto lastReopen = std::chrono::steady_clock::now();
   const auto start = std::chrono::steady_clock::now();
   const double smallestScale = renderScaleFloor(o.minRenderScale, image.width, image.height);
-  RealTimePacer pacer(
-      {run.params.frameTime, sim->solverIterations(), o.minSweeps, 4, o.fixedStep ? 1.0 : smallestScale}, start);
+  RealTimePacer pacer({run.params.frameTime, sim->solverSweeps(), o.minSweeps, 4, o.fixedStep ? 1.0 : smallestScale},
+                      start);
   auto lastTitle = start;
   auto lastPresented = start;
   FilmShownTally filmShown;
@@ -355,7 +355,7 @@ int runView(ViewOptions o) try {
         pacer.sleepUntilDue();
         due = pacer.framesDue();
       }
-      sim->setSolverIterations(o.fixedStep ? 0 : pacer.sweeps());
+      sim->setSolverSweeps(o.fixedStep ? 0 : pacer.sweeps());
       const auto simStart = std::chrono::steady_clock::now();
       // The frames due in steps of at most longestStep frames: a long step costs what a short one does, so a
       // machine that is behind halves its simulation work before the solver's sweeps go down.
@@ -377,7 +377,7 @@ int runView(ViewOptions o) try {
     const auto now = std::chrono::steady_clock::now();
     pacer.record(due, simMs, std::chrono::duration<double, std::milli>(now - renderStart).count());
     if (filmGoneSince < 0 && !paused)
-      filmShown.add(due, sim->solverIterations(), std::chrono::duration<double>(now - lastPresented).count());
+      filmShown.add(due, sim->solverSweeps(), std::chrono::duration<double>(now - lastPresented).count());
     lastPresented = now;
     if (now - lastTitle > std::chrono::seconds(1)) {  // the show's figures in the title bar, once a second
       window.setTitle(liveFigures(pacer, shown, start, now));

@@ -7,7 +7,7 @@
 // bubble burst), the wands dip again after --auto-dip seconds, so a show can run for hours; events and the
 // bubble's state go out as OSC with --osc.
 //
-// A show never ends on its own (issue 14): an unstable simulation is reported (console, OSC event
+// A show never ends on its own: an unstable simulation is reported (console, OSC event
 // simulation_unstable) and a new film dipped at once; an input that ends or is lost leaves the wands at rest
 // (OSC input_lost) and a Kinect is looked for again every 2 s (input_back); only Esc/Q, the window closing or
 // --frames end it.

@@ -4,8 +4,8 @@
 // BM_DefaultPerformance/F: the search after frame F of the README's default performance (40: the bag being drawn,
 //   80: mid-stroke, the bag at its fastest, 110: the free bubble after the pinch-off), with the contact list that
 //   frame left as the history.
-// BM_FlatFilm/N: a film of N particles hanging still on the default loop after one frame (1,000,000: issue 12's
-//   largest size), where every candidate the cells hold is an in-plane neighbour.
+// BM_FlatFilm/N: a film of N particles hanging still on the default loop after one frame (1,000,000: the largest
+//   size docs/performance.md measures), where every candidate the cells hold is an in-plane neighbour.
 // Counters: pairs listed, particles, and ns per particle.
 #include <benchmark/benchmark.h>
 

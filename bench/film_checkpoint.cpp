@@ -10,7 +10,7 @@ namespace gb {
 
 namespace {
 
-constexpr uint64_t kMagic = 0x676266696c6d3032;  // "gbfilm02": the triangle CSR holds corners, not triangles
+constexpr uint64_t kMagic = 0x676266696c6d3033;  // "gbfilm03": the state in device_data.h's order
 
 template <class T>
 struct IsVector : std::false_type {};
@@ -20,17 +20,9 @@ struct IsVector<std::vector<T>> : std::true_type {};
 // Visits every field the checkpoint keeps, in file order, with the same visitor for writing and reading.
 template <class Visit, class F>
 void forEachField(F& c, Visit&& visit) {
-  auto& s = c.film.state;
-  for (auto* a :
-       {&s.position, &s.velocity, &s.force, &s.normal, &s.airInflow, &s.airFlow, &s.airFlowNext, &s.previousPosition}) {
-    visit(a->x);
-    visit(a->y);
-    visit(a->z);
-  }
-  for (auto* a : {&s.mass, &s.liquid, &s.voronoiArea, &s.thickness, &s.elasticity, &s.lifetime, &s.drainOutflow,
-                  &s.drainWeight, &s.frameParam})
-    visit(*a);
-  visit(s.alive);
+  forEachParticleArray(c.film.state, [&](auto& array, const ParticleArrayInfo&) {
+    forEachComponent(array, [&](auto& values, int) { visit(values); });
+  });
   auto& t = c.film.topology;
   for (auto* a : {&t.triangles, &t.springEnds, &t.springOffset, &t.springIndex, &t.springNeighbour, &t.triangleOffset,
                   &t.triangleCorner, &t.boundary})

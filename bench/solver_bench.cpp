@@ -1,6 +1,6 @@
-// The implicit step's solver, chosen by measurement (issue 12; docs/model.md "Integrators"): vertex block
+// The implicit step's solver, chosen by measurement (docs/model.md "Why vertex block descent"): vertex block
 // descent against Chebyshev-accelerated VBD, Chebyshev-accelerated block Jacobi and Newton with matrix-free
-// preconditioned conjugate gradients (cpu-reference/solver_comparison.h), on one step of two films: the default
+// preconditioned conjugate gradients (research/solver_comparison.h), on one step of two films: the default
 // film mid-stroke (the default run at 1.5 s, wands moving at 0.6 m/s) and fig11b's 25,650-particle ring film
 // at 1.5 s. For each candidate it prints the objective above the best one found (J) and the gradient norm (N)
 // after 1, 2, 4, 6, 10, 20 and 50 iterations, and the CPU milliseconds per iteration (best of seven runs of
@@ -123,7 +123,7 @@ void vulkanVbd(const Case& c, const Snapshot& snap) {
     Film film = snap.film;
     stepper.load(c.params, film);
     StepUniforms u = snap.uniforms;
-    u.solverIterations = sweeps;
+    u.solverSweeps = sweeps;
     stepper.run(std::span(&u, 1));  // warm-up
     double best = 1e30;
     for (int run = 0; run < 3; ++run) {

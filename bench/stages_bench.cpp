@@ -10,10 +10,10 @@
 #include <map>
 #include <memory>
 
+#include "bench_device.h"
 #include "cpu_stepper.h"
 #include "scripted_gestures.h"
 #include "simulation.h"
-#include "bench_device.h"
 #include "vulkan_context.h"
 #include "vulkan_stepper.h"
 
@@ -51,8 +51,8 @@ Fixture* fixture(BackendKind backend, int particles) {
                                              std::move(stepper));
     for (int f = 1; f <= 3; ++f) slot->sim->advanceFrame(gestureAt(Gesture::Straight, g, f * 0.002));
     const float dt = slot->params.frameTime / static_cast<float>(slot->sim->substepsPerFrame());
-    slot->uniforms = slot->sim->uniformsFor(gestureAt(Gesture::Straight, g, 0.006),
-                                            gestureAt(Gesture::Straight, g, 0.006 + dt), dt);
+    slot->uniforms =
+        slot->sim->uniformsFor(gestureAt(Gesture::Straight, g, 0.006), gestureAt(Gesture::Straight, g, 0.006 + dt), dt);
   }
   return slot.get();
 }

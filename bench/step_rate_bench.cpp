@@ -1,5 +1,5 @@
-// Implicit frames per second of one film on the CPU backend (issue 12's targets for the physical tension model
-// and for 1,000,000 particles): the straight stroke is started at once and run for a few frames so the wands
+// Implicit frames per second of one film on the CPU backend (docs/performance.md's figures for the physical tension
+// model and for 1,000,000 particles): the straight stroke is started at once and run for a few frames so the wands
 // move, then the program times (1) the stepper alone, one implicit step of h = 0.02 s at a time on the moving
 // wands' uniforms, and (2) whole frames (Simulation::advanceFrame: the step plus the per-frame contact search,
 // film growth and burst checks). Per-stage milliseconds of the stepper come from its host timer. Each part also
@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
     else if (flag == "--frames")
       frames = value;
     else if (flag == "--sweeps")
-      p.solverIterations = value;
+      p.solverSweeps = value;
     else if (flag == "--coarse")
       p.coarseIterations = value;
     else if (flag == "--budget")
@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
   auto t0 = Clock::now();
   Simulation sim(p, WandTool{}, wandsAt(0));
   std::printf("%zu particles, %s tension, %d sweeps: film made in %.1f s\n", sim.film().state.size(),
-              p.tensionModel ? "physical" : "springs", p.solverIterations, secondsSince(t0));
+              p.tensionModel ? "physical" : "springs", p.solverSweeps, secondsSince(t0));
   int frame = 0;
   while (frame < 5) sim.advanceFrame(wandsAt(++frame));  // the wands are moving
 

@@ -1,4 +1,4 @@
-// Stress command for the implicit step (issue 12): random wand motion at h = 0.02 s for many frames on a large
+// Stress command for the implicit step: random wand motion at h = 0.02 s for many frames on a large
 // film, with pokes, pinch-offs and re-dips, as tests/implicit_step_test.cpp's RandomAbuse does at 1,000
 // particles. It checks each frame for an instability stop or a non-finite particle, and over every quiet rest
 // of the wands (no burst, no event, the wire's loop not swinging; frames 10-49 of a rest, after the pushed air
@@ -15,9 +15,9 @@
 //                                                and pressure are found again, so the run is close to, not equal to,
 //                                                the uninterrupted one)
 //   --trace-from F --trace-to F                  prints each frame's energy terms and what changed them (EnergyLedger)
-//   --param NAME=VALUE                           changes a parameter (e.g. solverIterations=30, collisionStiffness=0,
-//                                                energyBudget=0, energyNeutralContraction=1: docs/performance.md,
-//                                                session 14, has what each does to the runs)
+//   --param NAME=VALUE                           changes a parameter (e.g. solverSweeps=30, collisionStiffness=0,
+//                                                energyBudget=0, energyNeutralContraction=1: docs/model.md
+//                                                "Energy budget" says what each does)
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -128,7 +128,7 @@ double tensionEnergy(const Params& p, const Film& film, const std::vector<float>
   for (size_t k = 0; k < topo.springCount(); ++k) {
     const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
     const double stretch = (s.position.get(a) - s.position.get(b)).cast<double>().norm() - rest[k];
-    sum += 0.25 * (elasticity[a] + elasticity[b]) * stretch * stretch;
+    sum += springEnergyOf<double>(0.5f * (elasticity[a] + elasticity[b]), stretch);
   }
   return sum;
 }
@@ -279,8 +279,8 @@ class EnergyLedger {
                 nearOnSheet);
   }
   // Boyle's excess pressure on a closed film (boyleForce: the excess times the volume's gradient, whose sum over a
-  // closed film is zero), against what the Voronoi area along the vertex normal, the force until session 16, would
-  // give. Prints the net force of each and the power each does at this frame's velocities (W).
+  // closed film is zero), against what the Voronoi area along the vertex normal, the smooth film's approximation of it,
+  // would give. Prints the net force of each and the power each does at this frame's velocities (W).
   static void printBoyleMismatch(Simulation& sim) {
     const Film& film = sim.film();
     const State& s = film.state;

@@ -30,7 +30,9 @@ std::unique_ptr<Stepper> makeStepper(Backend backend, const std::string& device,
       return std::make_unique<CpuStepper>();
     }
     auto stepper = std::make_unique<VulkanStepper>(std::move(context));
-    const char* why = backend == Backend::Vulkan ? "" : device.empty() ? " (auto: a Vulkan GPU exists)" : " (auto: the requested device)";
+    const char* why = backend == Backend::Vulkan ? ""
+                      : device.empty()           ? " (auto: a Vulkan GPU exists)"
+                                                 : " (auto: the requested device)";
     report = "backend: " + stepper->name() + why;
     return stepper;
   } catch (const VulkanUnavailable& e) {

@@ -54,11 +54,11 @@ void DeviceBuffer::copy(vk::Buffer from, vk::Buffer to, vk::DeviceSize bytes, vk
 }
 
 void DeviceBuffer::recordCopyFrom(const vk::raii::CommandBuffer& commands, const DeviceBuffer& from,
-                                  vk::DeviceSize bytes, vk::DeviceSize offset) const {
+                                  vk::DeviceSize fromOffset, vk::DeviceSize bytes, vk::DeviceSize offset) const {
   if (bytes == 0) return;
-  if (bytes > from.size_ || offset + bytes > size_)
+  if (fromOffset + bytes > from.size_ || offset + bytes > size_)
     throw std::out_of_range("DeviceBuffer::recordCopyFrom past the end");
-  commands.copyBuffer(from.handle(), handle(), vk::BufferCopy(0, offset, bytes));
+  commands.copyBuffer(from.handle(), handle(), vk::BufferCopy(fromOffset, offset, bytes));
 }
 
 void DeviceBuffer::write(const void* source, vk::DeviceSize bytes, vk::DeviceSize offset) {

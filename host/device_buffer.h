@@ -21,10 +21,10 @@ class DeviceBuffer {
   void write(const void* source, vk::DeviceSize bytes, vk::DeviceSize offset = 0);
   void read(void* destination, vk::DeviceSize bytes, vk::DeviceSize offset = 0) const;
 
-  // Records a copy of `bytes` from the start of `from` to `offset` in this buffer, for a batch of copies in one
+  // Records a copy of `bytes` from `fromOffset` in `from` to `offset` in this buffer, for a batch of copies in one
   // submission (the caller submits and waits before reading).
-  void recordCopyFrom(const vk::raii::CommandBuffer& commands, const DeviceBuffer& from, vk::DeviceSize bytes,
-                      vk::DeviceSize offset) const;
+  void recordCopyFrom(const vk::raii::CommandBuffer& commands, const DeviceBuffer& from, vk::DeviceSize fromOffset,
+                      vk::DeviceSize bytes, vk::DeviceSize offset) const;
 
   [[nodiscard]] vk::Buffer handle() const { return *buffer_; }
   [[nodiscard]] vk::DeviceSize size() const { return size_; }

@@ -215,11 +215,11 @@ std::vector<float> buildProps(const WireFrame* frame, const Film* film) {
   std::vector<Vec3> loop;
   constexpr int segments = 96;
   for (int k = 0; k <= segments; ++k)
-    loop.push_back(framePoint(*frame, frame->parameterEnd() * static_cast<float>(k) / segments));
+    loop.push_back(wirePoint(*frame, frame->parameterEnd() * static_cast<float>(k) / segments));
   if (frame->kind == ToolKind::TwoWands) {
     addTube(mesh, loop, 0.004f, Vec3(0.85f, 0.85f, 0.8f));
-    addStick(mesh, framePoint(*frame, 0.0f), -frame->axis);
-    addStick(mesh, framePoint(*frame, 1.0f), frame->axis);
+    addStick(mesh, wirePoint(*frame, 0.0f), -frame->axis);
+    addStick(mesh, wirePoint(*frame, 1.0f), frame->axis);
   } else {
     addTube(mesh, loop, 0.008f, Vec3(0.7f, 0.7f, 0.75f));
     const Vec3 bottom = frame->center + frame->depth * frame->down;

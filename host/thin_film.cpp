@@ -39,7 +39,8 @@ Rgb3 thinFilmXyz(double filmIndex, double thickness, double cosIncidence) {
     const double nm = spectral::kCmfFirstNm + spectral::kCmfStepNm * i;
     const double light = spectral::d65(nm);
     const double r = airyReflectance(filmIndex, thickness, nm * 1e-9, cosIncidence);
-    for (int c = 0; c < 3; ++c) xyz[static_cast<size_t>(c)] += r * light * spectral::kCie1931[static_cast<size_t>(i)][static_cast<size_t>(c)];
+    for (int c = 0; c < 3; ++c)
+      xyz[static_cast<size_t>(c)] += r * light * spectral::kCie1931[static_cast<size_t>(i)][static_cast<size_t>(c)];
     white += light * spectral::kCie1931[static_cast<size_t>(i)][1];
   }
   for (double& v : xyz) v /= white;
@@ -48,12 +49,14 @@ Rgb3 thinFilmXyz(double filmIndex, double thickness, double cosIncidence) {
 
 // IEC 61966-2-1 (sRGB, D65 white) matrices.
 Rgb3 xyzToLinearSrgb(const Rgb3& v) {
-  return {3.2404542 * v[0] - 1.5371385 * v[1] - 0.4985314 * v[2], -0.9692660 * v[0] + 1.8760108 * v[1] + 0.0415560 * v[2],
+  return {3.2404542 * v[0] - 1.5371385 * v[1] - 0.4985314 * v[2],
+          -0.9692660 * v[0] + 1.8760108 * v[1] + 0.0415560 * v[2],
           0.0556434 * v[0] - 0.2040259 * v[1] + 1.0572252 * v[2]};
 }
 
 Rgb3 linearSrgbToXyz(const Rgb3& c) {
-  return {0.4124564 * c[0] + 0.3575761 * c[1] + 0.1804375 * c[2], 0.2126729 * c[0] + 0.7151522 * c[1] + 0.0721750 * c[2],
+  return {0.4124564 * c[0] + 0.3575761 * c[1] + 0.1804375 * c[2],
+          0.2126729 * c[0] + 0.7151522 * c[1] + 0.0721750 * c[2],
           0.0193339 * c[0] + 0.1191920 * c[1] + 0.9503041 * c[2]};
 }
 

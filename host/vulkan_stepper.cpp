@@ -16,11 +16,12 @@ namespace gb {
 using gpu::PushBlock;
 using gpu::StepUniformsBlock;
 using kernels::Kernel;
+using enum gpu::Binding;
 
 // The shared layouts are what the shaders expect (kernels/shared_step.h): sizes and the offsets std430
 // gives the same declarations.
 static_assert(sizeof(StepUniformsBlock) == 176 && offsetof(StepUniformsBlock, dt) == 128 &&
-              offsetof(StepUniformsBlock, frameKind) == 156 && offsetof(StepUniformsBlock, closed) == 160);
+              offsetof(StepUniformsBlock, wireKind) == 156 && offsetof(StepUniformsBlock, closed) == 160);
 static_assert(sizeof(PushBlock) == 32);
 static_assert(alignof(Params) == 4 && sizeof(Params) % 4 == 0,
               "Params must stay a block of 4-byte scalars, whose std430 layout is the C layout");
@@ -35,21 +36,21 @@ StepUniformsBlock toBlock(const StepUniforms& u) {
   b.leftVelocity = toVec4(u.wands.leftVelocity);
   b.rightPosition = toVec4(u.wands.rightPosition);
   b.rightVelocity = toVec4(u.wands.rightVelocity);
-  b.frameCenter = toVec4(u.frameNext.center);
-  b.frameAxis = toVec4(u.frameNext.axis);
-  b.frameDown = toVec4(u.frameNext.down);
+  b.wireCenter = toVec4(u.wireNext.center);
+  b.wireAxis = toVec4(u.wireNext.axis);
+  b.wireDown = toVec4(u.wireNext.down);
   b.volumeOrigin = toVec4(u.volumeOrigin);
   b.dt = u.dt;
   b.leftInflowWeight = u.leftInflowWeight;
   b.airVolume = u.airVolume;
   b.wandAlignment = u.wandAlignment;
-  b.frameHalfWidth = u.frameNext.halfWidth;
-  b.frameDepth = u.frameNext.depth;
+  b.wireHalfWidth = u.wireNext.halfWidth;
+  b.wireDepth = u.wireNext.depth;
   b.referenceVolume = u.referenceVolume;
-  b.frameKind = static_cast<int>(u.frameNext.kind);
+  b.wireKind = static_cast<int>(u.wireNext.kind);
   b.closed = u.closed;
   b.drainageDt = u.drainageDt;
-  b.frameArea = u.frameArea;
+  b.wireArea = u.wireArea;
   return b;
 }
 
@@ -75,37 +76,13 @@ void writeVector(DeviceBuffer& buffer, const std::vector<T>& values) {
   buffer.write(values.data(), values.size() * sizeof(T));
 }
 
-void writeVec3(DeviceBuffer& buffer, const Vec3Array& a) {
-  const size_t bytes = a.size() * sizeof(float);
-  buffer.write(a.x.data(), bytes, 0);
-  buffer.write(a.y.data(), bytes, bytes);
-  buffer.write(a.z.data(), bytes, 2 * bytes);
-}
-
-// Reads back, in turn, the parts a StateReadback copied into its host-cached buffer.
-class StagedReader {
- public:
-  explicit StagedReader(const DeviceBuffer& staged) : staged_(staged) {}
-  void vec3(Vec3Array& a) {
-    for (std::vector<float>* axis : {&a.x, &a.y, &a.z}) vector(*axis);
-  }
-  template <class T>
-  void vector(std::vector<T>& values) {
-    const vk::DeviceSize bytes = values.size() * sizeof(T);
-    staged_.read(values.data(), bytes, at_);
-    at_ += bytes;
-  }
-
- private:
-  const DeviceBuffer& staged_;
-  vk::DeviceSize at_ = 0;
-};
-
-// The drainage buffer holds the two per-particle arrays of the drainage passes one after the other.
-void writeDrainage(DeviceBuffer& buffer, const State& s) {
-  const size_t bytes = s.size() * sizeof(float);
-  buffer.write(s.drainOutflow.data(), bytes, 0);
-  buffer.write(s.drainWeight.data(), bytes, bytes);
+// A per-particle array of State into its buffer, from its first block on (device_data.h).
+template <class Array>
+void writeParticleArray(DeviceBuffer& buffer, const Array& array, const ParticleArrayInfo& info, size_t particles) {
+  const size_t bytes = particles * sizeof(float);  // float and uint32_t alike
+  forEachComponent(array, [&](const auto& values, int c) {
+    buffer.write(values.data(), bytes, static_cast<size_t>(info.block + c) * bytes);
+  });
 }
 
 // The solver's list buffer: colour order, then the patch lists (kernels/coarse.glsl); at least one entry.
@@ -114,18 +91,17 @@ size_t solverListEntries(const Topology& t) {
                                  t.patchRowOffset.size() + t.patchRow.size());
 }
 
-// The reduce buffer: the tree sum's two halves, the coarse correction's patch system (kernels/coarse.glsl), then
-// the energy budget's region (ENERGY_A in kernels/common.glsl), which starts at energyRegion.
-size_t energyRegion(const Topology& t) {
+// The reduce buffer's regions (shared_step.h): where the energy terms start for this mesh, and the whole size.
+uint32_t energyTermsAt(const Topology& t) {
   const size_t patches = t.patchOffset.empty() ? 0 : t.patchOffset.size() - 1;
-  return 2 * std::max<size_t>(t.triangleCount(), 1) + 9 * t.patchRow.size() + 21 * patches;
+  return gpu::reduceEnergyTermsAt(static_cast<uint32_t>(t.triangleCount()), static_cast<uint32_t>(t.patchRow.size()),
+                                  static_cast<uint32_t>(patches));
 }
-// The slots after the terms (kernels/common.glsl): the volume before the step, then the VelocityBudget's scale,
-// centre, shift and released energy.
-constexpr size_t kEnergyTerms = GB_ENERGY_TERMS, kBudgetSlots = 8, kEnergySlots = 1 + kBudgetSlots;
 size_t reduceFloats(const Topology& t, size_t particles) {
-  return energyRegion(t) + 2 * kEnergyTerms * particles + kEnergySlots;
+  return gpu::reduceEnergySlotsAt(energyTermsAt(t), static_cast<uint32_t>(particles)) + GB_ENERGY_SLOTS;
 }
+// The VelocityBudget's slots, GB_SLOT_SCALE to GB_SLOT_RELEASED.
+constexpr size_t kBudgetSlots = GB_SLOT_RELEASED - GB_SLOT_SCALE + 1;
 
 }  // namespace
 
@@ -176,8 +152,14 @@ struct VulkanStepper::Impl {
   }
 
   DeviceBuffer& buffer(int binding) { return buffers[static_cast<size_t>(binding)]; }
+  // The buffer that holds the array of `binding` now: the air transfer's Jacobi swap exchanges the two air buffers.
+  DeviceBuffer& holding(int binding) {
+    if (airParity == 1 && binding == GB_BINDING_AIR_FLOW) return buffer(GB_BINDING_AIR_FLOW_NEXT);
+    if (airParity == 1 && binding == GB_BINDING_AIR_FLOW_NEXT) return buffer(GB_BINDING_AIR_FLOW);
+    return buffer(binding);
+  }
   // The air buffer that currently holds the transferred air (the Jacobi front).
-  DeviceBuffer& airFront() { return buffer(airParity == 0 ? GB_BINDING_AIR_FLOW : GB_BINDING_AIR_FLOW_NEXT); }
+  DeviceBuffer& airFront() { return holding(GB_BINDING_AIR_FLOW); }
 
   void ensureStepCapacity(size_t count) {
     if (count <= stepsCapacity) return;
@@ -186,10 +168,12 @@ struct VulkanStepper::Impl {
     writeDescriptorSets();
   }
 
-  // The mesh: alive flags, wire flags, triangles, rest lengths, the CSR one-ring and the contacts. A load
-  // writes it with the state; a burst (updateTopology) writes only it.
-  void writeMesh(const std::vector<uint32_t>& alive, const Topology& t) {
-    writeVector(buffer(GB_BINDING_ALIVE), alive);
+  // The mesh: the arrays that travel with it (alive flags), wire flags, triangles, rest lengths, the CSR one-ring and
+  // the contacts. A load writes it with the state; a burst (updateTopology) writes only it.
+  void writeMesh(const State& s, const Topology& t) {
+    forEachParticleArray(s, [&](const auto& array, const ParticleArrayInfo& info) {
+      if (info.transfer == Transfer::WithMesh) writeParticleArray(buffer(info.binding), array, info, s.size());
+    });
     writeVector(buffer(GB_BINDING_BOUNDARY), t.boundary);
     writeVector(buffer(GB_BINDING_TRIANGLES), t.triangles);
     writeVector(buffer(GB_BINDING_REST_LENGTH), t.restLength);
@@ -200,24 +184,31 @@ struct VulkanStepper::Impl {
     writeVector(buffer(GB_BINDING_TRIANGLE_CORNER), t.triangleCorner);
     writeSolverLists(t);
     writeContacts(t);
-    energyBase = static_cast<uint32_t>(energyRegion(t));
+    energyBase = energyTermsAt(t);
     writeVelocityBudget({});  // no budget has run on this mesh yet
   }
 
   // The VelocityBudget implicit_velocity applies (ENERGY_VELOCITY_SCALE, ENERGY_CENTRE, ENERGY_SHIFT), as the energy
   // budget leaves it.
   [[nodiscard]] vk::DeviceSize velocityBudgetOffset() const {
-    return (energyBase + 2 * kEnergyTerms * particles + 1) * sizeof(float);
+    return (gpu::reduceEnergySlotsAt(energyBase, particles) + GB_SLOT_SCALE) * sizeof(float);
   }
   void writeVelocityBudget(const VelocityBudget& b) {
-    const std::array<float, kBudgetSlots> slots = {b.scale,     b.centre.x(), b.centre.y(), b.centre.z(),
-                                                   b.shift.x(), b.shift.y(),  b.shift.z(),  b.released};
+    std::array<float, kBudgetSlots> slots{};
+    slots[GB_SLOT_SCALE - GB_SLOT_SCALE] = b.scale;
+    for (int c = 0; c < 3; ++c) {
+      slots[GB_SLOT_CENTRE - GB_SLOT_SCALE + c] = b.centre[c];
+      slots[GB_SLOT_SHIFT - GB_SLOT_SCALE + c] = b.shift[c];
+    }
+    slots[GB_SLOT_RELEASED - GB_SLOT_SCALE] = b.released;
     buffer(GB_BINDING_REDUCE).write(slots.data(), sizeof slots, velocityBudgetOffset());
   }
   [[nodiscard]] VelocityBudget readVelocityBudget() {
     std::array<float, kBudgetSlots> slots{};
     buffer(GB_BINDING_REDUCE).read(slots.data(), sizeof slots, velocityBudgetOffset());
-    return {slots[0], Vec3(slots[1], slots[2], slots[3]), Vec3(slots[4], slots[5], slots[6]), slots[7]};
+    const auto at = [&](int slot) { return slots[static_cast<size_t>(slot - GB_SLOT_SCALE)]; };
+    return {at(GB_SLOT_SCALE), Vec3(at(GB_SLOT_CENTRE), at(GB_SLOT_CENTRE + 1), at(GB_SLOT_CENTRE + 2)),
+            Vec3(at(GB_SLOT_SHIFT), at(GB_SLOT_SHIFT + 1), at(GB_SLOT_SHIFT + 2)), at(GB_SLOT_RELEASED)};
   }
 
   // The implicit solver's colours and the coarse correction's patches (kernels/coarse.glsl), made with the mesh.
@@ -268,26 +259,29 @@ struct VulkanStepper::Impl {
     cb.dispatch(ceilDiv(count, workgroup), 1, 1);
   }
 
+  // Where the kernels that read the volume find it.
+  [[nodiscard]] uint32_t volumeFlag() const { return volumeInA ? GB_REDUCE_VOLUME_IN_A : 0u; }
+
   // The volume's tree sum, at the current positions or at the step's start (the energy budget); ends with a
   // barrier, and volumeInA says which half holds the result.
   void recordVolume(const vk::raii::CommandBuffer& cb, uint32_t stepIndex, bool atStepStart) {
-    dispatch(cb, Kernel::TriangleVolume, triangles, stepIndex, atStepStart ? 2u : 0u);
+    dispatch(cb, Kernel::TriangleVolume, triangles, stepIndex, atStepStart ? GB_REDUCE_AT_STEP_START : 0u);
     computeToComputeBarrier(cb);
     bool fromA = true;
     for (uint32_t n = triangles; n > 1; n = (n + 1) / 2) {  // the levels of treeSum
-      dispatch(cb, Kernel::TreeSum, n, stepIndex, fromA ? 1u : 0u);
+      dispatch(cb, Kernel::TreeSum, n, stepIndex, fromA ? GB_REDUCE_VOLUME_IN_A : 0u);
       computeToComputeBarrier(cb);
       fromA = !fromA;
     }
     volumeInA = fromA;
   }
 
-  // The levels of treeSum over the energy region's blocks of terms (flags 2: only the drift's first blocks); ends
+  // The levels of treeSum over the energy terms' blocks (GB_REDUCE_DRIFT_ONLY: only the drift's first blocks); ends
   // with a barrier. Returns whether the sums are in half A.
   bool recordEnergyTreeSum(const vk::raii::CommandBuffer& cb, uint32_t stepIndex, uint32_t flags) {
     bool fromA = true;
     for (uint32_t n = particles; n > 1; n = (n + 1) / 2) {
-      dispatch(cb, Kernel::EnergyTreeSum, n, stepIndex, (fromA ? 1u : 0u) | flags, energyBase);
+      dispatch(cb, Kernel::EnergyTreeSum, n, stepIndex, (fromA ? GB_REDUCE_ENERGY_IN_A : 0u) | flags, energyBase);
       computeToComputeBarrier(cb);
       fromA = !fromA;
     }
@@ -297,11 +291,12 @@ struct VulkanStepper::Impl {
   // Stage energy_budget: the terms, the volumes before and after for a closed film, the terms' tree sum, the factor.
   void recordEnergyBudget(const vk::raii::CommandBuffer& cb, const StepUniforms& u, uint32_t stepIndex) {
     if (u.closed) recordVolume(cb, stepIndex, true);  // energy_terms keeps it
-    dispatch(cb, Kernel::EnergyTerms, particles, stepIndex, volumeInA ? 1u : 0u, energyBase);
+    dispatch(cb, Kernel::EnergyTerms, particles, stepIndex, volumeInA ? GB_REDUCE_VOLUME_IN_A : 0u, energyBase);
     computeToComputeBarrier(cb);                       // the terms are written, the volume before is kept
     if (u.closed) recordVolume(cb, stepIndex, false);  // the volume after: the gas's change, the step's pressure
     const bool fromA = recordEnergyTreeSum(cb, stepIndex, 0);
-    dispatch(cb, Kernel::EnergyScale, 1, stepIndex, (fromA ? 1u : 0u) | (volumeInA ? 2u : 0u), energyBase);
+    dispatch(cb, Kernel::EnergyScale, 1, stepIndex,
+             (fromA ? GB_REDUCE_ENERGY_IN_A : 0u) | (volumeInA ? GB_REDUCE_VOLUME_IN_A : 0u), energyBase);
   }
 
   // Records one stage. Stages of several passes record their own barriers between the passes.
@@ -326,25 +321,25 @@ struct VulkanStepper::Impl {
         airParity = 1 - airParity;  // later dispatches see the new air as the front buffer
         break;
       case Stage::Forces:
-        dispatch(cb, Kernel::Forces, particles, stepIndex, volumeInA ? 1u : 0u);
+        dispatch(cb, Kernel::Forces, particles, stepIndex, volumeFlag());
         break;
       case Stage::Integrate:
         dispatch(cb, Kernel::Integrate, particles, stepIndex);
         break;
       case Stage::ExternalForces:
-        dispatch(cb, Kernel::ExternalForces, particles, stepIndex, volumeInA ? 1u : 0u);
+        dispatch(cb, Kernel::ExternalForces, particles, stepIndex, volumeFlag());
         break;
       case Stage::ExternalDrift:
         dispatch(cb, Kernel::ExternalDrift, particles, stepIndex, 0, energyBase);
         computeToComputeBarrier(cb);  // every term is written before the sum reads it
-        driftInA = recordEnergyTreeSum(cb, stepIndex, 2u);
+        driftInA = recordEnergyTreeSum(cb, stepIndex, GB_REDUCE_DRIFT_ONLY);
         break;
       case Stage::ImplicitPredict:
-        dispatch(cb, Kernel::ImplicitPredict, particles, stepIndex, driftInA ? 1u : 0u, energyBase);
+        dispatch(cb, Kernel::ImplicitPredict, particles, stepIndex, driftInA ? GB_REDUCE_ENERGY_IN_A : 0u, energyBase);
         break;
       case Stage::VertexBlockDescent: {
         const int coarseAfter = coarseSweepsBefore(params, u);
-        for (int sweep = 0; sweep < solverSweeps(params, u); ++sweep) {
+        for (int sweep = 0; sweep < sweepsThisStep(params, u); ++sweep) {
           if (sweep > 0) computeToComputeBarrier(cb);  // the volume and the next colours read the last positions
           if (sweep == coarseAfter) {
             recordStage(cb, Stage::CoarseCorrection, u, stepIndex);
@@ -354,8 +349,7 @@ struct VulkanStepper::Impl {
           for (size_t c = 0; c + 1 < colourOffset.size(); ++c) {
             if (c > 0) computeToComputeBarrier(cb);  // the next colour reads this one's positions
             const uint32_t first = colourOffset[c];
-            dispatch(cb, Kernel::VertexBlockDescent, colourOffset[c + 1] - first, stepIndex, volumeInA ? 1u : 0u,
-                     first);
+            dispatch(cb, Kernel::VertexBlockDescent, colourOffset[c + 1] - first, stepIndex, volumeFlag(), first);
           }
         }
         break;
@@ -363,7 +357,7 @@ struct VulkanStepper::Impl {
       case Stage::CoarseCorrection:
         if (patches == 0) break;  // the correction is off (no patches were made), or there is nothing to solve
         if (u.closed) recordStage(cb, Stage::Volume, u, stepIndex);  // this iterate's volume; ends with a barrier
-        dispatch(cb, Kernel::CoarseAssemble, patches, stepIndex, volumeInA ? 1u : 0u);
+        dispatch(cb, Kernel::CoarseAssemble, patches, stepIndex, volumeFlag());
         computeToComputeBarrier(cb);                      // the solve reads every patch's row
         dispatch(cb, Kernel::CoarseSolve, 1, stepIndex);  // one workgroup: its invocations share the patches
         computeToComputeBarrier(cb);                      // every particle reads its patch's solution
@@ -404,7 +398,7 @@ struct VulkanStepper::Impl {
 
   float readVolume() {
     float volume = 0.0f;
-    buffer(GB_BINDING_REDUCE).read(&volume, sizeof volume, volumeInA ? 0 : triangles * sizeof(float));
+    buffer(GB_BINDING_REDUCE).read(&volume, sizeof volume, volumeInA ? 0 : gpu::reduceHalfB(triangles) * sizeof(float));
     return volume;
   }
 };
@@ -431,15 +425,16 @@ void VulkanStepper::load(const Params& params, Film& film) {
   const size_t n = s.size();
   auto make = [&](int binding, size_t bytes) { m.buffer(binding) = DeviceBuffer(*m.ctx, bytes); };
   make(GB_BINDING_PARAMS, sizeof(Params));
-  for (int b : {GB_BINDING_POSITION, GB_BINDING_VELOCITY, GB_BINDING_FORCE, GB_BINDING_NORMAL, GB_BINDING_AIR_INFLOW,
-                GB_BINDING_AIR_FLOW, GB_BINDING_AIR_FLOW_NEXT})
-    make(b, 3 * n * sizeof(float));
-  for (int b :
-       {GB_BINDING_MASS, GB_BINDING_LIQUID, GB_BINDING_VORONOI_AREA, GB_BINDING_THICKNESS, GB_BINDING_ELASTICITY,
-        GB_BINDING_LIFETIME, GB_BINDING_FRAME_PARAM, GB_BINDING_ALIVE, GB_BINDING_BOUNDARY})
-    make(b, n * sizeof(float));
-  make(GB_BINDING_PREVIOUS_POSITION, 3 * n * sizeof(float));
-  make(GB_BINDING_DRAINAGE, 2 * n * sizeof(float));
+  // The per-particle buffers: as many blocks of n elements as the arrays of device_data.h they hold.
+  std::array<int, GB_BINDING_COUNT> blocks{};
+  forEachParticleArray(s, [&](const auto&, const ParticleArrayInfo& a) {
+    int& held = blocks[static_cast<size_t>(a.binding)];
+    held = std::max(held, a.block + a.components);
+  });
+  for (int b = 0; b < GB_BINDING_COUNT; ++b)
+    if (blocks[static_cast<size_t>(b)] > 0)
+      make(b, static_cast<size_t>(blocks[static_cast<size_t>(b)]) * n * sizeof(float));
+  make(GB_BINDING_BOUNDARY, t.boundary.size() * sizeof(uint32_t));
   make(GB_BINDING_COLOUR_ORDER, solverListEntries(t) * sizeof(uint32_t));
   make(GB_BINDING_TRIANGLES, t.triangles.size() * sizeof(uint32_t));
   make(GB_BINDING_REST_LENGTH, t.restLength.size() * sizeof(float));
@@ -456,23 +451,11 @@ void VulkanStepper::load(const Params& params, Film& film) {
   make(GB_BINDING_STEPS, sizeof(StepUniformsBlock));
 
   m.buffer(GB_BINDING_PARAMS).write(&params, sizeof(Params));
-  writeVec3(m.buffer(GB_BINDING_POSITION), s.position);
-  writeVec3(m.buffer(GB_BINDING_VELOCITY), s.velocity);
-  writeVec3(m.buffer(GB_BINDING_FORCE), s.force);
-  writeVec3(m.buffer(GB_BINDING_NORMAL), s.normal);
-  writeVec3(m.buffer(GB_BINDING_AIR_INFLOW), s.airInflow);
-  writeVec3(m.buffer(GB_BINDING_AIR_FLOW), s.airFlow);
-  writeVec3(m.buffer(GB_BINDING_AIR_FLOW_NEXT), s.airFlowNext);
-  writeVector(m.buffer(GB_BINDING_MASS), s.mass);
-  writeVector(m.buffer(GB_BINDING_LIQUID), s.liquid);
-  writeVector(m.buffer(GB_BINDING_VORONOI_AREA), s.voronoiArea);
-  writeVector(m.buffer(GB_BINDING_THICKNESS), s.thickness);
-  writeVector(m.buffer(GB_BINDING_ELASTICITY), s.elasticity);
-  writeVector(m.buffer(GB_BINDING_LIFETIME), s.lifetime);
-  writeVec3(m.buffer(GB_BINDING_PREVIOUS_POSITION), s.previousPosition);
-  writeDrainage(m.buffer(GB_BINDING_DRAINAGE), s);
-  writeVector(m.buffer(GB_BINDING_FRAME_PARAM), s.frameParam);
-  m.writeMesh(s.alive, t);
+  m.airParity = 0;  // each air array into its own buffer
+  forEachParticleArray(s, [&](const auto& array, const ParticleArrayInfo& info) {
+    if (info.transfer != Transfer::WithMesh) writeParticleArray(m.buffer(info.binding), array, info, n);
+  });
+  m.writeMesh(s, t);
 
   m.sets.clear();
   const vk::DescriptorPoolSize poolSize(vk::DescriptorType::eStorageBuffer, 2 * GB_BINDING_COUNT);
@@ -571,7 +554,7 @@ void VulkanStepper::updateTopology(const Params& params, Film& film) {
   }
   // A burst only shrinks the mesh: the buffers keep their size, the counts say how much of them is used.
   m.triangles = static_cast<uint32_t>(t.triangleCount());
-  m.writeMesh(film.state.alive, t);
+  m.writeMesh(film.state, t);
 }
 
 void VulkanStepper::updateRestLengths(const Film& film) {
@@ -588,17 +571,21 @@ void VulkanStepper::store(Film& film) {
   Impl& m = *impl_;
   State& s = film.state;
   if (s.size() != m.particles) throw std::logic_error("VulkanStepper::store: not the loaded film");
-  const vk::DeviceSize scalar = s.size() * sizeof(float), vec3 = 3 * scalar;
-  const std::pair<const DeviceBuffer*, vk::DeviceSize> parts[] = {
-      {&m.buffer(GB_BINDING_POSITION), vec3},       {&m.buffer(GB_BINDING_VELOCITY), vec3},
-      {&m.buffer(GB_BINDING_FORCE), vec3},          {&m.buffer(GB_BINDING_NORMAL), vec3},
-      {&m.buffer(GB_BINDING_AIR_INFLOW), vec3},     {&m.airFront(), vec3},
-      {&m.buffer(GB_BINDING_VORONOI_AREA), scalar}, {&m.buffer(GB_BINDING_THICKNESS), scalar},
-      {&m.buffer(GB_BINDING_ELASTICITY), scalar},   {&m.buffer(GB_BINDING_LIFETIME), scalar},
-      {&m.buffer(GB_BINDING_LIQUID), scalar},       {&m.buffer(GB_BINDING_PREVIOUS_POSITION), vec3},
-      {&m.buffer(GB_BINDING_DRAINAGE), 2 * scalar}};  // drainOutflow then drainWeight
+  // The arrays to bring back (device_data.h's ReadBack ones): where each lies on the device, in the table's order,
+  // one after the other in the host-cached copy.
+  const vk::DeviceSize blockBytes = s.size() * sizeof(float);
+  struct Part {
+    const DeviceBuffer* from;
+    vk::DeviceSize offset, bytes;
+  };
+  std::vector<Part> parts;
+  forEachParticleArray(s, [&](const auto&, const ParticleArrayInfo& info) {
+    if (info.transfer == Transfer::ReadBack)
+      parts.push_back({&m.holding(info.binding), static_cast<vk::DeviceSize>(info.block) * blockBytes,
+                       static_cast<vk::DeviceSize>(info.components) * blockBytes});
+  });
   vk::DeviceSize total = 0;
-  for (const auto& [from, bytes] : parts) total += bytes;
+  for (const Part& part : parts) total += part.bytes;
   if (m.readback.size() < total) m.readback = DeviceBuffer(*m.ctx, total, DeviceBuffer::Placement::Readback);
   const vk::raii::CommandBuffer& cb = m.commands;
   cb.reset();
@@ -607,20 +594,23 @@ void VulkanStepper::store(Film& film) {
   cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, fromSteps, {},
                      {});
   vk::DeviceSize at = 0;
-  for (const auto& [from, bytes] : parts) {
-    m.readback.recordCopyFrom(cb, *from, bytes, at);
-    at += bytes;
+  for (const Part& part : parts) {
+    m.readback.recordCopyFrom(cb, *part.from, part.offset, part.bytes, at);
+    at += part.bytes;
   }
   const vk::MemoryBarrier toHost(vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eHostRead);
   cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, toHost, {}, {});
   cb.end();
   m.ctx->submitAndWait(cb);
-  StagedReader read(m.readback);
-  for (Vec3Array* a : {&s.position, &s.velocity, &s.force, &s.normal, &s.airInflow, &s.airFlow}) read.vec3(*a);
-  for (std::vector<float>* a : {&s.voronoiArea, &s.thickness, &s.elasticity, &s.lifetime, &s.liquid}) read.vector(*a);
-  read.vec3(s.previousPosition);
-  read.vector(s.drainOutflow);
-  read.vector(s.drainWeight);
+  // The same arrays in the same order, out of the copy.
+  at = 0;
+  forEachParticleArray(s, [&](auto& array, const ParticleArrayInfo& info) {
+    if (info.transfer != Transfer::ReadBack) return;
+    forEachComponent(array, [&](auto& values, int) {
+      m.readback.read(values.data(), blockBytes, at);
+      at += blockBytes;
+    });
+  });
 }
 
 std::shared_ptr<const VulkanContext> VulkanStepper::sharedContext() const { return impl_->ctx; }

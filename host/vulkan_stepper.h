@@ -1,5 +1,5 @@
 #pragma once
-// The Vulkan backend: the stages of cpu-reference/stages.h as compute shaders (kernels/) over one storage
+// The Vulkan backend: the stages of cpu-reference/stages/stages.h as compute shaders (kernels/) over one storage
 // buffer per attribute. A batch of substeps is recorded into one command buffer and submitted once, with a
 // barrier only where a stage reads what an earlier one wrote. Topology stays on the CPU: load() takes a
 // changed film, store() brings the state back.

@@ -1,5 +1,5 @@
 #version 450
-// computeAirInflow (cpu-reference/stages.cpp): Eq. (5), the air flow the moving wands push at particle i.
+// airInflow (cpu-reference/stages/stages.cpp): Eq. (5), the air flow the moving wands push at particle i.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 

@@ -1,5 +1,5 @@
 #version 450
-// transferAirFlow (cpu-reference/stages.cpp): Eqs. (7)-(8) / Algorithm 2 as a Jacobi gather from airFlow
+// airTransfer (cpu-reference/stages/stages.cpp): Eqs. (7)-(8) / Algorithm 2 as a Jacobi gather from airFlow
 // (front) into airFlowNext (back); the host swaps the two bindings after the dispatch.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"

@@ -1,6 +1,6 @@
-// Where the coarse correction's lists and patch system lie (cpu-reference/coarse_correction.h, Topology's patch
-// lists and CoarseSystem): the lists after the colour order in the solver's list buffer, the patch system after
-// the tree sum's two halves in the reduce buffer. P = pc.patches, M = pc.solverParticles, R = the patch rows'
+// Where the coarse correction's lists and patch system lie (cpu-reference/solver/coarse_correction.h, Topology's patch
+// lists and CoarseSystem): the lists after the colour order in the solver's list buffer, the patch system in the
+// reduce buffer's coarse regions (shared_step.h). P = pc.patches, M = pc.solverParticles, R = the patch rows'
 // entries.
 
 // The lists: colourOrder (M) | patchOf (particles) | patchOffset (P + 1) | patchMembers (M) | patchRowOffset (P + 1)
@@ -15,13 +15,13 @@ const uint kNoPatch = 0xffffffffu;
 // The patch system: blocks (9 R, column-major 3x3) | right-hand side, solution, residual, direction,
 // preconditioned, product (3 P each, x, y and z blocks of P) | shortestSpring (P) | the dot products' tree sum
 // (2 P, two halves).
-uint coarseBase() { return 2u * pc.triangles; }
-uint coarseVectorsBase() { return coarseBase() + 9u * PATCH_ROW_OFFSET(pc.patches); }
+uint coarseBase() { return reduceCoarseBlocksAt(pc.triangles); }
+uint coarseVectorsBase() { return reduceCoarseVectorsAt(pc.triangles, PATCH_ROW_OFFSET(pc.patches)); }
 #define COARSE_BLOCK(slot, e) reduce[coarseBase() + 9u * (slot) + (e)]
 const uint kRightHandSide = 0u, kSolution = 1u, kResidual = 2u, kDirection = 3u, kPreconditioned = 4u, kProduct = 5u;
-#define COARSE_SHORTEST(p) reduce[coarseVectorsBase() + 18u * pc.patches + (p)]
-#define COARSE_DOT_A(k) reduce[coarseVectorsBase() + 19u * pc.patches + (k)]
-#define COARSE_DOT_B(k) reduce[coarseVectorsBase() + 20u * pc.patches + (k)]
+#define COARSE_SHORTEST(p) reduce[coarseVectorsBase() + 3u * uint(GB_COARSE_VECTORS) * pc.patches + (p)]
+#define COARSE_DOT_A(k) reduce[coarseVectorsBase() + (3u * uint(GB_COARSE_VECTORS) + 1u) * pc.patches + (k)]
+#define COARSE_DOT_B(k) reduce[coarseVectorsBase() + (3u * uint(GB_COARSE_VECTORS) + 2u) * pc.patches + (k)]
 
 vec3 loadCoarse(uint vector, uint p) {
   const uint at = coarseVectorsBase() + 3u * vector * pc.patches + p;

@@ -1,10 +1,11 @@
 #version 450
-// applyCoarseCorrection (cpu-reference/coarse_correction.cpp), per particle: a solver particle moves by its patch's
+// coarseApply (cpu-reference/solver/coarse_correction.cpp), per particle: a solver particle moves by its patch's
 // solution, shortened to the trust region of the patch's shortest spring, then onto the floor.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "forces.glsl"
 #include "vertex_block.glsl"
+// After the headers above: coarse.glsl reads the push constants and buffers they declare.
 #include "coarse.glsl"
 
 void main() {
@@ -12,7 +13,6 @@ void main() {
   if (i >= pc.count) return;
   const uint ownPatch = PATCH_OF(i);
   if (ownPatch == kNoPatch || alive[i] == 0u) return;
-  const float kPatchTrustScale = 2.0;  // a patch moves at most half its shortest spring (the C++ twin says why)
   const vec3 move = withinTrustRegion(loadCoarse(kSolution, ownPatch), kPatchTrustScale * COARSE_SHORTEST(ownPatch));
   if (any(isnan(move)) || any(isinf(move))) return;
   vec3 next = LOAD3(position, i) + move;

@@ -1,11 +1,12 @@
 #version 450
-// assembleCoarseRow (cpu-reference/coarse_correction.cpp), one patch per invocation: its row of the patch system
+// coarseAssemble (cpu-reference/solver/coarse_correction.cpp), one patch per invocation: its row of the patch system
 // P^T H P and its entry of -P^T g at the current positions, gathered over its particles and their one-rings in the
 // C++ twin's order.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 #include "forces.glsl"
 #include "vertex_block.glsl"
+// After the headers above: coarse.glsl reads the push constants and buffers they declare.
 #include "coarse.glsl"
 
 // springCouplingBlock: the off-diagonal block of spring k of i's one-ring.

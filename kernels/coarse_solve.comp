@@ -1,5 +1,5 @@
 #version 450
-// solveCoarseSystem (cpu-reference/coarse_correction.cpp): block-Jacobi preconditioned conjugate gradients on the
+// coarseSolve (cpu-reference/solver/coarse_correction.cpp): block-Jacobi preconditioned conjugate gradients on the
 // patch system, params.coarseIterations of them from d = 0, in one workgroup (the host dispatches one): its
 // invocations share the patches, and the dot products are the C++ twin's tree sums, level by level between
 // barriers.
@@ -7,6 +7,7 @@
 #include "common.glsl"
 #include "forces.glsl"
 #include "vertex_block.glsl"
+// After the headers above: coarse.glsl reads the push constants and buffers they declare.
 #include "coarse.glsl"
 
 // Every invocation's writes to the buffers are seen by the others after this.

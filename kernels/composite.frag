@@ -18,8 +18,8 @@ void main() {
   if (opaque.a < 0.999) behind += (1.0 - opaque.a) * texelFetch(skyImage, p, 0).rgb;
   const vec4 a = texelFetch(accumImage, p, 0);
   const float through = exp(-texelFetch(revealImage, p, 0).r);  // product of (1 - alpha) over the sheets
-  const vec3 film = a.rgb / max(a.a, 1e-5);               // weighted mean of the sheets' colour / alpha
+  const vec3 film = a.rgb / max(a.a, 1e-5);                     // weighted mean of the sheets' colour / alpha
   const vec3 radiance = u.exposure * (film * (1.0 - through) + behind * through);
   const vec3 shoulder = radiance / (1.0 + max(radiance - 0.8, 0.0));  // identity below 0.8
-  colour = vec4(clamp(shoulder, 0.0, 1.0), 1.0);  // the sRGB target encodes on store
+  colour = vec4(clamp(shoulder, 0.0, 1.0), 1.0);                      // the sRGB target encodes on store
 }

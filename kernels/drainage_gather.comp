@@ -1,5 +1,5 @@
 #version 450
-// gatherDrainage (cpu-reference/stages.cpp): drainage pass 2, Eq. (15) as a gather; conserves liquid.
+// drainageGather (cpu-reference/stages/stages.cpp): drainage pass 2, Eq. (15) as a gather; conserves liquid.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
@@ -10,7 +10,8 @@ void main() {
   float received = 0.0;
   for (uint k = springOffset[j]; k < springOffset[j + 1u]; ++k) {
     const uint i = springNeighbour[k];
-    if (DRAIN_WEIGHT(i) > 0.0) received += DRAIN_OUTFLOW(i) * drainageDirection(LOAD3(position, i), xj, g) / DRAIN_WEIGHT(i);
+    if (DRAIN_WEIGHT(i) > 0.0)
+      received += DRAIN_OUTFLOW(i) * drainageDirection(LOAD3(position, i), xj, g) / DRAIN_WEIGHT(i);
   }
   liquid[j] = liquid[j] - DRAIN_OUTFLOW(j) + received;
 }

@@ -1,5 +1,5 @@
 #version 450
-// computeDrainageOutflow (cpu-reference/stages.cpp): drainage pass 1, the liquid particle i sends downhill
+// drainageOutflow (cpu-reference/stages/stages.cpp): drainage pass 1, the liquid particle i sends downhill
 // (Eqs. 14-15) and the sum of its d_dir.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
@@ -12,5 +12,6 @@ void main() {
   for (uint k = springOffset[i]; k < springOffset[i + 1u]; ++k)
     weight += drainageDirection(xi, LOAD3(position, springNeighbour[k]), g);
   DRAIN_WEIGHT(i) = weight;
-  DRAIN_OUTFLOW(i) = liquid[i] * min(1.0, steps[pc.stepIndex].drainageDt * params.drainageRate * weight / params.sticky);
+  DRAIN_OUTFLOW(i) =
+      liquid[i] * min(1.0, steps[pc.stepIndex].drainageDt * params.drainageRate * weight / params.sticky);
 }

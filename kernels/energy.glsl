@@ -1,5 +1,5 @@
-// The implicit step's energy budget (cpu-reference/energy_budget.h): each function has its C++ twin's name and float
-// operations.
+// The implicit step's energy budget (cpu-reference/solver/energy_budget.h): each function has its C++ twin's name and
+// float operations.
 
 // heldShares: particle i's share of the internal energy at the step's start and at its end, in one pass over its
 // one-ring: half of each spring (a third of each triangle) and half of each contact's penalty.
@@ -20,26 +20,25 @@ void heldShares(uint i, out float start, out float end) {
   } else {
     for (uint k = springOffset[i]; k < springOffset[i + 1u]; ++k) {
       const uint j = springNeighbour[k];
-      const float quarter = 0.25 * (0.5 * (elasticity[i] + elasticity[j])), rest = restLength[springIndex[k]];
+      const float stiffness = 0.5 * (elasticity[i] + elasticity[j]), rest = restLength[springIndex[k]];
       const float stretch0 = length(positionAtStepStart(j) - xi0) - rest;
       const float stretch = length(LOAD3(position, j) - xi) - rest;
-      start += quarter * stretch0 * stretch0;
-      end += quarter * stretch * stretch;
+      start += 0.5 * springEnergyOf(stiffness, stretch0);  // each end's half
+      end += 0.5 * springEnergyOf(stiffness, stretch);
     }
   }
   const uint base = pc.particles + 1u;
-  const float quarter = 0.25 * params.collisionStiffness;
   for (uint k = contacts[i]; k < contacts[i + 1u]; ++k) {
     const uint j = contacts[base + k];
     const float rest = contactRestDistance(k);
     const float len0 = length(xi0 - positionAtStepStart(j)), len = length(xi - LOAD3(position, j));
-    if (len0 < rest) start += quarter * (rest - len0) * (rest - len0);
-    if (len < rest) end += quarter * (rest - len) * (rest - len);
+    if (len0 < rest) start += 0.5 * springEnergyOf(params.collisionStiffness, rest - len0);
+    if (len < rest) end += 0.5 * springEnergyOf(params.collisionStiffness, rest - len);
   }
 }
 
-// particleEnergy: particle i's terms, in the order of ENERGY_TERMS.
-void particleEnergy(uint i, float dt, bool closed, out float terms[GB_ENERGY_TERMS]) {
+// energyTerms: particle i's terms, in the order of ENERGY_TERMS.
+void energyTerms(uint i, float dt, bool closed, out float terms[GB_ENERGY_TERMS]) {
   for (uint c = 0u; c < ENERGY_TERMS; ++c) terms[c] = 0.0;
   if (alive[i] == 0u) return;
   heldShares(i, terms[0], terms[2]);
@@ -85,10 +84,10 @@ vec3 driftWithinBudget(vec3 expected, vec3 centre, float speedSquared) {
   return expected + l * made;
 }
 
-// energyBudget: the factor on the motion about the centre of mass (scale), the centre's velocity, its shift and the
+// energyScale: the factor on the motion about the centre of mass (scale), the centre's velocity, its shift and the
 // energy the step released below its budget.
-void energyBudget(float start, float kinetic, float held, float mass, vec3 momentum, vec3 expectedMomentum,
-                  out float scale, out vec3 centre, out vec3 shift, out float released) {
+void energyScale(float start, float kinetic, float held, float mass, vec3 momentum, vec3 expectedMomentum,
+                 out float scale, out vec3 centre, out vec3 shift, out float released) {
   scale = 1.0;
   centre = vec3(0.0);
   shift = vec3(0.0);

@@ -1,7 +1,7 @@
 #version 450
-// Stage external_drift (cpu-reference/implicit_euler.cpp, driftTerms): every particle's share of a closed film's
-// drift, its mass and the explicit force on it (zero for a wire or dead particle), into the first blocks of half A
-// of the energy budget's tree sum; energy_tree_sum (flag 2) sums them and implicit_predict reads the sums.
+// Stage external_drift (cpu-reference/solver/implicit_euler.cpp, externalDrift): every particle's share of a closed
+// film's drift, its mass and the explicit force on it (zero for a wire or dead particle), into the first blocks of half
+// A of the energy budget's tree sum; energy_tree_sum (flag 2) sums them and implicit_predict reads the sums.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 

@@ -1,5 +1,5 @@
 #version 450
-// computeExternalForces (cpu-reference/stages.cpp), the implicit integrator's explicit forces: gravity and
+// externalForces (cpu-reference/stages/stages.cpp), the implicit integrator's explicit forces: gravity and
 // the air (drag and the internal forces are in the solver).
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"

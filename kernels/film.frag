@@ -8,9 +8,9 @@
 // spectral lookup table, per colour channel) and transmits the rest of what is behind it. A film micrometres
 // thick displaces what is seen through it by less than its thickness (a parallel plate), so the transmitted
 // image is not shifted: refraction shows as the (1 - R) dimming of the background, strongest at grazing angles.
+#include "colour_maps.h"
 #include "render_common.glsl"
 #include "thin_film_lut.h"
-#include "colour_maps.h"
 layout(set = 0, binding = GB_RENDER_LUT) uniform sampler2D thinFilmLut;
 layout(location = 0) in vec3 worldPosition;
 layout(location = 1) in vec3 worldNormal;

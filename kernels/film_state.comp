@@ -1,10 +1,10 @@
 #version 450
-// updateFilmState (cpu-reference/stages.cpp): thickness e_i = liquid / A_Vor, elasticity Eq. (4) or the
+// filmState (cpu-reference/stages/stages.cpp): thickness e_i = liquid / A_Vor, elasticity Eq. (4) or the
 // physical film tension (from the surfactant per area), age.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
-// elasticity of cpu-reference/stages.cpp: Marangoni while young, Gibbs after; Eq. (4) divided by k.
+// elasticity of cpu-reference/stages/stages.cpp: Marangoni while young, Gibbs after; Eq. (4) divided by k.
 float elasticityOf(float thicknessValue, float age) {
   const float x = thicknessValue / params.elasticityThickness;
   if (age < params.marangoniLifetime) return params.elasticityWeight * 2.0 * x / (x + 2.0);
@@ -12,15 +12,15 @@ float elasticityOf(float thicknessValue, float age) {
   return params.elasticityWeight * 4.0 * g / ((g + 2.0) * (g + 2.0));
 }
 
-// filmTension of cpu-reference/stages.cpp: 2 gamma, gamma from the thickness through Gibbs-Marangoni elasticity.
+// filmTension of cpu-reference/stages/stages.cpp: 2 gamma, gamma from the thickness through Gibbs-Marangoni elasticity.
 float filmTension(float thicknessValue) {
   const float gamma0 = params.surfaceTension;
-  const float e0 = params.areaWeight * 100e-6;  // initialThickness
+  const float e0 = initialThicknessOf(params.areaWeight);
   const float gamma = gamma0 + 0.5 * params.gibbsElasticity * log(e0 / max(thicknessValue, 1e-12));
-  return 2.0 * clamp(gamma, 0.5 * gamma0, 2.0 * gamma0);
+  return 2.0 * clamp(gamma, kLowestGammaFactor * gamma0, kHighestGammaFactor * gamma0);
 }
 
-// surfactantLiquid of cpu-reference/film.h: the liquid the particle was made with, which its mass still weighs.
+// surfactantLiquid of cpu-reference/model/film.h: the liquid the particle was made with, which its mass still weighs.
 float surfactantLiquid(uint i) { return mass[i] / params.liquidDensity; }
 
 void main() {

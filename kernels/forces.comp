@@ -1,5 +1,5 @@
 #version 450
-// computeForces (cpu-reference/stages.cpp), the explicit integrator's forces: the whole of Eq. (2),
+// forces (cpu-reference/stages/stages.cpp), the explicit integrator's forces: the whole of Eq. (2),
 // internal + external + linear air drag.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"

@@ -1,4 +1,4 @@
-// The force functions of cpu-reference/stages.cpp that forces.comp and external_forces.comp share, each
+// The force functions of cpu-reference/stages/stages.cpp that forces.comp and external_forces.comp share, each
 // with the name and the float operations of its C++ twin. Include after common.glsl.
 
 // areaTensionForce: -sum_t T_t grad_i A_t over i's triangles (physical model).
@@ -49,8 +49,8 @@ vec3 internalForce(uint i) {
   return f;
 }
 
-// The volume the last tree sum left in half A or B (reduceFlags bit 0).
-float currentVolume() { return (pc.reduceFlags & 1u) != 0u ? REDUCE_A(0u) : REDUCE_B(0u); }
+// The volume the last tree sum left in half A or B (GB_REDUCE_VOLUME_IN_A).
+float currentVolume() { return (pc.reduceFlags & GB_REDUCE_VOLUME_IN_A) != 0u ? REDUCE_A(0u) : REDUCE_B(0u); }
 
 // The Boyle pressure at that volume (P_0 for an open film).
 float currentPressure(StepUniformsBlock u) {
@@ -58,7 +58,7 @@ float currentPressure(StepUniformsBlock u) {
   return boylePressure(u.referenceVolume, currentVolume());
 }
 
-// liquidMass (cpu-reference/film.h): the mass gravity pulls on, the particle's liquid.
+// liquidMass (cpu-reference/model/film.h): the mass gravity pulls on, the particle's liquid.
 float liquidMass(uint i) { return params.liquidDensity * liquid[i]; }
 
 // externalForce: gravity, and the air force, Eq. (9) open or Eqs. (10)-(11) closed.
@@ -77,10 +77,9 @@ vec3 externalForce(StepUniformsBlock u, float pressure, uint i) {
 
 // airCoupling: kappa Area_wm A_Vor on an open film, the damping of its normal speed towards the air's.
 float airCoupling(StepUniformsBlock u, uint i) {
-  if (u.closed != 0u || !(u.frameArea > 0.0)) return 0.0;
-  const float stillAir = 0.05;  // m/s, as the C++ twin
-  const float airSpeed = abs(dot(LOAD3(airFlow, i) + LOAD3(airInflow, i), LOAD3(normal, i))) / u.frameArea;
-  return params.airPressureGain * u.frameArea * voronoiArea[i] * min(1.0, airSpeed / stillAir);
+  if (u.closed != 0u || !(u.wireArea > 0.0)) return 0.0;
+  const float airSpeed = abs(dot(LOAD3(airFlow, i) + LOAD3(airInflow, i), LOAD3(normal, i))) / u.wireArea;
+  return params.airPressureGain * u.wireArea * voronoiArea[i] * min(1.0, airSpeed / kStillAirSpeed);
 }
 
 // volumeGradient: a sixth of the twice-area normals of particle i's triangles.

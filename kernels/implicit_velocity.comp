@@ -1,5 +1,5 @@
 #version 450
-// finishImplicitStep (cpu-reference/implicit_euler.cpp): the implicit Euler velocity v = (x - x_t) / h, a free
+// implicitVelocity (cpu-reference/solver/implicit_euler.cpp): the implicit Euler velocity v = (x - x_t) / h, a free
 // particle's as the energy budget leaves it (kept at pc.first's region of the reduce buffer).
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"

@@ -1,5 +1,5 @@
 #version 450
-// integrateParticle (cpu-reference/stages.cpp): semi-implicit Euler, Eqs. (12)-(13); boundary particles
+// integrate (cpu-reference/stages/stages.cpp): semi-implicit Euler, Eqs. (12)-(13); boundary particles
 // are carried to the wire frame at the end of the substep.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
@@ -11,17 +11,17 @@ void main() {
   const StepUniformsBlock u = steps[pc.stepIndex];
   const vec3 x = LOAD3(position, i);
   if (boundary[i] != 0u) {
-    if (frameParam[i] < 0.0) {  // pinned where it is (the fixed rings of the validation scenes)
+    if (wireParam[i] < 0.0) {  // pinned where it is (the fixed rings of the validation scenes)
       STORE3(velocity, i, vec3(0.0));
       return;
     }
-    const vec3 xNext = framePoint(u, frameParam[i]);
+    const vec3 xNext = wirePoint(u, wireParam[i]);
     STORE3(velocity, i, (xNext - x) / u.dt);
     STORE3(position, i, xNext);
     return;
   }
   vec3 v = LOAD3(velocity, i) + u.dt * LOAD3(force, i) / mass[i];  // Eq. (12)
-  vec3 xNew = x + u.dt * v;                                          // Eq. (13)
+  vec3 xNew = x + u.dt * v;                                        // Eq. (13)
   if (xNew.y < 0.0) {  // the floor, y = 0: the film lands and slides, it does not pass through
     xNew.y = 0.0;
     v.y = max(v.y, 0.0);

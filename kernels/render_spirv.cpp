@@ -14,15 +14,24 @@ namespace gb::kernels {
 
 std::span<const uint32_t> renderSpirv(RenderShader shader) {
   switch (shader) {
-    case RenderShader::FullscreenVert: return fullscreen_vert_spv;
-    case RenderShader::PropsVert: return props_vert_spv;
-    case RenderShader::PropsFrag: return props_frag_spv;
-    case RenderShader::DropletsVert: return droplets_vert_spv;
-    case RenderShader::DropletsFrag: return droplets_frag_spv;
-    case RenderShader::FilmVert: return film_vert_spv;
-    case RenderShader::FilmFrag: return film_frag_spv;
-    case RenderShader::CompositeFrag: return composite_frag_spv;
-    case RenderShader::SkyFrag: return sky_frag_spv;
+    case RenderShader::FullscreenVert:
+      return fullscreen_vert_spv;
+    case RenderShader::PropsVert:
+      return props_vert_spv;
+    case RenderShader::PropsFrag:
+      return props_frag_spv;
+    case RenderShader::DropletsVert:
+      return droplets_vert_spv;
+    case RenderShader::DropletsFrag:
+      return droplets_frag_spv;
+    case RenderShader::FilmVert:
+      return film_vert_spv;
+    case RenderShader::FilmFrag:
+      return film_frag_spv;
+    case RenderShader::CompositeFrag:
+      return composite_frag_spv;
+    case RenderShader::SkyFrag:
+      return sky_frag_spv;
   }
   return {};
 }

@@ -7,15 +7,15 @@
 namespace gb::kernels {
 
 enum class RenderShader {
-  FullscreenVert,   // one screen-covering triangle
-  PropsVert,        // floor, wands, string
+  FullscreenVert,  // one screen-covering triangle
+  PropsVert,       // floor, wands, string
   PropsFrag,
-  DropletsVert,     // aerosol point sprites
+  DropletsVert,  // aerosol point sprites
   DropletsFrag,
-  FilmVert,         // the film from the simulation's buffers
-  FilmFrag,         // thin-film interference or a diagnostic colouring, into the transparency targets
-  CompositeFrag,    // transparency resolve over the opaque scene and the sky, display encoding
-  SkyFrag           // the environment along each pixel's view ray, for the resolve
+  FilmVert,       // the film from the simulation's buffers
+  FilmFrag,       // thin-film interference or a diagnostic colouring, into the transparency targets
+  CompositeFrag,  // transparency resolve over the opaque scene and the sky, display encoding
+  SkyFrag         // the environment along each pixel's view ray, for the resolve
 };
 
 std::span<const uint32_t> renderSpirv(RenderShader shader);

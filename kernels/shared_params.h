@@ -1,4 +1,4 @@
-// One definition of the model's parameter block, compiled as C++ (cpu-reference/params.h includes it)
+// One definition of the model's parameter block, compiled as C++ (cpu-reference/model/params.h includes it)
 // and as GLSL (every compute shader includes it). Every parameter of the paper (Table 2 and Sections 5-7)
 // in SI units, the paper's symbol in the comment; docs/model.md maps the paper's scale to SI.
 // Only 4-byte scalars, so the std430 layout is the C layout with no padding (checked by a test).
@@ -15,7 +15,7 @@ struct Params {
   float frameTime GB_DEFAULT(0.02f);       // h, Table 2: 0.02 s. One frame of wand input
   int integrator GB_DEFAULT(1);            // 1: implicit Euler solved by vertex block descent (one step per frame);
                                            // 0: the paper's semi-implicit Euler, Eqs. (12)-(13), in stable substeps
-  int solverIterations GB_DEFAULT(6);      // vertex block descent sweeps per implicit step
+  int solverSweeps GB_DEFAULT(6);          // vertex block descent sweeps per implicit step
   int coarseIterations GB_DEFAULT(0);      // conjugate-gradient iterations of the step's coarse correction (patch
                                            // system, coarse_correction.h) halfway through the sweeps; 0: none. Off by
                                            // default: the default performance is tuned to the sweeps alone

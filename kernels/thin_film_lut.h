@@ -18,7 +18,7 @@ using std::sqrt;
 #define GB_LUT_THICKNESS_TEXELS 1024
 #define GB_LUT_ANGLE_TEXELS 64
 #define GB_LUT_MAX_THICKNESS 8.0e-6f  // m; thicker films are shown with the colour of this one
-#define GB_FILM_INDEX 1.33f            // refractive index of water-soap film
+#define GB_FILM_INDEX 1.33f           // refractive index of water-soap film
 
 // Column i of the table holds thickness (i / (columns - 1))^2 x max; row j holds cos theta = j / (rows - 1).
 // The first and last texel centres are the ends of the range, so nothing is extrapolated at e = 0 or cos = 1.

@@ -1,10 +1,10 @@
 #version 450
-// computeTriangleGeometry (cpu-reference/stages.cpp), the geometry stage's first pass: triangle t's
+// triangleGeometry (cpu-reference/stages/stages.cpp), the geometry stage's first pass: triangle t's
 // area-weighted normal and the mixed Voronoi area of each corner (Meyer et al. 2003).
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
-// mixedVoronoiCorner of cpu-reference/stages.cpp.
+// mixedVoronoiCorner of cpu-reference/stages/stages.cpp.
 float mixedVoronoiCorner(vec3 xi, vec3 xj, vec3 xk, float area) {
   const vec3 eij = xj - xi, eik = xk - xi, ejk = xk - xj;
   if (!(area > 1e-6 * (dot(eij, eij) + dot(eik, eik)))) return area / 3.0;
@@ -24,5 +24,6 @@ void main() {
   triangleNormal[pc.triangles + t] = doubleAreaNormal.y;
   triangleNormal[2u * pc.triangles + t] = doubleAreaNormal.z;
   const float area = 0.5 * length(doubleAreaNormal);
-  for (uint c = 0u; c < 3u; ++c) cornerArea[3u * t + c] = mixedVoronoiCorner(x[c], x[(c + 1u) % 3u], x[(c + 2u) % 3u], area);
+  for (uint c = 0u; c < 3u; ++c)
+    cornerArea[3u * t + c] = mixedVoronoiCorner(x[c], x[(c + 1u) % 3u], x[(c + 2u) % 3u], area);
 }

@@ -1,10 +1,13 @@
 #version 450
-// triangleSignedVolume (cpu-reference/stages.cpp) for every triangle, into the reduce buffer's half A: the leaves of the
-// volume's tree sum. pc.reduceFlags bit 2: at the step's start instead (triangleSignedVolumeAtStart, the energy budget).
+// triangleVolume (cpu-reference/stages/stages.cpp) for every triangle, into the reduce buffer's half A: the leaves of
+// the volume's tree sum. GB_REDUCE_AT_STEP_START: at the step's start instead (triangleVolumeAtStart, the energy
+// budget).
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
-vec3 corner(uint i) { return (pc.reduceFlags & 2u) != 0u ? positionAtStepStart(i) : LOAD3(position, i); }
+vec3 corner(uint i) {
+  return (pc.reduceFlags & GB_REDUCE_AT_STEP_START) != 0u ? positionAtStepStart(i) : LOAD3(position, i);
+}
 
 void main() {
   const uint t = gl_GlobalInvocationID.x;

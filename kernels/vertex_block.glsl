@@ -1,12 +1,11 @@
-// The implicit step's per-particle block (objectiveBlock of cpu-reference/implicit_euler.cpp): the gradient and
+// The implicit step's per-particle block (objectiveBlock of cpu-reference/solver/implicit_euler.cpp): the gradient and
 // Hessian of the step's objective in x_i with every other particle fixed. Included by the kernels that solve
 // (vertex_block_descent) or gather (coarse_assemble) the blocks; each function has its C++ twin's name.
 
 // The gradient and Hessian of the objective in x_i, summed term by term (Block of the C++ twin).
 vec3 gradient;
 mat3 hessian;
-float shortestSpring;             // of the particle's one-ring (m)
-const float kTrustRegion = 0.25;  // largest move per sweep, in shortest one-ring springs
+float shortestSpring;  // of the particle's one-ring (m)
 
 // addDampingGradient: dissipation c/(2h) ((dx_i - dx_j) . dir)^2; returns its Hessian's factor along dir.
 float addDampingGradient(float coefficient, float h, vec3 dir, vec3 relativeDisplacement) {

@@ -1,5 +1,5 @@
 #version 450
-// solveVertexBlock (cpu-reference/implicit_euler.cpp) for the particles of one colour: one Newton step of
+// vertexBlockDescent (cpu-reference/solver/implicit_euler.cpp) for the particles of one colour: one Newton step of
 // the implicit objective in x_i alone, then the floor. The host dispatches the colours in order; no two
 // particles of a colour are coupled, so they read only settled neighbours.
 #extension GL_GOOGLE_include_directive : require

@@ -1,5 +1,5 @@
 #version 450
-// computeVertexGeometry (cpu-reference/stages.cpp), the geometry stage's second pass: unit vertex normal and
+// vertexGeometry (cpu-reference/stages/stages.cpp), the geometry stage's second pass: unit vertex normal and
 // mixed Voronoi area of particle i gathered from its CSR triangles.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"

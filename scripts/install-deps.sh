@@ -5,6 +5,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake pkg-config   # toolchain
+  clang-format-14                    # the format check (scripts/check-format.sh, a test)
   libeigen3-dev                      # small fixed-size linear algebra
   libcgal-dev libgmp-dev libmpfr-dev # constrained Delaunay triangulation of the film
   libgtest-dev libgmock-dev          # tests

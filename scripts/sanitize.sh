@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The sanitizer run of issue 14. Too slow for CI's 30 minutes on two cores (docs/performance.md has the times);
+# The sanitizer run. Too slow for CI's 30 minutes on two cores (docs/performance.md has the times);
 # run it before a show and after changing a parser, under `nice -n 19` on a shared machine:
 #   nice -n 19 bash scripts/sanitize.sh [FUZZ_SECONDS] [ctest arguments, e.g. -R ShowProof]
 # 1. The whole project built with clang, AddressSanitizer and UndefinedBehaviorSanitizer (GIANTBUBBLE_SANITIZE)

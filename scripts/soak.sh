@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Soak test of a live show (issue 14): `giantbubble live` under Xvfb with the scripted circles gesture looping
+# Soak test of a live show: `giantbubble live` under Xvfb with the scripted circles gesture looping
 # for ever (the input is re-read at each reset), a burst every BURST_EVERY frames and --auto-dip 0.5, for
 # MINUTES minutes (default 30). Samples the process's resident memory every minute and prints frames, dips,
 # bursts and RSS at the start and the end; exits non-zero if the show ended on its own or memory grew by more

@@ -55,14 +55,14 @@ TEST(Bursting, OneCrackRemovesTheWholeFilmOnceIntoDropletsCarryingItsLiquid) {
   EXPECT_EQ(sim.film().topology.triangleCount(), 0u);
   EXPECT_EQ(started, 1);
   EXPECT_EQ(finished, 1);
-  // The issue's "a few hundred to a few thousand" droplets, gathered a few centimetres at a time: far fewer
+  // A few hundred to a few thousand droplets, gathered a few centimetres at a time: far fewer
   // than the film's triangles.
   EXPECT_EQ(sim.aerosol().size(), droplets);
   EXPECT_GE(droplets, 200u);
   EXPECT_LE(droplets, 5000u);
   EXPECT_LT(droplets, triangles / 2);
-  // Every particle's liquid is split over its triangles: the aerosol carries the film's liquid. The issue asks
-  // for 1%; the bookkeeping is exact but for float rounding in the sums, so 1e-5 is asked.
+  // Every particle's liquid is split over its triangles: the aerosol carries the film's liquid. 1% is required;
+  // the bookkeeping is exact but for float rounding in the sums, so 1e-5 is asked.
   const double aerosolMass = std::accumulate(sim.aerosol().mass.begin(), sim.aerosol().mass.end(), 0.0);
   EXPECT_NEAR(aerosolMass, liquidMass, 1e-5 * liquidMass);
   // None flies faster than the rim can carry liquid: the Taylor-Culick speed of the thinnest film (drag, with
@@ -161,7 +161,7 @@ TEST(Bursting, TaylorCulickHoleGrowsLinearlyAtTheRightSpeedWhateverStepAndResolu
   std::printf("V_TC %.3f m/s; fitted %.3f (1500), %.3f (4000), %.3f (1500, h/4); bursts %.4f %.4f %.4f s\n", expected,
               speedCoarse, speedFine, speedShortStep, durationCoarse, durationFine, durationShortStep);
   // The front follows mesh edges, whose paths are up to 2/sqrt(3) longer than straight lines on a
-  // triangulated lattice: 15% is the issue's bound and covers that.
+  // triangulated lattice: the 15% bound covers that.
   EXPECT_NEAR(speedCoarse, expected, 0.15 * expected);
   EXPECT_NEAR(speedFine, expected, 0.15 * expected);
   EXPECT_NEAR(durationFine, durationCoarse, 0.15 * durationCoarse);

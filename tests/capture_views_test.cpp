@@ -1,4 +1,4 @@
-// The views a performer looks at after a run (issue 15): thickness images that frame the film wherever it is,
+// The views a performer looks at after a run: thickness images that frame the film wherever it is,
 // and wands.svg with the floor, the camera and the origin and a title that is not cut.
 #include <gtest/gtest.h>
 #include <unistd.h>

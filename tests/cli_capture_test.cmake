@@ -78,7 +78,7 @@ if(rc EQUAL 0 OR NOT err MATCHES "error: fakenect recording .*INDEX.txt line 3: 
   message(FATAL_ERROR "a truncated recording was not refused clearly (${rc}):\n${out}\n${err}")
 endif()
 
-# A performer who walks in late (issue 15): the room is empty for 0.5 s. The run waits, says why once per
+# A performer who walks in late: the room is empty for 0.5 s. The run waits, says why once per
 # second, and makes the film when both hands are found: stats.csv's frame 0 says so, and the film's first area
 # is the rest pose's (a scripted run's first frame) within 10%: the detected hands stand 0.5 m apart, as the
 # rest pose's tips do after the reach, each within a few centimetres of its true centre.

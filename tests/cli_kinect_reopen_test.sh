@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# giantbubble live with the Kinect unplugged mid-show and plugged back in (issue 15), through the stand-in for
+# giantbubble live with the Kinect unplugged mid-show and plugged back in, through the stand-in for
 # the live libfreenect (fake_freenect.cpp), under Xvfb:
 #   cli_kinect_reopen_test.sh EXE FAKE_LIBRARY MAKE_RECORDING OUT
 # The show must notice the lost camera, keep going while it is away (reopening fails: no Kinect on the bus),

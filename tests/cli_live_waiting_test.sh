@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# giantbubble live while nobody stands before the Kinect (issue 15), through the stand-in for the live libfreenect
+# giantbubble live while nobody stands before the Kinect, through the stand-in for the live libfreenect
 # (fake_freenect.cpp), under Xvfb:
 #   cli_live_waiting_test.sh EXE FAKE_LIBRARY MAKE_RECORDING OUT
 # The show waits for a performer, and while it waits its window must stay alive: redrawn with the wait's message,

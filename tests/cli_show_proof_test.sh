@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Show-proofing on the command line (issue 14), one case per ctest test:
+# Show-proofing on the command line, one case per ctest test:
 #   cli_show_proof_test.sh EXE OUT CASE
 # Each case prints what it checks and exits non-zero with the reason when the program does not do it.
 set -u

@@ -1,5 +1,5 @@
-// The implicit step's coarse correction (cpu-reference/coarse_correction.h): its patches, and what it adds to the
-// sweeps on a film-wide mode.
+// The implicit step's coarse correction (cpu-reference/solver/coarse_correction.h): its patches, and what it adds to
+// the sweeps on a film-wide mode.
 #include "coarse_correction.h"
 
 #include <gtest/gtest.h>
@@ -97,7 +97,7 @@ BulgeStep bulgeStep() {
   const StepUniforms u = sim.uniformsFor(wands, wands, p.frameTime);
   auto solve = [&](int sweeps, int coarseIterations, bool stopBeforeSweeps) {
     Params q = p;
-    q.solverIterations = sweeps;
+    q.solverSweeps = sweeps;
     q.coarseIterations = coarseIterations;
     Film film = start;
     CpuStepper stepper;

@@ -100,7 +100,7 @@ TEST(Dynamics, InternalForcesSumToZero) {
   Eigen::Vector3d total = Eigen::Vector3d::Zero();
   double magnitude = 0;
   for (size_t i = 0; i < s.size(); ++i) {
-    computeForces(p, StepUniforms{}, p.pressureCoefficient, film.topology, s, i);
+    forces(p, StepUniforms{}, p.pressureCoefficient, film.topology, s, i);
     total += s.force.get(i).cast<double>();
     magnitude += s.force.get(i).cast<double>().norm();
   }
@@ -186,12 +186,12 @@ TEST(Dynamics, ANonFiniteStateStopsWithAClearError) {
   }
 }
 
-// The explicit step's bound includes the air coupling (docs/model.md "Air coupling", "Stability"): at 1,000 Pa s/m^3
-// (100x the default) the coupling's damping rate kappa Area_wm / filmInertia is ~4,000/s, seven times the film's
-// spring frequency, and semi-implicit Euler damps stably only while dt x rate < 2. A bound without it takes
-// 15 substeps per frame here (dt x rate ~ 13: a particle went non-finite at 0.16 s when tried); with it (141), at the
-// default safety, the stroke runs with no instability stop and the film, pushed towards the air's speed, never outruns
-// the wands' peak by more than 4x.
+// The explicit step's bound includes the air coupling (docs/model.md "Air coupling", "The explicit reference and its
+// stability bound"): at 1,000 Pa s/m^3 (100x the default) the coupling's damping rate kappa Area_wm / filmInertia is
+// ~4,000/s, seven times the film's spring frequency, and semi-implicit Euler damps stably only while dt x rate < 2. A
+// bound without it takes 15 substeps per frame here (dt x rate ~ 13: a particle went non-finite at 0.16 s when tried);
+// with it (141), at the default safety, the stroke runs with no instability stop and the film, pushed towards the air's
+// speed, never outruns the wands' peak by more than 4x.
 TEST(Dynamics, TheExplicitBoundHoldsWithStrongAirCoupling) {
   Params p;
   p.particlesAtFullSolution = 200;
@@ -239,7 +239,7 @@ TEST(Dynamics, WandsFarApartOrTogetherStillGiveFiniteFrames) {
   together.leftPosition = together.rightPosition;
   for (const WandState& w : {apart, together}) {
     const StepUniforms u = sim.uniformsFor(w, w, 0.001f);
-    for (float uu : {0.0f, 0.5f, 1.0f, 1.5f}) EXPECT_TRUE(framePoint(u.frameNext, uu).allFinite());
+    for (float uu : {0.0f, 0.5f, 1.0f, 1.5f}) EXPECT_TRUE(wirePoint(u.wireNext, uu).allFinite());
     EXPECT_TRUE(std::isfinite(u.airVolume));
   }
 }

@@ -1,5 +1,5 @@
-// The implicit step's energy budget (cpu-reference/energy_budget.h): its formulas, and a step that would give a film
-// energy nobody put in.
+// The implicit step's energy budget (cpu-reference/solver/energy_budget.h): its formulas, and a step that would give a
+// film energy nobody put in.
 #include "energy_budget.h"
 
 #include <gtest/gtest.h>
@@ -58,7 +58,7 @@ TEST(EnergyBudget, TakesTheExcessFromTheMotionAboutTheCentreOfMass) {
     return kineticMomentum;
   };
   const float held = 1.0f, start = held + 0.6f * kinetic;  // 40% of the kinetic energy was never paid for
-  const VelocityBudget budget = energyBudget(start, kinetic, held, mass, momentum, momentum);
+  const VelocityBudget budget = energyScale(start, kinetic, held, mass, momentum, momentum);
   const auto [kineticAfter, momentumAfter] = after(budget);
   std::printf("scale %.4f: kinetic %.4f -> %.4f J against a budget of %.4f J\n", budget.scale, kinetic, kineticAfter,
               start * (1 + kEnergyBudgetTolerance) - held);
@@ -69,42 +69,42 @@ TEST(EnergyBudget, TakesTheExcessFromTheMotionAboutTheCentreOfMass) {
   // A step that was not even owed the drift it kept (start below held + drift): no wobble left, every particle
   // moving with the centre, whose velocity stays. The positions hold the rest of the excess.
   const float drift = 0.5f * momentum.squaredNorm() / mass, poor = held + 0.5f * drift;
-  const VelocityBudget stopped = energyBudget(poor, kinetic, held, mass, momentum, momentum);
+  const VelocityBudget stopped = energyScale(poor, kinetic, held, mass, momentum, momentum);
   const Vec3 v = budgetedVelocity(stopped, velocities[0]);
   EXPECT_EQ(stopped.scale, 0.0f);
   EXPECT_EQ(v, budgetedVelocity(stopped, velocities[1])) << "every particle moves with the centre";
   EXPECT_LT((after(stopped).second - momentum).norm(), 1e-5 * momentum.norm());
 
-  const VelocityBudget within = energyBudget(held + kinetic, kinetic, held, mass, momentum, momentum);
+  const VelocityBudget within = energyScale(held + kinetic, kinetic, held, mass, momentum, momentum);
   EXPECT_FALSE(within.acted());
   EXPECT_EQ(budgetedVelocity(within, velocities[2]), velocities[2]) << "a step within its budget is left alone";
-  EXPECT_FALSE(energyBudget(NAN, kinetic, held, mass, momentum, momentum).acted())
+  EXPECT_FALSE(energyScale(NAN, kinetic, held, mass, momentum, momentum).acted())
       << "non-finite sums are not the budget's";
 
   // What a step released below its budget is what the rest-length rules may put back (contractSlackSprings): the
   // difference itself, nothing where the budget acted (it ended at the budget) or the sums are not finite, and no
   // bound at all where no budget was kept.
-  EXPECT_FLOAT_EQ(energyBudget(held + kinetic + 0.25f, kinetic, held, mass, momentum, momentum).released, 0.25f);
+  EXPECT_FLOAT_EQ(energyScale(held + kinetic + 0.25f, kinetic, held, mass, momentum, momentum).released, 0.25f);
   EXPECT_EQ(budget.released, 0.0f);
   EXPECT_EQ(stopped.released, 0.0f);
-  EXPECT_EQ(energyBudget(NAN, kinetic, held, mass, momentum, momentum).released, 0.0f);
+  EXPECT_EQ(energyScale(NAN, kinetic, held, mass, momentum, momentum).released, 0.0f);
   EXPECT_EQ(VelocityBudget{}.released, std::numeric_limits<float>::infinity());
 }
 
 TEST(EnergyBudget, GivesBackTheDriftTheStepMadeAndKeepsTheRest) {
   // A bubble of 0.3 kg flying at 1.3 m/s whose step was not paid for (the first after the pinch-off at h = 0.04 s
-  // gained 1.07 J against 0.30 J of kinetic energy, docs/performance.md session 15): the wobble goes, but the drift
+  // gains 1.07 J against 0.30 J of kinetic energy, docs/model.md "Energy budget"): the wobble goes, but the drift
   // it had and gravity's pull stay, to float rounding (1e-6 m/s).
   const float mass = 0.3f, h = 0.04f;
   const Vec3 flying(0.0f, 0.0f, 1.3f), pulled = flying + h * Vec3(0.0f, -9.81f, 0.0f);
   const float held = 5.58f, start = 4.81f, kinetic = 0.30f;
-  const VelocityBudget unpaid = energyBudget(start, kinetic, held, mass, mass * pulled, mass * pulled);
+  const VelocityBudget unpaid = energyScale(start, kinetic, held, mass, mass * pulled, mass * pulled);
   EXPECT_EQ(unpaid.scale, 0.0f);
   EXPECT_LT((unpaid.centre + unpaid.shift - pulled).norm(), 1e-6f) << "the step made no drift of its own: it is kept";
 
   // The same bubble pushed along 0.5 m/s more by its own contacts: that push is given back, never the flight.
   const Vec3 pushed = pulled + Vec3(0.5f, 0.0f, 0.0f);
-  const VelocityBudget given = energyBudget(start, kinetic, held, mass, mass * pushed, mass * pulled);
+  const VelocityBudget given = energyScale(start, kinetic, held, mass, mass * pushed, mass * pulled);
   EXPECT_LT((given.centre + given.shift - pulled).norm(), 1e-6f);
 
   // A pushed, wobbling bubble whose budget pays a quarter of the push's 0.5 m/s and nothing of its wobble: the
@@ -112,7 +112,7 @@ TEST(EnergyBudget, GivesBackTheDriftTheStepMadeAndKeepsTheRest) {
   // exactly at the budget (1e-5 of it for float rounding).
   const float wobble = 0.2f, wobbling = wobble + 0.5f * mass * pushed.squaredNorm();
   const float room = held + 0.5f * mass * (pulled + Vec3(0.25f, 0.0f, 0.0f)).squaredNorm();
-  const VelocityBudget part = energyBudget(room, wobbling, held, mass, mass * pushed, mass * pulled);
+  const VelocityBudget part = energyScale(room, wobbling, held, mass, mass * pushed, mass * pulled);
   const Vec3 centre = part.centre + part.shift;
   std::printf("push given back: centre %.4f %.4f %.4f m/s, wobble factor %.4f\n", centre.x(), centre.y(), centre.z(),
               part.scale);
@@ -124,7 +124,7 @@ TEST(EnergyBudget, GivesBackTheDriftTheStepMadeAndKeepsTheRest) {
 
   // An open film has no drift of its own (its wire sets it, expected momentum 0): the same step slows its drift
   // to what the budget has left.
-  const VelocityBudget open = energyBudget(room, wobbling, held, mass, mass * pushed, Vec3::Zero());
+  const VelocityBudget open = energyScale(room, wobbling, held, mass, mass * pushed, Vec3::Zero());
   const Vec3 slowed = open.centre + open.shift;
   EXPECT_LT(slowed.norm(), pushed.norm());
   EXPECT_LT((slowed.normalized() - pushed.normalized()).norm(), 1e-6f) << "slowed along its way";
@@ -146,13 +146,13 @@ Vec3 centreOfFilm(const State& s) {
 TEST(EnergyBudget, ABubbleBlownOffTheWandsKeepsFlyingAtTwoFrameSteps) {
   // The default performance at the live loop's two-frame step (h = 0.04 s) and its floor of 3 sweeps, as `live`
   // steps when the machine is behind. The first step after the pinch-off (1.88 s) gains more energy than all the
-  // bubble's motion holds. Session 14's budget took the drift too and stopped the bubble dead there: in `run` with
-  // these parameters its centre stayed at z = 0.80 m at 2 s, 0.79 m at 3 s and 0.72 m at 4 s (docs/performance.md,
-  // session 15). It must fly on: bound 0.8 m from 2.0 to 3.5 s, against 1.55 m with the budget and 1.41 m without.
+  // bubble's motion holds. A budget that took the drift too would stop the bubble dead there: in `run` with these
+  // parameters its centre would stay at z = 0.80 m at 2 s, 0.79 m at 3 s and 0.72 m at 4 s. It must fly on: bound
+  // 0.8 m from 2.0 to 3.5 s, against 1.55 m with the budget and 1.41 m without.
   const Scene scene = resolveScene("default");
   Params p = scene.run.params;
   p.frameTime = 0.04f;
-  p.solverIterations = 3;
+  p.solverSweeps = 3;
   const GestureOptions& stroke = scene.run.gestureOptions;
   Simulation sim(p, WandTool{}, gestureAt(Gesture::Giant, stroke, 0.0));
   Vec3 released = Vec3::Zero();
@@ -204,7 +204,7 @@ struct SpunStep {
 SpunStep spinAndStep(int energyBudget, float rate) {
   Params p;
   p.particlesAtFullSolution = 1000;
-  p.solverIterations = 1;
+  p.solverSweeps = 1;
   p.energyBudget = energyBudget;
   Film disc = test::makeFreeDisc(p);
   test::spin(disc, disc.state.normal.get(0), rate);

@@ -83,7 +83,7 @@ TEST(Fakenect, ASyntheticSessionPlayedThroughLibfreenectsFakenectGivesTheSameHan
   EXPECT_FALSE(played.next());  // the end of the recording, without fakenect's complaint
 }
 
-// Issue 15: a recording's 'a' entries (fakenect-record's accelerometer dumps) reach the detector as gravity. A
+// A recording's 'a' entries (fakenect-record's accelerometer dumps) reach the detector as gravity. A
 // camera tilted 15 degrees down: each played frame carries the accelerometer's up within 0.2
 // degrees (the raw counts' rounding, 1/819 g, is 0.07 degrees), and the floor is fitted along it, its height
 // within 3 cm (two 3 cm height bins). An accelerometer reading upside down is not believed: the floor is then
@@ -251,7 +251,7 @@ std::vector<std::string> indexLines(const fs::path& dir) {
   return lines;
 }
 
-// Issue 15: a Kinect unplugged mid-performance and plugged back in, through a stand-in for the live libfreenect
+// A Kinect unplugged mid-performance and plugged back in, through a stand-in for the live libfreenect
 // (fake_freenect.cpp). Unplugged, the source is lost and no Kinect is found; plugged back, it opens again while
 // the lost source still exists (the live window opens the new input before it drops the old one), which needs
 // the lost device let go of: a device still open in the process cannot be claimed again.

@@ -71,7 +71,7 @@ TEST(FilmGeneration, MeshIsAnOrientedManifoldDiscOnTheFrame) {
       EXPECT_NEAR(film.state.thickness[i], initialThickness(p), 1e-3f * initialThickness(p));
       if (!topo.boundary[i]) continue;
       ++boundary;
-      EXPECT_NEAR((film.state.position.get(i) - framePoint(frame, film.state.frameParam[i])).norm(), 0.0f, 1e-5f);
+      EXPECT_NEAR((film.state.position.get(i) - wirePoint(frame, film.state.wireParam[i])).norm(), 0.0f, 1e-5f);
     }
     EXPECT_GT(boundary, 50u);
   }
@@ -82,7 +82,8 @@ TEST(FilmGeneration, SpringsRestAtTheirPrestrainedInitialLengths) {
   const Film film = generateFilm(p, WandTool{}, restingWands());
   const Topology& topo = film.topology;
   for (size_t k = 0; k < topo.springCount(); ++k) {
-    const float d = (film.state.position.get(topo.springEnds[2 * k]) - film.state.position.get(topo.springEnds[2 * k + 1])).norm();
+    const float d =
+        (film.state.position.get(topo.springEnds[2 * k]) - film.state.position.get(topo.springEnds[2 * k + 1])).norm();
     EXPECT_FLOAT_EQ(d * (1.0f - p.springPrestrain), topo.restLength[k]);
   }
   // Triangles are well shaped: no edge is more than three times the median one.
@@ -99,7 +100,7 @@ TEST(FilmGeneration, SphereIsClosedOutwardAndHasTheRightVolume) {
   test::expectAdjacencyMatchesTriangles(sphere.topology);
   double volume = 0;
   for (size_t t = 0; t < sphere.topology.triangleCount(); ++t)
-    volume += triangleSignedVolume(sphere.topology, sphere.state, t, Vec3(0, 1, 0));
+    volume += triangleVolume(sphere.topology, sphere.state, t, Vec3(0, 1, 0));
   // An icosphere with 3 subdivisions is inscribed: its volume is 1.5% under the sphere's.
   const double exact = 4.0 / 3.0 * std::numbers::pi * 0.125;
   EXPECT_NEAR(volume / exact, 0.985, 0.01);

@@ -278,7 +278,7 @@ TEST(FilmGrowth, AWideBandGetsANewRingOnTheWireAndStaysAnOrientedManifoldDisc) {
     const bool isNew = i >= n0;
     EXPECT_EQ(film.topology.boundary[i] != 0, isNew) << "the new ring, and only it, is held by the wire: " << i;
     if (isNew) {  // placed on the wire (float rounding of the frame evaluation)
-      EXPECT_LT((film.state.position.get(i) - framePoint(frame, film.state.frameParam[i])).norm(), 1e-6f);
+      EXPECT_LT((film.state.position.get(i) - wirePoint(frame, film.state.wireParam[i])).norm(), 1e-6f);
     }
   }
   // Normals of the strip agree with the film's: all face the same side of the frame's plane.

@@ -1,7 +1,7 @@
 // The default performance (scenes/default.toml), simulated as the README's main job runs it: a giant bubble is
-// drawn, let go, flies free and bursts (issue 13, parts 1-2); the paper's Figures 10e against 10a and 14d as
-// built-in scenes; the film's liquid accounted for through growth, pinch-off and burst. Each bound is the issue's
-// own unless its comment says why it is tighter.
+// drawn, let go, flies free and bursts; the paper's Figures 10e against 10a and 14d as built-in scenes; the film's
+// liquid accounted for through growth, pinch-off and burst. Each bound is what the model is required to do unless
+// its comment says why it is tighter.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -54,7 +54,7 @@ PerformanceRecord performDefaultScene(int sweeps = 0, double seconds = 0, float 
   const Scene scene = resolveScene("default");
   RunOptions run = scene.run;
   EXPECT_EQ(run.input.spec(), "script:giant");
-  if (sweeps > 0) run.params.solverIterations = sweeps;
+  if (sweeps > 0) run.params.solverSweeps = sweeps;
   if (gibbsFloorThickness >= 0) run.params.gibbsFloorThickness = gibbsFloorThickness;
   const GestureOptions& g = run.gestureOptions;
   Simulation sim(run.params, run.tool, gestureAt(Gesture::Giant, g, 0.0));
@@ -65,7 +65,7 @@ PerformanceRecord performDefaultScene(int sweeps = 0, double seconds = 0, float 
   for (long f = 1; f <= frames;) {
     if (liveSeed > 0) {
       const int stepFrames = std::uniform_int_distribution<int>(1, 2)(live);
-      sim.setSolverIterations(std::uniform_int_distribution<int>(3, 6)(live));
+      sim.setSolverSweeps(std::uniform_int_distribution<int>(3, 6)(live));
       sim.setFrameTime(run.params.frameTime * static_cast<float>(stepFrames));
       f += stepFrames - 1;
     }
@@ -105,21 +105,15 @@ TEST(GiantBubble, DefaultPerformanceBlowsReleasesAndBurstsABubble) {
       "m/s against the wands' %.1f m/s, roundness a second after pinch-off %.2f, folded triangles %.1f%%\n",
       r.firstArea, r.peakArea, r.peakVolume, r.pinchTime, r.burstCause.c_str(), r.burstTime,
       r.peakFilmSpeedOutsideBursts, r.peakWandSpeed, r.roundnessOneSecondLater, 100.0 * r.foldedOneSecondLater);
-  // Measured at the end of session 7: area 0.63 -> 3.89 m^2, volume 0.55 m^3, pinch-off at 1.86 s, burst by the
-  // floor at 5.80 s (5.0 s, where it thinned, before contact pairs entered the list at their separation), fastest
-  // film particle 3.5 m/s against the wands' 2.2 m/s, roundness a second after pinch-off 1.19. Session 10, with the
-  // scene's Gibbs floor (1.5 um): area 0.63 -> 3.18 m^2, volume 0.53 m^3, pinch-off at 1.86 s, burst by the floor
-  // at 6.66 s, fastest film particle 2.9 m/s, roundness 1.11. Session 11, the seam wetted at pinch-off: area 3.19
-  // m^2, volume 0.53 m^3, pinch-off at 1.86 s, burst by the floor at 6.78 s, 2.9 m/s, roundness 1.13. Session 16,
-  // the free bubble's first guess carrying its drift (gravity now pulls it down as its weight says): area 3.14 m^2,
-  // volume 0.53 m^3, pinch-off at 1.86 s, burst by the floor at 4.18 s, 2.8 m/s, roundness 1.08, 0.8% folded.
+  // Measured: area 0.63 -> 3.15 m^2, volume 0.53 m^3, pinch-off at 1.86 s, burst by the floor at 4.16 s, fastest
+  // film particle 2.8 m/s against the wands' 2.2 m/s, roundness a second after pinch-off 1.09, 1.1% folded.
   EXPECT_GE(r.peakArea, 3.0 * r.firstArea) << "the bag is not giant: peak area " << r.peakArea << " m^2";
   EXPECT_GE(r.peakVolume, 0.5) << "peak volume " << r.peakVolume << " m^3";
   ASSERT_GE(r.pinchTime, 0.0) << "the wands closed but the film never pinched off";
   ASSERT_GE(r.burstTime, 0.0) << "the free bubble never burst";
   EXPECT_GE(r.burstTime - r.pinchTime, 1.0) << "the free bubble lived " << r.burstTime - r.pinchTime << " s";
   EXPECT_FALSE(r.burstCause.empty());
-  // No runaway: the film never outruns the air the wands push by more than the issue's factor of 4.
+  // No runaway: the film never outruns the air the wands push by more than a factor of 4.
   EXPECT_LE(r.peakFilmSpeedOutsideBursts, 4.0 * r.peakWandSpeed)
       << "fastest film particle " << r.peakFilmSpeedOutsideBursts << " m/s, wands " << r.peakWandSpeed << " m/s";
   // Boyle's law keeps the free bubble's air: its volume a second after pinch-off within 5% of the volume at
@@ -127,12 +121,12 @@ TEST(GiantBubble, DefaultPerformanceBlowsReleasesAndBurstsABubble) {
   // rest holds 2%).
   EXPECT_NEAR(r.volumeOneSecondLater, r.volumeAtPinch, 0.05 * r.volumeAtPinch);
   // A soap film has no slack: the long bag pulls round around its air (contractSlackSprings). A second after
-  // pinch-off its area is within 25% of a sphere's of the same volume (measured 1.21; 1.37 when the slack film
-  // hung in wrinkles; it still wobbles, and its closing seam is a fold).
+  // pinch-off its area is within 25% of a sphere's of the same volume (measured 1.09; 1.37 when the slack film
+  // hangs in wrinkles; it still wobbles, and its closing seam is a fold).
   EXPECT_LT(r.roundnessOneSecondLater, 1.25) << "the free bubble hangs in folds";
   // Nor is it crumpled: a second after pinch-off at most 2% of its triangles are folded (corner normals over 37
-  // degrees apart). Measured 6.1% before crowded thick particles merged (session 11: the seam's glittering patch,
-  // mergeCrowdedParticles), 0.5% after.
+  // degrees apart). Measured 1.1%; 6.1% without the merging of crowded thick particles (mergeCrowdedParticles), whose
+  // folds glitter on the seam.
   EXPECT_LT(r.foldedOneSecondLater, 0.02) << "the free bubble is crumpled";
 }
 
@@ -140,7 +134,7 @@ TEST(GiantBubble, AGibbsFloorLetsTheFreeBubbleLiveWhateverTheSolversSweeps) {
   // `live` takes fewer sweeps when it falls behind, and a better converged step would take more. With Eq. (4)'s
   // Gibbs elasticity falling all the way down (the default), the thinnest film is the softest: the free bubble
   // bursts by thinning at 3.04 s with 4 sweeps and at 1.92 s with 10, and lives to the floor (5.54 s) only at the
-  // default 6 (docs/performance.md, session 10). Held below gibbsFloorThickness = 1.5 um (the default scene's),
+  // default 6. Held below gibbsFloorThickness = 1.5 um (the default scene's),
   // neither bursts by thinning within 3.5 s, 1.64 s after pinch-off (measured: 4 sweeps no burst within 7 s, 10
   // sweeps by the floor at 6.04 s). The bound is the failure itself: any burst by thinning.
   for (int sweeps : {4, 10}) {
@@ -154,12 +148,12 @@ TEST(GiantBubble, AGibbsFloorLetsTheFreeBubbleLiveWhateverTheSolversSweeps) {
 }
 
 TEST(GiantBubble, TheFreeBubbleOutlivesItsPinchOffWhateverLiveDoesToTheStep) {
-  // `live` changes the sweeps and the step's length from frame to frame with the machine's load. The pinch-off
-  // seam used to keep the liquid of the film's edge (the last strips, grown as the wire ran dry) over the larger
-  // area of the zip's triangles, 94 nm against the film's microns; the seam then stretched as the bag rounded, and
+  // `live` changes the sweeps and the step's length from frame to frame with the machine's load. A pinch-off seam
+  // that kept the liquid of the film's edge (the last strips, grown as the wire ran dry) over the larger area of the
+  // zip's triangles would be 94 nm thick against the film's microns; the seam then stretches as the bag rounds, and
   // the bubble burst by thinning within 0.3 s of pinch-off in one show of six in `live` and in the schedule of
-  // seed 5 here (2.12 s; docs/performance.md, session 11). The seam is now wetted to the film's mean thickness
-  // (pinch_off.h). Bound: no burst at all by 3.0 s, 1.1 s after pinch-off (the default test asks 1 s of life).
+  // seed 5 here (2.12 s). So the seam is wetted to the film's mean thickness (pinch_off.h). Bound: no burst at all
+  // by 3.0 s, 1.1 s after pinch-off (the default test asks 1 s of life).
   for (unsigned seed : {3u, 5u, 7u}) {
     const PerformanceRecord r = performDefaultScene(0, 3.0, -1, seed);
     ASSERT_GE(r.pinchTime, 0.0) << "seed " << seed << ": the film never pinched off";
@@ -220,10 +214,10 @@ TEST(GiantBubble, TheRingBlowsAsTwoWandsHeldTogetherAtItsHand) {
   const float d = (x - w.rightPosition).norm();
   const Vec3 expected = -2.0f * u.airVolume * w.rightVelocity / (d + p.airInflowDistance);
   // Float rounding of a few products: 1e-5 relative.
-  EXPECT_LT((airInflow(p, u, x) - expected).norm(), 1e-5f * expected.norm());
+  EXPECT_LT((airInflowAt(p, u, x) - expected).norm(), 1e-5f * expected.norm());
 }
 
-// Figure 14d: a single ring raised from bottom to top draws a bubble out of its wet wire. The issue's bound,
+// Figure 14d: a single ring raised from bottom to top draws a bubble out of its wet wire. The bound,
 // 0.2 m^3 (a sphere of 0.36 m radius, about the ring's own), at 3,000 particles (the scene's 9,500 drew 0.24 m^3,
 // 3,000-5,000 drew 0.25-0.27).
 TEST(GiantBubble, Fig14dsRingDrawsABubble) {
@@ -275,7 +269,7 @@ TEST(GiantBubble, LiquidIsConservedThroughGrowthPinchOffAndBurst) {
   EXPECT_LT(sim.film().wireLiquid, wire0) << "growth took liquid from the wire";
   std::printf("wire gave %.3g m^3, droplets %.4g m^3 from a film of %.4g m^3, worst drift %.2g of the total\n",
               wire0 - sim.film().wireLiquid, emitted, filmBeforeBurst, worstDrift / total0);
-  // The issue's bound: the droplets carry the film's liquid within 1%.
+  // The droplets carry the film's liquid within 1%.
   EXPECT_NEAR(emitted, filmBeforeBurst, 0.01 * filmBeforeBurst);
   // The account is exact up to float rounding (measured ~5e-8); 1e-4 is about one particle's share of the film,
   // so a particle whose liquid is lost or made from nothing fails it.

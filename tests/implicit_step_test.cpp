@@ -1,4 +1,4 @@
-// The implicit step (cpu-reference/implicit_euler.h): its colouring, its solver, and the film it drives at
+// The implicit step (cpu-reference/solver/implicit_euler.h): its colouring, its solver, and the film it drives at
 // real arm speeds, under random abuse, and against the explicit reference integrator.
 #include <gtest/gtest.h>
 
@@ -72,7 +72,7 @@ TEST(ImplicitStep, TheLanesLogarithmIsTheLogarithmInEveryLane) {
 // The norm of the implicit objective's gradient over the solved particles after `sweeps` sweeps of one step.
 double residualAfter(int sweeps, const Params& params) {
   Params p = params;
-  p.solverIterations = sweeps;
+  p.solverSweeps = sweeps;
   GestureOptions g;
   g.start = 0.0f;
   g.speed = 2.5f;
@@ -323,8 +323,8 @@ TEST(ImplicitStep, TwoFrameStepsFollowOneFrameStepsOnTheDefaultStroke) {
 
 // A free bubble keeps its volume by Boyle's law on both integrators: the implicit step's volume stays within
 // 2% of the explicit one's over a second of wobbling (without gravity: a falling bubble bursts on the floor).
-// The CPU stepper's sweeps solve four particles of a colour at once in vector lanes (solveVertexBlockRun); each
-// particle must move exactly as solveVertexBlock moves it alone. Tolerance: none, bit for bit, since the lanes do
+// The CPU stepper's sweeps solve four particles of a colour at once in vector lanes (vertexBlockDescentRun); each
+// particle must move exactly as vertexBlockDescent moves it alone. Tolerance: none, bit for bit, since the lanes do
 // the same IEEE float operations in the same order (nothing fused or approximate, float_lanes.h). Checked on
 // a film with a dead particle, in both tension models, on colliding sheets (contacts) and on a closed bubble
 // (Boyle's gas).
@@ -346,9 +346,9 @@ void expectLanesMatchOneByOne(const Params& p, Simulation& sim, const WandState&
   const Topology& topo = film.topology;
   for (size_t c = 0; c + 1 < topo.colourOffset.size(); ++c) {
     for (uint32_t r = runs.colourRuns[c]; r < runs.colourRuns[c + 1]; ++r)
-      solveVertexBlockRun(p, u, bubble, topo, lanes.state, runs, r);
+      vertexBlockDescentRun(p, u, bubble, topo, lanes.state, runs, r);
     for (uint32_t k = topo.colourOffset[c]; k < topo.colourOffset[c + 1]; ++k)
-      solveVertexBlock(p, u, bubble, topo, oneByOne.state, topo.colourOrder[k]);
+      vertexBlockDescent(p, u, bubble, topo, oneByOne.state, topo.colourOrder[k]);
   }
   size_t moved = 0;
   for (size_t i = 0; i < film.state.size(); ++i) {
@@ -360,7 +360,7 @@ void expectLanesMatchOneByOne(const Params& p, Simulation& sim, const WandState&
   EXPECT_GT(moved, film.state.size() / 2) << what << ": the sweep must move the film";
 }
 
-TEST(ImplicitStep, TheLanesSolveEveryParticleAsSolveVertexBlockDoes) {
+TEST(ImplicitStep, TheLanesSolveEveryParticleAsVertexBlockDescentDoes) {
   for (int model = 0; model <= 1; ++model) {
     Params p;
     p.particlesAtFullSolution = 1500;

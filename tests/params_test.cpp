@@ -1,9 +1,9 @@
+#include "params.h"
+
 #include <gtest/gtest.h>
 
 #include <set>
 #include <string>
-
-#include "params.h"
 
 namespace gb {
 namespace {

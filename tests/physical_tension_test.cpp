@@ -1,5 +1,6 @@
 // The physical tension model (tensionModel 1) against soap-film physics (docs/validation.md). Each experiment
-// (cpu-reference/experiments.cpp) measures one number; the bounds are the unless the comment says.
+// (cpu-reference/simulation/experiments.cpp) measures one number; the bounds are the required ones unless the comment
+// says why.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -103,18 +104,18 @@ TEST(PhysicalTension, DrainageThinsTheFilmButLeavesItsTension) {
   s.liquid[0] = liquid;
   s.mass[0] = particleMass(p, 0.0f, liquid);  // made with this liquid
   s.voronoiArea[0] = 1.5f * liquid / initialThickness(p);
-  updateFilmState(p, 0.0f, s, 0);
+  filmState(p, 0.0f, s, 0);
   const float tension = s.elasticity[0], thickness = s.thickness[0];
   ASSERT_GT(tension, 2.0f * p.surfaceTension) << "stretched 1.5 times: the Gibbs law, not its clamp";
   ASSERT_LT(tension, 4.0f * p.surfaceTension);
 
   s.liquid[0] = 0.5f * liquid;  // drained
-  updateFilmState(p, 0.0f, s, 0);
+  filmState(p, 0.0f, s, 0);
   EXPECT_NEAR(s.thickness[0], 0.5f * thickness, 1e-6f * thickness);
   EXPECT_NEAR(s.elasticity[0], tension, 1e-6f * 2.0f * p.surfaceTension) << "drainage moved no surfactant";
 
   s.voronoiArea[0] *= 1.2f;  // stretched
-  updateFilmState(p, 0.0f, s, 0);
+  filmState(p, 0.0f, s, 0);
   EXPECT_NEAR(s.elasticity[0], tension + p.gibbsElasticity * std::log(1.2f), 1e-6f * 2.0f * p.surfaceTension);
 }
 

@@ -130,8 +130,8 @@ TEST(PinchOff, TheFreeBubbleKeepsItsVolumeUnderBoylesPressureAndLeavesTheWands) 
   for (int f = 0; f < 50; ++f) sim->advanceFrame(away);
   const FrameStats st = sim->stats();
   EXPECT_NEAR(st.volume, v0, 0.2 * v0) << "Boyle's pressure must hold the bubble's volume";
-  // Whole: no burst. Crowded thick particles may merge (mergeCrowdedParticles; 2 of 2,308 here since session 16's
-  // Boyle force), so the bound on the particles left is 99%, not all.
+  // Whole: no burst. Crowded thick particles may merge (mergeCrowdedParticles; 2 of 2,308 here with Boyle's force
+  // taken as the volume's gradient), so the bound on the particles left is 99%, not all.
   EXPECT_FALSE(sim->burst().active());
   EXPECT_GE(st.particles, 0.99 * static_cast<double>(sim->film().state.size()));
   for (size_t i = 0; i < sim->film().state.size(); ++i) ASSERT_TRUE(sim->film().state.position.get(i).allFinite());

@@ -467,7 +467,7 @@ WithAndWithoutFilm drawWithAndWithoutFilm(Renderer& renderer, const Film& film, 
 }
 
 TEST(Renderer, DefaultCameraFramesTheGiantBubbleLarge) {
-  // The "the film covers >= 15% of the image at peak from the default camera", at the frame of the
+  // The film covers >= 15% of the image at peak from the default camera, at the frame of the
   // default performance's peak film area. Covered: a pixel the film changes by more than 8 levels when drawn in
   // the thickness colouring (mostly opaque sheets, alpha 0.75). The interference colouring cannot measure
   // coverage: a clear film over a background about as bright as what it reflects changes a pixel by a level or
@@ -562,7 +562,7 @@ void printWhereTheColourComesFrom(const Film& film, const OrbitCamera& camera, c
 }
 
 TEST(Renderer, DefaultPerformancesFilmIsColourfulMidStroke) {
-  // The "mean saturation of the film's pixels > 0.1 mid-stroke": the default performance mid-stroke (1.6 s),
+  // Mean saturation of the film's pixels > 0.1 mid-stroke: the default performance mid-stroke (1.6 s),
   // drawn from the default camera framing it, in the default outdoor environment with its colour removed (every
   // texel, the sky, the wood behind the stage and the ground, replaced by its luminance) so that only interference
   // can colour a pixel. The film's pixels are those the film changes (by more than 2 levels in a channel) against the
@@ -572,13 +572,13 @@ TEST(Renderer, DefaultPerformancesFilmIsColourfulMidStroke) {
   // (B): its colour on the picture is the spread of R over the channels times S, divided by the pixel's brightness,
   // mostly B. The default camera stands low (pitch -0.15: its eye 0.8 m above the ground mid-stroke, looking up at
   // the film) and sees the film against the dark edge of the wood behind the stage, as giant bubbles are usually
-  // photographed (docs/rendering.md, "Colour mid-stroke"). Measured when written (printed below): behind the film's
-  // pixels a luminance of 0.041 (0.194 before, sunlit ground seen from a camera looking down at 0.3 rad), with the
-  // film 0.073; the film reflects 0.305, 58% of it the ground; drawn thickness 0.53 / 1.13 / 2.53 um (10th
-  // percentile, median, 90th); mean saturation 0.138 on 23% of the image (0.073 before). The bound is the issue's
-  // 0.1: the margin (0.038) is far beyond what another Mesa or LLVM version moves (a level or two on a few pixels,
-  // under 0.005 here), and a change that puts sunlit ground or sky back behind the film (0.055 with this wood but
-  // the old camera) or greys the film's reflection fails it.
+  // photographed (docs/rendering.md, "Colour mid-stroke"). Measured (printed below): behind the film's pixels a
+  // luminance of 0.041 (0.194 for sunlit ground seen from a camera looking down at 0.3 rad), with the film 0.073;
+  // the film reflects 0.303, 58% of it the ground; drawn thickness 0.59 / 1.18 / 2.57 um (10th percentile, median,
+  // 90th); mean saturation 0.127 on 22% of the image. The bound is 0.1: the margin is far beyond what another Mesa
+  // or LLVM version moves (a level or two on a few pixels, under 0.005 here), and a change that puts sunlit ground or
+  // sky back behind the film (0.055 with this wood and a camera 0.3 rad down) or greys the film's reflection fails
+  // it.
   GB_REQUIRE_VULKAN(device);
   const DefaultPerformanceFrames& frames = defaultPerformanceFrames();
   RenderOptions o = smallImage();

@@ -1,6 +1,6 @@
-#include <gtest/gtest.h>
-
 #include "scripted_gestures.h"
+
+#include <gtest/gtest.h>
 
 namespace gb {
 namespace {

@@ -1,4 +1,4 @@
-// The candidate solvers of the implicit step (cpu-reference/solver_comparison.h) that bench/solver_bench.cpp
+// The candidate solvers of the implicit step (research/solver_comparison.h) that bench/solver_bench.cpp
 // measures: they solve the objective the step solves, and each of them makes progress on it.
 #include "solver_comparison.h"
 

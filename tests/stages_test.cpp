@@ -19,11 +19,11 @@ TEST(Elasticity, MarangoniWhileYoungGibbsAfterEq4) {
   p.elasticityThickness = 4e-6f;
   p.marangoniLifetime = 0.2f;
   // e = k: x = 1. Marangoni 2 w_E x / (x + 2) = 25 / 3; Gibbs 4 w_E x / (x + 2)^2 = 50 / 9.
-  EXPECT_NEAR(elasticity(p, 4e-6f, 0.1f), 25.0f / 3.0f, 1e-5f);
-  EXPECT_NEAR(elasticity(p, 4e-6f, 0.3f), 50.0f / 9.0f, 1e-5f);
+  EXPECT_NEAR(elasticityOf(p, 4e-6f, 0.1f), 25.0f / 3.0f, 1e-5f);
+  EXPECT_NEAR(elasticityOf(p, 4e-6f, 0.3f), 50.0f / 9.0f, 1e-5f);
   // e = 2k: the Gibbs peak w_E / 2; thicker films are softer (inversely proportional to thickness).
-  EXPECT_NEAR(elasticity(p, 8e-6f, 1.0f), 6.25f, 1e-5f);
-  EXPECT_LT(elasticity(p, 40e-6f, 1.0f), elasticity(p, 8e-6f, 1.0f));
+  EXPECT_NEAR(elasticityOf(p, 8e-6f, 1.0f), 6.25f, 1e-5f);
+  EXPECT_LT(elasticityOf(p, 40e-6f, 1.0f), elasticityOf(p, 8e-6f, 1.0f));
 }
 
 TEST(Elasticity, GibbsHoldsBelowItsFloorAndTheMarangoniBranchDoesNot) {
@@ -35,14 +35,14 @@ TEST(Elasticity, GibbsHoldsBelowItsFloorAndTheMarangoniBranchDoesNot) {
   // x = 0.375 at the floor: 4 w_E x / (x + 2)^2 = 18.75 / 5.640625. Film thinner than the floor keeps it exactly
   // (the same float formula at the same x); above the floor Eq. (4) is untouched.
   const float atFloor = 12.5f * 4.0f * 0.375f / (2.375f * 2.375f);
-  EXPECT_NEAR(elasticity(p, 1.5e-6f, 1.0f), atFloor, 1e-5f);
-  EXPECT_EQ(elasticity(p, 0.3e-6f, 1.0f), elasticity(p, 1.5e-6f, 1.0f));
-  EXPECT_EQ(elasticity(p, 20e-9f, 1.0f), elasticity(p, 1.5e-6f, 1.0f));
-  EXPECT_NEAR(elasticity(p, 4e-6f, 1.0f), 50.0f / 9.0f, 1e-5f);
+  EXPECT_NEAR(elasticityOf(p, 1.5e-6f, 1.0f), atFloor, 1e-5f);
+  EXPECT_EQ(elasticityOf(p, 0.3e-6f, 1.0f), elasticityOf(p, 1.5e-6f, 1.0f));
+  EXPECT_EQ(elasticityOf(p, 20e-9f, 1.0f), elasticityOf(p, 1.5e-6f, 1.0f));
+  EXPECT_NEAR(elasticityOf(p, 4e-6f, 1.0f), 50.0f / 9.0f, 1e-5f);
   // Young film follows Marangoni's branch all the way down; a floor of 0 is the paper's formula.
-  EXPECT_LT(elasticity(p, 0.3e-6f, 0.1f), elasticity(p, 1.5e-6f, 0.1f));
+  EXPECT_LT(elasticityOf(p, 0.3e-6f, 0.1f), elasticityOf(p, 1.5e-6f, 0.1f));
   p.gibbsFloorThickness = 0.0f;
-  EXPECT_NEAR(elasticity(p, 0.4e-6f, 1.0f), 12.5f * 4.0f * 0.1f / (2.1f * 2.1f), 1e-5f);
+  EXPECT_NEAR(elasticityOf(p, 0.4e-6f, 1.0f), 12.5f * 4.0f * 0.1f / (2.1f * 2.1f), 1e-5f);
 }
 
 TEST(FilmState, ThicknessIsLiquidOverVoronoiArea) {
@@ -52,9 +52,9 @@ TEST(FilmState, ThicknessIsLiquidOverVoronoiArea) {
   s.liquid[0] = 3e-10f;
   s.voronoiArea[0] = 1.5e-4f;
   s.lifetime[0] = 0.5f;
-  updateFilmState(p, 0.01f, s, 0);
+  filmState(p, 0.01f, s, 0);
   EXPECT_NEAR(s.thickness[0], 2e-6f, 2e-6f * kFormulaTolerance);
-  EXPECT_FLOAT_EQ(s.elasticity[0], elasticity(p, s.thickness[0], 0.5f));
+  EXPECT_FLOAT_EQ(s.elasticity[0], elasticityOf(p, s.thickness[0], 0.5f));
   EXPECT_FLOAT_EQ(s.lifetime[0], 0.51f);
 }
 
@@ -95,12 +95,12 @@ TEST(AirInflow, Eq5FallsOffWithDistanceAndOpposesTheWands) {
   u.airVolume = 0.5f;
   u.wandAlignment = 1.0f;
   // At the origin: distances 1 and 3, so -0.5 * (1/2 + 1/4) along z.
-  const Vec3 air = airInflow(p, u, Vec3::Zero());
+  const Vec3 air = airInflowAt(p, u, Vec3::Zero());
   EXPECT_NEAR(air.z(), -0.375f, kFormulaTolerance);
   EXPECT_NEAR(air.x(), 0.0f, kFormulaTolerance);
   // The single ring wand blows with its right hand only.
   u.leftInflowWeight = 0.0f;
-  EXPECT_NEAR(airInflow(p, u, Vec3::Zero()).z(), -0.125f, kFormulaTolerance);
+  EXPECT_NEAR(airInflowAt(p, u, Vec3::Zero()).z(), -0.125f, kFormulaTolerance);
 }
 
 TEST(AirTransfer, Eq7And8WeightedMeanOfNeighboursPointingIn) {
@@ -119,12 +119,12 @@ TEST(AirTransfer, Eq7And8WeightedMeanOfNeighboursPointingIn) {
   const float aDir5 = toCentre.normalized().dot(air5.normalized());
   ASSERT_GT(aDir5, 0.6f);
   film.topology.boundary[0] = 0;
-  transferAirFlow(p, film.topology, s, 0);
+  airTransfer(p, film.topology, s, 0);
   const Vec3 expected = (1.0f * Vec3(1, 0, 0) + aDir5 * air5) / (1.0f + aDir5);
   EXPECT_NEAR((s.airFlowNext.get(0) - expected).norm(), 0.0f, kFormulaTolerance);
   // A boundary ("end") particle takes the fresh inflow instead (Algorithm 2, line 2).
   s.airInflow.set(1, Vec3(0, 0, -3));
-  transferAirFlow(p, film.topology, s, 1);
+  airTransfer(p, film.topology, s, 1);
   EXPECT_EQ(s.airFlowNext.get(1), Vec3(0, 0, -3));
 }
 
@@ -144,7 +144,7 @@ TEST(Forces, Eq3SpringWithMeanElasticityAndProjectedDamping) {
   s.elasticity[2] = 0.0f;
   s.position.set(2, Vec3(0, 1, 0));
   s.velocity.set(1, Vec3(0.2f, 0.7f, 0));  // only the x part lies along the spring
-  computeForces(p, StepUniforms{}, p.pressureCoefficient, film.topology, s, 0);
+  forces(p, StepUniforms{}, p.pressureCoefficient, film.topology, s, 0);
   // Spring 0-1: stiffness (2 + 4) / 2 = 3, stretch 0.1 -> 0.3 along +x; damping 0.5 * 0.2 = 0.1 along +x.
   // Spring 0-2 is at rest length and its stiffness (2 + 0) / 2 pulls nothing.
   EXPECT_NEAR(s.force.x[0], 0.4f, kFormulaTolerance);
@@ -162,7 +162,7 @@ TEST(Forces, Eq9AirPushesAlongTheNormalOnly) {
   s.elasticity.assign(s.size(), 0.0f);
   s.airFlow.set(0, Vec3(5, 0, -1));    // transferred air: only -1 along the normal +z counts
   s.airInflow.set(0, Vec3(0, 3, -2));  // direct inflow: -2 along the normal
-  computeForces(p, StepUniforms{}, p.pressureCoefficient, film.topology, s, 0);
+  forces(p, StepUniforms{}, p.pressureCoefficient, film.topology, s, 0);
   const float expected = 2.0f * (-1.0f - 2.0f) * s.voronoiArea[0];
   EXPECT_NEAR(s.force.z[0], expected, std::abs(expected) * kFormulaTolerance);
   EXPECT_NEAR(s.force.x[0], 0.0f, kFormulaTolerance);
@@ -200,7 +200,7 @@ TEST(Integration, Eq12And13SemiImplicitEuler) {
   s.force.set(0, Vec3(0, 4, 0));
   StepUniforms u;
   u.dt = 0.5f;
-  integrateParticle(u, film.topology, s, 0);
+  integrate(u, film.topology, s, 0);
   // v' = v + h f / m = (1, 1, 0); x' = x + h v' = (0.5, 0.5, 0): the new velocity moves the particle.
   EXPECT_EQ(s.velocity.get(0), Vec3(1, 1, 0));
   EXPECT_EQ(s.position.get(0), Vec3(0.5f, 0.5f, 0));
@@ -211,14 +211,14 @@ TEST(Integration, BoundaryParticlesFollowTheWireFrame) {
   Film film = test::makeHexagon(p);
   State& s = film.state;
   ASSERT_TRUE(film.topology.boundary[1]);
-  s.frameParam[1] = 0.25f;
+  s.wireParam[1] = 0.25f;
   StepUniforms u;
   u.dt = 0.1f;
-  u.frameNext.kind = ToolKind::Ring;
-  u.frameNext.center = Vec3(0, 0, 1);
-  u.frameNext.halfWidth = u.frameNext.depth = 2.0f;
-  integrateParticle(u, film.topology, s, 1);
-  const Vec3 expected = framePoint(u.frameNext, 0.25f);
+  u.wireNext.kind = ToolKind::Ring;
+  u.wireNext.center = Vec3(0, 0, 1);
+  u.wireNext.halfWidth = u.wireNext.depth = 2.0f;
+  integrate(u, film.topology, s, 1);
+  const Vec3 expected = wirePoint(u.wireNext, 0.25f);
   EXPECT_EQ(s.position.get(1), expected);
   EXPECT_NEAR((s.velocity.get(1) - (expected - Vec3(1, 0, 0)) / 0.1f).norm(), 0.0f, 1e-5f);
 }
@@ -245,7 +245,7 @@ TEST(Integration, TheFloorStopsAFallingParticleButLetsItSlide) {
   s.force.set(0, Vec3::Zero());
   StepUniforms u;
   u.dt = 0.01f;
-  integrateParticle(u, film.topology, s, 0);
+  integrate(u, film.topology, s, 0);
   EXPECT_EQ(s.position.y[0], 0.0f);
   EXPECT_EQ(s.velocity.y[0], 0.0f);
   EXPECT_FLOAT_EQ(s.velocity.x[0], 0.5f);

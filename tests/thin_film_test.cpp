@@ -3,6 +3,8 @@
 // Shirley (2013) analytic multi-lobe fit of the CIE 1931 observer (not the typed 5 nm table), 1 nm steps (not
 // 5 nm), compared in CIELAB. Also the colour sequence a physicist expects from Newton's series, checked on the
 // table the renderer uses, and the typed observer table itself.
+#include "thin_film.h"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,7 +13,6 @@
 #include <numbers>
 
 #include "spectral_tables.h"
-#include "thin_film.h"
 #include "thin_film_lut.h"
 
 namespace gb {
@@ -26,9 +27,10 @@ double lobe(double nm, double mu, double sigmaBelow, double sigmaAbove) {
   return std::exp(-0.5 * t * t);
 }
 Rgb3 wymanCmf(double nm) {
-  return {1.056 * lobe(nm, 599.8, 37.9, 31.0) + 0.362 * lobe(nm, 442.0, 16.0, 26.7) - 0.065 * lobe(nm, 501.1, 20.4, 26.2),
-          0.821 * lobe(nm, 568.8, 46.9, 40.5) + 0.286 * lobe(nm, 530.9, 16.3, 31.1),
-          1.217 * lobe(nm, 437.0, 11.8, 36.0) + 0.681 * lobe(nm, 459.0, 26.0, 13.8)};
+  return {
+      1.056 * lobe(nm, 599.8, 37.9, 31.0) + 0.362 * lobe(nm, 442.0, 16.0, 26.7) - 0.065 * lobe(nm, 501.1, 20.4, 26.2),
+      0.821 * lobe(nm, 568.8, 46.9, 40.5) + 0.286 * lobe(nm, 530.9, 16.3, 31.1),
+      1.217 * lobe(nm, 437.0, 11.8, 36.0) + 0.681 * lobe(nm, 459.0, 26.0, 13.8)};
 }
 
 // Reflectance from the complex Airy sum r = (r12 + r23 e^{i delta}) / (1 + r12 r23 e^{i delta}), s and p.
@@ -77,7 +79,9 @@ Lab toLab(const Rgb3& xyz) {
   return {116 * fy - 16, 500 * (fx - fy), 200 * (fy - fz)};
 }
 
-double deltaE(const Lab& p, const Lab& q) { return std::sqrt((p.L - q.L) * (p.L - q.L) + (p.a - q.a) * (p.a - q.a) + (p.b - q.b) * (p.b - q.b)); }
+double deltaE(const Lab& p, const Lab& q) {
+  return std::sqrt((p.L - q.L) * (p.L - q.L) + (p.a - q.a) * (p.a - q.a) + (p.b - q.b) * (p.b - q.b));
+}
 
 // The independent colour as the table must store it: linear sRGB, negative (out-of-gamut) channels clamped.
 Lab independentStoredLab(double thickness, double cosIncidence) {

@@ -106,7 +106,7 @@ constexpr double kStageTolerance = 1e-5;
 constexpr double kCancellationFloor = 1e-4;
 constexpr double kFloatEpsilon = 1.1920929e-7;
 
-// Sum of the magnitudes of the terms computeForces adds for particle i (same inputs as the stage).
+// Sum of the magnitudes of the terms forces adds for particle i (same inputs as the stage).
 double forceTermMagnitude(const Params& p, const Film& film, size_t i) {
   const State& s = film.state;
   const Topology& topo = film.topology;
@@ -282,7 +282,7 @@ TEST(VulkanEquivalence, TheGibbsFloorMatchesTheCpuReference) {
   p.marangoniLifetime = 0.0f;
   const auto [cpuFilm, gpuFilm] =
       stagesOnBoth(device, {Stage::Geometry, Stage::FilmState}, p, input.film, input.uniforms);
-  const float floored = elasticity(p, p.gibbsFloorThickness, 1.0f);
+  const float floored = elasticityOf(p, p.gibbsFloorThickness, 1.0f);
   const size_t n = cpuFilm.state.size();
   size_t held = 0;
   for (size_t i = 0; i < n; ++i) held += cpuFilm.state.elasticity[i] == floored ? 1 : 0;
@@ -301,7 +301,7 @@ TEST(VulkanEquivalence, EveryImplicitPassAloneMatchesTheCpuReference) {
   GB_REQUIRE_VULKAN(device);
   const MovingFilm input;
   StepUniforms u = input.uniforms;
-  u.solverIterations = 1;  // one sweep over the colours: the pass itself, not ten compounded
+  u.solverSweeps = 1;  // one sweep over the colours: the pass itself, not ten compounded
   struct Check {
     Stage stage;
     const char* name;
@@ -374,7 +374,7 @@ TEST(VulkanEquivalence, TheEnergyBudgetMatchesTheCpuReference) {
     const bool bubble = c.bubble;
     Params p;
     p.particlesAtFullSolution = 1000;
-    p.solverIterations = 1;
+    p.solverSweeps = 1;
     p.gravityY = 0.0f;
     p.tensionModel = c.tensionModel;
     Film film = bubble ? generateSphere(p, Vec3(0, 1.5f, 0), 0.4f, 3) : test::makeFreeDisc(p);
@@ -521,7 +521,7 @@ struct SceneCase {
 class VulkanScene : public ::testing::TestWithParam<SceneCase> {};
 
 // Whole scenes over 500 steps (frames of the implicit step) on both backends: each particle within 1 mm, and
-// area, volume and energy within 0.1% (the bounds). Differences start at the ulp level and grow only
+// area, volume and energy within 0.1% (the required bounds). Differences start at the ulp level and grow only
 // as fast as the film's own dynamics amplify them. The bubble floats without gravity: with it, it would
 // burst on the floor within the 10 s. The stroke draws no new film (a dry wire, solutionReserve 0): a grown,
 // slack film crumples when the wands stop, and crumpling amplifies any difference chaotically (measured:

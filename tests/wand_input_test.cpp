@@ -162,7 +162,7 @@ TEST(WandInput, AutomaticCalibrationCentresThePerformerBetweenTheHands) {
   EXPECT_NEAR(input.calibration().performer.x(), 1.0 + 0.5 * 0.3 * 0.2, 1e-3);
 }
 
-// Issue 15: the film is made on the performer's hands. Nobody for 1.2 s, then the left hand alone, raised far
+// The film is made on the performer's hands. Nobody for 1.2 s, then the left hand alone, raised far
 // out to the side, for 1.2 s, then both hands at rest: run time 0 is the first sample with both hands, the
 // wands start on them (the rest pose, tips 1 m apart), and the wait is said once per second of input.
 TEST(WandInput, APerformerFoundLateStartsTheWandsOnBothHandsAndTheWaitIsSaid) {
@@ -325,7 +325,7 @@ RateRun runAt(double rate) {
   return r;
 }
 
-// Issue 15: from 7.5 to 60 samples per second the wands neither freeze nor teleport (never faster than the
+// From 7.5 to 60 samples per second the wands neither freeze nor teleport (never faster than the
 // stabilizer's speed limit, never a run frame standing still while the hand moves), lag at most 100 ms at
 // 30 Hz and 150 ms at 15 Hz (plus one run frame, 20 ms, the resolution the lag is seen at), and a rate below
 // 25 Hz is warned about.

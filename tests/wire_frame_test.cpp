@@ -27,9 +27,9 @@ TEST(WireFrame, TwoWandLoopPassesThroughBothTipsAndHangsDown) {
   w.rightPosition = Vec3(0.5f, 1.6f, 0);
   const float length = hangingStringLength(0.5f, 0.8f);
   const WireFrame f = makeWireFrame(WandTool{}, w, length, Vec3(0, -9.81f, 0));
-  EXPECT_NEAR((framePoint(f, 0.0f) - w.leftPosition).norm(), 0.0f, 1e-6f);
-  EXPECT_NEAR((framePoint(f, 1.0f) - w.rightPosition).norm(), 0.0f, 1e-6f);
-  EXPECT_NEAR((framePoint(f, 1.5f) - Vec3(0, 0.8f, 0)).norm(), 0.0f, 1e-5f);  // bottom of the loop
+  EXPECT_NEAR((wirePoint(f, 0.0f) - w.leftPosition).norm(), 0.0f, 1e-6f);
+  EXPECT_NEAR((wirePoint(f, 1.0f) - w.rightPosition).norm(), 0.0f, 1e-6f);
+  EXPECT_NEAR((wirePoint(f, 1.5f) - Vec3(0, 0.8f, 0)).norm(), 0.0f, 1e-5f);  // bottom of the loop
   EXPECT_NEAR(f.area(), 0.5f * kPi * 0.5f * 0.8f, 1e-5f);
   EXPECT_NEAR(f.height(), 0.8f, 1e-5f);
   // Bringing the tips together lets the same string hang deeper.
@@ -45,7 +45,7 @@ TEST(WireFrame, RingIsCentredOnTheRightHand) {
   WandState w;
   w.rightPosition = Vec3(1, 2, 3);
   const WireFrame f = makeWireFrame(tool, w, 0.0f, Vec3(0, -9.81f, 0));
-  for (float u : {0.0f, 0.2f, 0.5f, 0.9f}) EXPECT_NEAR((framePoint(f, u) - w.rightPosition).norm(), 0.3f, 1e-6f);
+  for (float u : {0.0f, 0.2f, 0.5f, 0.9f}) EXPECT_NEAR((wirePoint(f, u) - w.rightPosition).norm(), 0.3f, 1e-6f);
   EXPECT_NEAR(f.area(), kPi * 0.09f, 1e-6f);
 }
 

@@ -1,0 +1,161 @@
+#include "state.h"
+
+#include <algorithm>
+#include <optional>
+#include <stdexcept>
+#include <utility>
+
+namespace gb {
+
+namespace {
+
+// A new particle's value of an array (its line of device_data.h), as the array's element type.
+template <class Values>
+typename Values::value_type createdValue(const Values&, const ParticleArrayInfo& info) {
+  return static_cast<typename Values::value_type>(info.created);
+}
+
+}  // namespace
+
+void State::resize(size_t n) {
+  forEachParticleArray(*this, [n](auto& array, const ParticleArrayInfo& info) {
+    forEachComponent(array, [&](auto& values, int) { values.assign(n, createdValue(values, info)); });
+  });
+}
+
+void State::append(size_t count) {
+  const size_t n = size() + count;
+  forEachParticleArray(*this, [n](auto& array, const ParticleArrayInfo& info) {
+    forEachComponent(array, [&](auto& values, int) { values.resize(n, createdValue(values, info)); });
+  });
+}
+
+Vec3 centroid(const State& s) {
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  size_t count = 0;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.alive[i]) {
+      sum += s.position.get(i).cast<double>();
+      ++count;
+    }
+  return count ? Vec3((sum / static_cast<double>(count)).cast<float>()) : Vec3::Zero();
+}
+
+namespace {
+
+using Edge = std::pair<uint32_t, uint32_t>;
+Edge undirected(uint32_t a, uint32_t b) { return a < b ? Edge{a, b} : Edge{b, a}; }
+
+}  // namespace
+
+std::vector<EdgeUse> edgeUses(size_t particleCount, const std::vector<uint32_t>& triangles) {
+  const auto edge = [&](size_t t, int c) { return undirected(triangles[t + c], triangles[t + (c + 1) % 3]); };
+  std::vector<uint32_t> start(particleCount + 1, 0);  // edges filed under their lower end
+  for (size_t t = 0; t < triangles.size(); t += 3)
+    for (int c = 0; c < 3; ++c) ++start[edge(t, c).first + 1];
+  for (size_t i = 0; i < particleCount; ++i) start[i + 1] += start[i];
+  std::vector<uint32_t> upper(start[particleCount]), fill(start.begin(), start.end() - 1);
+  for (size_t t = 0; t < triangles.size(); t += 3)
+    for (int c = 0; c < 3; ++c) {
+      const auto [lo, hi] = edge(t, c);
+      upper[fill[lo]++] = hi;
+    }
+  std::vector<EdgeUse> uses;
+  for (uint32_t i = 0; i < particleCount; ++i) {
+    const auto first = upper.begin() + start[i], last = upper.begin() + start[i + 1];
+    std::sort(first, last);  // a particle's few edges
+    for (auto run = first; run != last;) {
+      const auto next = std::upper_bound(run, last, *run);
+      uses.push_back({i, *run, static_cast<int>(next - run)});
+      run = next;
+    }
+  }
+  return uses;
+}
+
+namespace {
+
+bool noEdgeOfOneTriangle(const std::vector<EdgeUse>& uses) {
+  return !uses.empty() && std::none_of(uses.begin(), uses.end(), [](const EdgeUse& e) { return e.triangles == 1; });
+}
+
+// buildAdjacency but for Topology::closed, which needs every edge's uses: buildTopology has them already.
+void buildAdjacencyArrays(Topology& topo) {
+  const size_t n = topo.particleCount();
+  topo.colourOffset.clear();  // the springs changed: the solver's colouring is made anew (colouring.h)
+  topo.colourOrder.clear();
+  topo.patchOffset.clear();  // and so are the coarse correction's patches (coarse_correction.h)
+  // Spring CSR: counting sort by particle, springs in increasing id within each particle.
+  topo.springOffset.assign(n + 1, 0);
+  for (size_t s = 0; s < topo.springCount(); ++s) {
+    ++topo.springOffset[topo.springEnds[2 * s] + 1];
+    ++topo.springOffset[topo.springEnds[2 * s + 1] + 1];
+  }
+  for (size_t i = 0; i < n; ++i) topo.springOffset[i + 1] += topo.springOffset[i];
+  topo.springIndex.assign(topo.springOffset[n], 0);
+  topo.springNeighbour.assign(topo.springOffset[n], 0);
+  std::vector<uint32_t> fill(topo.springOffset.begin(), topo.springOffset.end() - 1);
+  for (uint32_t s = 0; s < topo.springCount(); ++s) {
+    const uint32_t a = topo.springEnds[2 * s], b = topo.springEnds[2 * s + 1];
+    topo.springIndex[fill[a]] = s;
+    topo.springNeighbour[fill[a]++] = b;
+    topo.springIndex[fill[b]] = s;
+    topo.springNeighbour[fill[b]++] = a;
+  }
+  // Triangle CSR, same scheme.
+  topo.triangleOffset.assign(n + 1, 0);
+  for (uint32_t v : topo.triangles) ++topo.triangleOffset[v + 1];
+  for (size_t i = 0; i < n; ++i) topo.triangleOffset[i + 1] += topo.triangleOffset[i];
+  topo.triangleCorner.assign(topo.triangleOffset[n], 0);
+  fill.assign(topo.triangleOffset.begin(), topo.triangleOffset.end() - 1);
+  for (uint32_t corner = 0; corner < topo.triangles.size(); ++corner)
+    topo.triangleCorner[fill[topo.triangles[corner]]++] = corner;
+  topo.contacts.assign(n + 1, 0u);  // no contacts until the collision search runs
+}
+
+}  // namespace
+
+void buildAdjacency(Topology& topo) {
+  buildAdjacencyArrays(topo);
+  topo.closed = noEdgeOfOneTriangle(edgeUses(topo.particleCount(), topo.triangles));
+}
+
+Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, const Vec3Array& positions) {
+  Topology topo;
+  topo.triangles = std::move(triangles);
+  topo.boundary.assign(particleCount, 0u);
+  for (uint32_t v : topo.triangles)
+    if (v >= particleCount) throw std::runtime_error("triangle refers to a particle that does not exist");
+  const std::vector<EdgeUse> uses = edgeUses(particleCount, topo.triangles);
+  for (const EdgeUse& e : uses) {
+    if (e.triangles > 2) throw std::runtime_error("non-manifold mesh: an edge is shared by more than two triangles");
+    if (e.triangles == 1) topo.boundary[e.lower] = topo.boundary[e.upper] = 1u;  // the film's edge: the wire
+    topo.springEnds.push_back(e.lower);
+    topo.springEnds.push_back(e.upper);
+    topo.restLength.push_back((positions.get(e.lower) - positions.get(e.upper)).norm());
+  }
+  buildAdjacencyArrays(topo);
+  topo.closed = noEdgeOfOneTriangle(uses);
+  return topo;
+}
+
+Topology rebuildTopology(const Topology& previous, std::vector<uint32_t> triangles, const Vec3Array& positions,
+                         float prestrain, std::vector<size_t>* made) {
+  // An old spring is found in its lower end's old one-ring (a few entries): a sorted copy of every spring would cost
+  // the merging of a free bubble's crowded particles a millisecond a frame.
+  const auto oldRest = [&](uint32_t a, uint32_t b) -> std::optional<float> {
+    if (a >= previous.particleCount()) return std::nullopt;  // appended since: all its springs are new
+    for (uint32_t k = previous.springOffset[a]; k < previous.springOffset[a + 1]; ++k)
+      if (previous.springNeighbour[k] == b) return previous.restLength[previous.springIndex[k]];
+    return std::nullopt;
+  };
+  Topology topo = buildTopology(positions.size(), std::move(triangles), positions);
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const std::optional<float> rest = oldRest(topo.springEnds[2 * k], topo.springEnds[2 * k + 1]);
+    topo.restLength[k] = rest ? *rest : topo.restLength[k] * (1.0f - prestrain);
+    if (!rest && made) made->push_back(k);
+  }
+  return topo;
+}
+
+}  // namespace gb

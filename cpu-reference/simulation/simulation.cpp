@@ -1,0 +1,397 @@
+#include "simulation.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
+
+#include "collision.h"
+#include "film_growth.h"
+#include "implicit_euler.h"
+
+namespace gb {
+
+namespace {
+
+// Computes term(i) for i in [0, n) in parallel, a block at a time, and hands the terms to fold in index order: the
+// same result, bit for bit, as one serial loop computing and adding them (floating-point sums depend on their
+// order), in a fraction of its time on a film of a million particles. The block stays in cache.
+template <class Terms, class Term, class Fold>
+void foldInOrder(size_t n, Term&& term, Fold&& fold) {
+  constexpr size_t kBlock = size_t{1} << 14;
+  std::vector<Terms> terms(std::min(n, kBlock));
+  for (size_t first = 0; first < n; first += kBlock) {
+    const auto count = static_cast<long>(std::min(kBlock, n - first));
+#pragma omp parallel for schedule(static)
+    for (long k = 0; k < count; ++k) terms[static_cast<size_t>(k)] = term(first + static_cast<size_t>(k));
+    for (long k = 0; k < count; ++k) fold(terms[static_cast<size_t>(k)]);
+  }
+}
+
+// One particle's part of the frame's statistics.
+struct ParticleTerms {
+  bool alive = false;
+  double kinetic = 0, potential = 0, liquid = 0, speed = 0, thickness = 0, airFlow = 0;
+};
+
+// Eq. (5)'s MAX(cos(theta), 0): how alike the two wands' velocities are. A wand at rest has no direction;
+// the moving one then blows on its own (factor 1).
+float wandAlignment(const WandState& w) {
+  const float norms = w.leftVelocity.norm() * w.rightVelocity.norm();
+  if (norms <= 1e-12f) return 1.0f;
+  return std::max(w.leftVelocity.dot(w.rightVelocity) / norms, 0.0f);
+}
+
+Vec3 gravityOf(const Params& p) { return {p.gravityX, p.gravityY, p.gravityZ}; }
+
+using Clock = std::chrono::steady_clock;
+
+double millisecondsBetween(Clock::time_point from, Clock::time_point to) {
+  return std::chrono::duration<double, std::milli>(to - from).count();
+}
+
+}  // namespace
+
+Simulation::Simulation(const Params& params, const WandTool& tool, const WandState& wands,
+                       std::unique_ptr<Stepper> stepper)
+    : Simulation(params, generateFilm(params, tool, wands), wands, std::move(stepper)) {}
+
+Simulation::Simulation(const Params& params, Film film, const WandState& wands, std::unique_ptr<Stepper> stepper)
+    : params_(params),
+      film_(std::move(film)),
+      stepper_(std::move(stepper)),
+      wands_(wands),
+      contactHorizon_(params.frameTime) {
+  if (const auto errors = validate(params_); !errors.empty()) throw std::invalid_argument(errors.front());
+  if (!stepper_) stepper_ = std::make_unique<CpuStepper>();
+  CpuStepper::refreshGeometry(params_, film_);
+  if (film_.topology.isClosed() && film_.referenceVolume <= 0) {
+    film_.volumeOrigin = centroid(film_.state);
+    film_.referenceVolume = CpuStepper().volume(film_, film_.volumeOrigin);
+  }
+  pressure_ = params_.pressureCoefficient;
+  chooseSubsteps();
+  stepper_->load(params_, film_);
+  updateContacts();
+}
+
+void Simulation::chooseSubsteps() {
+  if (params_.integrator != 0) {  // implicit: stable at any step, so the frame is split only when asked
+    substeps_ = params_.implicitSubsteps;
+    return;
+  }
+  const float volume = film_.topology.isClosed() ? film_.referenceVolume : 0.0f;
+  const float dtStable = stableTimeStep(params_, film_.topology, film_.state, params_.pressureCoefficient, volume);
+  const double needed = std::ceil(params_.frameTime / dtStable);
+  if (!(needed <= params_.maxSubsteps)) {
+    std::ostringstream msg;
+    msg << "the film needs " << needed << " substeps per frame to stay stable (maxSubsteps = " << params_.maxSubsteps
+        << "): use fewer particles (particlesAtFullSolution), more filmInertia, or a shorter frameTime";
+    throw std::invalid_argument(msg.str());
+  }
+  substeps_ = std::max(1, static_cast<int>(needed));
+}
+
+Vec3 Simulation::loopHang() const { return film_.loopHang.norm() > 0 ? film_.loopHang : gravityOf(params_); }
+
+WireFrame Simulation::frameHanging(const WandState& wands, const Vec3& hang) const {
+  return makeWireFrame(film_.tool, wands, film_.stringLength, hang);
+}
+
+// The way the loop hangs once the tips reach `next`: swung towards gravity at Params::loopSwingRate at most.
+Vec3 Simulation::loopHangAfter(const WandState& next) const {
+  if (film_.tool.kind != ToolKind::TwoWands) return loopHang();
+  return swingLoop(loopHang(), spanAxis(next), gravityOf(params_), params_.loopSwingRate * params_.frameTime);
+}
+
+StepUniforms Simulation::uniformsFor(const WandState& a, const WandState& b, float dt) const {
+  return uniformsBetween(a, b, dt, loopHang(), loopHang());
+}
+
+StepUniforms Simulation::uniformsBetween(const WandState& a, const WandState& b, float dt, const Vec3& hangA,
+                                         const Vec3& hangB) const {
+  StepUniforms u;
+  u.dt = dt;
+  u.wands = a;
+  // Eq. (5) has a source at each end of the frame. The ring's one hand moves its whole frame, both ends at once:
+  // it blows as two wands held together there would (the air a frame pushes is set by the frame's motion, not by
+  // how many hands hold it), both sources at the hand, aligned.
+  if (film_.tool.kind == ToolKind::Ring) {
+    u.wands.leftPosition = a.rightPosition;
+    u.wands.leftVelocity = a.rightVelocity;
+  }
+  u.leftInflowWeight = 1.0f;
+  u.wandAlignment = wandAlignment(u.wands);
+  const WireFrame frameNow = frameHanging(a, hangA);
+  u.wireArea = frameNow.area();
+  u.airVolume = frameNow.height() * u.wireArea;  // Eq. (6)
+  u.wireNext = frameHanging(b, hangB);
+  u.closed = film_.topology.isClosed() ? 1u : 0u;
+  u.volumeOrigin = u.closed ? film_.volumeOrigin : frameNow.center;
+  u.referenceVolume = film_.referenceVolume;
+  return u;
+}
+
+void Simulation::setFrameTime(float h) {
+  if (!(h > 0.0f && h <= 0.1f))
+    throw std::invalid_argument("frame time " + std::to_string(h) + " s is not in (0, 0.1]");
+  if (h == params_.frameTime) return;
+  params_.frameTime = h;
+  chooseSubsteps();
+  if (h > contactHorizon_) {  // from now on contacts reach as far as the longest step: not searched again each time
+    contactHorizon_ = h;      // the live loop alternates short and long steps
+    updateContacts();
+  }
+}
+
+void Simulation::advanceFrame(const WandState& next) {
+  burstOnHardImpact();  // judged on the contacts found after the last frame, before this one moves them
+  const float dt = params_.frameTime / static_cast<float>(substeps_);
+  const float wandSpeed =
+      std::max((next.leftPosition - wands_.leftPosition).norm(), (next.rightPosition - wands_.rightPosition).norm()) /
+      params_.frameTime;
+  const Vec3 hangNow = loopHang(), hangNext = loopHangAfter(next);
+  const auto hangAt = [&](float t) { return Vec3(((1 - t) * hangNow + t * hangNext).normalized()); };
+  substepUniforms_.clear();
+  for (int k = 0; k < substeps_; ++k) {
+    const float t0 = static_cast<float>(k) / static_cast<float>(substeps_);
+    const float t1 = static_cast<float>(k + 1) / static_cast<float>(substeps_);
+    substepUniforms_.push_back(
+        uniformsBetween(interpolate(wands_, next, t0), interpolate(wands_, next, t1), dt, hangAt(t0), hangAt(t1)));
+    substepUniforms_.back().solverSweeps = solverSweeps_;
+  }
+  substepUniforms_.back().drainageDt = params_.frameTime;  // the frame's drainage, after its last substep
+  const auto started = Clock::now();
+  pressure_ = stepper_->run(substepUniforms_);
+  stepper_->store(film_);
+  if (const VelocityBudget& budget = stepper_->lastBudget(); budget.acted()) {
+    ++budgetRecord_.frames;
+    budgetRecord_.smallestScale = std::min(budgetRecord_.smallestScale, budget.scale);
+    budgetRecord_.largestShift = std::max(budgetRecord_.largestShift, budget.shift.norm());
+  }
+  const auto stepped = Clock::now();
+  stepCount_ += substeps_;
+  wands_ = next;
+  film_.loopHang = hangNext;
+  time_ += params_.frameTime;
+  checkStable();
+  burstOnWandTouch();
+  burstOnFloorTouch();
+  events_ = advanceBurst(params_, time_, film_, burst_, aerosol_);
+  if (events_.particlesRemoved > 0) stepper_->updateTopology(params_, film_);  // the mesh shrank
+  if (!burst_.active()) {
+    // Only a film being drawn yields: a free bubble's wobbles are elastic, so it rounds up again instead of
+    // keeping every dent its momentum makes. A free bubble contracts where it goes slack instead: the long bag it
+    // was drawn as holds about 1.6 times the surface of a sphere of its air, which otherwise hangs in wrinkles
+    // (and fills the contact lists). The open bag is not contracted: it is slack where the air has not yet filled
+    // it, and there it is still being drawn.
+    if (!film_.topology.isClosed() && yieldStretchedSprings(params_, film_) > 0) stepper_->updateRestLengths(film_);
+    // What contraction and merging add to the springs, the step's dissipation pays (SpringEnergyAllowance).
+    SpringEnergyAllowance allowance{stepper_->lastBudget().released};
+    if (film_.topology.isClosed() && contractSlackSprings(params_, film_, allowance) > 0)
+      stepper_->updateRestLengths(film_);
+    if (mergeCrowdedParticles(params_, film_, allowance) > 0) reloadFilm();
+    growFilm(next, wandSpeed);
+  }
+  const bool tipsTogether =
+      film_.tool.kind == ToolKind::TwoWands && (next.rightPosition - next.leftPosition).norm() < params_.pinchDistance;
+  if (tipsTogether && !film_.topology.isClosed() && !burst_.active()) events_.pinchedOff = pinch();
+  const auto changed = Clock::now();
+  updateContacts();
+  phases_ = {millisecondsBetween(started, stepped), millisecondsBetween(stepped, changed),
+             millisecondsBetween(changed, Clock::now())};
+  aerosol_.advance(params_, params_.frameTime);
+}
+
+void Simulation::burstOnHardImpact() {
+  if (burst_.active() || params_.collisionThreshold <= 0.0f) return;
+  const Impact impact = hardestImpact(params_, params_.frameTime, film_);
+  if (impact.number > params_.collisionThreshold) startCrack(burst_, film_, impact.particle, time_, "impact");
+}
+
+void Simulation::burstOnWandTouch() {
+  if (!film_.topology.isClosed() || burst_.active()) return;
+  const Vec3 tips[2] = {wands_.leftPosition, wands_.rightPosition};
+  for (int w = 0; w < 2; ++w) {
+    const Nearest nearest = nearestParticle(film_.state, tips[w]);
+    if (!wandArmed_[w]) {
+      wandArmed_[w] = nearest.distance > params_.pinchDistance;  // pulled clear of the bubble it let go of
+    } else if (nearest.distance < params_.collisionDistance || insideClosedFilm(film_, tips[w])) {
+      startCrack(burst_, film_, nearest.particle, time_, "wand");
+      return;
+    }
+  }
+}
+
+void Simulation::burstOnFloorTouch() {
+  // A soap film bursts on a dry floor: the step lets particles land on y = 0 (and slide), this pops them.
+  constexpr float kTouching = 1e-3f;  // m above the floor
+  if (burst_.active()) return;
+  const State& s = film_.state;
+  for (uint32_t i = 0; i < s.size(); ++i)
+    if (s.alive[i] && s.position.get(i).y() < kTouching) {
+      startCrack(burst_, film_, i, time_, "floor");
+      return;
+    }
+}
+
+void Simulation::growFilm(const WandState& wands, float wandSpeed) {
+  const WireFrame frame = wireFrame(wands);
+  const GrowthEvent grew = growFilmAtWire(params_, frame, wandSpeed, film_);
+  if (grew.particlesAdded == 0) {
+    if (grew.restLengthsChanged > 0) stepper_->updateRestLengths(film_);
+    return;
+  }
+  events_.particlesAdded = grew.particlesAdded;
+  reloadFilm();
+}
+
+void Simulation::reloadFilm() {
+  CpuStepper::refreshGeometry(params_, film_);
+  chooseSubsteps();
+  stepper_->load(params_, film_);
+}
+
+void Simulation::updateContacts() {
+  // Contacts for the next frame: within reach of what two particles can close in the longest step taken so far,
+  // plus 5 mm for what the step's forces add to their start velocities.
+  constexpr float slack = 0.005f;
+  contactSearch_.find(params_, contactHorizon_, slack, film_, contactHistory_);
+  contactHistory_ = {film_.topology.contacts, film_.state.size()};
+  stepper_->updateContacts(film_);
+}
+
+void Simulation::startBurst(size_t particle) { startCrack(burst_, film_, particle, time_, "poke"); }
+
+size_t Simulation::topParticle() const {
+  const State& s = film_.state;
+  size_t best = 0;
+  float bestY = -std::numeric_limits<float>::infinity();
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.alive[i] && !film_.topology.boundary[i] && s.position.y[i] > bestY) {
+      bestY = s.position.y[i];
+      best = i;
+    }
+  return best;
+}
+
+bool Simulation::pinch() {
+  if (film_.topology.isClosed() || burst_.active()) return false;
+  try {
+    if (!pinchOff(params_, film_)) return false;
+  } catch (const std::runtime_error&) {
+    return false;  // a torn boundary: the burst will take it
+  }
+  // The wands' air is shut in: it moves with the bubble now. Left in place, the air transfer would carry it
+  // round the closed film for ever (no wire feeds or drains it), pushing the bubble out of shape.
+  for (size_t i = 0; i < film_.state.size(); ++i) {
+    film_.state.airFlow.set(i, Vec3::Zero());
+    film_.state.airInflow.set(i, Vec3::Zero());
+    film_.state.airFlowNext.set(i, Vec3::Zero());
+  }
+  burst_ = BurstFront{};
+  wandArmed_ = {false, false};  // the tips are at the seam: they count once they have left the bubble
+  reloadFilm();
+  return true;
+}
+
+void Simulation::dip(const WandState& wands) {
+  film_ = generateFilm(params_, film_.tool, wands);
+  contactHistory_ = {};  // the new film's particles are not the old one's
+  burst_ = BurstFront{};
+  wands_ = wands;
+  reloadFilm();
+}
+
+void Simulation::checkStable() const {
+  // A film moving faster than this has blown up: real giant bubbles never approach it.
+  constexpr float maxSpeed = 100.0f;
+  const State& s = film_.state;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (!s.alive[i]) continue;
+    const Vec3 x = s.position.get(i), v = s.velocity.get(i);
+    if (x.allFinite() && v.allFinite() && v.norm() <= maxSpeed) continue;
+    std::ostringstream msg;
+    msg << "simulation unstable at t = " << time_ << " s (step " << stepCount_ << "): particle " << i
+        << (x.allFinite() && v.allFinite() ? " moves faster than 100 m/s" : " has a non-finite position or velocity")
+        << "; lower stabilitySafety or frameTime, or check the parameters";
+    throw SimulationUnstable(msg.str());
+  }
+}
+
+FrameStats Simulation::stats() {
+  CpuStepper::refreshGeometry(params_, film_);
+  const State& s = film_.state;
+  const Topology& topo = film_.topology;
+  FrameStats st;
+  st.time = time_;
+  const Eigen::Vector3d g = gravityOf(params_).cast<double>();
+  double thicknessSum = 0, airSum = 0;
+  foldInOrder<ParticleTerms>(
+      s.size(),
+      [&](size_t i) {
+        ParticleTerms p;
+        if (!(p.alive = s.alive[i] != 0)) return p;
+        const Eigen::Vector3d v = s.velocity.get(i).cast<double>();
+        p.kinetic = 0.5 * s.mass[i] * v.squaredNorm();
+        p.potential = liquidMass(params_, s.liquid[i]) * g.dot(s.position.get(i).cast<double>());
+        p.liquid = s.liquid[i];
+        p.speed = v.norm();
+        p.thickness = s.thickness[i];
+        p.airFlow = s.airFlow.get(i).norm();
+        return p;
+      },
+      [&](const ParticleTerms& p) {
+        if (!p.alive) return;
+        ++st.particles;
+        st.kineticEnergy += p.kinetic;
+        st.potentialEnergy -= p.potential;
+        st.liquid += p.liquid;
+        st.maxSpeed = std::max(st.maxSpeed, p.speed);
+        thicknessSum += p.thickness;
+        airSum += p.airFlow;
+      });
+  st.meanThickness = st.particles ? thicknessSum / static_cast<double>(st.particles) : 0;
+  st.meanAirFlow = st.particles ? airSum / static_cast<double>(st.particles) : 0;
+  st.solution = film_.solutionLeft(params_);
+  st.droplets = aerosol_.size();
+  for (float m : aerosol_.mass) st.dropletMass += m;
+  if (params_.tensionModel == 1) {
+    foldInOrder<double>(
+        s.size(),
+        [&](size_t i) {
+          return s.alive[i] ? filmTensionEnergy(params_, surfactantLiquid(params_, s.mass[i]), s.voronoiArea[i]) : 0.0;
+        },
+        [&](double energy) { st.elasticEnergy += energy; });
+  } else {
+    foldInOrder<double>(
+        topo.springCount(),
+        [&](size_t k) {
+          const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+          const double stretch = (s.position.get(a) - s.position.get(b)).cast<double>().norm() - topo.restLength[k];
+          return springEnergyOf<double>(springStiffness(s, a, b), stretch);
+        },
+        [&](double energy) { st.elasticEnergy += energy; });
+  }
+  const Vec3 origin = topo.isClosed() ? centroid(s) : wireFrame(wands_).center;
+  st.triangles = topo.triangleCount();
+  foldInOrder<std::array<double, 2>>(
+      topo.triangleCount(),
+      [&](size_t t) {
+        const uint32_t* tri = &topo.triangles[3 * t];
+        const Eigen::Vector3d a = (s.position.get(tri[0]) - origin).cast<double>();
+        const Eigen::Vector3d b = (s.position.get(tri[1]) - origin).cast<double>();
+        const Eigen::Vector3d c = (s.position.get(tri[2]) - origin).cast<double>();
+        return std::array<double, 2>{0.5 * (b - a).cross(c - a).norm(), a.dot(b.cross(c)) / 6.0};
+      },
+      [&](const std::array<double, 2>& areaVolume) {
+        st.area += areaVolume[0];
+        st.volume += areaVolume[1];
+      });
+  return st;
+}
+
+}  // namespace gb

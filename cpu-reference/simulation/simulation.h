@@ -1,0 +1,161 @@
+#pragma once
+// A film driven by wand input frame by frame: one implicit step per frame of Params::frameTime (or the
+// explicit integrator's stable substeps),
+// feeds the stepper interpolated wand states, and stops with a clear error if the film goes unstable.
+
+#include <array>
+#include <memory>
+#include <stdexcept>
+
+#include "bursting.h"
+#include "collision.h"
+#include "cpu_stepper.h"
+#include "film.h"
+#include "pinch_off.h"
+#include "stepper.h"
+
+namespace gb {
+
+// Thrown when the state stops being finite or physical; the message says when and where.
+class SimulationUnstable : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Whole-film diagnostics, in double (CPU only).
+struct FrameStats {
+  double time = 0;
+  size_t particles = 0;
+  size_t triangles = 0;
+  double area = 0;             // film area (m^2)
+  double volume = 0;           // enclosed (bubble) or swept (open film, cone to the frame centre) volume (m^3)
+  double kineticEnergy = 0;    // J
+  double elasticEnergy = 0;    // the tension's: spring energy of Eq. (3), or filmTensionEnergy (physical model), J
+  double potentialEnergy = 0;  // gravity, J, relative to y = 0
+  double liquid = 0;           // total liquid volume (m^3)
+  double meanThickness = 0;    // m
+  double maxSpeed = 0;         // m/s
+  double meanAirFlow = 0;      // mean |air| of Eqs. (7)-(8) (m^3/s)
+  double solution = 0;         // soap solution left on the wire, in [0, 1] (Section 7)
+  size_t droplets = 0;         // aerosol droplets in flight
+  double dropletMass = 0;      // kg
+};
+
+// Wall time of the last frame's parts (ms): where a frame's time goes (the run's summary, stats.json).
+struct FramePhases {
+  double step = 0;      // the stepper's substeps and the state brought back from it
+  double topology = 0;  // bursting, yield, film growth and pinch-off, with the stepper's reloads
+  double contacts = 0;  // the self-collision search for the next frame, handed to the stepper
+};
+
+class Simulation {
+ public:
+  // A new film generated on the tool's wire frame at the given wand state. Without a stepper the CPU
+  // reference runs it.
+  Simulation(const Params& params, const WandTool& tool, const WandState& wands,
+             std::unique_ptr<Stepper> stepper = nullptr);
+  // An existing film (e.g. a closed bubble); its wire frame, if any, is taken at `wands`.
+  Simulation(const Params& params, Film film, const WandState& wands, std::unique_ptr<Stepper> stepper = nullptr);
+
+  // The stepper holds a pointer to film_: a Simulation stays where it was made.
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  // Advances one frame (Params::frameTime) while the wands move from their last state to `next`, then runs
+  // the frame's topology events (bursting, film growth at the wire, pinch-off) and moves the aerosol.
+  void advanceFrame(const WandState& next);
+
+  // Pokes the film: a crack opens at particle i now (a performer's finger, a key in the live window).
+  void startBurst(size_t particle);
+  // The living interior particle highest up: where a poke from above lands.
+  [[nodiscard]] size_t topParticle() const;
+  // Closes the film into a free bubble now (pinch_off.h); false if it cannot (already closed, torn, or its
+  // loop cannot be capped yet). The wand tips are dry sticks: once pulled clear of the free bubble (farther
+  // than pinchDistance from it), a tip that touches it (within collisionDistance, or found inside it by its
+  // winding number: it went through the film during the frame) bursts it at the particle nearest to the tip. Two-wand
+  // films also pinch off by themselves when the tips come within Params::pinchDistance.
+  bool pinch();
+  // Dips the wands again: a new film on the frame at `wands` (after a burst, or to start over).
+  void dip(const WandState& wands);
+
+  // Whether each wand tip (left, right) bursts a free bubble it touches (pinch() disarms both until they are pulled
+  // clear): kept by checkpoints of a long run (bench/film_checkpoint.h), which rebuild the Simulation from its film.
+  [[nodiscard]] std::array<bool, 2> wandsArmed() const { return wandArmed_; }
+  void setWandsArmed(std::array<bool, 2> armed) { wandArmed_ = armed; }
+
+  [[nodiscard]] const BurstFront& burst() const { return burst_; }
+  [[nodiscard]] const Aerosol& aerosol() const { return aerosol_; }
+  [[nodiscard]] const TopologyEvents& lastEvents() const { return events_; }
+  [[nodiscard]] const FramePhases& lastPhases() const { return phases_; }
+
+  [[nodiscard]] const Film& film() const { return film_; }
+  [[nodiscard]] Film& film() { return film_; }
+  [[nodiscard]] const Params& params() const { return params_; }
+  [[nodiscard]] double time() const { return time_; }
+  [[nodiscard]] int substepsPerFrame() const { return substeps_; }
+  // The length of the following frames (s), in (0, 0.1]: the live loop takes steps of two frames' time when the
+  // machine falls behind the wall clock. The implicit step is stable at any length (the explicit integrator
+  // takes as many more substeps); the film's behaviour changes with it (docs/model.md). Contacts are looked for
+  // again when the step is the longest yet, and from then on reach as far as it can move the film.
+  void setFrameTime(float h);
+  // Implicit solver sweeps per step from now on (the live loop lowers them when a frame runs over its
+  // budget); 0 returns to Params::solverSweeps.
+  void setSolverSweeps(int sweeps) { solverSweeps_ = sweeps; }
+  [[nodiscard]] int solverSweeps() const { return solverSweeps_ > 0 ? solverSweeps_ : params_.solverSweeps; }
+  [[nodiscard]] float lastPressure() const { return pressure_; }
+  // How often the implicit step's energy budget took energy back (energy_budget.h): frames, and the smallest factor
+  // it left on the film's wobble (1: never).
+  struct BudgetRecord {
+    long frames = 0;             // on which the energy budget acted
+    float smallestScale = 1.0f;  // its smallest factor on the wobble
+    float largestShift = 0.0f;   // the most drift it gave back in one step (m/s)
+  };
+  [[nodiscard]] const BudgetRecord& energyBudgetRecord() const { return budgetRecord_; }
+  [[nodiscard]] Stepper& stepper() { return *stepper_; }
+  [[nodiscard]] FrameStats stats();
+
+  // The uniforms of a step of length dt from wand state a to b (exposed for tests and the GPU backend).
+  [[nodiscard]] StepUniforms uniformsFor(const WandState& a, const WandState& b, float dt) const;
+  // The tool's wire frame for these wand tips, its loop hanging the way the film's loop hangs now (for drawing
+  // and for the film's outputs).
+  [[nodiscard]] WireFrame wireFrame(const WandState& wands) const { return frameHanging(wands, loopHang()); }
+
+ private:
+  [[nodiscard]] Vec3 loopHang() const;
+  [[nodiscard]] WireFrame frameHanging(const WandState& wands, const Vec3& hang) const;
+  [[nodiscard]] StepUniforms uniformsBetween(const WandState& a, const WandState& b, float dt, const Vec3& hangA,
+                                             const Vec3& hangB) const;
+  [[nodiscard]] Vec3 loopHangAfter(const WandState& next) const;
+  void chooseSubsteps();
+  // After the film's mesh or particles changed (growth, a merge, pinch-off, a dip): its geometry, the substeps
+  // and the stepper's copy made anew.
+  void reloadFilm();
+  void growFilm(const WandState& wands, float wandSpeed);
+  void burstOnHardImpact();
+  void burstOnWandTouch();
+  void burstOnFloorTouch();
+  void updateContacts();
+  void checkStable() const;
+
+  Params params_;
+  Film film_;
+  std::unique_ptr<Stepper> stepper_;
+  BurstFront burst_;
+  Aerosol aerosol_;
+  TopologyEvents events_;
+  FramePhases phases_;
+  std::vector<StepUniforms> substepUniforms_;  // one frame's substeps, reused
+  WandState wands_;
+  std::array<bool, 2> wandArmed_{true, true};  // a tip bursts a free bubble it touches once armed
+  double time_ = 0;
+  int substeps_ = 1;
+  int solverSweeps_ = 0;  // 0: Params::solverSweeps
+  float pressure_ = 0;
+  float contactHorizon_;           // the longest step taken (s): what the contact search must reach across
+  ContactHistory contactHistory_;  // the last contact list, for the pairs' rest distances (collision.h)
+  ContactSearch contactSearch_;
+  long stepCount_ = 0;
+  BudgetRecord budgetRecord_;
+};
+
+}  // namespace gb

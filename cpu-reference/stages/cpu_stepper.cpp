@@ -1,0 +1,252 @@
+#include "cpu_stepper.h"
+
+#include <chrono>
+#include <stdexcept>
+#include <utility>
+
+#include "colouring.h"
+#include "energy_budget.h"
+#include "implicit_euler.h"
+
+namespace gb {
+
+namespace {
+
+// Runs body(i) for every index in parallel. Stages write only element i, so any schedule gives the same
+// result.
+template <class Body>
+void forEach(size_t n, Body&& body) {
+  const auto count = static_cast<long>(n);
+#pragma omp parallel for schedule(static)
+  for (long i = 0; i < count; ++i) body(static_cast<size_t>(i));
+}
+
+// Each particle's N terms (terms(i), computed in parallel into `scratch`), each summed over the particles in the
+// fixed tree order (treeSum) that the GPU's tree sums follow.
+template <size_t N, class Terms>
+std::array<float, N> treeSumsOf(std::array<std::vector<float>, N>& scratch, size_t n, Terms terms) {
+  for (std::vector<float>& column : scratch) column.resize(n);
+  forEach(n, [&](size_t i) {
+    const std::array<float, N> t = terms(i);
+    for (size_t c = 0; c < N; ++c) scratch[c][i] = t[c];
+  });
+  std::array<float, N> sums{};
+  for (size_t c = 0; c < N; ++c) sums[c] = treeSum(scratch[c]);
+  return sums;
+}
+
+}  // namespace
+
+template <class Body>
+void CpuStepper::timed(Stage stage, Body&& body) {
+  if (!timing_) return body();
+  const auto start = std::chrono::steady_clock::now();
+  body();
+  times_[static_cast<int>(stage)] +=
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+}
+
+void CpuStepper::load(const Params& params, Film& film) {
+  params_ = params;
+  film_ = &film;
+  lastBudget_ = {};
+  drift_ = Vec3::Zero();
+  ensureColouring(film.state.alive, film.topology);
+  if (params.coarseIterations > 0) ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
+}
+
+float CpuStepper::volume(const Film& film, const Vec3& origin) {
+  return sumOverTriangles(film.topology.triangleCount(),
+                          [&](size_t t) { return triangleVolume(film.topology, film.state, t, origin); });
+}
+
+template <class Leaf>
+float CpuStepper::sumOverTriangles(size_t triangles, Leaf leaf) {
+  triangleVolumes_.resize(triangles);
+  forEach(triangles, [&](size_t t) { triangleVolumes_[t] = leaf(t); });
+  return treeSum(triangleVolumes_);
+}
+
+void CpuStepper::refreshGeometry(const Params& params, Film& film) {
+  State& s = film.state;
+  fitTriangleArrays(film.topology, s);
+  forEach(film.topology.triangleCount(), [&](size_t t) { triangleGeometry(film.topology, s, t); });
+  forEach(s.size(), [&](size_t i) {
+    vertexGeometry(film.topology, s, i);
+    filmState(params, 0.0f, s, i);
+  });
+  film.geometryKey = geometryKey(film.topology, s);
+}
+
+float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
+  if (!film_) throw std::logic_error("CpuStepper: no film loaded");
+  State& s = film_->state;
+  const Topology& topo = film_->topology;
+  const size_t n = s.size();
+  float result = 0.0f;
+  timed(stage, [&] {
+    switch (stage) {
+      case Stage::Geometry: {  // two passes: every triangle is done before any particle gathers
+        const uint64_t key = geometryKey(topo, s);
+        if (key == film_->geometryKey && s.cornerArea.size() == 3 * topo.triangleCount()) break;  // computed
+        fitTriangleArrays(topo, s);
+        forEach(topo.triangleCount(), [&](size_t t) { triangleGeometry(topo, s, t); });
+        forEach(n, [&](size_t i) { vertexGeometry(topo, s, i); });
+        film_->geometryKey = key;
+        break;
+      }
+      case Stage::Volume:
+        result = volume(*film_, u.volumeOrigin);
+        break;
+      case Stage::FilmState:
+        forEach(n, [&](size_t i) { filmState(params_, u.dt, s, i); });
+        break;
+      case Stage::AirInflow:
+        forEach(n, [&](size_t i) { airInflow(params_, u, s, i); });
+        break;
+      case Stage::AirTransfer:
+        forEach(n, [&](size_t i) { airTransfer(params_, topo, s, i); });
+        std::swap(s.airFlow, s.airFlowNext);  // Jacobi: the new air becomes the front buffer
+        break;
+      case Stage::Forces:
+        forEach(n, [&](size_t i) { forces(params_, u, currentPressure(u), topo, s, i); });
+        break;
+      case Stage::Integrate:
+        forEach(n, [&](size_t i) { integrate(u, topo, s, i); });
+        break;
+      case Stage::ExternalForces:
+        forEach(n, [&](size_t i) { externalForces(params_, u, currentPressure(u), s, i); });
+        break;
+      case Stage::ExternalDrift:
+        drift_ = filmDrift();
+        break;
+      case Stage::ImplicitPredict: {
+        const Vec3 drift = u.closed ? drift_ : Vec3::Zero();
+        forEach(n, [&](size_t i) { implicitPredict(u, topo, drift, s, i); });
+        break;
+      }
+      case Stage::CoarseCorrection:
+        correctCoarsely(u);
+        break;
+      case Stage::VertexBlockDescent:
+        sweep(u);
+        break;
+      case Stage::EnergyBudget:
+        lastBudget_ = budgetEnergy(u);
+        result = lastBudget_.scale;
+        break;
+      case Stage::ImplicitVelocity: {
+        forEach(n, [&](size_t i) { implicitVelocity(u, topo, lastBudget_, s, i); });
+        break;
+      }
+      case Stage::Drainage:  // two Jacobi passes: every outflow is known before anyone gathers
+        forEach(n, [&](size_t i) { drainageOutflow(params_, u.drainageDt, topo, s, i); });
+        forEach(n, [&](size_t i) { drainageGather(params_, topo, s, i); });
+        break;
+      case Stage::Count:
+        break;
+    }
+  });
+  if (stage == Stage::Volume) lastVolume_ = result;
+  return result;
+}
+
+void CpuStepper::sweep(const StepUniforms& u) {
+  layOutSweepRuns(params_, u, film_->topology, film_->state, sweepRuns_);
+  const int sweeps = sweepsThisStep(params_, u), before = coarseSweepsBefore(params_, u);
+  if (before < 0) return runSweeps(u, 0, sweeps);
+  runSweeps(u, 0, before);
+  runStage(Stage::CoarseCorrection, u);
+  runSweeps(u, before, sweeps);
+}
+
+void CpuStepper::runSweeps(const StepUniforms& u, int from, int to) {
+  State& s = film_->state;
+  const Topology& topo = film_->topology;
+  const SweepRuns& runs = sweepRuns_;
+  Bubble bubble;
+  const auto triangles = static_cast<long>(topo.triangleCount());
+  if (u.closed) triangleVolumes_.resize(topo.triangleCount());
+    // One parallel region for the sweeps: the colours still wait for each other (the barrier closing each
+    // omp for), but the threads are woken once, not once per colour and sweep.
+#pragma omp parallel
+  for (int sweep = from; sweep < to; ++sweep) {
+    if (u.closed) {  // Boyle's pressure at this iterate's volume, as volume() takes it: the triangles on every
+                     // thread, their sum on one, in the fixed order both backends add in
+#pragma omp for schedule(static)
+      for (long t = 0; t < triangles; ++t)
+        triangleVolumes_[t] = triangleVolume(topo, s, static_cast<size_t>(t), u.volumeOrigin);
+#pragma omp single
+      {
+        lastVolume_ = treeSum(triangleVolumes_);  // first: Boyle's pressure reads it
+        bubble = bubbleOf(lastVolume_, currentPressure(u));
+      }
+    }
+    for (size_t c = 0; c + 1 < runs.colourRuns.size(); ++c) {  // colours in order
+      const auto first = static_cast<long>(runs.colourRuns[c]), last = static_cast<long>(runs.colourRuns[c + 1]);
+#pragma omp for schedule(static)
+      for (long r = first; r < last; ++r)
+        vertexBlockDescentRun(params_, u, bubble, topo, s, runs, static_cast<uint32_t>(r));
+    }
+  }
+}
+
+void CpuStepper::correctCoarsely(const StepUniforms& u) {
+  State& s = film_->state;
+  const Topology& topo = film_->topology;
+  if (topo.patchOffset.empty()) return;  // the correction is off: no patches were made
+  Bubble bubble;
+  if (u.closed) {                                  // Boyle's pressure at this iterate's volume, as a sweep takes it
+    lastVolume_ = volume(*film_, u.volumeOrigin);  // first: Boyle's pressure reads it
+    bubble = bubbleOf(lastVolume_, currentPressure(u));
+  }
+  fitCoarseSystem(topo, coarse_);
+  forEach(coarse_.shortestSpring.size(),
+          [&](size_t patch) { coarseAssemble(params_, u, bubble, topo, s, patch, coarse_); });
+  coarseSolve(topo, params_.coarseIterations, coarse_);
+  forEach(s.size(), [&](size_t i) { coarseApply(topo, coarse_, s, i); });
+}
+
+VelocityBudget CpuStepper::budgetEnergy(const StepUniforms& u) {
+  const State& s = film_->state;
+  const Topology& topo = film_->topology;
+  const std::array<float, GB_ENERGY_TERMS> sums = treeSumsOf(energyTerms_, s.size(), [&](size_t i) {
+    const ParticleEnergy e = energyTerms(params_, u, topo, s, i);
+    return std::array<float, GB_ENERGY_TERMS>{e.start,        e.kinetic,      e.held,         e.mass,
+                                              e.momentum.x(), e.momentum.y(), e.momentum.z(), e.expected.x(),
+                                              e.expected.y(), e.expected.z()};
+  });
+  float gas = 0.0f;
+  if (u.closed) {  // the volumes before and after the step, as the volume stage sums them
+    const float before = sumOverTriangles(topo.triangleCount(),
+                                          [&](size_t t) { return triangleVolumeAtStart(topo, s, t, u.volumeOrigin); });
+    lastVolume_ = volume(*film_, u.volumeOrigin);
+    gas = boyleEnergyChange(params_, u.referenceVolume, before, lastVolume_);
+  }
+  return energyScale(sums[0], sums[1], sums[2] + gas, sums[3], Vec3(sums[4], sums[5], sums[6]),
+                     Vec3(sums[7], sums[8], sums[9]));
+}
+
+Vec3 CpuStepper::filmDrift() {
+  return driftAcceleration(treeSumsOf(driftTerms_, film_->state.size(),
+                                      [&](size_t i) { return externalDrift(film_->topology, film_->state, i); }));
+}
+
+float CpuStepper::currentPressure(const StepUniforms& u) const {
+  return u.closed ? boylePressure(params_, u.referenceVolume, lastVolume_) : params_.pressureCoefficient;
+}
+
+float CpuStepper::step(const StepUniforms& u) {
+  lastBudget_ = {};  // the energy budget's stage sets it where it runs; implicit_velocity applies it
+  for (const StageSpec& spec : stepStages())
+    if (spec.runs(params_, u)) runStage(spec.stage, u);
+  return currentPressure(u);
+}
+
+float CpuStepper::run(std::span<const StepUniforms> substeps) {
+  float pressure = params_.pressureCoefficient;
+  for (const StepUniforms& u : substeps) pressure = step(u);
+  return pressure;
+}
+
+}  // namespace gb

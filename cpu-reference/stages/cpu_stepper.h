@@ -1,0 +1,61 @@
+#pragma once
+// The CPU backend: one step walks stepStages() (stepper.h), each stage run over all elements in parallel
+// (OpenMP), on the host film in place. The Vulkan stepper records the same table as dispatches.
+
+#include <array>
+#include <vector>
+
+#include "coarse_correction.h"
+#include "energy_budget.h"
+#include "implicit_euler.h"
+#include "stepper.h"
+
+namespace gb {
+
+class CpuStepper final : public Stepper {
+ public:
+  [[nodiscard]] std::string name() const override { return "cpu"; }
+  void load(const Params& params, Film& film) override;
+  float run(std::span<const StepUniforms> substeps) override;
+  float runStage(Stage stage, const StepUniforms& uniforms) override;
+  void store(Film&) override {}
+
+  // Geometry (normals, Voronoi areas) and the film state from the current positions, without stepping.
+  static void refreshGeometry(const Params& params, Film& film);
+  // Enclosed (closed film) or swept (open film, cone to the origin) volume with the fixed-shape tree sum.
+  float volume(const Film& film, const Vec3& origin);
+
+ private:
+  float step(const StepUniforms& u);
+  // Stage vertex_block_descent: the sweeps of the implicit step, colour after colour, a colour's particles in
+  // parallel (implicit_euler.h).
+  void sweep(const StepUniforms& u);
+  // Sweeps from..to-1 of the step, in one parallel region.
+  void runSweeps(const StepUniforms& u, int from, int to);
+  // Stage coarse_correction: the patch system assembled, solved and applied (coarse_correction.h).
+  void correctCoarsely(const StepUniforms& u);
+  // Stage energy_budget: every particle's share of the step's energy, summed in the fixed tree order, and for a
+  // closed film the gas's energy change between the volumes before and after.
+  VelocityBudget budgetEnergy(const StepUniforms& u);
+  // Stage external_drift: every particle's externalDrift summed in the fixed tree order, the film's drift.
+  Vec3 filmDrift();
+  // The tree sum (treeSum) of leaf(t) over the triangles, each computed in parallel: the volume's reduction.
+  template <class Leaf>
+  float sumOverTriangles(size_t triangles, Leaf leaf);
+  // Boyle's pressure of a closed film at the last volume (Eq. 11), P_0 for an open film.
+  [[nodiscard]] float currentPressure(const StepUniforms& u) const;
+  template <class Body>
+  void timed(Stage stage, Body&& body);
+
+  Params params_;
+  Film* film_ = nullptr;
+  std::vector<float> triangleVolumes_;  // scratch for the volume reduction, reused every step
+  float lastVolume_ = 0.0f;             // result of the last Volume stage, read by Forces
+  SweepRuns sweepRuns_;                 // the implicit step's one-rings, laid out again every step
+  CoarseSystem coarse_;                 // the implicit step's patch system, assembled again every step
+  std::array<std::vector<float>, GB_ENERGY_TERMS> energyTerms_;  // energy_budget's per-particle terms (ParticleEnergy)
+  std::array<std::vector<float>, kDriftTerms> driftTerms_;       // external_drift's per-particle terms (externalDrift)
+  Vec3 drift_ = Vec3::Zero();  // a closed film's drift (external_drift), read by implicit_predict
+};
+
+}  // namespace gb

@@ -1,0 +1,404 @@
+#include "stages.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstring>
+#include <limits>
+
+#include "film.h"
+
+namespace gb {
+
+// ---- geometry ---------------------------------------------------------------------------------------------
+
+namespace {
+
+// Mixed Voronoi area of corner xi of triangle (xi, xj, xk) whose area is `area` (Meyer et al. 2003,
+// Fig. 4): the Voronoi region for a non-obtuse triangle, else half or a quarter of the triangle so that the
+// areas still tile it. The cotangents of Meyer's formula share the denominator |cross| = 2 area, so
+// A_i = (|e_ij|^2 cot k + |e_ik|^2 cot j) / 8 = (|e_ij|^2 dot_k + |e_ik|^2 dot_j) / (16 area).
+float mixedVoronoiCorner(const Vec3& xi, const Vec3& xj, const Vec3& xk, float area) {
+  const Vec3 eij = xj - xi, eik = xk - xi, ejk = xk - xj;
+  // A collapsed triangle (area below 1e-6 of its edges' squares, e.g. torn film folding at a hole's rim)
+  // has no meaningful angles: its corners share its vanishing area equally instead of dividing by it.
+  if (!(area > 1e-6f * (eij.squaredNorm() + eik.squaredNorm()))) return area / 3.0f;
+  const float dotI = eij.dot(eik), dotJ = -eij.dot(ejk), dotK = eik.dot(ejk);  // cosines times lengths
+  if (dotI < 0) return 0.5f * area;
+  if (dotJ < 0 || dotK < 0) return 0.25f * area;
+  return (eij.squaredNorm() * dotK + eik.squaredNorm() * dotJ) / (16.0f * area);
+}
+
+}  // namespace
+
+void triangleGeometry(const Topology& topo, State& s, size_t t) {
+  const uint32_t* tri = &topo.triangles[3 * t];
+  const Vec3 x[3] = {s.position.get(tri[0]), s.position.get(tri[1]), s.position.get(tri[2])};
+  const Vec3 doubleAreaNormal = (x[1] - x[0]).cross(x[2] - x[0]);
+  s.triangleNormal.set(t, doubleAreaNormal);
+  const float area = 0.5f * doubleAreaNormal.norm();
+  for (int c = 0; c < 3; ++c) s.cornerArea[3 * t + c] = mixedVoronoiCorner(x[c], x[(c + 1) % 3], x[(c + 2) % 3], area);
+}
+
+void vertexGeometry(const Topology& topo, State& s, size_t i) {
+  Vec3 normalSum = Vec3::Zero();
+  float area = 0.0f;
+  for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
+    const uint32_t corner = topo.triangleCorner[k];
+    normalSum += s.triangleNormal.get(corner / 3);
+    area += s.cornerArea[corner];
+  }
+  const float len = normalSum.norm();
+  s.normal.set(i, len > 0 ? Vec3(normalSum / len) : Vec3::Zero());
+  s.voronoiArea[i] = area;
+}
+
+void fitTriangleArrays(const Topology& topo, State& s) {
+  if (s.cornerArea.size() == 3 * topo.triangleCount() && s.triangleNormal.size() == topo.triangleCount()) return;
+  s.triangleNormal.resize(topo.triangleCount());
+  s.cornerArea.assign(3 * topo.triangleCount(), 0.0f);
+}
+
+uint64_t geometryKey(const Topology& topo, const State& s) {
+  // Word by word, multiply and rotate, in four independent lanes (word k into lane k % 4) so that the
+  // multiplications overlap instead of waiting for each other: about a millisecond for 1,000,000 particles, against
+  // the geometry's 30-50. Not cryptographic, but a changed position or triangle changes the key but for a 2^-64
+  // chance.
+  std::array<uint64_t, 4> lane{0x9E3779B97F4A7C15ull ^ (static_cast<uint64_t>(s.size()) << 32) ^ topo.triangles.size(),
+                               1, 2, 3};
+  const auto mix = [](uint64_t& h, uint64_t word) { h = std::rotl((h ^ word) * 0xFF51AFD7ED558CCDull, 29); };
+  const auto mixWords = [&](const void* data, size_t bytes) {
+    const auto* p = static_cast<const unsigned char*>(data);
+    size_t k = 0;
+    for (; k + 32 <= bytes; k += 32) {
+      std::array<uint64_t, 4> words;
+      std::memcpy(words.data(), p + k, 32);
+      for (int l = 0; l < 4; ++l) mix(lane[l], words[l]);
+    }
+    for (; k + 8 <= bytes; k += 8) {
+      uint64_t word;
+      std::memcpy(&word, p + k, 8);
+      mix(lane[0], word);
+    }
+    uint64_t tail = 0;
+    if (k < bytes) std::memcpy(&tail, p + k, bytes - k);  // an empty array's data() may be null, even for 0 bytes
+    mix(lane[0], tail);
+  };
+  for (const std::vector<float>* axis : {&s.position.x, &s.position.y, &s.position.z})
+    mixWords(axis->data(), axis->size() * sizeof(float));
+  mixWords(topo.triangles.data(), topo.triangles.size() * sizeof(uint32_t));
+  for (int l = 1; l < 4; ++l) mix(lane[0], lane[l]);
+  return lane[0];
+}
+
+void computeGeometry(const Topology& topo, State& s) {
+  fitTriangleArrays(topo, s);
+  for (size_t t = 0; t < topo.triangleCount(); ++t) triangleGeometry(topo, s, t);
+  for (size_t i = 0; i < s.size(); ++i) vertexGeometry(topo, s, i);
+}
+
+float coneVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& origin) {
+  return (a - origin).dot((b - origin).cross(c - origin)) / 6.0f;
+}
+
+float triangleVolume(const Topology& topo, const State& s, size_t t, const Vec3& origin) {
+  const uint32_t* tri = &topo.triangles[3 * t];
+  return coneVolume(s.position.get(tri[0]), s.position.get(tri[1]), s.position.get(tri[2]), origin);
+}
+
+float treeSum(std::vector<float> v) {
+  if (v.empty()) return 0.0f;
+  size_t n = v.size();
+  while (n > 1) {
+    const size_t half = (n + 1) / 2;
+    for (size_t k = 0; k < half; ++k) v[k] = 2 * k + 1 < n ? v[2 * k] + v[2 * k + 1] : v[2 * k];
+    n = half;
+  }
+  return v[0];
+}
+
+// ---- film state ------------------------------------------------------------------------------------------
+
+float elasticityOf(const Params& p, float thickness, float lifetime) {
+  const float x = thickness / p.elasticityThickness;                                      // e_i / k
+  if (lifetime < p.marangoniLifetime) return p.elasticityWeight * 2.0f * x / (x + 2.0f);  // Marangoni
+  const float g = std::max(x, p.gibbsFloorThickness / p.elasticityThickness);             // held below the floor
+  return p.elasticityWeight * 4.0f * g / ((g + 2.0f) * (g + 2.0f));                       // Gibbs
+}
+
+float filmTension(const Params& p, float thickness) {
+  const float gamma0 = p.surfaceTension;
+  const float gamma = gamma0 + 0.5f * p.gibbsElasticity * std::log(initialThickness(p) / std::max(thickness, 1e-12f));
+  return 2.0f * std::clamp(gamma, kLowestGammaFactor * gamma0, kHighestGammaFactor * gamma0);
+}
+
+double filmTensionEnergy(const Params& p, double liquid, double area) {
+  const double a = area, e0 = initialThickness(p), gamma0 = p.surfaceTension, gibbs = p.gibbsElasticity;
+  const double tension = filmTension(p, a > 0 ? static_cast<float>(liquid / a) : 0.0f);
+  if (!(gibbs > 0)) return tension * a;
+  // gamma = gamma_0 + (E_G / 2) ln(a e_0 / liquid) reaches gamma_0 / 2 at a_lo and 2 gamma_0 at a_hi. The constant
+  // of integration makes W = 2 gamma a below a_lo (a thick film, gamma at its floor).
+  const double lower = liquid / e0 * std::exp(2.0 * (kLowestGammaFactor - 1.0) * gamma0 / gibbs);
+  const double upper = liquid / e0 * std::exp(2.0 * (kHighestGammaFactor - 1.0) * gamma0 / gibbs);
+  return tension * a - gibbs * (std::clamp(a, lower, upper) - lower);
+}
+
+void filmState(const Params& p, float dt, State& s, size_t i) {
+  const float area = s.voronoiArea[i];
+  s.thickness[i] = area > 0 ? s.liquid[i] / area : 0.0f;
+  s.elasticity[i] = p.tensionModel == 1 ? filmTension(p, area > 0 ? surfactantLiquid(p, s.mass[i]) / area : 0.0f)
+                                        : elasticityOf(p, s.thickness[i], s.lifetime[i]);
+  s.lifetime[i] += dt;
+}
+
+// ---- air ------------------------------------------------------------------------------------------------
+
+Vec3 airInflowAt(const Params& p, const StepUniforms& u, const Vec3& x) {
+  const float dLeft = (x - u.wands.leftPosition).norm(), dRight = (x - u.wands.rightPosition).norm();
+  const Vec3 sources = u.leftInflowWeight * u.wands.leftVelocity / (dLeft + p.airInflowDistance) +
+                       u.wands.rightVelocity / (dRight + p.airInflowDistance);
+  return -u.airVolume * u.wandAlignment * sources;
+}
+
+void airInflow(const Params& p, const StepUniforms& u, State& s, size_t i) {
+  s.airInflow.set(i, airInflowAt(p, u, s.position.get(i)));
+}
+
+void airTransfer(const Params& p, const Topology& topo, State& s, size_t i) {
+  if (topo.boundary[i] || p.airTransfer == 0) {  // Algorithm 2, line 2: the end particles take the new inflow
+    s.airFlowNext.set(i, s.airInflow.get(i));
+    return;
+  }
+  const Vec3 xi = s.position.get(i);
+  Vec3 weighted = Vec3::Zero();
+  float weightSum = 0.0f;
+  for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
+    const uint32_t j = topo.springNeighbour[k];
+    const Vec3 airJ = s.airFlow.get(j);
+    const Vec3 toI = xi - s.position.get(j);
+    const float norms = toI.norm() * airJ.norm();
+    if (norms <= 0) continue;
+    const float aDir = std::max(toI.dot(airJ) / norms, 0.0f);  // Eq. (7), seen from the sender j
+    if (aDir <= p.airDirectionThreshold) continue;
+    weighted += aDir * airJ;
+    weightSum += aDir;
+  }
+  s.airFlowNext.set(i, weightSum > 0 ? Vec3(weighted / weightSum) : Vec3::Zero());  // Eq. (8)
+}
+
+// ---- forces ---------------------------------------------------------------------------------------------
+
+float boylePressure(const Params& p, float referenceVolume, float currentVolume) {
+  return currentVolume > 0 ? p.pressureCoefficient * referenceVolume / currentVolume : p.pressureCoefficient;
+}
+
+double boyleGasEnergy(const Params& p, double referenceVolume, double currentVolume) {
+  if (!(referenceVolume > 0 && currentVolume > 0)) return 0.0;
+  return p.pressureCoefficient *
+         (referenceVolume * std::log(referenceVolume / currentVolume) + (currentVolume - referenceVolume));
+}
+
+Vec3 areaTensionForce(const Topology& topo, const State& s, size_t i) {
+  Vec3 f = Vec3::Zero();
+  for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
+    const uint32_t corner = topo.triangleCorner[k], t = corner / 3, c = corner % 3;
+    const uint32_t* tri = &topo.triangles[3 * t];
+    const uint32_t j = tri[(c + 1) % 3], l = tri[(c + 2) % 3];
+    const Vec3 twiceAreaNormal = s.triangleNormal.get(t);
+    const float twiceArea = twiceAreaNormal.norm();
+    if (twiceArea <= 0) continue;
+    const float tension = (s.elasticity[tri[0]] + s.elasticity[tri[1]] + s.elasticity[tri[2]]) / 3.0f;
+    // grad_i A_t = 1/2 n_t x (x_l - x_j): the film pulls i towards the opposite edge, in the triangle's plane.
+    f -= tension * 0.5f * (twiceAreaNormal / twiceArea).cross(s.position.get(l) - s.position.get(j));
+  }
+  return f;
+}
+
+Vec3 internalForce(const Params& p, const Topology& topo, const State& s, size_t i) {
+  const Vec3 xi = s.position.get(i), vi = s.velocity.get(i);
+  const float ei = s.elasticity[i];
+  const bool physical = p.tensionModel == 1;
+  Vec3 f = physical ? areaTensionForce(topo, s, i) : Vec3::Zero();
+  for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
+    const uint32_t j = topo.springNeighbour[k];
+    const Vec3 d = s.position.get(j) - xi;
+    const float len = d.norm();
+    if (len <= 0) continue;
+    const Vec3 dir = d / len;
+    const float stiffness = 0.5f * (ei + s.elasticity[j]);
+    if (!physical) f += stiffness * (len - topo.restLength[topo.springIndex[k]]) * dir;  // Eq. (3)
+    f += p.springDamping * (s.velocity.get(j) - vi).dot(dir) * dir;                      // Algorithm 1, line 5
+  }
+  // Self-collision: contacts closer than their rest distance (collision.h) repel along their separation and damp their
+  // approach; the tangential motion is free, so colliding sheets slip (Section 8).
+  const uint32_t base = static_cast<uint32_t>(s.size()) + 1;
+  for (uint32_t k = topo.contacts[i]; k < topo.contacts[i + 1]; ++k) {
+    const uint32_t j = topo.contacts[base + k];
+    const Vec3 d = xi - s.position.get(j);
+    const float len = d.norm(), rest = contactRestDistance(topo.contacts, s.size(), k);
+    if (!(len > 0 && len < rest)) continue;
+    const Vec3 away = d / len;
+    const float approach = (vi - s.velocity.get(j)).dot(away);
+    f += p.collisionStiffness * (rest - len) * away;
+    if (approach < 0) f -= p.collisionDamping * approach * away;
+  }
+  return f;
+}
+
+Vec3 externalForce(const Params& p, const StepUniforms& u, float pressure, const State& s, size_t i) {
+  const Vec3 n = s.normal.get(i);
+  const float area = s.voronoiArea[i];
+  Vec3 f = liquidMass(p, s.liquid[i]) * Vec3(p.gravityX, p.gravityY, p.gravityZ);
+  const float flowIn = s.airFlow.get(i).dot(n), directIn = s.airInflow.get(i).dot(n);
+  if (u.closed) {
+    f += pressure / p.pressureCoefficient * p.airPressureGain * flowIn * area * n;  // Eq. (10), the air's part
+  } else {
+    f += p.airPressureGain * (flowIn + directIn) * area * n;  // Eq. (9)
+  }
+  return f;
+}
+
+float fullAirCoupling(const Params& p, float wireArea, float voronoiArea) {
+  return p.airPressureGain * wireArea * voronoiArea;
+}
+
+float airCoupling(const Params& p, const StepUniforms& u, const State& s, size_t i) {
+  if (u.closed || !(u.wireArea > 0)) return 0.0f;
+  const float airSpeed = std::abs((s.airFlow.get(i) + s.airInflow.get(i)).dot(s.normal.get(i))) / u.wireArea;
+  return fullAirCoupling(p, u.wireArea, s.voronoiArea[i]) * std::min(1.0f, airSpeed / kStillAirSpeed);
+}
+
+Vec3 volumeGradient(const Topology& topo, const State& s, size_t i) {
+  Vec3 twiceAreaNormals = Vec3::Zero();
+  for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k)
+    twiceAreaNormals += s.triangleNormal.get(topo.triangleCorner[k] / 3);
+  return twiceAreaNormals / 6.0f;
+}
+
+float boyleExcess(const Params& p, float pressure) { return pressure - p.pressureCoefficient; }
+
+Vec3 boyleForce(const Params& p, float pressure, const Topology& topo, const State& s, size_t i) {
+  return boyleExcess(p, pressure) * volumeGradient(topo, s, i);
+}
+
+void forces(const Params& p, const StepUniforms& u, float pressure, const Topology& topo, State& s, size_t i) {
+  const Vec3 drag = -p.airDrag * s.voronoiArea[i] * s.velocity.get(i);  // still air resists
+  const Vec3 n = s.normal.get(i);
+  const Vec3 coupling = -airCoupling(p, u, s, i) * s.velocity.get(i).dot(n) * n;  // the film moves with the air
+  Vec3 f = internalForce(p, topo, s, i) + externalForce(p, u, pressure, s, i) + drag + coupling;
+  if (u.closed) f += boyleForce(p, pressure, topo, s, i);
+  s.force.set(i, f);
+}
+
+void externalForces(const Params& p, const StepUniforms& u, float pressure, State& s, size_t i) {
+  s.force.set(i, externalForce(p, u, pressure, s, i));
+}
+
+// ---- integration ----------------------------------------------------------------------------------------
+
+void integrate(const StepUniforms& u, const Topology& topo, State& s, size_t i) {
+  if (!s.alive[i]) return;
+  const Vec3 x = s.position.get(i);
+  if (topo.boundary[i]) {
+    if (s.wireParam[i] < 0.0f) {  // pinned where it is (the fixed rings of the validation scenes)
+      s.velocity.set(i, Vec3::Zero());
+      return;
+    }
+    const Vec3 xNext = wirePoint(u.wireNext, s.wireParam[i]);
+    s.velocity.set(i, (xNext - x) / u.dt);
+    s.position.set(i, xNext);
+    return;
+  }
+  Vec3 v = s.velocity.get(i) + u.dt * s.force.get(i) / s.mass[i];  // Eq. (12)
+  Vec3 xNew = x + u.dt * v;                                        // Eq. (13)
+  if (xNew.y() < 0.0f) {  // the floor, y = 0: the film lands and slides, it does not pass through
+    xNew.y() = 0.0f;
+    v.y() = std::max(v.y(), 0.0f);
+  }
+  s.velocity.set(i, v);
+  s.position.set(i, xNew);
+}
+
+// ---- drainage -------------------------------------------------------------------------------------------
+
+float drainageDirection(const Vec3& xi, const Vec3& xj, const Vec3& g) {
+  // Uphill or level (about half of a film's edges): no liquid runs that way, and no square roots are spent on it.
+  const Vec3 d = xj - xi;
+  const float along = d.dot(g);
+  return along > 0 ? along / (d.norm() * g.norm()) : 0.0f;
+}
+
+void drainageOutflow(const Params& p, float dt, const Topology& topo, State& s, size_t i) {
+  const Vec3 g(p.gravityX, p.gravityY, p.gravityZ), xi = s.position.get(i);
+  float weight = 0.0f;
+  for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k)
+    weight += drainageDirection(xi, s.position.get(topo.springNeighbour[k]), g);
+  s.drainWeight[i] = weight;
+  s.drainOutflow[i] = s.liquid[i] * std::min(1.0f, dt * p.drainageRate * weight / p.sticky);
+}
+
+void drainageGather(const Params& p, const Topology& topo, State& s, size_t j) {
+  const Vec3 g(p.gravityX, p.gravityY, p.gravityZ), xj = s.position.get(j);
+  float received = 0.0f;
+  for (uint32_t k = topo.springOffset[j]; k < topo.springOffset[j + 1]; ++k) {
+    const uint32_t i = topo.springNeighbour[k];
+    if (s.drainWeight[i] > 0)
+      received += s.drainOutflow[i] * drainageDirection(s.position.get(i), xj, g) / s.drainWeight[i];
+  }
+  s.liquid[j] = s.liquid[j] - s.drainOutflow[j] + received;
+}
+
+// ---- stability ------------------------------------------------------------------------------------------
+
+float elasticityBound(const Params& p) {
+  const float youngX = 2.0f * initialThickness(p) / p.elasticityThickness;
+  const float marangoni = 2.0f * youngX / (youngX + 2.0f);
+  return p.elasticityWeight * std::max(0.5f, marangoni);
+}
+
+namespace {
+
+// Physical model: the diagonal of the Hessian of i's triangle areas, sum_t |opposite edge|^2 / (4 A_t) (m^0);
+// times the largest tension it bounds the stiffness the area force gives particle i.
+float areaHessianDiagonal(const Topology& topo, const State& s, size_t i) {
+  float sum = 0.0f;
+  for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
+    const uint32_t corner = topo.triangleCorner[k], t = corner / 3, c = corner % 3;
+    const uint32_t* tri = &topo.triangles[3 * t];
+    const float twiceArea = s.triangleNormal.get(t).norm();
+    const float edge2 = (s.position.get(tri[(c + 2) % 3]) - s.position.get(tri[(c + 1) % 3])).squaredNorm();
+    if (twiceArea > 0) sum += edge2 / (2.0f * twiceArea);
+  }
+  return sum;
+}
+
+}  // namespace
+
+float stableTimeStep(const Params& p, const Topology& topo, const State& s, float pressure, float volume) {
+  const float eMax = elasticityBound(p);
+  const float tensionMax = highestTension(p.surfaceTension);
+  float dt = std::numeric_limits<float>::infinity();
+  const bool closed = topo.isClosed();
+  // The air coupling's frame area Area_wm is at most the film's area: the film spans the planar wire frame.
+  float filmArea = 0.0f;
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.alive[i]) filmArea += s.voronoiArea[i];
+  for (size_t i = 0; i < s.size(); ++i) {
+    if (!s.alive[i] || topo.boundary[i] || s.mass[i] <= 0) continue;
+    const float springs = static_cast<float>(topo.springOffset[i + 1] - topo.springOffset[i]);
+    // Gershgorin: row sum of |K| is at most twice the diagonal; up to 6 collision contacts at a time.
+    const float filmStiffness = p.tensionModel == 1 ? tensionMax * areaHessianDiagonal(topo, s, i) : springs * eMax;
+    float stiffness = 2.0f * (filmStiffness + 6.0f * p.collisionStiffness);
+    if (closed && volume > 0) stiffness += pressure * s.voronoiArea[i] * s.voronoiArea[i] / volume;
+    const float omega = std::sqrt(stiffness / s.mass[i]);
+    const float airCouplingMax = closed ? 0.0f : fullAirCoupling(p, filmArea, s.voronoiArea[i]);
+    const float damping = (2.0f * (springs * p.springDamping + 6.0f * p.collisionDamping) +
+                           p.airDrag * s.voronoiArea[i] + airCouplingMax) /
+                          s.mass[i];
+    dt = std::min(dt, 2.0f / (omega + damping));
+  }
+  return p.stabilitySafety * dt;
+}
+
+}  // namespace gb

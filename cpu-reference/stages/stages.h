@@ -1,0 +1,181 @@
+#pragma once
+// The stages of one simulation step (ARCHITECTURE.md "The step"), each a function of one element that
+// reads explicit inputs and writes only that element's outputs. This file is the definition both backends
+// follow: each stage's GLSL kernel(s) in kernels/ (kernel_list.h) run the function of the same name per element.
+//
+// Gather, never scatter: every per-particle result is summed by the particle itself over its CSR one-ring,
+// in CSR order. Propagation (air transfer) is a Jacobi pass from a front buffer into a back buffer.
+
+#include "params.h"
+#include "state.h"
+#include "wire_frame.h"
+
+namespace gb {
+
+// What a step needs besides the state: computed once per step on the host (on the GPU one StepUniformsBlock per
+// step of a batch, in a storage buffer: kernels/shared_step.h).
+struct StepUniforms {
+  float dt = 0.0f;                   // substep length (s)
+  WandState wands;                   // wand tips at the start of the step, the air sources of Eq. (5)
+  float leftInflowWeight = 1.0f;     // weight of the left source of Eq. (5); the ring's frame has both at its hand
+  float airVolume = 0.0f;            // V_wm = H_wire * Area_wm, Eq. (6) (m^3)
+  float wireArea = 0.0f;             // Area_wm (m^2): the air flow over it is the air's speed (airCoupling)
+  float wandAlignment = 0.0f;        // MAX(cos(theta), 0) of Eq. (5)
+  WireFrame wireNext;                // the wire frame at the end of the step, for the boundary particles
+  Vec3 volumeOrigin = Vec3::Zero();  // apex of the cone decomposition of the (swept) volume
+  uint32_t closed = 0;               // 1 once the film is a closed bubble: Eqs. (10)-(11) replace Eq. (9)
+  float referenceVolume = 0.0f;      // V_0 of Eq. (11), the volume when the bubble closed (m^3)
+  float drainageDt = 0.0f;           // drainage runs in this step over this time, 0: not in this step. Liquid
+                                     // drains over seconds, so once per frame is enough (Simulation)
+  int solverSweeps = 0;              // implicit integrator: vertex block descent sweeps in this step (the live
+                                     // loop lowers it when a frame runs over its budget)
+};
+
+// ---- Stage 1-2: geometry -------------------------------------------------------------------------------
+// Pass 1, per triangle t: its area-weighted normal and the mixed Voronoi area (Meyer et al. 2003) of each of
+// its corners. Each triangle is computed once instead of once per corner.
+void triangleGeometry(const Topology& topo, State& s, size_t t);
+// Pass 2, per particle i: unit vertex normal (sum of its triangles' area-weighted normals) and mixed Voronoi
+// area (sum of its corners' areas), gathered in CSR order.
+void vertexGeometry(const Topology& topo, State& s, size_t i);
+// Both passes over the whole film, serially: for code outside the step (film creation, pinch-off, tests).
+void computeGeometry(const Topology& topo, State& s);
+// Sizes the per-triangle arrays for the topology.
+void fitTriangleArrays(const Topology& topo, State& s);
+// A 64-bit hash of everything the geometry depends on (the positions, the triangles, the counts): equal keys mean
+// the geometry computed for one holds for the other. The CPU stepper's geometry stage skips its work when the film
+// still has the key of the geometry last computed: `giantbubble run` computes it for each frame's figures
+// (Simulation::stats) and the next step would compute it again from the same positions (0.6 ms of a 10 ms frame of
+// the default film).
+uint64_t geometryKey(const Topology& topo, const State& s);
+
+// Signed volume of the tetrahedron (origin, triangle t); their sum is the enclosed volume of a closed
+// film and the volume swept between an open film and the apex.
+float triangleVolume(const Topology& topo, const State& s, size_t t, const Vec3& origin);
+// The signed volume of the cone from `origin` to the triangle (a, b, c), the one formula of triangleVolume and
+// of the energy budget's triangleVolumeAtStart.
+float coneVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& origin);
+
+// Pairwise sum with a fixed tree shape (level by level, a[k] = a[2k] + a[2k+1]): the reduction both
+// backends use for the volume, so that they add in the same order.
+float treeSum(std::vector<float> values);
+
+// ---- Stage 3: film state (Section 5.1) ---------------------------------------------------------------
+// Eq. (4): elasticity from thickness e (m) and lifetime (s). Marangoni while young, Gibbs after, the Gibbs
+// branch held at its value at Params::gibbsFloorThickness for thinner film. The paper's formulas are divided by k so
+// that w_E carries the unit N/m (docs/model.md).
+float elasticityOf(const Params& p, float thickness, float lifetime);
+
+// Physical model: the film's tension 2 gamma (N/m), gamma following the surfactant per area through Gibbs-Marangoni
+// elasticity, gamma = gamma_0 + (E_G / 2) ln(e_0 / e) (a stretched film has less surfactant per area), kept within
+// [gamma_0 / 2, 2 gamma_0]. e is the thickness the particle's surfactant gives, surfactantLiquid / area: the film's
+// thickness had none of its liquid drained.
+float filmTension(const Params& p, float thickness);
+
+// Physical model: the tension's potential energy (J) on a particle's area `area` made with `liquid`
+// (surfactantLiquid, m^3), the W whose derivative dW/da is filmTension at the thickness liquid / a: 2 gamma a less
+// E_G (clamp(a, a_lo, a_hi) - a_lo).
+// Where gamma follows the area (between the clamp's areas a_lo and a_hi), 2 gamma a also counts the rise of gamma
+// as if it had held over the whole area, which the tension never did work against. The step freezes gamma, so a
+// film it stretched by da gains E_G da of "2 gamma a" when gamma is refreshed, but none of W: counted as 2 gamma a,
+// a film at rest would seem to gain energy from nothing.
+double filmTensionEnergy(const Params& p, double liquid, double area);
+
+// Physical model, per particle i: -sum over its triangles t of T_t grad_i A_t, T_t the mean tension 2 gamma of
+// t's corners: the discrete mean-curvature force 2 gamma (2 H) A_i n on a smooth film, and an in-plane pull
+// where the tension varies (Marangoni). Needs the geometry stage's triangle normals.
+Vec3 areaTensionForce(const Topology& topo, const State& s, size_t i);
+
+// Thickness e_i = liquid / A_Vor, elasticity E_i (the paper) or the film tension 2 gamma_i (physical
+// model: the same N/m slot), and the particle's age.
+void filmState(const Params& p, float dt, State& s, size_t i);
+
+// ---- Stage 4: air inflow (Section 5.2.1) ---------------------------------------------------------------
+// Eq. (5): air flow (m^3/s) at a point, created by the moving wands.
+Vec3 airInflowAt(const Params& p, const StepUniforms& u, const Vec3& position);
+void airInflow(const Params& p, const StepUniforms& u, State& s, size_t i);
+
+// ---- Stage 5: air flow transfer (Section 5.2.2, Algorithm 2) --------------------------------------------
+// Eqs. (7)-(8) as a Jacobi gather: particle i receives the air of each neighbour j whose air points towards
+// it (a_dir > lambda_air), weighted by a_dir; its own old air is dropped ("delete air_i"). End (boundary)
+// particles are assigned the fresh inflow instead. Reads airFlow, writes airFlowNext[i].
+void airTransfer(const Params& p, const Topology& topo, State& s, size_t i);
+
+// ---- Stage 6: forces, Eq. (2) --------------------------------------------------------------------------
+// Internal forces on particle i, the ones the implicit step takes into its energy: surface tension Eq. (3)
+// with the spring's stiffness the mean of its two particles' E (so the pair forces cancel exactly) or the
+// physical area tension, spring-projected damping (Algorithm 1), and the self-collision contacts.
+Vec3 internalForce(const Params& p, const Topology& topo, const State& s, size_t i);
+// External forces on particle i, the ones both integrators keep explicit: gravity, and the air force, Eq. (9)
+// on an open film or the transferred air of Eq. (10) on a closed bubble at pressure P_cur.
+Vec3 externalForce(const Params& p, const StepUniforms& u, float pressure, const State& s, size_t i);
+// Open film: the air force of Eq. (9) acts on the film relative to the air: kappa ((air . n) - Area_wm (v . n))
+// A_Vor n, the air's speed being its flow over the frame's area. externalForce holds the first part; this is
+// the coefficient kappa Area_wm A_Vor (N s/m) of the second, a damping of the film's normal speed towards the
+// air's, faded out below 5 cm/s of air speed (still air holds nothing: only airDrag acts). Without it Eq. (9) pushes
+// with the same force however fast the film already moves, and a film drawn at real arm speeds runs away (docs/model.md
+// "Air coupling"). The implicit step takes it as a dissipation.
+float airCoupling(const Params& p, const StepUniforms& u, const State& s, size_t i);
+// The air coupling at full strength (air at or above 5 cm/s) for a frame of area Area_wm (m^2): kappa Area_wm
+// A_Vor (N s/m). airCoupling fades it out in still air; stableTimeStep bounds the explicit step with it.
+float fullAirCoupling(const Params& p, float wireArea, float voronoiArea);
+
+// dV/dx_i of a closed film's enclosed volume V = sum_t x_a . (x_b x x_c) / 6: a sixth of the twice-area normals of
+// particle i's triangles (the geometry stage's). Over a closed film these sum to zero exactly.
+Vec3 volumeGradient(const Topology& topo, const State& s, size_t i);
+
+// Closed bubble, Eqs. (10)-(11): the excess of Boyle's pressure P_cur = P_0 V_0 / V over P_0 times the volume's
+// gradient (volumeGradient): on a smooth film the particle's area along its normal. It pushes a compressed bubble out
+// and pulls an expanded one in. Taken as the gradient, it is the force of the gas's energy exactly: its sum over the
+// film is zero, and it does the work the gas's energy change says. The Voronoi area along the vertex normal, its
+// smooth-film approximation, sums to up to 0.17 N on a crumpled bubble and does up to 0.04 W of work the gas never
+// pays for. The implicit step evaluates it at the volume of its current iterate
+// (implicit_euler.h): at the step's start it is unstable at h = 0.02 s for a bubble of tens of centimetres.
+Vec3 boyleForce(const Params& p, float pressure, const Topology& topo, const State& s, size_t i);
+// Its scalar factor, the excess of Boyle's pressure over P_0 (Pa), for a gradient laid out elsewhere.
+float boyleExcess(const Params& p, float pressure);
+// Explicit integrator: the whole of Eq. (2), internal + external + linear air drag + air coupling (open) or
+// Boyle (closed).
+void forces(const Params& p, const StepUniforms& u, float pressure, const Topology& topo, State& s, size_t i);
+// Implicit integrator: the external forces only (drag and the internal forces are in the solver).
+void externalForces(const Params& p, const StepUniforms& u, float pressure, State& s, size_t i);
+
+// Eq. (11), Boyle's law: P_cur = P_0 V_0 / V_cur.
+float boylePressure(const Params& p, float referenceVolume, float currentVolume);
+// The energy the bubble's air stores at volume V against the outside air, the work Boyle's excess pressure does
+// when the bubble returns to V_0: -integral from V_0 to V of (P_cur - P_0) dV' = P_0 V_0 ln(V_0 / V) + P_0 (V - V_0),
+// zero at V_0 and positive either side (J). The implicit step's objective holds it (implicit_euler.h): a
+// compressed bubble's air pushes the film out, its energy going into the film's motion and tension. CPU
+// diagnostics only (FrameStats), in double: the two terms cancel to a small difference.
+double boyleGasEnergy(const Params& p, double referenceVolume, double currentVolume);
+
+// ---- Stage 7: semi-implicit Euler, Eqs. (12)-(13) --------------------------------------------------------
+// Interior particles integrate their force and stop at the floor (y = 0), keeping their sliding velocity;
+// boundary particles are carried to the wire frame at the end of the step, with the velocity that motion
+// implies.
+void integrate(const StepUniforms& u, const Topology& topo, State& s, size_t i);
+
+// ---- Stage 8: position-dependent drainage (Section 6.2, Eqs. 14-15) --------------------------------------
+// Eq. (14): how closely the direction from sender x_i to receiver x_j follows gravity g, MAX(cos, 0).
+float drainageDirection(const Vec3& xi, const Vec3& xj, const Vec3& g);
+
+// Pass 1: particle i sends out_i = w_i min(1, dt rate D_i / Sticky) of its liquid (dt: StepUniforms::drainageDt), D_i =
+// sum of d_dir(i->k) over its neighbours; stores out_i and D_i.
+void drainageOutflow(const Params& p, float dt, const Topology& topo, State& s, size_t i);
+
+// Pass 2, Eq. (15) as a gather: particle j keeps what it did not send and receives out_i d_dir(i->j) / D_i
+// from each neighbour i. What leaves a particle is exactly what its downhill neighbours receive, so the
+// total liquid is conserved to float rounding.
+void drainageGather(const Params& p, const Topology& topo, State& s, size_t j);
+
+// ---- Stability -----------------------------------------------------------------------------------------
+// Largest elasticity Eq. (4) can give the film: the Gibbs peak 0.5 w_E, or the Marangoni value of a young
+// film twice the initial thickness, whichever is larger.
+float elasticityBound(const Params& p);
+
+// Largest explicit substep that keeps semi-implicit Euler stable for every particle (Gershgorin bound on
+// the stiffness of its springs, damping, drag and, on an open film, the air coupling at full strength with
+// the film's area as a bound on the frame's; and the pressure of a closed film), times Params::stabilitySafety.
+float stableTimeStep(const Params& p, const Topology& topo, const State& s, float pressure, float volume);
+
+}  // namespace gb

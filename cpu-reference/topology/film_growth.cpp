@@ -1,0 +1,450 @@
+// Film growth at the wire: stretch test, ring release, new ring on the wire, CGAL strip triangulation.
+// CGAL stays inside this file.
+#include "film_growth.h"
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <numbers>
+#include <optional>
+#include <span>
+#include <stdexcept>
+
+#include "implicit_euler.h"
+#include "pinch_off.h"
+
+namespace gb {
+namespace {
+
+using Kernel = CGAL::Exact_predicates_inexact_constructions_kernel;
+using VertexBase = CGAL::Triangulation_vertex_base_with_info_2<uint32_t, Kernel>;
+using Tds = CGAL::Triangulation_data_structure_2<VertexBase>;
+using Delaunay = CGAL::Delaunay_triangulation_2<Kernel, Tds>;
+
+// Distance along the wire from u = 0 to frame coordinate u, exact on the straight top string and
+// proportional to the angle on the arcs: the strip's flat coordinate, only used to pick its triangles.
+struct WireUnrolling {
+  const WireFrame& frame;
+  float topLength = 0.0f, arcLength = 0.0f;
+  explicit WireUnrolling(const WireFrame& f) : frame(f) {
+    if (f.kind == ToolKind::TwoWands) {
+      topLength = 2.0f * f.halfWidth;
+      arcLength = frameArcLength(f, 1.0f, 2.0f);
+    } else {
+      arcLength = frameArcLength(f, 0.0f, 1.0f);
+    }
+  }
+  [[nodiscard]] float at(float u) const {
+    if (frame.kind == ToolKind::Ring) return u * arcLength;
+    return u < 1.0f ? u * topLength : topLength + (u - 1.0f) * arcLength;
+  }
+  [[nodiscard]] float period() const { return topLength + arcLength; }
+};
+
+// The wire's particles and, for each, the springs to free particles of the film.
+bool isRung(const Topology& topo, uint32_t a, uint32_t b) { return topo.boundary[a] && !topo.boundary[b]; }
+
+// Where a released wire particle goes: `fraction` of the way to the mean of its free neighbours; a particle
+// with no free neighbour (a sharp tip) steps that fraction of the wire spacing towards the frame's centre.
+Vec3 releasedPosition(const Film& film, const WireFrame& frame, uint32_t i, float fraction) {
+  const Topology& topo = film.topology;
+  const State& s = film.state;
+  Vec3 mean = Vec3::Zero();
+  int count = 0;
+  for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k)
+    if (const uint32_t j = topo.springNeighbour[k]; isRung(topo, i, j)) {
+      mean += s.position.get(j);
+      ++count;
+    }
+  const Vec3 p = s.position.get(i);
+  if (count > 0) return p + fraction * (mean / static_cast<float>(count) - p);
+  const Vec3 towardsCentre = (frame.center - p).normalized();
+  return p + fraction * film.wireSpacing * towardsCentre;
+}
+
+// Triangles of the strip between the released ring (old, at height 1) and the new ring (at height 0),
+// unrolled along the wire, by CGAL's Delaunay triangulation. The unrolled strip is closed into an annulus
+// by a copy of each ring's first point one period further on, mapped back to the same particle.
+std::vector<uint32_t> triangulateStrip(const WireUnrolling& wire, const std::vector<uint32_t>& oldRing,
+                                       const std::vector<float>& oldU, const std::vector<uint32_t>& newRing,
+                                       const std::vector<float>& newU, float height) {
+  std::vector<std::pair<Kernel::Point_2, uint32_t>> points;
+  auto addRing = [&](const std::vector<uint32_t>& ring, const std::vector<float>& us, float y) {
+    size_t first = 0;
+    for (size_t k = 0; k < ring.size(); ++k) {
+      points.emplace_back(Kernel::Point_2(wire.at(us[k]), y), ring[k]);
+      if (us[k] < us[first]) first = k;
+    }
+    points.emplace_back(Kernel::Point_2(wire.at(us[first]) + wire.period(), y), ring[first]);
+  };
+  addRing(oldRing, oldU, height);
+  addRing(newRing, newU, 0.0f);
+  const Delaunay strip(points.begin(), points.end());
+  std::vector<uint32_t> triangles;
+  for (auto f = strip.finite_faces_begin(); f != strip.finite_faces_end(); ++f) {
+    const uint32_t a = f->vertex(0)->info(), b = f->vertex(1)->info(), c = f->vertex(2)->info();
+    if (a == b || b == c || c == a) continue;  // spans the whole period: its copy is the real one
+    triangles.insert(triangles.end(), {a, b, c});
+  }
+  return triangles;
+}
+
+// The released ring's springs to the film were stretched past growthStretch and are now half as long: the
+// film there has been drawn out of the wire, so they rest as a new film's springs do, prestrained at their
+// current length (the wire's payout of new film relaxes the tension it had).
+void restLikeNewFilm(const Params& params, const std::vector<uint32_t>& released, Film& film) {
+  Topology& topo = film.topology;
+  std::vector<char> isReleased(film.state.size(), 0);
+  for (uint32_t i : released) isReleased[i] = 1;
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    const bool toFilm = (isReleased[a] && !isReleased[b] && !topo.boundary[b]) ||
+                        (isReleased[b] && !isReleased[a] && !topo.boundary[a]);
+    if (toFilm)
+      topo.restLength[k] =
+          (film.state.position.get(a) - film.state.position.get(b)).norm() * (1.0f - params.springPrestrain);
+  }
+}
+
+// The strip's liquid, a new film's thickness times its area, shared among the corners of its triangles (a
+// third of each triangle to each): the new particles get their share, the released ring adds its share to
+// what it had. A wire with less liquid than that gives what it has (the last strip is thinner). Returns the
+// liquid used. Inertia is per area (Params::filmInertia), so the strip's particles get the mass of their new
+// Voronoi areas: a released ring particle now has film on both sides, and keeping its half-area wire mass
+// would halve the stable time step.
+float shareStripMaterial(const Params& params, const std::vector<uint32_t>& strip, size_t first, float available,
+                         State& s) {
+  std::vector<float> cornerArea(strip.size() / 3);
+  double area = 0;
+  for (size_t t = 0; t < strip.size(); t += 3) {
+    const Vec3 a = s.position.get(strip[t]), b = s.position.get(strip[t + 1]), c = s.position.get(strip[t + 2]);
+    cornerArea[t / 3] = 0.5f * (b - a).cross(c - a).norm() / 3.0f;
+    area += 3.0 * cornerArea[t / 3];
+  }
+  const float wanted = static_cast<float>(initialThickness(params) * area);
+  const float used = std::min(wanted, available);
+  const float thickness = area > 0 ? static_cast<float>(used / area) : 0.0f;
+  for (size_t i = first; i < s.size(); ++i) s.liquid[i] = 0.0f;
+  for (size_t t = 0; t < strip.size(); t += 3)
+    for (size_t k = 0; k < 3; ++k) s.liquid[strip[t + k]] += thickness * cornerArea[t / 3];
+  for (uint32_t i : strip) s.mass[i] = particleMass(params, s.voronoiArea[i], s.liquid[i]);
+  return used;
+}
+
+// The film's single boundary loop, or empty when it has none or several (a torn or closed film).
+std::vector<uint32_t> intactWireLoop(const Film& film) {
+  if (film.topology.isClosed()) return {};
+  for (uint32_t a : film.state.alive)
+    if (!a) return {};
+  try {
+    return boundaryLoop(film.topology);
+  } catch (const std::runtime_error&) {
+    return {};
+  }
+}
+
+}  // namespace
+
+float wireRungStretch(const Film& film) {
+  const Topology& topo = film.topology;
+  const State& s = film.state;
+  double sum = 0;
+  size_t count = 0;
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    if (!isRung(topo, a, b) && !isRung(topo, b, a)) continue;
+    if (!s.alive[a] || !s.alive[b] || topo.restLength[k] <= 0) continue;
+    sum += (s.position.get(a) - s.position.get(b)).norm() / topo.restLength[k];
+    ++count;
+  }
+  return count ? static_cast<float>(sum / static_cast<double>(count)) : 0.0f;
+}
+
+size_t payOutFilmAtWire(const Params& params, Film& film) {
+  if (film.wireLiquid <= 0.0f) return 0;
+  Topology& topo = film.topology;
+  const State& s = film.state;
+  std::vector<std::pair<size_t, float>> stretched;  // rung, its length
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    if (!isRung(topo, a, b) && !isRung(topo, b, a)) continue;
+    const float length = (s.position.get(a) - s.position.get(b)).norm();
+    if (length > params.growthStretch * topo.restLength[k]) stretched.emplace_back(k, length);
+  }
+  // The loop test walks every triangle's edges: only when there is something to pay out (every frame the wands
+  // move, otherwise).
+  if (stretched.empty() || intactWireLoop(film).empty()) return 0;
+  for (const auto& [k, length] : stretched)
+    topo.restLength[k] = length * (1.0f - params.springPrestrain);  // as taut as a new film, no more
+  return stretched.size();
+}
+
+namespace {
+
+// Calls body(spring, its ends, its length) for every living spring not held by the wire (the wire's springs follow
+// the wire's own rule, payOutFilmAtWire, which also decides ring insertion).
+template <typename Body>
+void forEachSpringOffTheWire(const Film& film, Body body) {
+  const Topology& topo = film.topology;
+  const State& s = film.state;
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    if (!s.alive[a] || !s.alive[b] || topo.boundary[a] || topo.boundary[b]) continue;
+    body(k, a, b, (s.position.get(a) - s.position.get(b)).norm());
+  }
+}
+
+// Gives every living spring not held by the wire the rest length newRest(spring, its ends, its length) returns,
+// where it returns one. Returns how many changed.
+template <typename NewRest>
+size_t reshapeSpringsOffTheWire(Film& film, NewRest newRest) {
+  size_t changed = 0;
+  forEachSpringOffTheWire(film, [&](size_t k, uint32_t a, uint32_t b, float length) {
+    const std::optional<float> rest = newRest(k, a, b, length);
+    if (!rest) return;
+    film.topology.restLength[k] = *rest;
+    ++changed;
+  });
+  return changed;
+}
+
+}  // namespace
+
+size_t contractSlackSprings(const Params& params, Film& film) {
+  SpringEnergyAllowance unbounded;
+  return contractSlackSprings(params, film, unbounded);
+}
+
+size_t contractSlackSprings(const Params& params, Film& film, SpringEnergyAllowance& allowance) {
+  // The physical model's tension does not use rest lengths (tensionModel 1).
+  if (params.tensionModel != 0) return 0;
+  Topology& topo = film.topology;
+  const State& s = film.state;
+  const float dipThickness = initialThickness(params);
+  struct Contraction {
+    float slack;  // compression over length: the slackest contract first
+    size_t spring;
+    float rest, energy;  // the new rest length, and the spring energy it adds (J)
+  };
+  std::vector<Contraction> candidates;
+  forEachSpringOffTheWire(film, [&](size_t k, uint32_t a, uint32_t b, float length) {
+    const float rest = topo.restLength[k];
+    if (!(length < rest)) return;
+    if (std::max(s.thickness[a], s.thickness[b]) >= dipThickness) return;
+    const float taut =
+        params.energyNeutralContraction
+            ? length - std::min(rest - length, params.springPrestrain * length)  // stretched as compressed
+            : length * (1.0f - params.springPrestrain);                          // as taut as new film
+    candidates.push_back(
+        {(rest - length) / length, k, taut, springEnergy(s, a, b, length, taut) - springEnergy(s, a, b, length, rest)});
+  });
+  std::sort(candidates.begin(), candidates.end(), [](const Contraction& x, const Contraction& y) {
+    return x.slack != y.slack ? x.slack > y.slack : x.spring < y.spring;
+  });
+  size_t contracted = 0;
+  for (const Contraction& c : candidates) {
+    if (!allowance.pays(c.energy)) continue;
+    topo.restLength[c.spring] = c.rest;
+    ++contracted;
+  }
+  return contracted;
+}
+
+namespace {
+
+// The particles around i (its one-ring).
+std::span<const uint32_t> ringOf(const Topology& topo, uint32_t i) {
+  return {topo.springNeighbour.data() + topo.springOffset[i], topo.springOffset[i + 1] - topo.springOffset[i]};
+}
+
+// Whether merging b into a at x keeps the mesh a manifold that does not fold over: the two one-rings share exactly
+// the two particles across the edge (the link condition), and no triangle that keeps one of them turns over.
+bool mergeKeepsTheMesh(const Film& film, uint32_t a, uint32_t b, const Vec3& x) {
+  const Topology& topo = film.topology;
+  const State& s = film.state;
+  size_t shared = 0;
+  for (uint32_t n : ringOf(topo, a))
+    for (uint32_t m : ringOf(topo, b)) shared += n == m;
+  if (shared != 2) return false;
+  for (uint32_t moved : {a, b})
+    for (uint32_t k = topo.triangleOffset[moved]; k < topo.triangleOffset[moved + 1]; ++k) {
+      const uint32_t* tri = topo.triangleOf(topo.triangleCorner[k]);
+      if ((tri[0] == a || tri[1] == a || tri[2] == a) && (tri[0] == b || tri[1] == b || tri[2] == b)) continue;
+      std::array<Vec3, 3> before, after;
+      for (int c = 0; c < 3; ++c) {
+        before[c] = s.position.get(tri[c]);
+        after[c] = tri[c] == moved ? x : before[c];
+      }
+      const Vec3 n0 = (before[1] - before[0]).cross(before[2] - before[0]);
+      const Vec3 n1 = (after[1] - after[0]).cross(after[2] - after[0]);
+      if (!(n0.dot(n1) > 0.5f * n0.norm() * n1.norm())) return false;  // turned by more than 60 degrees
+    }
+  return true;
+}
+
+// Particle b joins particle a at their centre of mass: its mass, liquid and momentum go to a, and b dies.
+void mergeInto(State& s, uint32_t a, uint32_t b) {
+  const float ma = s.mass[a], mb = s.mass[b], m = ma + mb;
+  s.position.set(a, (ma * s.position.get(a) + mb * s.position.get(b)) / m);
+  s.previousPosition.set(a, (ma * s.previousPosition.get(a) + mb * s.previousPosition.get(b)) / m);
+  s.velocity.set(a, (ma * s.velocity.get(a) + mb * s.velocity.get(b)) / m);
+  s.mass[a] = m;
+  s.liquid[a] += s.liquid[b];
+  s.lifetime[a] = std::min(s.lifetime[a], s.lifetime[b]);
+  s.alive[b] = 0u;
+  s.liquid[b] = 0.0f;
+  s.mass[b] = 0.0f;
+}
+
+}  // namespace
+
+size_t mergeCrowdedParticles(const Params& params, Film& film) {
+  SpringEnergyAllowance unbounded;
+  return mergeCrowdedParticles(params, film, unbounded);
+}
+
+size_t mergeCrowdedParticles(const Params& params, Film& film, SpringEnergyAllowance& allowance) {
+  Topology& topo = film.topology;
+  State& s = film.state;
+  if (!topo.isClosed() || params.tensionModel != 0 || topo.springCount() == 0) return 0;
+  const float dipThickness = initialThickness(params);
+  std::vector<std::pair<float, size_t>> crowded;  // length, spring: slack, with a thick end
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    if (!s.alive[a] || !s.alive[b] || std::max(s.thickness[a], s.thickness[b]) < dipThickness) continue;
+    const float length = (s.position.get(a) - s.position.get(b)).norm();
+    if (length < topo.restLength[k]) crowded.emplace_back(length, k);
+  }
+  if (crowded.empty()) return 0;  // most frames: the median below is not needed
+  std::vector<float> lengths;
+  lengths.reserve(topo.springCount());
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    if (s.alive[a] && s.alive[b]) lengths.push_back((s.position.get(a) - s.position.get(b)).norm());
+  }
+  std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+  const float shortest = kCrowdedEdge * lengths[lengths.size() / 2];
+  std::erase_if(crowded, [&](const std::pair<float, size_t>& c) { return !(c.first < shortest); });
+  if (crowded.empty()) return 0;
+  std::sort(crowded.begin(), crowded.end());  // the shortest first; ties by spring: deterministic
+  std::vector<char> touched(s.size(), 0);     // merged or beside a merge this frame: its ring has changed
+  std::vector<uint32_t> into(s.size());
+  for (uint32_t i = 0; i < into.size(); ++i) into[i] = i;
+  size_t merged = 0;
+  for (const auto& [length, k] : crowded) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    if (touched[a] || touched[b]) continue;
+    const float ma = s.mass[a], mb = s.mass[b];
+    const Vec3 x = (ma * s.position.get(a) + mb * s.position.get(b)) / (ma + mb);
+    if (!mergeKeepsTheMesh(film, a, b, x)) continue;
+    for (uint32_t p : {a, b}) {
+      touched[p] = 1;
+      for (uint32_t n : ringOf(topo, p)) touched[n] = 1;
+    }
+    mergeInto(s, a, b);
+    into[b] = a;
+    ++merged;
+  }
+  if (merged == 0) return 0;
+  std::vector<uint32_t> triangles;
+  triangles.reserve(topo.triangles.size());
+  for (size_t t = 0; t < topo.triangleCount(); ++t) {
+    const std::array<uint32_t, 3> tri{into[topo.triangles[3 * t]], into[topo.triangles[3 * t + 1]],
+                                      into[topo.triangles[3 * t + 2]]};
+    if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;  // the two across each merged edge
+    triangles.insert(triangles.end(), tri.begin(), tri.end());
+  }
+  std::vector<size_t> made;
+  topo = rebuildTopology(topo, std::move(triangles), s.position, params.springPrestrain, &made);
+  for (size_t k : made) {  // as taut as new film while the allowance pays, else at their length
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    const float length = (s.position.get(a) - s.position.get(b)).norm();
+    if (!allowance.pays(springEnergy(s, a, b, length, topo.restLength[k]))) topo.restLength[k] = length;
+  }
+  return merged;
+}
+
+size_t yieldStretchedSprings(const Params& params, Film& film) {
+  if (!(params.yieldStretch > 1.0f) || params.tensionModel != 0) return 0;
+  const std::vector<float>& rest = film.topology.restLength;
+  const std::vector<float>& thickness = film.state.thickness;
+  return reshapeSpringsOffTheWire(film, [&](size_t k, uint32_t a, uint32_t b, float length) -> std::optional<float> {
+    if (std::min(thickness[a], thickness[b]) < params.yieldThickness) return std::nullopt;
+    if (!(length > params.yieldStretch * rest[k])) return std::nullopt;
+    return length / params.yieldStretch;
+  });
+}
+
+float wireBandWidth(const Film& film) {
+  const Topology& topo = film.topology;
+  double rungRest = 0, edgeLength = 0;
+  size_t rungs = 0, edges = 0;
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+    if (isRung(topo, a, b) || isRung(topo, b, a)) {
+      rungRest += topo.restLength[k];
+      ++rungs;
+    } else if (topo.boundary[a] && topo.boundary[b]) {
+      edgeLength += (film.state.position.get(a) - film.state.position.get(b)).norm();
+      ++edges;
+    }
+  }
+  if (rungs == 0 || edges == 0 || edgeLength <= 0) return 0.0f;
+  return static_cast<float>((rungRest / static_cast<double>(rungs)) / (edgeLength / static_cast<double>(edges)));
+}
+
+GrowthEvent growFilmAtWire(const Params& params, const WireFrame& frame, float wandSpeed, Film& film) {
+  GrowthEvent event;
+  if (wandSpeed >= kDrawingSpeed) event.restLengthsChanged = payOutFilmAtWire(params, film);
+  if (wireBandWidth(film) < kRingInsertionWidth || film.tool.kind != frame.kind) return event;
+  const std::vector<uint32_t> loop = intactWireLoop(film);
+  if (loop.size() < 3 || film.wireLiquid <= 0.0f) return event;
+
+  // The new ring's spacing is that of a dip with the solution now left (particle count ~ solution), at most
+  // twice the dip's: a nearly dry wire still draws a strip the mesh can resolve.
+  const float solution = std::max(film.solutionLeft(params), 1e-6f);
+  const float spacing = film.wireSpacing * std::min(2.0f, std::sqrt(params.solution / solution));
+  const std::vector<float> newU = wireParameters(frame, spacing);
+
+  Film grown = film;
+  State& s = grown.state;
+  const size_t first = s.size();
+  constexpr float fraction = 0.5f;  // halfway: the two bands come out alike, about 0.8 spacing wide
+  std::vector<float> oldU;
+  std::vector<Vec3> released;
+  for (uint32_t i : loop) {
+    oldU.push_back(s.wireParam[i]);
+    released.push_back(releasedPosition(film, frame, i, fraction));
+  }
+  for (size_t k = 0; k < loop.size(); ++k) s.position.set(loop[k], released[k]);
+  s.append(newU.size());
+  std::vector<uint32_t> newRing;
+  for (size_t k = 0; k < newU.size(); ++k) {
+    const auto i = static_cast<uint32_t>(first + k);
+    newRing.push_back(i);
+    s.position.set(i, wirePoint(frame, newU[k]));
+    s.wireParam[i] = newU[k];
+  }
+
+  std::vector<uint32_t> strip = triangulateStrip(WireUnrolling(frame), loop, oldU, newRing, newU, spacing);
+  orientAgainstLoop(loop, strip);
+  event.trianglesAdded = strip.size() / 3;
+  std::vector<uint32_t> triangles = grown.topology.triangles;
+  triangles.insert(triangles.end(), strip.begin(), strip.end());
+  grown.topology = rebuildTopology(film.topology, std::move(triangles), s.position, params.springPrestrain);
+  restLikeNewFilm(params, loop, grown);
+  if (intactWireLoop(grown).size() != newRing.size())
+    throw std::logic_error("film growth: the new strip does not leave the new ring as the film's only edge");
+  initialiseNewParticles(params, grown, first);
+  event.liquidUsed = shareStripMaterial(params, strip, first, grown.wireLiquid, s);
+  grown.wireLiquid = std::max(0.0f, grown.wireLiquid - event.liquidUsed);
+  film = std::move(grown);
+  event.particlesAdded = newRing.size();
+  return event;
+}
+
+}  // namespace gb

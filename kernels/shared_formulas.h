@@ -1,0 +1,51 @@
+// The formulas and constants that the CPU stages (cpu-reference/) and their GLSL twins share, defined once and
+// compiled as C++ (namespace gb) and as GLSL (common.glsl includes it). Each says where it is used.
+#ifdef __cplusplus
+#pragma once
+namespace gb {
+#define GB_CONST inline constexpr
+#define GB_FORMULA inline constexpr
+#define GB_REAL_FORMULA \
+  template <class Real> \
+  inline constexpr Real
+#define GB_REAL Real
+#else
+#define GB_CONST const
+#define GB_FORMULA
+#define GB_REAL_FORMULA float
+#define GB_REAL float
+#endif
+
+// The film's thickness at the dip, e0 = w_e x 100 um (Section 5.1, areaWeight; initialThickness).
+GB_FORMULA float initialThicknessOf(float areaWeight) { return areaWeight * 100e-6f; }
+
+// The energy k/2 stretch^2 of a spring of stiffness k (Eq. 3 with k = (E_i + E_j)/2), or of a contact's penalty
+// (k_c, stretch d_c - |x_i - x_j|). Each particle's share of it is half (the energy budget's terms).
+GB_REAL_FORMULA springEnergyOf(GB_REAL stiffness, GB_REAL stretch) {
+  return GB_REAL(0.5) * stiffness * stretch * stretch;
+}
+
+// The physical model's surface tension gamma stays within these multiples of gamma_0 (filmTension), so a film's
+// tension 2 gamma, and a triangle's within the step (triangleTensionOf), within [gamma_0, 4 gamma_0].
+GB_CONST float kLowestGammaFactor = 0.5f;
+GB_CONST float kHighestGammaFactor = 2.0f;
+GB_FORMULA float lowestTension(float surfaceTension) { return 2.0f * (kLowestGammaFactor * surfaceTension); }
+GB_FORMULA float highestTension(float surfaceTension) { return 2.0f * (kHighestGammaFactor * surfaceTension); }
+
+// The largest move of a particle in one sweep of vertex block descent, in its shortest one-ring springs
+// (withinTrustRegion; cpu-reference/solver/implicit_euler.cpp says why).
+GB_CONST float kTrustRegion = 0.25f;
+// A coarse-correction patch moves at most this many trust regions of its shortest spring: half a spring
+// (cpu-reference/solver/coarse_correction.cpp says why).
+GB_CONST float kPatchTrustScale = 2.0f;
+
+// Below this normal air speed (m/s) the air coupling fades out: still air only drags (airCoupling).
+GB_CONST float kStillAirSpeed = 0.05f;
+
+#undef GB_CONST
+#undef GB_FORMULA
+#undef GB_REAL_FORMULA
+#undef GB_REAL
+#ifdef __cplusplus
+}  // namespace gb
+#endif

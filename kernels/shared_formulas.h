@@ -45,8 +45,8 @@ GB_CONST float kStillAirSpeed = 0.05f;
 // Film flow (filmFlowVelocity, filmFlowLimit, filmFlowGather). Film thinner than this counts as this thick in the
 // flow's rates, which divide by the thickness (m): a particle whose liquid all ran off still has a finite rate.
 GB_CONST float kThinnestFlowingFilm = 1e-9f;
-// A particle sends at most this share of its liquid in one flow step (the flow's limiter): upwind transport with
-// the outflow capped keeps every particle's liquid positive whatever the speed.
+// A particle sends at most this share of its liquid above the black film's in one flow step (the flow's limiter):
+// with the outflow capped every particle keeps its black film whatever the speed.
 GB_CONST float kLargestOutflowShare = 0.5f;
 // The Marangoni stress diffuses the surfactant (and the liquid it carries) with the diffusivity
 // D = E_M / (rho e) dt / (1 + dt rates) of the velocity update: filmFlowVelocity scales it down where D dt exceeds

@@ -176,8 +176,9 @@ void drainageGather(const Params& p, const Topology& topo, State& s, size_t j);
 //           + nu_f lap u,
 // g_t gravity along the surface, E_M the Marangoni elasticity, w_t the air's velocity past the film along it (the
 // wands' air flow less the film's own velocity), phi the surfaces' rigidity, nu_f the in-plane viscosity. The
-// velocity is Jacobi-implicit in its rates (any dt is stable); transport is upwind across the one-ring's edges, the
-// flux of each edge antisymmetric (flowSweptArea), so liquid is conserved to float rounding.
+// velocity is Jacobi-implicit in its rates (any dt is stable); each particle sends liquid across its one-ring's edges
+// with its own velocity (flowSweptArea), the net flux of each edge exactly antisymmetric (filmFlowEdgeFlux), so liquid
+// is conserved to float rounding.
 
 // The terms of particle i's velocity equation, from the state at the flow's start.
 struct FilmFlowTerms {

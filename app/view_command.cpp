@@ -10,6 +10,7 @@
 #include "cpu_stepper.h"
 #include "interrupt.h"
 #include "osc_events.h"
+#include "performance_loop.h"
 #include "realtime_pacer.h"
 #include "run_output.h"
 #include "scripted_gestures.h"
@@ -81,6 +82,20 @@ std::unique_ptr<WandInput> makeLiveInput(const RunOptions& run, Window& window, 
        [hands](double notches) { hands->pushHands(metresPerNotch * notches); }});
   return std::make_unique<StabilizedWands>(std::move(pointer), stabilizerOptionsOf(run.input), calibration);
 }
+
+// The wands held still where they are: the input when one could not be opened again (a recording removed since).
+class RestingWands : public WandInput {
+ public:
+  explicit RestingWands(const WandState& wands) : wands_(wands) {
+    wands_.leftVelocity = wands_.rightVelocity = Vec3::Zero();
+  }
+  WandFrame at(double) override { return {wands_}; }
+  [[nodiscard]] std::string describe() const override { return "the wands at rest (no input)"; }
+  [[nodiscard]] bool ended() const override { return true; }
+
+ private:
+  WandState wands_;
+};
 
 // While a camera input waits for a performer the window stays alive: it shows the stage without a film and the
 // wait's message a few times a second, and Esc/Q, closing the window or Ctrl-C end the show.
@@ -187,7 +202,7 @@ struct FilmShownTally {
 };
 
 // A camera that was unplugged is looked for again this often (s of wall time); a recording or a file that
-// ended stays ended, the wands at rest, until R restarts it.
+// ended plays again once the stage is empty (PerformanceLoop), or when R restarts it.
 constexpr double kReopenCameraEvery = 2.0;
 
 }  // namespace
@@ -242,11 +257,18 @@ int runView(ViewOptions o) try {
   auto sim = std::make_unique<Simulation>(run.params, run.tool, wands, std::move(stepper));
   show.frame(*sim, sim->stats(), "film_created");
 
-  bool paused = false;
-  long shown = 0, dips = 0, recoveries = 0;
+  bool paused = false, quitRequested = false;
+  long shown = 0, dips = 0, recoveries = 0, loops = 0;
   double filmGoneSince = -1;  // time the last film disappeared, -1 while there is one
   double inputStart = 0;      // show time at which the current input's time 0 is
   bool inputLost = false;
+  bool freeBubble = false;  // the film on stage has pinched off: the wands hold none
+  // A script or a recording plays again once the stage is empty (performance_loop.h); a performer (a camera, the
+  // mouse) dips again by themselves.
+  const bool performer = run.input.spec() == "kinect" || run.input.spec() == "mouse";
+  PerformanceLoop loop(performer ? -1.0 : o.autoDip);
+  const double scriptEnd = static_cast<double>(run.gestureOptions.start) + run.gestureOptions.duration;
+  auto performanceOver = [&] { return run.input.scripted() ? t - inputStart >= scriptEnd : input->ended(); };
   auto lastReopen = std::chrono::steady_clock::now();
   const auto start = std::chrono::steady_clock::now();
   const double smallestScale = renderScaleFloor(o.minRenderScale, image.width, image.height);
@@ -270,26 +292,44 @@ int runView(ViewOptions o) try {
     auto dipNewFilm = [&](const std::string& why, const std::string& events) {
       sim->dip(wands);
       filmGoneSince = -1;
+      freeBubble = false;
       ++dips;
       say(why);
       show.frame(*sim, sim->stats(), events);
+    };
+    // The input from its start: a new source, since time only moves forward in one. The old one is let go of
+    // first: fakenect plays one recording at a time. One that cannot be opened again (a recording removed since)
+    // leaves the wands at rest, and the show goes on.
+    auto restartInput = [&]() {
+      input.reset();
+      try {
+        input = makeLiveInput(run, window, waiting.hooks());
+        inputLost = false;
+      } catch (const HandSourceError& e) {
+        input = std::make_unique<RestingWands>(wands);
+        inputLost = true;
+        announce(std::string("the input cannot be played again: ") + e.what() + "; the wands rest");
+        show.frame(*sim, sim->stats(), "input_lost");
+      }
+      quitRequested = quitRequested || waiting.quit();
     };
     if (keys.pause) {
       paused = !paused;
       say(paused ? "paused" : "resumed");
     }
-    if (keys.reset) {  // the input from its start: a new source, since time only moves forward in one
-      input = makeLiveInput(run, window, waiting.hooks());
-      if (waiting.quit()) break;
+    if (keys.reset) {
+      restartInput();
+      if (quitRequested) break;
       inputStart = t;
-      inputLost = false;
+      loop.restart();
       wands = input->at(0).wands;
     }
-    // The wands dip again by themselves once they are apart: a film dipped between closed tips would only pinch
-    // off at once into a sliver.
+    // A performer's wands dip again by themselves once they are apart: a film dipped between closed tips would
+    // only pinch off at once into a sliver. A script or a recording loops instead (PerformanceLoop).
     const bool wandsApart = run.tool.kind == ToolKind::Ring ||
                             (wands.rightPosition - wands.leftPosition).norm() > 2.0f * run.params.pinchDistance;
-    const bool autoDip = o.autoDip >= 0 && filmGoneSince >= 0 && t - filmGoneSince >= o.autoDip && wandsApart;
+    const bool autoDip =
+        performer && o.autoDip >= 0 && filmGoneSince >= 0 && t - filmGoneSince >= o.autoDip && wandsApart;
     if (keys.reset || keys.dip || autoDip)
       dipNewFilm(keys.reset ? "reset: new film, performance from its start"
                             : (autoDip ? "auto dip: new film" : "dip: new film"),
@@ -301,20 +341,59 @@ int runView(ViewOptions o) try {
     }
     // `frames` frames of h on the wall clock in one step (more than one when behind it): the input, then the
     // simulation; a simulation that blows up is replaced.
-    auto advanceStep = [&](int frames) {
-      t += static_cast<double>(run.params.frameTime) * frames;
+    // The wands of show time t: the input's, or on their way back to its start while the performance loops.
+    auto moveWands = [&] {
+      switch (loop.next(t, performanceOver(), freeBubble || filmGoneSince >= 0, filmGoneSince)) {
+        case PerformanceLoop::Action::StartReturn: {
+          restartInput();
+          const WandState from = wands;
+          loop.startReturn(t, from, input->at(0).wands);
+          char text[120];
+          std::snprintf(text, sizeof text, "the performance is over: the wands go back to its start (%.1f s)",
+                        loop.returnSeconds());
+          say(text);
+          wands = loop.returnWands(t);
+          return;
+        }
+        case PerformanceLoop::Action::Return:
+          wands = loop.returnWands(t);
+          return;
+        case PerformanceLoop::Action::DipAndPlay:
+          wands = loop.returnWands(t);
+          inputStart = t;
+          ++loops;
+          dipNewFilm("loop: new film, the performance from its start", "film_created");
+          return;
+        case PerformanceLoop::Action::StartPlaying:
+          inputStart = t;
+          ++loops;
+          say("loop: the performance from its start");
+          [[fallthrough]];
+        case PerformanceLoop::Action::Play:
+          break;
+      }
       wands = input->at(t - inputStart).wands;              // a live camera may wait here for its next frame
       for (const std::string& m : input->takeMessages()) {  // e.g. a camera's hands lost or found
         std::fprintf(stderr, "%s\n", m.c_str());
         window.showMessage(m);
       }
-      if (input->ended() && !inputLost) {  // the wands rest where they are (wand_input.h) until the input returns
+      if (input->ended() && !inputLost && !loop.looping()) {
         inputLost = true;
+        if (!performer) {  // a recording or a file played to its end: it plays again once the stage is empty
+          say("the input has played to its end; the wands rest" +
+              std::string(o.autoDip >= 0 ? " until the stage is empty, then it plays again" : " (R plays it again)"));
+          return;
+        }
+        // The wands rest where they are (wand_input.h) until the input returns.
         announce("the input has ended or was lost; the wands rest" +
                  std::string(run.input.spec() == "kinect" ? ", and the camera is looked for again"
                                                           : " (R starts it again)"));
         show.frame(*sim, sim->stats(), "input_lost");
       }
+    };
+    auto advanceStep = [&](int frames) {
+      t += static_cast<double>(run.params.frameTime) * frames;
+      moveWands();
       if (inputLost && run.input.spec() == "kinect" &&
           std::chrono::duration<double>(std::chrono::steady_clock::now() - lastReopen).count() >= kReopenCameraEvery) {
         lastReopen = std::chrono::steady_clock::now();
@@ -332,6 +411,7 @@ int runView(ViewOptions o) try {
         sim->advanceFrame(wands);
         const FrameStats stats = sim->stats();
         show.frame(*sim, stats, describeEvents(sim->lastEvents()));
+        freeBubble = freeBubble || sim->lastEvents().pinchedOff;
         if (stats.particles == 0 && filmGoneSince < 0) filmGoneSince = t;
       } catch (const SimulationUnstable& e) {
         // The show goes on: the broken simulation is dropped whole (a dip keeps state the blow-up may have
@@ -340,6 +420,7 @@ int runView(ViewOptions o) try {
         std::fprintf(stderr, "warning: %s\n", e.what());
         sim = std::make_unique<Simulation>(run.params, run.tool, wands, viewStepper(o.backend, window.context()));
         filmGoneSince = -1;
+        freeBubble = false;
         ++dips;
         announce("the simulation became unstable; a new film is dipped");
         show.frame(*sim, sim->stats(), "simulation_unstable film_created");
@@ -366,6 +447,7 @@ int runView(ViewOptions o) try {
         done += frames;
       }
       simMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - simStart).count();
+      if (quitRequested) break;  // Esc or Ctrl-C while an input restarted waited for a performer
     }
     const auto renderStart = std::chrono::steady_clock::now();
     // The window's blit scales the image to the window (dynamic resolution).
@@ -395,6 +477,10 @@ int runView(ViewOptions o) try {
       "from instability\n",
       shown, seconds, static_cast<double>(shown) / std::max(seconds, 1e-9), dips, errors, recoveries);
   std::printf("live: %s\n", filmShown.describe(run.params.frameTime).c_str());
+  std::printf(
+      "live: a film was on stage for %.1f%% of the show's wall time (%.1f of %.1f s); the performance "
+      "played again %ld times\n",
+      100.0 * filmShown.wallSeconds / std::max(seconds, 1e-9), filmShown.wallSeconds, seconds, loops);
   if (const Simulation::BudgetRecord& budget = sim->energyBudgetRecord(); budget.frames > 0)
     std::printf(
         "live: the implicit step's energy budget took energy back on %ld steps (smallest factor on the "

@@ -3,9 +3,10 @@
 // recording, a trajectory file, a script, or the mouse: left and right buttons drag the hands, the wheel with a
 // button held pushes them, the middle button orbits) and the film is rendered in a window; the mouse orbits (drag) and
 // zooms (wheel); keys: R reset, D dip the wands (new film), B burst, Space/P pause, C next colouring
-// (interference, thickness, air flow), Home camera back, Esc/Q quit. When the film is gone (burst, or a free
-// bubble burst), the wands dip again after --auto-dip seconds, so a show can run for hours; events and the
-// bubble's state go out as OSC with --osc.
+// (interference, thickness, air flow), Home camera back, Esc/Q quit. When the film is gone (burst, or a free bubble
+// burst), a script or a recording plays again from its start (performance_loop.h) and a performer's wands dip again
+// after --auto-dip seconds, so a show runs for hours with nobody at the keyboard; events and the bubble's state go
+// out as OSC with --osc.
 //
 // A show never ends on its own: an unstable simulation is reported (console, OSC event
 // simulation_unstable) and a new film dipped at once; an input that ends or is lost leaves the wands at rest
@@ -30,7 +31,7 @@ struct ViewOptions {
   std::string tool = "two-wands";
   std::string backend = "auto";
   std::vector<std::string> assignments;  // --param NAME=VALUE
-  double autoDip = 2.0;                  // seconds without a film before the wands dip again (negative: never)
+  double autoDip = 1.0;                  // seconds of empty stage before the wands dip again (negative: never)
   long frames = 0;                       // quit after this many presented frames (0: when the window closes)
   std::vector<std::string> keys;         // scripted key presses FRAME:KEY (keys r d b p c), as if typed at that frame
   bool fixedStep = false;       // one simulation frame per presented frame (slow motion when the machine is slow)

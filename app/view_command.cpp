@@ -5,10 +5,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <utility>
 
 #include "cli_checks.h"
 #include "cpu_stepper.h"
 #include "interrupt.h"
+#include "live_camera.h"
 #include "osc_events.h"
 #include "performance_loop.h"
 #include "realtime_pacer.h"
@@ -22,7 +25,8 @@ namespace gb {
 CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
   CLI::App* cmd = app.add_subcommand("live",
                                      "perform live in a window: the wands follow --input (mouse: orbit, zoom; "
-                                     "keys: R reset, D dip, B burst, Space pause, C colouring, Esc quit)");
+                                     "keys: R reset, D dip, B burst, Space pause, C colouring, F full screen, V "
+                                     "performer view, Home camera, Esc quit)");
   cmd->alias("view");
   // --input also takes "mouse" here: the left and right buttons drag the hands, the wheel pushes them.
   cmd->add_option("--scene", o.run.scene, "a built-in scene or a scene file (.toml); the other options change it");
@@ -30,6 +34,9 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
   addInputOptions(cmd, o.run.input);  // --input kinect|fakenect:DIR|trajectory:FILE|script:NAME, --gesture, ...
   cmd->add_option("--param", o.assignments, "set a model parameter, NAME=VALUE (repeatable)");
   cmd->add_option("--osc", o.run.osc, "send events and the bubble's size and position as OSC to HOST:PORT (UDP)");
+  cmd->add_flag("--fullscreen", o.fullscreen, "full screen (borderless, at the monitor's resolution); F toggles");
+  cmd->add_option("--monitor", o.monitor, "the monitor for full screen, from 0 (the primary)")
+      ->check(CLI::Range(0, 63));
   cmd->add_option("--auto-dip", o.autoDip, "seconds without a film before the wands dip again (negative: never)")
       ->check(FiniteRange(-1e9, 86400.0));
   cmd->add_option("--particles", o.run.params.particlesAtFullSolution, "particles of a film at full solution")
@@ -41,7 +48,8 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
   cmd->add_option("--frames", o.frames, "quit after this many frames (0: when the window closes)")
       ->check(CLI::Range(0L, 100000000L));
   cmd->add_option("--keys", o.keys,
-                  "scripted key presses FRAME:KEY, e.g. 50:b 80:c (keys r d b p c; for tests and demos)")
+                  "scripted key presses FRAME:KEY, e.g. 50:b 80:c (keys r d b p c f v, and h for Home; for tests "
+                  "and demos)")
       ->check([](const std::string& s) {
         std::string why;
         return parseKeyPress(s, why) ? std::string() : why;
@@ -97,11 +105,13 @@ class RestingWands : public WandInput {
   WandState wands_;
 };
 
-// While a camera input waits for a performer the window stays alive: it shows the stage without a film and the
-// wait's message a few times a second, and Esc/Q, closing the window or Ctrl-C end the show.
+// While a camera input waits for a performer the window stays alive: it shows the stage without a film, the wait's
+// message and the performer view a few times a second; `service` handles the keys and cues meanwhile (Esc/Q, F, V,
+// closing the window or Ctrl-C end the show).
 class PerformerWaitScreen {
  public:
-  PerformerWaitScreen(Window& window, Renderer& renderer) : window_(window), renderer_(renderer) {}
+  PerformerWaitScreen(Window& window, Renderer& renderer, std::function<bool()> service)
+      : window_(window), renderer_(renderer), service_(std::move(service)) {}
 
   [[nodiscard]] PerformerWait hooks() {
     PerformerWait wait;
@@ -118,11 +128,12 @@ class PerformerWaitScreen {
  private:
   static constexpr std::chrono::milliseconds kRedrawEvery{200};
   bool pollAndRedraw() {
-    quit_ = quit_ || window_.poll().quit || InterruptCatcher::requested();
+    quit_ = quit_ || service_() || InterruptCatcher::requested();
     const auto now = std::chrono::steady_clock::now();
     if (!quit_ && now - lastRedraw_ >= kRedrawEvery) {
       RenderFrame stage;
       stage.film = &noFilm_;
+      stage.camera = window_.camera();
       window_.present(renderer_, stage);
       lastRedraw_ = now;
       ++redrawn_;
@@ -131,6 +142,7 @@ class PerformerWaitScreen {
   }
   Window& window_;
   Renderer& renderer_;
+  std::function<bool()> service_;
   const Film noFilm_;
   bool quit_ = false;
   long redrawn_ = 0;
@@ -158,6 +170,12 @@ void addScriptedKeys(const std::vector<std::string>& script, long frame, WindowK
         break;
       case 'c':
         keys.nextColouring = true;
+        break;
+      case 'f':
+        keys.fullscreen = true;
+        break;
+      case 'h':
+        keys.resetCamera = true;
         break;
       default:
         break;
@@ -201,6 +219,19 @@ struct FilmShownTally {
   }
 };
 
+// How often the film was in the picture while it was on stage: its centre inside the image.
+struct InPictureTally {
+  long frames = 0, inside = 0;
+  void add(const OrbitCamera& camera, float aspect, const State& film) {
+    bool any = false;
+    for (size_t i = 0; i < film.size() && !any; ++i) any = film.alive[i] != 0;
+    if (!any) return;
+    const Eigen::Vector2f p = pictureCoordinates(camera, aspect, centroid(film));
+    ++frames;
+    if (std::abs(p.x()) <= 1.0f && std::abs(p.y()) <= 1.0f) ++inside;
+  }
+};
+
 // A camera that was unplugged is looked for again this often (s of wall time); a recording or a file that
 // ended plays again once the stage is empty (PerformanceLoop), or when R restarts it.
 constexpr double kReopenCameraEvery = 2.0;
@@ -209,9 +240,9 @@ constexpr double kReopenCameraEvery = 2.0;
 
 std::optional<KeyPress> parseKeyPress(const std::string& text, std::string& why) {
   const auto colon = text.find(':');
-  why = "expected FRAME:KEY with KEY one of r d b p c, got '" + text + "'";
+  why = "expected FRAME:KEY with KEY one of r d b p c f h, got '" + text + "'";
   if (colon == std::string::npos || colon == 0 || text.size() != colon + 2 ||
-      std::string("rdbpc").find(text.back()) == std::string::npos)
+      std::string("rdbpcfh").find(text.back()) == std::string::npos)
     return std::nullopt;
   KeyPress press{0, text.back()};
   const char* end = text.data() + colon;
@@ -234,26 +265,70 @@ int runView(ViewOptions o) try {
   run.tool.kind = o.tool == "ring" ? ToolKind::Ring : ToolKind::TwoWands;
   ShowControl show(run.osc);
   RenderOptions image = run.render.image;
-  Window window("giantbubble", image.width, image.height, run.device);
+  Window window("giantbubble", image.width, image.height, run.device, {o.fullscreen, o.monitor});
+  // The show's image: the window's size, or the monitor's in full screen (dynamic resolution draws less of it).
+  const std::array<int, 2> windowedSize{image.width, image.height};
+  auto showSize = [&] { return window.fullscreen() ? window.size() : windowedSize; };
+  image.width = showSize()[0];
+  image.height = showSize()[1];
+  if (window.fullscreen())
+    std::printf("live: full screen on %s, drawing at %dx%d\n", window.monitorDescription().c_str(), image.width,
+                image.height);
   image.samples = samplesFor(run.render, window.context()->info().type);
   const InterruptCatcher interrupts;  // Ctrl-C ends the show as Esc does, with its totals
   Renderer renderer(window.context(), image, loadEnvironment(run.render.environment));
-  PerformerWaitScreen waiting(window, renderer);
-  std::unique_ptr<WandInput> input = makeLiveInput(run, window, waiting.hooks());
+  LiveCamera camera(run.render.camera, run.render.followCamera,
+                    static_cast<float>(image.width) / static_cast<float>(image.height));
+  window.camera() = run.render.camera;
+  std::optional<RealTimePacer> pacer;  // made once the show starts
+  const double floorScale = o.fixedStep ? 1.0 : o.minRenderScale;
+
+  auto say = [](long frame, const std::string& what) {
+    std::printf("live: frame %ld: %s\n", frame, what.c_str());
+    std::fflush(stdout);
+  };
+  // F: the picture goes full screen or back, the image drawn at its new size.
+  auto toggleFullscreen = [&](long frame) {
+    window.setFullscreen(!window.fullscreen());
+    const auto [width, height] = showSize();
+    camera.setAspect(static_cast<float>(width) / static_cast<float>(height));
+    if (pacer) pacer->setMinRenderScale(o.fixedStep ? 1.0 : renderScaleFloor(floorScale, width, height));
+    renderer.resize(width, height);
+    std::string now = window.fullscreen() ? "full screen on " : "a window";
+    if (window.fullscreen()) now += window.monitorDescription();
+    now += ", drawing at ";
+    now += std::to_string(width);
+    now += 'x';
+    now += std::to_string(height);
+    say(frame, now);
+  };
+  // While a performer is waited for: the keys and cues that matter then.
+  long waitFrames = 0;
+  auto serviceWhileWaiting = [&] {
+    WindowKeys keys = window.poll();
+    if (keys.fullscreen) toggleFullscreen(waitFrames);
+    ++waitFrames;
+    return keys.quit;
+  };
+  PerformerWaitScreen waiting(window, renderer, serviceWhileWaiting);
+  // The input, waiting for a performer where it is a camera's (the performer view shows meanwhile).
+  auto openInput = [&] { return makeLiveInput(run, window, waiting.hooks()); };
+  std::unique_ptr<WandInput> input = openInput();
   if (waiting.quit()) {
     std::printf("live: ended while waiting for a performer (the window was redrawn %ld times)\n", waiting.redrawn());
     return 0;
   }
   std::printf("live: input %s\n", input->describe().c_str());
-  window.camera() = run.render.camera;
   std::unique_ptr<Stepper> stepper = viewStepper(o.backend, window.context());
   const bool readInPlace = dynamic_cast<VulkanStepper*>(stepper.get()) != nullptr;
   std::printf("live: %s, %d sample%s per pixel, on %s (validation layer %s), simulation on %s\n",
               colouringName(image.colouring), image.samples, image.samples == 1 ? "" : "s",
               window.context()->info().name.c_str(), window.context()->validationEnabled() ? "on" : "off",
               stepper->name().c_str());
+  std::fflush(stdout);
   double t = 0;
-  WandState wands = input->at(t).wands;
+  WandFrame hands = input->at(t);
+  WandState wands = hands.wands;
   auto sim = std::make_unique<Simulation>(run.params, run.tool, wands, std::move(stepper));
   show.frame(*sim, sim->stats(), "film_created");
 
@@ -271,22 +346,19 @@ int runView(ViewOptions o) try {
   auto performanceOver = [&] { return run.input.scripted() ? t - inputStart >= scriptEnd : input->ended(); };
   auto lastReopen = std::chrono::steady_clock::now();
   const auto start = std::chrono::steady_clock::now();
-  const double smallestScale = renderScaleFloor(o.minRenderScale, image.width, image.height);
-  RealTimePacer pacer({run.params.frameTime, sim->solverSweeps(), o.minSweeps, 4, o.fixedStep ? 1.0 : smallestScale},
-                      start);
+  pacer.emplace(PacerOptions{run.params.frameTime, sim->solverSweeps(), o.minSweeps, 4,
+                             o.fixedStep ? 1.0 : renderScaleFloor(floorScale, image.width, image.height)},
+                start);
   auto lastTitle = start;
   auto lastPresented = start;
   FilmShownTally filmShown;
+  InPictureTally inPicture;
   for (;;) {
     WindowKeys keys = window.poll();
     addScriptedKeys(o.keys, shown, keys);
     if (keys.quit || waiting.quit() || InterruptCatcher::requested()) break;  // Esc/Q, closed, Ctrl-C, SIGTERM
-    auto say = [&](const std::string& what) {
-      std::printf("live: frame %ld: %s\n", shown, what.c_str());
-      std::fflush(stdout);
-    };
     auto announce = [&](const std::string& what) {  // a fault the show recovers from: the console and the screen
-      say(what);
+      say(shown, what);
       window.showMessage(what);
     };
     auto dipNewFilm = [&](const std::string& why, const std::string& events) {
@@ -294,8 +366,8 @@ int runView(ViewOptions o) try {
       filmGoneSince = -1;
       freeBubble = false;
       ++dips;
-      say(why);
       show.frame(*sim, sim->stats(), events);
+      return why;
     };
     // The input from its start: a new source, since time only moves forward in one. The old one is let go of
     // first: fakenect plays one recording at a time. One that cannot be opened again (a recording removed since)
@@ -303,7 +375,7 @@ int runView(ViewOptions o) try {
     auto restartInput = [&]() {
       input.reset();
       try {
-        input = makeLiveInput(run, window, waiting.hooks());
+        input = openInput();
         inputLost = false;
       } catch (const HandSourceError& e) {
         input = std::make_unique<RestingWands>(wands);
@@ -313,16 +385,22 @@ int runView(ViewOptions o) try {
       }
       quitRequested = quitRequested || waiting.quit();
     };
+    if (keys.fullscreen) toggleFullscreen(shown);
+    if (keys.resetCamera) {
+      camera.home();
+      say(shown, run.render.followCamera ? "the camera follows the film again" : "the scene's camera again");
+    }
     if (keys.pause) {
       paused = !paused;
-      say(paused ? "paused" : "resumed");
+      say(shown, paused ? "paused" : "resumed");
     }
     if (keys.reset) {
       restartInput();
       if (quitRequested) break;
       inputStart = t;
       loop.restart();
-      wands = input->at(0).wands;
+      hands = input->at(0);
+      wands = hands.wands;
     }
     // A performer's wands dip again by themselves once they are apart: a film dipped between closed tips would
     // only pinch off at once into a sliver. A script or a recording loops instead (PerformanceLoop).
@@ -330,17 +408,17 @@ int runView(ViewOptions o) try {
                             (wands.rightPosition - wands.leftPosition).norm() > 2.0f * run.params.pinchDistance;
     const bool autoDip =
         performer && o.autoDip >= 0 && filmGoneSince >= 0 && t - filmGoneSince >= o.autoDip && wandsApart;
-    if (keys.reset || keys.dip || autoDip)
-      dipNewFilm(keys.reset ? "reset: new film, performance from its start"
-                            : (autoDip ? "auto dip: new film" : "dip: new film"),
-                 "film_created");
-    if (keys.burst) say(pokeTop(*sim) ? "burst" : "B: no film to burst");
+    if (keys.reset)
+      say(shown, dipNewFilm("reset: new film, performance from its start", "film_created"));
+    else if (keys.dip)
+      say(shown, dipNewFilm("dip: new film", "film_created"));
+    else if (autoDip)
+      say(shown, dipNewFilm("auto dip: new film", "film_created"));
+    if (keys.burst) say(shown, pokeTop(*sim) ? "burst" : "B: no film to burst");
     if (keys.nextColouring) {
       renderer.setColouring(static_cast<Colouring>((static_cast<int>(renderer.options().colouring) + 1) % 3));
-      say(colouringName(renderer.options().colouring));
+      say(shown, colouringName(renderer.options().colouring));
     }
-    // `frames` frames of h on the wall clock in one step (more than one when behind it): the input, then the
-    // simulation; a simulation that blows up is replaced.
     // The wands of show time t: the input's, or on their way back to its start while the performance loops.
     auto moveWands = [&] {
       switch (loop.next(t, performanceOver(), freeBubble || filmGoneSince >= 0, filmGoneSince)) {
@@ -351,7 +429,7 @@ int runView(ViewOptions o) try {
           char text[120];
           std::snprintf(text, sizeof text, "the performance is over: the wands go back to its start (%.1f s)",
                         loop.returnSeconds());
-          say(text);
+          say(shown, text);
           wands = loop.returnWands(t);
           return;
         }
@@ -362,17 +440,18 @@ int runView(ViewOptions o) try {
           wands = loop.returnWands(t);
           inputStart = t;
           ++loops;
-          dipNewFilm("loop: new film, the performance from its start", "film_created");
+          say(shown, dipNewFilm("loop: new film, the performance from its start", "film_created"));
           return;
         case PerformanceLoop::Action::StartPlaying:
           inputStart = t;
           ++loops;
-          say("loop: the performance from its start");
+          say(shown, "loop: the performance from its start");
           [[fallthrough]];
         case PerformanceLoop::Action::Play:
           break;
       }
-      wands = input->at(t - inputStart).wands;              // a live camera may wait here for its next frame
+      hands = input->at(t - inputStart);  // a live camera may wait here for its next frame
+      wands = hands.wands;
       for (const std::string& m : input->takeMessages()) {  // e.g. a camera's hands lost or found
         std::fprintf(stderr, "%s\n", m.c_str());
         window.showMessage(m);
@@ -380,8 +459,9 @@ int runView(ViewOptions o) try {
       if (input->ended() && !inputLost && !loop.looping()) {
         inputLost = true;
         if (!performer) {  // a recording or a file played to its end: it plays again once the stage is empty
-          say("the input has played to its end; the wands rest" +
-              std::string(o.autoDip >= 0 ? " until the stage is empty, then it plays again" : " (R plays it again)"));
+          say(shown, "the input has played to its end; the wands rest" +
+                         std::string(o.autoDip >= 0 ? " until the stage is empty, then it plays again"
+                                                    : " (R plays it again)"));
           return;
         }
         // The wands rest where they are (wand_input.h) until the input returns.
@@ -391,6 +471,8 @@ int runView(ViewOptions o) try {
         show.frame(*sim, sim->stats(), "input_lost");
       }
     };
+    // `frames` frames of h on the wall clock in one step (more than one when behind it): the input, then the
+    // simulation; a simulation that blows up is replaced.
     auto advanceStep = [&](int frames) {
       t += static_cast<double>(run.params.frameTime) * frames;
       moveWands();
@@ -398,7 +480,7 @@ int runView(ViewOptions o) try {
           std::chrono::duration<double>(std::chrono::steady_clock::now() - lastReopen).count() >= kReopenCameraEvery) {
         lastReopen = std::chrono::steady_clock::now();
         try {
-          input = makeLiveInput(run, window, waiting.hooks());
+          input = openInput();
           inputStart = t;
           inputLost = false;
           announce("the camera is back");
@@ -429,19 +511,19 @@ int runView(ViewOptions o) try {
     int due = 0;
     double simMs = 0;
     if (paused) {
-      pacer.resync();
+      pacer->resync();
     } else {
-      due = o.fixedStep ? 1 : pacer.framesDue();
+      due = o.fixedStep ? 1 : pacer->framesDue();
       if (due == 0) {  // ahead of the wall clock: wait for the next frame rather than draw the same one twice
-        pacer.sleepUntilDue();
-        due = pacer.framesDue();
+        pacer->sleepUntilDue();
+        due = pacer->framesDue();
       }
-      sim->setSolverSweeps(o.fixedStep ? 0 : pacer.sweeps());
+      sim->setSolverSweeps(o.fixedStep ? 0 : pacer->sweeps());
       const auto simStart = std::chrono::steady_clock::now();
       // The frames due in steps of at most longestStep frames: a long step costs what a short one does, so a
       // machine that is behind halves its simulation work before the solver's sweeps go down.
       const int longest = run.params.integrator != 0 ? o.longestStep : 1;  // explicit: substeps would grow instead
-      for (int done = 0; done < due;) {
+      for (int done = 0; done < due && !quitRequested;) {
         const int frames = std::min(longest, due - done);
         advanceStep(frames);
         done += frames;
@@ -451,18 +533,22 @@ int runView(ViewOptions o) try {
     }
     const auto renderStart = std::chrono::steady_clock::now();
     // The window's blit scales the image to the window (dynamic resolution).
-    renderer.resize(std::max(16, static_cast<int>(std::lround(image.width * pacer.renderScale()))),
-                    std::max(16, static_cast<int>(std::lround(image.height * pacer.renderScale()))));
+    const auto [width, height] = showSize();
+    renderer.resize(std::max(16, static_cast<int>(std::lround(width * pacer->renderScale()))),
+                    std::max(16, static_cast<int>(std::lround(height * pacer->renderScale()))));
+    const OrbitCamera view = camera.update(sim->film().state, wands, run.params.frameTime * static_cast<float>(due),
+                                           window.camera(), keys.cameraMoved);
+    if (filmGoneSince < 0) inPicture.add(view, camera.aspect(), sim->film().state);
     const WireFrame wire = sim->wireFrame(wands);
     DeviceFilm deviceFilm;
-    window.present(renderer, renderFrameOf(*sim, wands, wire, window.camera(), readInPlace, deviceFilm));
+    window.present(renderer, renderFrameOf(*sim, wands, wire, view, readInPlace, deviceFilm));
     const auto now = std::chrono::steady_clock::now();
-    pacer.record(due, simMs, std::chrono::duration<double, std::milli>(now - renderStart).count());
+    pacer->record(due, simMs, std::chrono::duration<double, std::milli>(now - renderStart).count());
     if (filmGoneSince < 0 && !paused)
       filmShown.add(due, sim->solverSweeps(), std::chrono::duration<double>(now - lastPresented).count());
     lastPresented = now;
     if (now - lastTitle > std::chrono::seconds(1)) {  // the show's figures in the title bar, once a second
-      window.setTitle(liveFigures(pacer, shown, start, now));
+      window.setTitle(liveFigures(*pacer, shown, start, now));
       lastTitle = now;
     }
     if (++shown == o.frames) break;
@@ -470,8 +556,8 @@ int runView(ViewOptions o) try {
   const auto end = std::chrono::steady_clock::now();
   const double seconds = std::chrono::duration<double>(end - start).count();
   const size_t errors = window.context()->validationErrors();
-  std::printf("live: %s, %ld frames simulated, %ld dropped\n", liveFigures(pacer, shown, start, end).c_str(),
-              pacer.simulatedFrames(), pacer.droppedFrames());
+  std::printf("live: %s, %ld frames simulated, %ld dropped\n", liveFigures(*pacer, shown, start, end).c_str(),
+              pacer->simulatedFrames(), pacer->droppedFrames());
   std::printf(
       "live: presented %ld frames in %.2f s (%.1f frames/s), %ld dips, %zu validation errors, %ld recoveries "
       "from instability\n",
@@ -481,6 +567,10 @@ int runView(ViewOptions o) try {
       "live: a film was on stage for %.1f%% of the show's wall time (%.1f of %.1f s); the performance "
       "played again %ld times\n",
       100.0 * filmShown.wallSeconds / std::max(seconds, 1e-9), filmShown.wallSeconds, seconds, loops);
+  if (inPicture.frames > 0)
+    std::printf("live: the film's centre was in the picture on %ld of the %ld frames it was on stage (%.1f%%)\n",
+                inPicture.inside, inPicture.frames,
+                100.0 * static_cast<double>(inPicture.inside) / static_cast<double>(inPicture.frames));
   if (const Simulation::BudgetRecord& budget = sim->energyBudgetRecord(); budget.frames > 0)
     std::printf(
         "live: the implicit step's energy budget took energy back on %ld steps (smallest factor on the "

@@ -3,10 +3,11 @@
 // recording, a trajectory file, a script, or the mouse: left and right buttons drag the hands, the wheel with a
 // button held pushes them, the middle button orbits) and the film is rendered in a window; the mouse orbits (drag) and
 // zooms (wheel); keys: R reset, D dip the wands (new film), B burst, Space/P pause, C next colouring
-// (interference, thickness, air flow), Home camera back, Esc/Q quit. When the film is gone (burst, or a free bubble
-// burst), a script or a recording plays again from its start (performance_loop.h) and a performer's wands dip again
-// after --auto-dip seconds, so a show runs for hours with nobody at the keyboard; events and the bubble's state go
-// out as OSC with --osc.
+// (interference, thickness, air flow), F full screen, Home camera back, Esc/Q quit. The camera
+// follows the film (live_camera.h) until the mouse moves it. When the film is gone (burst, or a free bubble burst),
+// a script or a recording plays again from its start (performance_loop.h) and a performer's wands dip again after
+// --auto-dip seconds, so a show runs for hours with nobody at the keyboard. Events and the bubble's state go out as
+// OSC with --osc.
 //
 // A show never ends on its own: an unstable simulation is reported (console, OSC event
 // simulation_unstable) and a new film dipped at once; an input that ends or is lost leaves the wands at rest
@@ -38,9 +39,11 @@ struct ViewOptions {
   int minSweeps = 3;            // the fewest solver sweeps the wall clock may leave the film (realtime_pacer.h)
   int longestStep = 2;          // frames of time one implicit step may cover when the machine falls behind
   double minRenderScale = 0.5;  // the smallest image drawn when behind, as a fraction of the window's size
+  bool fullscreen = false;      // start full screen (borderless, the monitor's resolution)
+  int monitor = 0;              // the monitor for full screen
 };
 
-// A scripted key press of --keys: at presented frame `frame`, key `key` (r d b p c).
+// A scripted key press of --keys: at presented frame `frame`, key `key` (r d b p c f, and h for Home).
 struct KeyPress {
   long frame = 0;
   char key = 0;

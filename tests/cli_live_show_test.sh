@@ -4,6 +4,7 @@
 # Prints what it checks, then "PASS: CASE", or "FAIL: ..." with the log.
 #   loop               the default performance plays again once the stage is empty, and blows a second bubble
 #   fakenect_reset     R on a fakenect recording plays it again (fakenect plays one recording at a time)
+#   fullscreen         --fullscreen fills the screen at its resolution, F goes back to the window; a bad --monitor
 set -u
 source "$(dirname "$0")/live_show_on_fake_kinect.sh"  # EXE FAKE MAKE_RECORDING OUT, a fresh OUT, fail
 CASE=$5
@@ -42,6 +43,30 @@ case "$CASE" in
     grep -q "another recording is already playing" log.txt && fail "R could not play the recording again"
     [ "$(grep -c 'reset: new film, performance from its start' log.txt)" -eq 2 ] || fail "two resets expected"
     grep -q "presented 60 frames" log.txt || fail "the show did not go on"
+    ;;
+  fullscreen)
+    # A monitor that is not there is named with the ones that are.
+    xvfb-run -a -s "-screen 0 800x600x24" "$EXE" live "${small[@]}" --fullscreen --monitor 3 --frames 1 >log.txt 2>&1
+    [ $? -eq 1 ] || fail "--monitor 3 on one monitor was taken"
+    grep -q "error: --monitor 3: the display has 1 monitor (0 '[^']*' 800x600)" log.txt || fail "the monitors not named"
+    # Full screen on an 800x600 screen: the window covers it from its corner, and the picture is drawn at its size;
+    # F (a key at frame 250) brings the 160x120 window back.
+    cat >check.sh <<EOF
+"$EXE" live ${small[*]} --fullscreen --fixed-step --frames 400 --keys 250:f >log.txt 2>&1 &
+show=\$!
+for _ in \$(seq 1200); do grep -q "simulation on" log.txt && break; sleep 0.1; done
+sleep 2  # some frames shown, and far from frame 250 (the show runs at 15 to 50 frames/s here)
+xwininfo -root -tree >tree.txt
+wait \$show
+echo "show exit \$?" >>log.txt
+EOF
+    timeout 240 xvfb-run -a -s "-screen 0 800x600x24" bash check.sh
+    grep -q "show exit 0" log.txt || fail "the show failed"
+    grep -q "full screen on monitor 0 '[^']*' 800x600 at 0,0, drawing at 800x600" log.txt || fail "not drawn at 800x600"
+    window=$(grep '"giantbubble' tree.txt | head -1)
+    echo "the window: $window"
+    echo "$window" | grep -q " 800x600+0+0 " || fail "the window does not cover the 800x600 screen: $window"
+    grep -q "frame 250: a window, drawing at 160x120" log.txt || fail "F did not go back to the window"
     ;;
   *) fail "unknown case $CASE" ;;
 esac

@@ -14,6 +14,7 @@
 #include "live_camera.h"
 #include "osc_events.h"
 #include "performance_loop.h"
+#include "performer_view.h"
 #include "realtime_pacer.h"
 #include "run_output.h"
 #include "scripted_gestures.h"
@@ -78,8 +79,9 @@ std::unique_ptr<Stepper> viewStepper(const std::string& backend, const std::shar
 
 // The wands' input: the mouse (the window's pointer moves a PointerHandSource, read through the stabilizer
 // like a camera) or any input makeWandInput opens. A new mouse input takes the window's pointer from the old.
-std::unique_ptr<WandInput> makeLiveInput(const RunOptions& run, Window& window, const PerformerWait& waiting) {
-  if (run.input.spec() != "mouse") return makeWandInput(run.input, run.gestureOptions, waiting);
+std::unique_ptr<WandInput> makeLiveInput(const RunOptions& run, Window& window, const PerformerWait& waiting,
+                                         const HandSourceWrapper& wrap) {
+  if (run.input.spec() != "mouse") return makeWandInput(run.input, run.gestureOptions, waiting, wrap);
   const Calibration calibration = calibrationOf(run.input);
   auto pointer = std::make_unique<PointerHandSource>(calibration);
   PointerHandSource* hands = pointer.get();
@@ -174,6 +176,9 @@ void addScriptedKeys(const std::vector<std::string>& script, long frame, WindowK
       case 'f':
         keys.fullscreen = true;
         break;
+      case 'v':
+        keys.performerView = true;
+        break;
       case 'h':
         keys.resetCamera = true;
         break;
@@ -240,9 +245,9 @@ constexpr double kReopenCameraEvery = 2.0;
 
 std::optional<KeyPress> parseKeyPress(const std::string& text, std::string& why) {
   const auto colon = text.find(':');
-  why = "expected FRAME:KEY with KEY one of r d b p c f h, got '" + text + "'";
+  why = "expected FRAME:KEY with KEY one of r d b p c f v h, got '" + text + "'";
   if (colon == std::string::npos || colon == 0 || text.size() != colon + 2 ||
-      std::string("rdbpcfh").find(text.back()) == std::string::npos)
+      std::string("rdbpcfvh").find(text.back()) == std::string::npos)
     return std::nullopt;
   KeyPress press{0, text.back()};
   const char* end = text.data() + colon;
@@ -280,6 +285,7 @@ int runView(ViewOptions o) try {
   LiveCamera camera(run.render.camera, run.render.followCamera,
                     static_cast<float>(image.width) / static_cast<float>(image.height));
   window.camera() = run.render.camera;
+  PerformerView performerView;
   std::optional<RealTimePacer> pacer;  // made once the show starts
   const double floorScale = o.fixedStep ? 1.0 : o.minRenderScale;
 
@@ -302,17 +308,47 @@ int runView(ViewOptions o) try {
     now += std::to_string(height);
     say(frame, now);
   };
+  // The performer view's newest picture into the window's inset.
+  bool viewTold = false;
+  auto updateInset = [&] {
+    if (performerView.shown() && !viewTold) {
+      std::printf("live: the performer view shows what the camera sees (V hides it)\n");
+      std::fflush(stdout);
+      viewTold = true;
+    }
+    if (std::optional<RgbImage> view = performerView.update()) window.setInset(view->width, view->height, view->rgb);
+  };
+
   // While a performer is waited for: the keys and cues that matter then.
   long waitFrames = 0;
   auto serviceWhileWaiting = [&] {
     WindowKeys keys = window.poll();
+    performerView.setWaiting(true);
     if (keys.fullscreen) toggleFullscreen(waitFrames);
+    if (keys.performerView) say(waitFrames, performerView.toggle());
+    updateInset();
     ++waitFrames;
     return keys.quit;
   };
   PerformerWaitScreen waiting(window, renderer, serviceWhileWaiting);
+  // A camera's depth frames are kept for the performer view.
+  const HandSourceWrapper observe = [&](std::unique_ptr<HandSource> source) -> std::unique_ptr<HandSource> {
+    auto observed = std::make_unique<ObservedHandSource>(std::move(source));
+    performerView.attach(observed.get());
+    return observed;
+  };
   // The input, waiting for a performer where it is a camera's (the performer view shows meanwhile).
-  auto openInput = [&] { return makeLiveInput(run, window, waiting.hooks()); };
+  auto openInput = [&] {
+    performerView.attach(nullptr);  // the source it shows goes with the input
+    try {
+      std::unique_ptr<WandInput> opened = makeLiveInput(run, window, waiting.hooks(), observe);
+      performerView.setWaiting(false);
+      return opened;
+    } catch (...) {
+      performerView.setWaiting(false);
+      throw;
+    }
+  };
   std::unique_ptr<WandInput> input = openInput();
   if (waiting.quit()) {
     std::printf("live: ended while waiting for a performer (the window was redrawn %ld times)\n", waiting.redrawn());
@@ -386,6 +422,7 @@ int runView(ViewOptions o) try {
       quitRequested = quitRequested || waiting.quit();
     };
     if (keys.fullscreen) toggleFullscreen(shown);
+    if (keys.performerView) say(shown, performerView.toggle());
     if (keys.resetCamera) {
       camera.home();
       say(shown, run.render.followCamera ? "the camera follows the film again" : "the scene's camera again");
@@ -539,6 +576,7 @@ int runView(ViewOptions o) try {
     const OrbitCamera view = camera.update(sim->film().state, wands, run.params.frameTime * static_cast<float>(due),
                                            window.camera(), keys.cameraMoved);
     if (filmGoneSince < 0) inPicture.add(view, camera.aspect(), sim->film().state);
+    updateInset();
     const WireFrame wire = sim->wireFrame(wands);
     DeviceFilm deviceFilm;
     window.present(renderer, renderFrameOf(*sim, wands, wire, view, readInPlace, deviceFilm));

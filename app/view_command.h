@@ -3,7 +3,7 @@
 // recording, a trajectory file, a script, or the mouse: left and right buttons drag the hands, the wheel with a
 // button held pushes them, the middle button orbits) and the film is rendered in a window; the mouse orbits (drag) and
 // zooms (wheel); keys: R reset, D dip the wands (new film), B burst, Space/P pause, C next colouring
-// (interference, thickness, air flow), F full screen, Home camera back, Esc/Q quit. The camera
+// (interference, thickness, air flow), F full screen, V performer view, Home camera back, Esc/Q quit. The camera
 // follows the film (live_camera.h) until the mouse moves it. When the film is gone (burst, or a free bubble burst),
 // a script or a recording plays again from its start (performance_loop.h) and a performer's wands dip again after
 // --auto-dip seconds, so a show runs for hours with nobody at the keyboard. Events and the bubble's state go out as
@@ -43,7 +43,7 @@ struct ViewOptions {
   int monitor = 0;              // the monitor for full screen
 };
 
-// A scripted key press of --keys: at presented frame `frame`, key `key` (r d b p c f, and h for Home).
+// A scripted key press of --keys: at presented frame `frame`, key `key` (r d b p c f v, and h for Home).
 struct KeyPress {
   long frame = 0;
   char key = 0;

@@ -5,6 +5,7 @@
 #   loop               the default performance plays again once the stage is empty, and blows a second bubble
 #   fakenect_reset     R on a fakenect recording plays it again (fakenect plays one recording at a time)
 #   fullscreen         --fullscreen fills the screen at its resolution, F goes back to the window; a bad --monitor
+#   performer_view     while the show waits for a performer on a camera, the performer view shows
 set -u
 source "$(dirname "$0")/live_show_on_fake_kinect.sh"  # EXE FAKE MAKE_RECORDING OUT, a fresh OUT, fail
 CASE=$5
@@ -67,6 +68,20 @@ EOF
     echo "the window: $window"
     echo "$window" | grep -q " 800x600+0+0 " || fail "the window does not cover the 800x600 screen: $window"
     grep -q "frame 250: a window, drawing at 160x120" log.txt || fail "F did not go back to the window"
+    ;;
+  performer_view)
+    # Nobody before the camera (the stand-in Kinect shows the empty room for ever): the show waits, and the
+    # performer view shows what the camera sees; then SIGTERM ends the show as Esc would.
+    show_the_kinect_one_frame room --nobody-until 100
+    export GIANTBUBBLE_FREENECT_LIBRARY=$FAKE
+    setsid xvfb-run -a "$EXE" live --input kinect "${small[@]}" >log.txt 2>&1 &
+    group=$!
+    wait_for "waiting for a performer" || fail "the show did not wait for a performer"
+    grep -q "the performer view shows what the camera sees" log.txt || fail "the performer view did not show"
+    show=$(pgrep -g "$group" -x "$(basename "$EXE")") || fail "no show process in the group"
+    kill -TERM "$show"
+    wait "$group"
+    grep -q "ended while waiting for a performer" log.txt || fail "the show did not end while waiting"
     ;;
   *) fail "unknown case $CASE" ;;
 esac

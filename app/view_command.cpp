@@ -12,6 +12,7 @@
 #include "cpu_stepper.h"
 #include "interrupt.h"
 #include "live_camera.h"
+#include "osc_cues.h"
 #include "osc_events.h"
 #include "performance_loop.h"
 #include "performer_view.h"
@@ -34,7 +35,12 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
   cmd->add_option("--tool", o.tool, "bubble tool")->check(CLI::IsMember({"two-wands", "ring"}));
   addInputOptions(cmd, o.run.input);  // --input kinect|fakenect:DIR|trajectory:FILE|script:NAME, --gesture, ...
   cmd->add_option("--param", o.assignments, "set a model parameter, NAME=VALUE (repeatable)");
-  cmd->add_option("--osc", o.run.osc, "send events and the bubble's size and position as OSC to HOST:PORT (UDP)");
+  cmd->add_option("--osc", o.run.osc,
+                  "send events, the bubble's size and position and the hands as OSC to HOST:PORT (UDP)");
+  cmd->add_option("--osc-in", o.oscIn,
+                  "take cues as OSC on this UDP port: /giantbubble/dip, burst, reset, pause, colouring, camera, "
+                  "fullscreen, performer_view, quit")
+      ->check(CLI::Range(1, 65535));
   cmd->add_flag("--fullscreen", o.fullscreen, "full screen (borderless, at the monitor's resolution); F toggles");
   cmd->add_option("--monitor", o.monitor, "the monitor for full screen, from 0 (the primary)")
       ->check(CLI::Range(0, 63));
@@ -151,40 +157,36 @@ class PerformerWaitScreen {
   std::chrono::steady_clock::time_point lastRedraw_;
 };
 
+// The keys of --keys and the actions they stand for: the window's keys and the OSC cues act the same.
+constexpr std::pair<char, CueAction> kScriptedKeys[] = {{'r', CueAction::Reset},         {'d', CueAction::Dip},
+                                                        {'b', CueAction::Burst},         {'p', CueAction::Pause},
+                                                        {'c', CueAction::Colouring},     {'f', CueAction::Fullscreen},
+                                                        {'v', CueAction::PerformerView}, {'h', CueAction::Camera}};
+
+// The window's flag of each action.
+constexpr std::pair<CueAction, bool WindowKeys::*> kFlags[] = {{CueAction::Dip, &WindowKeys::dip},
+                                                               {CueAction::Burst, &WindowKeys::burst},
+                                                               {CueAction::Reset, &WindowKeys::reset},
+                                                               {CueAction::Pause, &WindowKeys::pause},
+                                                               {CueAction::Colouring, &WindowKeys::nextColouring},
+                                                               {CueAction::Camera, &WindowKeys::resetCamera},
+                                                               {CueAction::Fullscreen, &WindowKeys::fullscreen},
+                                                               {CueAction::PerformerView, &WindowKeys::performerView},
+                                                               {CueAction::Quit, &WindowKeys::quit}};
+bool& flagOf(WindowKeys& keys, CueAction action) {
+  for (const auto& [a, flag] : kFlags)
+    if (a == action) return keys.*flag;
+  return keys.quit;  // every action is in the table
+}
+
 // Adds the scripted key presses of frame `frame` to what the window reported.
 void addScriptedKeys(const std::vector<std::string>& script, long frame, WindowKeys& keys) {
   std::string why;
   for (const std::string& entry : script) {
     const auto press = parseKeyPress(entry, why);
     if (!press || press->frame != frame) continue;
-    switch (press->key) {
-      case 'r':
-        keys.reset = true;
-        break;
-      case 'd':
-        keys.dip = true;
-        break;
-      case 'b':
-        keys.burst = true;
-        break;
-      case 'p':
-        keys.pause = true;
-        break;
-      case 'c':
-        keys.nextColouring = true;
-        break;
-      case 'f':
-        keys.fullscreen = true;
-        break;
-      case 'v':
-        keys.performerView = true;
-        break;
-      case 'h':
-        keys.resetCamera = true;
-        break;
-      default:
-        break;
-    }
+    for (const auto& [key, action] : kScriptedKeys)
+      if (key == press->key) flagOf(keys, action) = true;
   }
 }
 
@@ -245,9 +247,11 @@ constexpr double kReopenCameraEvery = 2.0;
 
 std::optional<KeyPress> parseKeyPress(const std::string& text, std::string& why) {
   const auto colon = text.find(':');
-  why = "expected FRAME:KEY with KEY one of r d b p c f v h, got '" + text + "'";
+  std::string keys;
+  for (const auto& [key, action] : kScriptedKeys) keys += std::string(keys.empty() ? "" : " ") + key;
+  why = "expected FRAME:KEY with KEY one of " + keys + ", got '" + text + "'";
   if (colon == std::string::npos || colon == 0 || text.size() != colon + 2 ||
-      std::string("rdbpcfvh").find(text.back()) == std::string::npos)
+      keys.find(text.back()) == std::string::npos || text.back() == ' ')
     return std::nullopt;
   KeyPress press{0, text.back()};
   const char* end = text.data() + colon;
@@ -269,6 +273,12 @@ int runView(ViewOptions o) try {
   RunOptions& run = o.run;
   run.tool.kind = o.tool == "ring" ? ToolKind::Ring : ToolKind::TwoWands;
   ShowControl show(run.osc);
+  std::unique_ptr<OscCueReceiver> cues;
+  if (o.oscIn > 0) {
+    cues = std::make_unique<OscCueReceiver>(o.oscIn);
+    std::printf("live: taking OSC cues on UDP port %d (/giantbubble/dip, burst, reset, pause, ...)\n", cues->port());
+    std::fflush(stdout);
+  }
   RenderOptions image = run.render.image;
   Window window("giantbubble", image.width, image.height, run.device, {o.fullscreen, o.monitor});
   // The show's image: the window's size, or the monitor's in full screen (dynamic resolution draws less of it).
@@ -308,6 +318,27 @@ int runView(ViewOptions o) try {
     now += std::to_string(height);
     say(frame, now);
   };
+  // The cues that came in, as the keys they stand for; `fromCue` marks the ones a cue asked for, to report them.
+  WindowKeys fromCue;
+  int pauseCue = -1;  // /pause with an argument: 1 pause, 0 resume
+  auto takeCues = [&](WindowKeys& keys) {
+    fromCue = {};
+    pauseCue = -1;
+    if (!cues) return;
+    for (const Cue& cue : cues->poll()) {
+      flagOf(keys, cue.action) = flagOf(fromCue, cue.action) = true;
+      if (cue.action == CueAction::Pause) pauseCue = cue.state;
+    }
+    for (const std::string& m : cues->takeMessages()) std::fprintf(stderr, "%s\n", m.c_str());
+  };
+  // What a cue did goes back out through OSC, and to the console.
+  // `keyText` is what a key did in the console's words; `done`, a cue's, when they differ.
+  auto reportCue = [&](long frame, bool cued, CueAction action, const std::string& keyText, double time,
+                       const std::string& done = {}) {
+    const std::string cueText = done.empty() ? keyText : done;
+    say(frame, cued ? std::string("cue ") + cueName(action) + ": " + cueText : keyText);
+    if (cued) show.cue(cueName(action), cueText, time);
+  };
   // The performer view's newest picture into the window's inset.
   bool viewTold = false;
   auto updateInset = [&] {
@@ -323,9 +354,11 @@ int runView(ViewOptions o) try {
   long waitFrames = 0;
   auto serviceWhileWaiting = [&] {
     WindowKeys keys = window.poll();
+    takeCues(keys);
     performerView.setWaiting(true);
     if (keys.fullscreen) toggleFullscreen(waitFrames);
-    if (keys.performerView) say(waitFrames, performerView.toggle());
+    if (keys.performerView)
+      reportCue(waitFrames, fromCue.performerView, CueAction::PerformerView, performerView.toggle(), 0.0);
     updateInset();
     ++waitFrames;
     return keys.quit;
@@ -374,12 +407,22 @@ int runView(ViewOptions o) try {
   double inputStart = 0;      // show time at which the current input's time 0 is
   bool inputLost = false;
   bool freeBubble = false;  // the film on stage has pinched off: the wands hold none
+  bool burstByCue = false;  // the poke of a cue: its burst is told as burst_by_cue
   // A script or a recording plays again once the stage is empty (performance_loop.h); a performer (a camera, the
   // mouse) dips again by themselves.
   const bool performer = run.input.spec() == "kinect" || run.input.spec() == "mouse";
   PerformanceLoop loop(performer ? -1.0 : o.autoDip);
   const double scriptEnd = static_cast<double>(run.gestureOptions.start) + run.gestureOptions.duration;
   auto performanceOver = [&] { return run.input.scripted() ? t - inputStart >= scriptEnd : input->ended(); };
+  // The hands as OSC joints (camera space): the measured ones, or the wand tips of a script.
+  const Calibration scriptCalibration = calibrationOf(run.input);
+  auto sendHands = [&] {
+    const auto* stabilized = dynamic_cast<const StabilizedWands*>(input.get());
+    const Calibration& calibration = stabilized ? stabilized->calibration() : scriptCalibration;
+    const Vec3 left = stabilized ? hands.leftHand : wands.leftPosition;
+    const Vec3 right = stabilized ? hands.rightHand : wands.rightPosition;
+    show.hands(calibration.toCamera(left.cast<double>()), calibration.toCamera(right.cast<double>()));
+  };
   auto lastReopen = std::chrono::steady_clock::now();
   const auto start = std::chrono::steady_clock::now();
   pacer.emplace(PacerOptions{run.params.frameTime, sim->solverSweeps(), o.minSweeps, 4,
@@ -392,7 +435,11 @@ int runView(ViewOptions o) try {
   for (;;) {
     WindowKeys keys = window.poll();
     addScriptedKeys(o.keys, shown, keys);
-    if (keys.quit || waiting.quit() || InterruptCatcher::requested()) break;  // Esc/Q, closed, Ctrl-C, SIGTERM
+    takeCues(keys);
+    if (keys.quit || waiting.quit() || InterruptCatcher::requested()) {  // Esc/Q, closed, a cue, Ctrl-C, SIGTERM
+      if (fromCue.quit) reportCue(shown, true, CueAction::Quit, "the show ends", t);
+      break;
+    }
     auto announce = [&](const std::string& what) {  // a fault the show recovers from: the console and the screen
       say(shown, what);
       window.showMessage(what);
@@ -401,6 +448,7 @@ int runView(ViewOptions o) try {
       sim->dip(wands);
       filmGoneSince = -1;
       freeBubble = false;
+      burstByCue = false;
       ++dips;
       show.frame(*sim, sim->stats(), events);
       return why;
@@ -421,15 +469,20 @@ int runView(ViewOptions o) try {
       }
       quitRequested = quitRequested || waiting.quit();
     };
-    if (keys.fullscreen) toggleFullscreen(shown);
-    if (keys.performerView) say(shown, performerView.toggle());
+    if (keys.fullscreen) {
+      toggleFullscreen(shown);
+      if (fromCue.fullscreen) show.cue("fullscreen", window.fullscreen() ? "full screen" : "a window", t);
+    }
+    if (keys.performerView)
+      reportCue(shown, fromCue.performerView, CueAction::PerformerView, performerView.toggle(), t);
     if (keys.resetCamera) {
       camera.home();
-      say(shown, run.render.followCamera ? "the camera follows the film again" : "the scene's camera again");
+      reportCue(shown, fromCue.resetCamera, CueAction::Camera,
+                run.render.followCamera ? "the camera follows the film again" : "the scene's camera again", t);
     }
     if (keys.pause) {
-      paused = !paused;
-      say(shown, paused ? "paused" : "resumed");
+      paused = pauseCue >= 0 ? pauseCue == 1 : !paused;
+      reportCue(shown, fromCue.pause, CueAction::Pause, paused ? "paused" : "resumed", t);
     }
     if (keys.reset) {
       restartInput();
@@ -446,15 +499,22 @@ int runView(ViewOptions o) try {
     const bool autoDip =
         performer && o.autoDip >= 0 && filmGoneSince >= 0 && t - filmGoneSince >= o.autoDip && wandsApart;
     if (keys.reset)
-      say(shown, dipNewFilm("reset: new film, performance from its start", "film_created"));
+      reportCue(shown, fromCue.reset, CueAction::Reset,
+                dipNewFilm("reset: new film, performance from its start", "film_created"), t,
+                "new film, performance from its start");
     else if (keys.dip)
-      say(shown, dipNewFilm("dip: new film", "film_created"));
+      reportCue(shown, fromCue.dip, CueAction::Dip, dipNewFilm("dip: new film", "film_created"), t, "new film");
     else if (autoDip)
       say(shown, dipNewFilm("auto dip: new film", "film_created"));
-    if (keys.burst) say(shown, pokeTop(*sim) ? "burst" : "B: no film to burst");
+    if (keys.burst) {
+      const bool poked = pokeTop(*sim);
+      burstByCue = poked && fromCue.burst;
+      reportCue(shown, fromCue.burst, CueAction::Burst, poked ? "burst" : "B: no film to burst", t,
+                poked ? "burst" : "no film to burst");
+    }
     if (keys.nextColouring) {
       renderer.setColouring(static_cast<Colouring>((static_cast<int>(renderer.options().colouring) + 1) % 3));
-      say(shown, colouringName(renderer.options().colouring));
+      reportCue(shown, fromCue.nextColouring, CueAction::Colouring, colouringName(renderer.options().colouring), t);
     }
     // The wands of show time t: the input's, or on their way back to its start while the performance loops.
     auto moveWands = [&] {
@@ -513,6 +573,7 @@ int runView(ViewOptions o) try {
     auto advanceStep = [&](int frames) {
       t += static_cast<double>(run.params.frameTime) * frames;
       moveWands();
+      sendHands();
       if (inputLost && run.input.spec() == "kinect" &&
           std::chrono::duration<double>(std::chrono::steady_clock::now() - lastReopen).count() >= kReopenCameraEvery) {
         lastReopen = std::chrono::steady_clock::now();
@@ -529,7 +590,12 @@ int runView(ViewOptions o) try {
         sim->setFrameTime(run.params.frameTime * static_cast<float>(frames));
         sim->advanceFrame(wands);
         const FrameStats stats = sim->stats();
-        show.frame(*sim, stats, describeEvents(sim->lastEvents()));
+        std::string events = describeEvents(sim->lastEvents());
+        if (const auto poke = events.find("burst_by_poke"); burstByCue && poke != std::string::npos) {
+          events.replace(poke, std::string("burst_by_poke").size(), "burst_by_cue");
+          burstByCue = false;
+        }
+        show.frame(*sim, stats, events);
         freeBubble = freeBubble || sim->lastEvents().pinchedOff;
         if (stats.particles == 0 && filmGoneSince < 0) filmGoneSince = t;
       } catch (const SimulationUnstable& e) {
@@ -609,6 +675,9 @@ int runView(ViewOptions o) try {
     std::printf("live: the film's centre was in the picture on %ld of the %ld frames it was on stage (%.1f%%)\n",
                 inPicture.inside, inPicture.frames,
                 100.0 * static_cast<double>(inPicture.inside) / static_cast<double>(inPicture.frames));
+  if (cues)
+    std::printf("live: OSC cues: %ld taken, %ld unknown and %ld malformed ignored\n", cues->taken(), cues->unknown(),
+                cues->malformed());
   if (const Simulation::BudgetRecord& budget = sim->energyBudgetRecord(); budget.frames > 0)
     std::printf(
         "live: the implicit step's energy budget took energy back on %ld steps (smallest factor on the "

@@ -4,8 +4,9 @@
 # Prints what it checks, then "PASS: CASE", or "FAIL: ..." with the log.
 #   loop               the default performance plays again once the stage is empty, and blows a second bubble
 #   fakenect_reset     R on a fakenect recording plays it again (fakenect plays one recording at a time)
+#   osc_cues           cues over OSC dip, burst (burst_by_cue), pause and end the show; bad messages are counted
 #   fullscreen         --fullscreen fills the screen at its resolution, F goes back to the window; a bad --monitor
-#   performer_view     while the show waits for a performer on a camera, the performer view shows
+#   performer_view     while the show waits for a performer on a camera, the performer view shows, and V hides it
 set -u
 source "$(dirname "$0")/live_show_on_fake_kinect.sh"  # EXE FAKE MAKE_RECORDING OUT, a fresh OUT, fail
 CASE=$5
@@ -45,6 +46,43 @@ case "$CASE" in
     [ "$(grep -c 'reset: new film, performance from its start' log.txt)" -eq 2 ] || fail "two resets expected"
     grep -q "presented 60 frames" log.txt || fail "the show did not go on"
     ;;
+  osc_cues)
+    in=$(free_port)
+    out=$(free_port)
+    timeout 200 oscdump -L "$out" >osc.txt 2>&1 &
+    dump=$!
+    sleep 0.5
+    timeout 240 xvfb-run -a "$EXE" live "${small[@]}" --osc-in "$in" --osc "127.0.0.1:$out" --auto-dip -1 \
+      --frames 100000000 >log.txt 2>&1 &
+    show=$!
+    for _ in $(seq 600); do grep -q "taking OSC cues on UDP port $in" log.txt && grep -q "simulation on" log.txt && break; sleep 0.1; done
+    grep -q "simulation on" log.txt || fail "the show did not start"
+    cue() { oscsend 127.0.0.1 "$in" "$@" || fail "oscsend $*"; sleep 1; }
+    cue /giantbubble/burst
+    cue /giantbubble/pause i 1
+    cue /giantbubble/pause i 0
+    cue /giantbubble/dip f 0     # a push button let go of: no cue
+    cue /giantbubble/explode     # unknown
+    cue /giantbubble/burst s now # malformed
+    printf 'not osc' >"/dev/udp/127.0.0.1/$in"  # malformed
+    sleep 1
+    cue /giantbubble/dip
+    cue /giantbubble/quit
+    wait "$show"
+    rc=$?
+    sleep 0.5
+    kill "$dump" 2>/dev/null
+    [ "$rc" -eq 0 ] || fail "exit status $rc"
+    for said in "cue burst: burst" "cue pause: paused" "cue pause: resumed" "cue dip: new film" \
+      "cue quit: the show ends" "OSC cues: 6 taken, 1 unknown and 2 malformed ignored"; do
+      grep -q "$said" log.txt || fail "not said: $said"
+    done
+    [ "$(grep -c 'cue dip' log.txt)" -eq 1 ] || fail "the dip let go of was taken as a cue"
+    grep -q '"burst_by_cue"' osc.txt || fail "no burst_by_cue event went out"
+    grep -q '/giantbubble/cue ssd "burst" "burst"' osc.txt || fail "the burst cue was not reported"
+    grep -q '/joint sifff "l_hand" 1' osc.txt || fail "no hands went out as OSCeleton joints"
+    echo "events out: $(grep -o '"burst_by_cue"\|/giantbubble/cue ssd "[a-z]*"' osc.txt | sort | uniq -c | tr '\n' ' ')"
+    ;;
   fullscreen)
     # A monitor that is not there is named with the ones that are.
     xvfb-run -a -s "-screen 0 800x600x24" "$EXE" live "${small[@]}" --fullscreen --monitor 3 --frames 1 >log.txt 2>&1
@@ -71,17 +109,20 @@ EOF
     ;;
   performer_view)
     # Nobody before the camera (the stand-in Kinect shows the empty room for ever): the show waits, and the
-    # performer view shows what the camera sees; then SIGTERM ends the show as Esc would.
+    # performer view shows what the camera sees; a V cue hides it; then a quit cue ends the show as Esc would.
     show_the_kinect_one_frame room --nobody-until 100
     export GIANTBUBBLE_FREENECT_LIBRARY=$FAKE
-    setsid xvfb-run -a "$EXE" live --input kinect "${small[@]}" >log.txt 2>&1 &
-    group=$!
-    wait_for "waiting for a performer" || fail "the show did not wait for a performer"
+    in=$(free_port)
+    timeout 240 xvfb-run -a "$EXE" live --input kinect "${small[@]}" --osc-in "$in" >log.txt 2>&1 &
+    show=$!
+    for _ in $(seq 600); do grep -q "waiting for a performer" log.txt && break; sleep 0.1; done
     grep -q "the performer view shows what the camera sees" log.txt || fail "the performer view did not show"
-    show=$(pgrep -g "$group" -x "$(basename "$EXE")") || fail "no show process in the group"
-    kill -TERM "$show"
-    wait "$group"
-    grep -q "ended while waiting for a performer" log.txt || fail "the show did not end while waiting"
+    oscsend 127.0.0.1 "$in" /giantbubble/performer_view
+    sleep 2
+    oscsend 127.0.0.1 "$in" /giantbubble/quit
+    wait "$show"
+    grep -q "cue performer_view: performer view off" log.txt || fail "the V cue did not hide the view"
+    grep -q "ended while waiting for a performer" log.txt || fail "the quit cue did not end the wait"
     ;;
   *) fail "unknown case $CASE" ;;
 esac

@@ -19,6 +19,7 @@
 #include "realtime_pacer.h"
 #include "run_output.h"
 #include "scripted_gestures.h"
+#include "video_stream.h"
 #include "vulkan_stepper.h"
 #include "window.h"
 
@@ -44,6 +45,17 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
   cmd->add_flag("--fullscreen", o.fullscreen, "full screen (borderless, at the monitor's resolution); F toggles");
   cmd->add_option("--monitor", o.monitor, "the monitor for full screen, from 0 (the primary)")
       ->check(CLI::Range(0, 63));
+  cmd->add_option("--stream", o.stream,
+                  "send the picture through ffmpeg to udp://HOST:PORT, srt://HOST:PORT, tcp://HOST:PORT (MPEG-TS), "
+                  "rtmp://HOST/APP/KEY or a v4l2 device /dev/videoN")
+      ->check([](const std::string& url) {
+        try {
+          (void)streamArguments(url, 16, 16);
+          return std::string();
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+      });
   cmd->add_option("--auto-dip", o.autoDip, "seconds without a film before the wands dip again (negative: never)")
       ->check(FiniteRange(-1e9, 86400.0));
   cmd->add_option("--particles", o.run.params.particlesAtFullSolution, "particles of a film at full solution")
@@ -292,6 +304,12 @@ int runView(ViewOptions o) try {
   image.samples = samplesFor(run.render, window.context()->info().type);
   const InterruptCatcher interrupts;  // Ctrl-C ends the show as Esc does, with its totals
   Renderer renderer(window.context(), image, loadEnvironment(run.render.environment));
+  std::unique_ptr<VideoStream> stream;
+  if (!o.stream.empty()) {
+    stream = std::make_unique<VideoStream>(o.stream, image.width, image.height);
+    window.captureFrames(image.width, image.height);
+    std::printf("live: streaming %dx%d to %s through ffmpeg\n", image.width, image.height, o.stream.c_str());
+  }
   LiveCamera camera(run.render.camera, run.render.followCamera,
                     static_cast<float>(image.width) / static_cast<float>(image.height));
   window.camera() = run.render.camera;
@@ -646,6 +664,10 @@ int runView(ViewOptions o) try {
     const WireFrame wire = sim->wireFrame(wands);
     DeviceFilm deviceFilm;
     window.present(renderer, renderFrameOf(*sim, wands, wire, view, readInPlace, deviceFilm));
+    if (stream) {
+      stream->offer(window.captured());
+      for (const std::string& m : stream->takeMessages()) std::fprintf(stderr, "warning: %s\n", m.c_str());
+    }
     const auto now = std::chrono::steady_clock::now();
     pacer->record(due, simMs, std::chrono::duration<double, std::milli>(now - renderStart).count());
     if (filmGoneSince < 0 && !paused)
@@ -678,6 +700,11 @@ int runView(ViewOptions o) try {
   if (cues)
     std::printf("live: OSC cues: %ld taken, %ld unknown and %ld malformed ignored\n", cues->taken(), cues->unknown(),
                 cues->malformed());
+  if (stream) {
+    const long sent = stream->sent();
+    stream.reset();  // ends ffmpeg: what it sent is counted
+    std::printf("live: stream: %ld frames sent, %ld dropped\n", sent, shown - sent);
+  }
   if (const Simulation::BudgetRecord& budget = sim->energyBudgetRecord(); budget.frames > 0)
     std::printf(
         "live: the implicit step's energy budget took energy back on %ld steps (smallest factor on the "

@@ -7,7 +7,8 @@
 // follows the film (live_camera.h) until the mouse moves it. When the film is gone (burst, or a free bubble burst),
 // a script or a recording plays again from its start (performance_loop.h) and a performer's wands dip again after
 // --auto-dip seconds, so a show runs for hours with nobody at the keyboard. Events, the bubble's state and the hands
-// go out as OSC with --osc; cues come in with --osc-in (osc_cues.h).
+// go out as OSC with --osc; cues come in with --osc-in (osc_cues.h); the picture goes out with --stream
+// (video_stream.h).
 //
 // A show never ends on its own: an unstable simulation is reported (console, OSC event
 // simulation_unstable) and a new film dipped at once; an input that ends or is lost leaves the wands at rest
@@ -42,6 +43,7 @@ struct ViewOptions {
   bool fullscreen = false;      // start full screen (borderless, the monitor's resolution)
   int monitor = 0;              // the monitor for full screen
   int oscIn = 0;                // UDP port cues come in on (0: none)
+  std::string stream;           // where ffmpeg sends the picture (empty: nowhere)
 };
 
 // A scripted key press of --keys: at presented frame `frame`, key `key` (r d b p c f v, and h for Home).

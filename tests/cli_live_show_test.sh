@@ -6,6 +6,8 @@
 #   fakenect_reset     R on a fakenect recording plays it again (fakenect plays one recording at a time)
 #   osc_cues           cues over OSC dip, burst (burst_by_cue), pause and end the show; bad messages are counted
 #   fullscreen         --fullscreen fills the screen at its resolution, F goes back to the window; a bad --monitor
+#   stream             --stream udp://127.0.0.1:PORT is received by ffprobe as H.264 at the show's size
+#   stream_unreachable a stream nobody can take (RTMP, nothing listening) is said once and the show goes on
 #   performer_view     while the show waits for a performer on a camera, the performer view shows, and V hides it
 set -u
 source "$(dirname "$0")/live_show_on_fake_kinect.sh"  # EXE FAKE MAKE_RECORDING OUT, a fresh OUT, fail
@@ -106,6 +108,36 @@ EOF
     echo "the window: $window"
     echo "$window" | grep -q " 800x600+0+0 " || fail "the window does not cover the 800x600 screen: $window"
     grep -q "frame 250: a window, drawing at 160x120" log.txt || fail "F did not go back to the window"
+    ;;
+  stream)
+    port=$(free_port)
+    # ffprobe waits (up to 60 s) for the stream on the loopback address and reports what it receives.
+    timeout 120 ffprobe -v error -show_entries stream=codec_name,width,height -of default=nw=1 \
+      "udp://127.0.0.1:$port?timeout=60000000" >probe.txt 2>&1 &
+    probe=$!
+    sleep 1
+    timeout 240 xvfb-run -a "$EXE" live "${small[@]}" --stream "udp://127.0.0.1:$port" --frames 200 >log.txt 2>&1
+    rc=$?
+    wait "$probe"
+    echo "ffprobe: $(tr '\n' ' ' <probe.txt)"
+    [ "$rc" -eq 0 ] || fail "exit status $rc"
+    grep -q "streaming 160x120 to udp://127.0.0.1:$port" log.txt || fail "the stream did not start"
+    grep -q "codec_name=h264" probe.txt && grep -q "width=160" probe.txt && grep -q "height=120" probe.txt ||
+      fail "ffprobe did not receive a 160x120 H.264 stream: $(cat probe.txt)"
+    sent=$(sed -n 's/.*stream: \([0-9]*\) frames sent.*/\1/p' log.txt)
+    echo "$(grep 'stream:' log.txt)"
+    # At least half the 200 frames reach ffmpeg (the rest dropped while it is busy: it runs below the show).
+    [ "${sent:-0}" -ge 100 ] || fail "only ${sent:-0} of 200 frames were sent"
+    ;;
+  stream_unreachable)
+    timeout 240 xvfb-run -a "$EXE" live "${small[@]}" --stream rtmp://127.0.0.1:9/live/show --frames 150 >log.txt 2>&1
+    rc=$?
+    [ "$rc" -eq 0 ] || fail "exit status $rc"
+    grep -q "warning: stream: ffmpeg sending to rtmp://127.0.0.1:9/live/show ended" log.txt || fail "not said"
+    grep -q "presented 150 frames" log.txt || fail "the show did not go on"
+    "$EXE" live --stream http://example.com/x >log.txt 2>&1
+    [ $? -eq 1 ] || fail "an http address was taken"
+    grep -q "not an address to stream to" log.txt || fail "the address was not refused by name"
     ;;
   performer_view)
     # Nobody before the camera (the stand-in Kinect shows the empty room for ever): the show waits, and the

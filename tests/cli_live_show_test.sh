@@ -15,6 +15,15 @@ CASE=$5
 small=(--width 160 --height 120 --particles 600 --backend cpu)
 # A UDP port for this test: one of 20,000, so that two tests running at once hardly ever pick the same.
 free_port() { echo $((20000 + RANDOM % 20000)); }
+# giantbubble live ARGS... under xvfb-run (with the options in the array screen, if any), its output in log.txt;
+# returns the show's own exit status: xvfb-run's differs when it fails to clean up its temporary folder.
+screen=()
+live() {
+  rm -f status.txt
+  timeout 240 xvfb-run -a "${screen[@]}" sh -c '"$@" >log.txt 2>&1; echo $? >status.txt' sh "$EXE" live "$@"
+  [ -s status.txt ] || return 99
+  return "$(cat status.txt)"
+}
 
 case "$CASE" in
   loop)
@@ -25,8 +34,7 @@ case "$CASE" in
     timeout 200 oscdump -L "$port" >osc.txt 2>&1 &
     dump=$!
     sleep 0.5
-    timeout 240 xvfb-run -a "$EXE" live "${small[@]}" --fixed-step --auto-dip 0.5 --frames 420 \
-      --osc "127.0.0.1:$port" >log.txt 2>&1
+    live "${small[@]}" --fixed-step --auto-dip 0.5 --frames 420 --osc "127.0.0.1:$port"
     rc=$?
     sleep 0.5
     kill "$dump" 2>/dev/null
@@ -40,8 +48,7 @@ case "$CASE" in
     ;;
   fakenect_reset)
     "$MAKE_RECORDING" rec 60 >/dev/null || fail "could not write the synthetic recording"
-    timeout 240 xvfb-run -a "$EXE" live --input fakenect:rec "${small[@]}" --fixed-step --keys 20:r 40:r \
-      --frames 60 >log.txt 2>&1
+    live --input fakenect:rec "${small[@]}" --fixed-step --keys 20:r 40:r --frames 60
     rc=$?
     [ "$rc" -eq 0 ] || fail "exit status $rc"
     grep -q "another recording is already playing" log.txt && fail "R could not play the recording again"
@@ -54,8 +61,7 @@ case "$CASE" in
     timeout 200 oscdump -L "$out" >osc.txt 2>&1 &
     dump=$!
     sleep 0.5
-    timeout 240 xvfb-run -a "$EXE" live "${small[@]}" --osc-in "$in" --osc "127.0.0.1:$out" --auto-dip -1 \
-      --frames 100000000 >log.txt 2>&1 &
+    live "${small[@]}" --osc-in "$in" --osc "127.0.0.1:$out" --auto-dip -1 --frames 100000000 &
     show=$!
     for _ in $(seq 600); do grep -q "taking OSC cues on UDP port $in" log.txt && grep -q "simulation on" log.txt && break; sleep 0.1; done
     grep -q "simulation on" log.txt || fail "the show did not start"
@@ -87,7 +93,8 @@ case "$CASE" in
     ;;
   fullscreen)
     # A monitor that is not there is named with the ones that are.
-    xvfb-run -a -s "-screen 0 800x600x24" "$EXE" live "${small[@]}" --fullscreen --monitor 3 --frames 1 >log.txt 2>&1
+    screen=(-s "-screen 0 800x600x24")
+    live "${small[@]}" --fullscreen --monitor 3 --frames 1
     [ $? -eq 1 ] || fail "--monitor 3 on one monitor was taken"
     grep -q "error: --monitor 3: the display has 1 monitor (0 '[^']*' 800x600)" log.txt || fail "the monitors not named"
     # Full screen on an 800x600 screen: the window covers it from its corner, and the picture is drawn at its size;
@@ -116,7 +123,7 @@ EOF
       "udp://127.0.0.1:$port?timeout=60000000" >probe.txt 2>&1 &
     probe=$!
     sleep 1
-    timeout 240 xvfb-run -a "$EXE" live "${small[@]}" --stream "udp://127.0.0.1:$port" --frames 200 >log.txt 2>&1
+    live "${small[@]}" --stream "udp://127.0.0.1:$port" --frames 200
     rc=$?
     wait "$probe"
     echo "ffprobe: $(tr '\n' ' ' <probe.txt)"
@@ -130,7 +137,7 @@ EOF
     [ "${sent:-0}" -ge 100 ] || fail "only ${sent:-0} of 200 frames were sent"
     ;;
   stream_unreachable)
-    timeout 240 xvfb-run -a "$EXE" live "${small[@]}" --stream rtmp://127.0.0.1:9/live/show --frames 150 >log.txt 2>&1
+    live "${small[@]}" --stream rtmp://127.0.0.1:9/live/show --frames 150
     rc=$?
     [ "$rc" -eq 0 ] || fail "exit status $rc"
     grep -q "warning: stream: ffmpeg sending to rtmp://127.0.0.1:9/live/show ended" log.txt || fail "not said"
@@ -145,7 +152,7 @@ EOF
     show_the_kinect_one_frame room --nobody-until 100
     export GIANTBUBBLE_FREENECT_LIBRARY=$FAKE
     in=$(free_port)
-    timeout 240 xvfb-run -a "$EXE" live --input kinect "${small[@]}" --osc-in "$in" >log.txt 2>&1 &
+    live --input kinect "${small[@]}" --osc-in "$in" &
     show=$!
     for _ in $(seq 600); do grep -q "waiting for a performer" log.txt && break; sleep 0.1; done
     grep -q "the performer view shows what the camera sees" log.txt || fail "the performer view did not show"

@@ -1,6 +1,7 @@
 #include "video_stream.h"
 
 #include <fcntl.h>
+#include <sched.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -129,7 +130,10 @@ int VideoStream::start() {
   }
   try {
     const pid_t pid = spawnWithStdin(arguments_, fds[0]);
-    setpriority(PRIO_PROCESS, static_cast<id_t>(pid), 10);  // below the show: the stream drops frames first
+    // Below the show: ffmpeg runs when the show leaves a core idle, so the stream drops frames first (its threads,
+    // made later, inherit this). Where idle scheduling is refused, nice 19.
+    const sched_param none{};
+    if (sched_setscheduler(pid, SCHED_IDLE, &none) != 0) setpriority(PRIO_PROCESS, static_cast<id_t>(pid), 19);
     std::lock_guard lock(mutex_);
     pid_ = pid;
   } catch (const std::runtime_error& e) {

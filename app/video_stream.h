@@ -6,8 +6,8 @@
 //   /dev/videoN                                        raw YUV 4:2:0 into a v4l2 loopback device
 // Each presented frame is offered with its wall-clock time (ffmpeg stamps it on arrival), so the stream runs at the
 // presented frame rate. The show never waits for the stream: a sender thread feeds ffmpeg, and a frame offered while
-// it is still busy with the one before replaces the one waiting, the older dropped and counted. ffmpeg runs at a
-// lower priority (nice 10) than the show, so on a loaded machine the stream drops frames rather than the show. When
+// it is still busy with the one before replaces the one waiting, the older dropped and counted. ffmpeg runs only on
+// what the show leaves idle (SCHED_IDLE), so on a loaded machine the stream drops frames rather than the show. When
 // ffmpeg ends (no receiver at an RTMP or SRT address, a network error) the show goes on, says so once, and ffmpeg
 // is started again every kRetrySeconds.
 

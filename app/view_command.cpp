@@ -53,7 +53,8 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
           (void)streamArguments(url, 16, 16);
           return std::string();
         } catch (const std::invalid_argument& e) {
-          return std::string(e.what());
+          std::string why = e.what();  // "--stream 'URL': ...": CLI11 names the option itself
+          return why.rfind("--stream ", 0) == 0 ? why.substr(9) : why;
         }
       });
   cmd->add_option("--auto-dip", o.autoDip, "seconds without a film before the wands dip again (negative: never)")

@@ -2,8 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-
-#include "png_image.h"
+#include <utility>
 
 namespace gb {
 
@@ -12,11 +11,18 @@ namespace {
 using kinect::kHeight;
 using kinect::kWidth;
 
+// A picture of the camera's image at 1/step of its resolution, drawn on in the camera's pixel coordinates.
 struct Canvas {
-  std::vector<uint8_t> rgb = std::vector<uint8_t>(static_cast<size_t>(kWidth) * kHeight * 3, 0);
+  explicit Canvas(int every) : step(every), width(kWidth / every), height(kHeight / every) {
+    rgb.assign(static_cast<size_t>(width) * height * 3, 0);
+  }
+  int step, width, height;
+  std::vector<uint8_t> rgb;
   void set(int u, int v, uint8_t r, uint8_t g, uint8_t b) {
-    if (u < 0 || v < 0 || u >= kWidth || v >= kHeight) return;
-    uint8_t* p = &rgb[(static_cast<size_t>(v) * kWidth + u) * 3];
+    if (u < 0 || v < 0) return;
+    u /= step, v /= step;
+    if (u >= width || v >= height) return;
+    uint8_t* p = &rgb[(static_cast<size_t>(v) * width + u) * 3];
     p[0] = r, p[1] = g, p[2] = b;
   }
   void ring(const Vec3d& camera, int radius, uint8_t r, uint8_t g, uint8_t b) {
@@ -40,12 +46,11 @@ struct Canvas {
 
 }  // namespace
 
-void writeDepthPlot(const std::filesystem::path& path, const kinect::DepthFrame& frame, const Detection& detection,
-                    const HandSample& hands) {
-  Canvas c;
+RgbImage drawDepthPlot(const kinect::DepthFrame& frame, const Detection& detection, const HandSample& hands, int step) {
+  Canvas c(std::clamp(step, 1, 8));
   const auto& table = kinect::depthTable();
-  for (int v = 0; v < kHeight; ++v)
-    for (int u = 0; u < kWidth; ++u) {
+  for (int v = 0; v < kHeight; v += c.step)
+    for (int u = 0; u < kWidth; u += c.step) {
       const float z = table[frame.raw[static_cast<size_t>(v) * kWidth + u] & 2047];
       if (z <= 0.0f) {
         c.set(u, v, 10, 10, 60);
@@ -65,7 +70,13 @@ void writeDepthPlot(const std::filesystem::path& path, const kinect::DepthFrame&
   for (const DetectedHand& h : detection.hands) c.cross(h.position, 5, 255, 255, 255);
   if (hands.left.measured) c.ring(hands.left.position, 14, 230, 40, 40);
   if (hands.right.measured) c.ring(hands.right.position, 14, 60, 90, 255);
-  writePng(path, kWidth, kHeight, c.rgb);
+  return {c.width, c.height, std::move(c.rgb)};
+}
+
+void writeDepthPlot(const std::filesystem::path& path, const kinect::DepthFrame& frame, const Detection& detection,
+                    const HandSample& hands) {
+  const RgbImage plot = drawDepthPlot(frame, detection, hands);
+  writePng(path, plot.width, plot.height, plot.rgb);
 }
 
 }  // namespace gb

@@ -9,8 +9,14 @@
 
 #include "hand_detector.h"
 #include "kinect_depth.h"
+#include "png_image.h"
 
 namespace gb {
+
+// The picture at 1/step of the camera's resolution (every step-th pixel in each direction): 1 for a file, 2 for
+// the live window's performer view, drawn several times a second.
+RgbImage drawDepthPlot(const kinect::DepthFrame& frame, const Detection& detection, const HandSample& hands,
+                       int step = 1);
 
 void writeDepthPlot(const std::filesystem::path& path, const kinect::DepthFrame& frame, const Detection& detection,
                     const HandSample& hands);

@@ -2,6 +2,7 @@
 
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "cli_checks.h"
 #include "interrupt.h"
@@ -74,7 +75,8 @@ StabilizerOptions stabilizerOptionsOf(const InputOptions& o) {
   return s;
 }
 
-std::unique_ptr<WandInput> makeWandInput(const InputOptions& o, const GestureOptions& gesture, PerformerWait wait) {
+std::unique_ptr<WandInput> makeWandInput(const InputOptions& o, const GestureOptions& gesture, PerformerWait wait,
+                                         const HandSourceWrapper& wrap) {
   const std::string spec = o.spec();
   if (spec == "mouse")
     throw HandSourceError("the mouse moves the wands in the live window only: giantbubble live --input mouse");
@@ -89,8 +91,9 @@ std::unique_ptr<WandInput> makeWandInput(const InputOptions& o, const GestureOpt
   // The film is made on the performer's hands: camera inputs and trajectories start when both hands are seen.
   wait.enabled = source.calibration.autoPerformer || spec.rfind("trajectory:", 0) == 0;
   if (!wait.cancelled) wait.cancelled = [] { return InterruptCatcher::requested(); };  // Ctrl-C while waiting
-  return std::make_unique<StabilizedWands>(makeHandSource(spec, source), stabilizerOptionsOf(o), source.calibration,
-                                           wait);
+  std::unique_ptr<HandSource> hands = makeHandSource(spec, source);
+  if (wrap) hands = wrap(std::move(hands));
+  return std::make_unique<StabilizedWands>(std::move(hands), stabilizerOptionsOf(o), source.calibration, wait);
 }
 
 }  // namespace gb

@@ -3,6 +3,7 @@
 // (--input, or the older --gesture NAME for script:NAME), the stabilizer, the calibration and the depth band.
 
 #include <CLI/CLI.hpp>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -42,8 +43,10 @@ StabilizerOptions stabilizerOptionsOf(const InputOptions& options);
 // through the stabilizer and the calibration. Camera inputs and trajectories wait for a performer (both hands
 // seen); `waiting` says where the wait's messages go and what ends it early (its `enabled` is decided here; by
 // default the messages go to stderr and Ctrl-C ends the wait). Throws HandSourceError when the input cannot be
-// opened.
+// opened. `wrap`, when given, is handed the hand source of an input that is not a script and returns the one the
+// wands follow (the live window keeps a camera's depth frames for its performer view).
+using HandSourceWrapper = std::function<std::unique_ptr<HandSource>(std::unique_ptr<HandSource>)>;
 std::unique_ptr<WandInput> makeWandInput(const InputOptions& options, const GestureOptions& gesture,
-                                         PerformerWait waiting = {});
+                                         PerformerWait waiting = {}, const HandSourceWrapper& wrap = {});
 
 }  // namespace gb

@@ -49,6 +49,25 @@ bool OscSender::bubble(double time, const Vec3& centre, double area, double volu
   return false;
 }
 
+bool OscSender::cue(const std::string& name, const std::string& done, double time) {
+  if (lo_send(address_->handle, "/giantbubble/cue", "ssd", name.c_str(), done.c_str(), time) >= 0) return true;
+  lastError_ = lo_address_errstr(address_->handle);
+  return false;
+}
+
+bool OscSender::joint(const std::string& name, int user, const std::array<float, 3>& p) {
+  if (lo_send(address_->handle, "/joint", "sifff", name.c_str(), user, p[0], p[1], p[2]) >= 0) return true;
+  lastError_ = lo_address_errstr(address_->handle);
+  return false;
+}
+
+std::array<float, 3> oscCeletonPosition(const Vec3d& camera) {
+  // OSCeleton maps a tracker's millimetres so: x over 2560 mm, y over 1920 mm (down), z 7.8125 per 10 m.
+  return {static_cast<float>(0.5 + 1000.0 * camera.x() / 2560.0),
+          static_cast<float>(0.5 - 1000.0 * camera.y() / 1920.0),
+          static_cast<float>(1000.0 * camera.z() * 7.8125 / 10000.0)};
+}
+
 ShowControl::ShowControl(const std::string& target) {
   if (!target.empty()) sender_ = std::make_unique<OscSender>(target);
 }
@@ -59,7 +78,23 @@ void ShowControl::frame(const Simulation& sim, const FrameStats& stats, const st
   bool ok = true;
   for (std::string event; words >> event;) ok = sender_->event(event, stats.time) && ok;
   ok = sender_->bubble(stats.time, centroid(sim.film().state), stats.area, stats.volume, stats.solution) && ok;
-  if (!ok && !warned_) {
+  check(ok);
+}
+
+void ShowControl::cue(const std::string& name, const std::string& done, double time) {
+  if (sender_) check(sender_->cue(name, done, time));
+}
+
+void ShowControl::hands(const Vec3d& left, const Vec3d& right) {
+  if (!sender_) return;
+  bool ok = true;
+  if (left.allFinite()) ok = sender_->joint("l_hand", 1, oscCeletonPosition(left)) && ok;
+  if (right.allFinite()) ok = sender_->joint("r_hand", 1, oscCeletonPosition(right)) && ok;
+  check(ok);
+}
+
+void ShowControl::check(bool sent) {
+  if (!sent && !warned_) {
     std::fprintf(stderr, "warning: OSC messages are not getting through (%s); the show goes on\n",
                  sender_->lastError().c_str());
     warned_ = true;

@@ -6,12 +6,19 @@
 //                                                burst_started, burst_finished; live only:
 //                                                simulation_unstable, input_lost, input_back
 //   /giantbubble/bubble ,dffffff  time (s), centre x y z (m, world), area (m^2), volume (m^3), solution left
+//   /giantbubble/cue    ,ssd  cue, what was done, time (s)   live --osc-in: each cue taken (osc_cues.h)
+//   /joint              ,sifff  l_hand or r_hand, user 1, x y z   live: the performer's hands as a Kinect skeleton
+//                                                tracker (OSCeleton) sends them: x 0..1 across the camera's image
+//                                                left to right (+-1.28 m), y 0..1 top to bottom (+-0.96 m), z the
+//                                                depth in metres x 0.78125 (0..7 for 0..9 m)
 //
 // docs/formats.md describes them.
 
+#include <array>
 #include <memory>
 #include <string>
 
+#include "hand_source.h"
 #include "simulation.h"
 #include "state.h"
 
@@ -29,6 +36,8 @@ class OscSender {
   // the light desk is unplugged. lastError() says why.
   bool event(const std::string& name, double time);
   bool bubble(double time, const Vec3& centre, double area, double volume, double solution);
+  bool cue(const std::string& name, const std::string& done, double time);
+  bool joint(const std::string& name, int user, const std::array<float, 3>& position);
   [[nodiscard]] const std::string& lastError() const { return lastError_; }
 
  private:
@@ -43,10 +52,18 @@ class ShowControl {
  public:
   explicit ShowControl(const std::string& target);
   void frame(const Simulation& sim, const FrameStats& stats, const std::string& events);
+  // A cue taken from --osc-in and what it did ("new film", "no film to burst").
+  void cue(const std::string& name, const std::string& done, double time);
+  // The performer's hands in camera space (kinect_depth.h; m), as OSCeleton joints; a hand not finite is not sent.
+  void hands(const Vec3d& left, const Vec3d& right);
 
  private:
   std::unique_ptr<OscSender> sender_;
   bool warned_ = false;
+  void check(bool sent);
 };
+
+// A camera-space point (m) in OSCeleton's normalized coordinates (the /joint message above).
+std::array<float, 3> oscCeletonPosition(const Vec3d& camera);
 
 }  // namespace gb

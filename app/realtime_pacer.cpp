@@ -66,6 +66,11 @@ void RealTimePacer::record(int frames, double simMs, double renderMs) {
   }
 }
 
+void RealTimePacer::setMinRenderScale(double floor) {
+  options_.minRenderScale = floor;
+  renderScale_ = std::max(renderScale_, floor);
+}
+
 double renderScaleFloor(double minRenderScale, int width, int height) {
   const double pixels = static_cast<double>(width) * static_cast<double>(height);
   return std::min(minRenderScale, std::sqrt(kLargestFloorPixels / std::max(pixels, 1.0)));

@@ -49,6 +49,8 @@ class RealTimePacer {
   // raised a step when it takes under half of them with the sweeps back at their top; at most one change per
   // kRescaleEvery iterations, since each costs the renderer new targets and pipelines.
   [[nodiscard]] double renderScale() const { return renderScale_; }
+  // A new floor for the render scale (the window went full screen or back): the scale is kept within it.
+  void setMinRenderScale(double floor);
   static constexpr int kRescaleEvery = 10;
   [[nodiscard]] bool atFloor() const { return sweeps_ == options_.minSweeps; }
   [[nodiscard]] long droppedFrames() const { return dropped_; }

@@ -1,7 +1,6 @@
 #include "render_output.h"
 
 #include <fcntl.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -14,11 +13,10 @@
 #include <sstream>
 #include <utility>
 
+#include "child_process.h"
 #include "output_file.h"
 #include "png_image.h"
 #include "vulkan_stepper.h"
-
-extern char** environ;  // for posix_spawnp: ffmpeg gets this process's environment
 
 namespace gb {
 
@@ -93,31 +91,6 @@ std::vector<std::string> ffmpegArguments(const std::filesystem::path& path, int 
           // veryfast: the encoder shares the cores with the simulation and the renderer; at the default preset
           // it took 8% of the README's main job.
           "-preset", "veryfast", "file:" + std::filesystem::absolute(path).string()};
-}
-
-// Starts `args` from PATH with `stdinFd` as its stdin, in a process group of its own, with SIGPIPE, SIGINT and
-// SIGTERM at their defaults (this process ignores SIGPIPE, and an ignored signal stays ignored across exec).
-pid_t spawnWithStdin(const std::vector<std::string>& args, int stdinFd) {
-  std::vector<char*> argv;
-  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_adddup2(&actions, stdinFd, STDIN_FILENO);
-  posix_spawnattr_t attributes;
-  posix_spawnattr_init(&attributes);
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETPGROUP | POSIX_SPAWN_SETSIGDEF);
-  posix_spawnattr_setpgroup(&attributes, 0);
-  sigset_t defaults;
-  sigemptyset(&defaults);
-  for (int signal : {SIGPIPE, SIGINT, SIGTERM}) sigaddset(&defaults, signal);
-  posix_spawnattr_setsigdefault(&attributes, &defaults);
-  pid_t pid = -1;
-  const int error = posix_spawnp(&pid, argv[0], &actions, &attributes, argv.data(), environ);
-  posix_spawnattr_destroy(&attributes);
-  posix_spawn_file_actions_destroy(&actions);
-  if (error != 0) throw std::runtime_error(std::string("cannot start ffmpeg: ") + std::strerror(error));
-  return pid;
 }
 
 }  // namespace

@@ -5,14 +5,21 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <functional>
+#include <utility>
 
 #include "cli_checks.h"
 #include "cpu_stepper.h"
 #include "interrupt.h"
+#include "live_camera.h"
+#include "osc_cues.h"
 #include "osc_events.h"
+#include "performance_loop.h"
+#include "performer_view.h"
 #include "realtime_pacer.h"
 #include "run_output.h"
 #include "scripted_gestures.h"
+#include "video_stream.h"
 #include "vulkan_stepper.h"
 #include "window.h"
 
@@ -21,14 +28,35 @@ namespace gb {
 CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
   CLI::App* cmd = app.add_subcommand("live",
                                      "perform live in a window: the wands follow --input (mouse: orbit, zoom; "
-                                     "keys: R reset, D dip, B burst, Space pause, C colouring, Esc quit)");
+                                     "keys: R reset, D dip, B burst, Space pause, C colouring, F full screen, V "
+                                     "performer view, Home camera, Esc quit)");
   cmd->alias("view");
   // --input also takes "mouse" here: the left and right buttons drag the hands, the wheel pushes them.
   cmd->add_option("--scene", o.run.scene, "a built-in scene or a scene file (.toml); the other options change it");
   cmd->add_option("--tool", o.tool, "bubble tool")->check(CLI::IsMember({"two-wands", "ring"}));
   addInputOptions(cmd, o.run.input);  // --input kinect|fakenect:DIR|trajectory:FILE|script:NAME, --gesture, ...
   cmd->add_option("--param", o.assignments, "set a model parameter, NAME=VALUE (repeatable)");
-  cmd->add_option("--osc", o.run.osc, "send events and the bubble's size and position as OSC to HOST:PORT (UDP)");
+  cmd->add_option("--osc", o.run.osc,
+                  "send events, the bubble's size and position and the hands as OSC to HOST:PORT (UDP)");
+  cmd->add_option("--osc-in", o.oscIn,
+                  "take cues as OSC on this UDP port: /giantbubble/dip, burst, reset, pause, colouring, camera, "
+                  "fullscreen, performer_view, quit")
+      ->check(CLI::Range(1, 65535));
+  cmd->add_flag("--fullscreen", o.fullscreen, "full screen (borderless, at the monitor's resolution); F toggles");
+  cmd->add_option("--monitor", o.monitor, "the monitor for full screen, from 0 (the primary)")
+      ->check(CLI::Range(0, 63));
+  cmd->add_option("--stream", o.stream,
+                  "send the picture through ffmpeg to udp://HOST:PORT, srt://HOST:PORT, tcp://HOST:PORT (MPEG-TS), "
+                  "rtmp://HOST/APP/KEY or a v4l2 device /dev/videoN")
+      ->check([](const std::string& url) {
+        try {
+          (void)streamArguments(url, 16, 16);
+          return std::string();
+        } catch (const std::invalid_argument& e) {
+          std::string why = e.what();  // "--stream 'URL': ...": CLI11 names the option itself
+          return why.rfind("--stream ", 0) == 0 ? why.substr(9) : why;
+        }
+      });
   cmd->add_option("--auto-dip", o.autoDip, "seconds without a film before the wands dip again (negative: never)")
       ->check(FiniteRange(-1e9, 86400.0));
   cmd->add_option("--particles", o.run.params.particlesAtFullSolution, "particles of a film at full solution")
@@ -40,7 +68,8 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
   cmd->add_option("--frames", o.frames, "quit after this many frames (0: when the window closes)")
       ->check(CLI::Range(0L, 100000000L));
   cmd->add_option("--keys", o.keys,
-                  "scripted key presses FRAME:KEY, e.g. 50:b 80:c (keys r d b p c; for tests and demos)")
+                  "scripted key presses FRAME:KEY, e.g. 50:b 80:c (keys r d b p c f v, and h for Home; for tests "
+                  "and demos)")
       ->check([](const std::string& s) {
         std::string why;
         return parseKeyPress(s, why) ? std::string() : why;
@@ -69,8 +98,9 @@ std::unique_ptr<Stepper> viewStepper(const std::string& backend, const std::shar
 
 // The wands' input: the mouse (the window's pointer moves a PointerHandSource, read through the stabilizer
 // like a camera) or any input makeWandInput opens. A new mouse input takes the window's pointer from the old.
-std::unique_ptr<WandInput> makeLiveInput(const RunOptions& run, Window& window, const PerformerWait& waiting) {
-  if (run.input.spec() != "mouse") return makeWandInput(run.input, run.gestureOptions, waiting);
+std::unique_ptr<WandInput> makeLiveInput(const RunOptions& run, Window& window, const PerformerWait& waiting,
+                                         const HandSourceWrapper& wrap) {
+  if (run.input.spec() != "mouse") return makeWandInput(run.input, run.gestureOptions, waiting, wrap);
   const Calibration calibration = calibrationOf(run.input);
   auto pointer = std::make_unique<PointerHandSource>(calibration);
   PointerHandSource* hands = pointer.get();
@@ -82,11 +112,27 @@ std::unique_ptr<WandInput> makeLiveInput(const RunOptions& run, Window& window, 
   return std::make_unique<StabilizedWands>(std::move(pointer), stabilizerOptionsOf(run.input), calibration);
 }
 
-// While a camera input waits for a performer the window stays alive: it shows the stage without a film and the
-// wait's message a few times a second, and Esc/Q, closing the window or Ctrl-C end the show.
+// The wands held still where they are: the input when one could not be opened again (a recording removed since).
+class RestingWands : public WandInput {
+ public:
+  explicit RestingWands(const WandState& wands) : wands_(wands) {
+    wands_.leftVelocity = wands_.rightVelocity = Vec3::Zero();
+  }
+  WandFrame at(double) override { return {wands_}; }
+  [[nodiscard]] std::string describe() const override { return "the wands at rest (no input)"; }
+  [[nodiscard]] bool ended() const override { return true; }
+
+ private:
+  WandState wands_;
+};
+
+// While a camera input waits for a performer the window stays alive: it shows the stage without a film, the wait's
+// message and the performer view a few times a second; `service` handles the keys and cues meanwhile (Esc/Q, F, V,
+// closing the window or Ctrl-C end the show).
 class PerformerWaitScreen {
  public:
-  PerformerWaitScreen(Window& window, Renderer& renderer) : window_(window), renderer_(renderer) {}
+  PerformerWaitScreen(Window& window, Renderer& renderer, std::function<bool()> service)
+      : window_(window), renderer_(renderer), service_(std::move(service)) {}
 
   [[nodiscard]] PerformerWait hooks() {
     PerformerWait wait;
@@ -103,11 +149,12 @@ class PerformerWaitScreen {
  private:
   static constexpr std::chrono::milliseconds kRedrawEvery{200};
   bool pollAndRedraw() {
-    quit_ = quit_ || window_.poll().quit || InterruptCatcher::requested();
+    quit_ = quit_ || service_() || InterruptCatcher::requested();
     const auto now = std::chrono::steady_clock::now();
     if (!quit_ && now - lastRedraw_ >= kRedrawEvery) {
       RenderFrame stage;
       stage.film = &noFilm_;
+      stage.camera = window_.camera();
       window_.present(renderer_, stage);
       lastRedraw_ = now;
       ++redrawn_;
@@ -116,11 +163,34 @@ class PerformerWaitScreen {
   }
   Window& window_;
   Renderer& renderer_;
+  std::function<bool()> service_;
   const Film noFilm_;
   bool quit_ = false;
   long redrawn_ = 0;
   std::chrono::steady_clock::time_point lastRedraw_;
 };
+
+// The keys of --keys and the actions they stand for: the window's keys and the OSC cues act the same.
+constexpr std::pair<char, CueAction> kScriptedKeys[] = {{'r', CueAction::Reset},         {'d', CueAction::Dip},
+                                                        {'b', CueAction::Burst},         {'p', CueAction::Pause},
+                                                        {'c', CueAction::Colouring},     {'f', CueAction::Fullscreen},
+                                                        {'v', CueAction::PerformerView}, {'h', CueAction::Camera}};
+
+// The window's flag of each action.
+constexpr std::pair<CueAction, bool WindowKeys::*> kFlags[] = {{CueAction::Dip, &WindowKeys::dip},
+                                                               {CueAction::Burst, &WindowKeys::burst},
+                                                               {CueAction::Reset, &WindowKeys::reset},
+                                                               {CueAction::Pause, &WindowKeys::pause},
+                                                               {CueAction::Colouring, &WindowKeys::nextColouring},
+                                                               {CueAction::Camera, &WindowKeys::resetCamera},
+                                                               {CueAction::Fullscreen, &WindowKeys::fullscreen},
+                                                               {CueAction::PerformerView, &WindowKeys::performerView},
+                                                               {CueAction::Quit, &WindowKeys::quit}};
+bool& flagOf(WindowKeys& keys, CueAction action) {
+  for (const auto& [a, flag] : kFlags)
+    if (a == action) return keys.*flag;
+  return keys.quit;  // every action is in the table
+}
 
 // Adds the scripted key presses of frame `frame` to what the window reported.
 void addScriptedKeys(const std::vector<std::string>& script, long frame, WindowKeys& keys) {
@@ -128,25 +198,8 @@ void addScriptedKeys(const std::vector<std::string>& script, long frame, WindowK
   for (const std::string& entry : script) {
     const auto press = parseKeyPress(entry, why);
     if (!press || press->frame != frame) continue;
-    switch (press->key) {
-      case 'r':
-        keys.reset = true;
-        break;
-      case 'd':
-        keys.dip = true;
-        break;
-      case 'b':
-        keys.burst = true;
-        break;
-      case 'p':
-        keys.pause = true;
-        break;
-      case 'c':
-        keys.nextColouring = true;
-        break;
-      default:
-        break;
-    }
+    for (const auto& [key, action] : kScriptedKeys)
+      if (key == press->key) flagOf(keys, action) = true;
   }
 }
 
@@ -186,17 +239,32 @@ struct FilmShownTally {
   }
 };
 
+// How often the film was in the picture while it was on stage: its centre inside the image.
+struct InPictureTally {
+  long frames = 0, inside = 0;
+  void add(const OrbitCamera& camera, float aspect, const State& film) {
+    bool any = false;
+    for (size_t i = 0; i < film.size() && !any; ++i) any = film.alive[i] != 0;
+    if (!any) return;
+    const Eigen::Vector2f p = pictureCoordinates(camera, aspect, centroid(film));
+    ++frames;
+    if (std::abs(p.x()) <= 1.0f && std::abs(p.y()) <= 1.0f) ++inside;
+  }
+};
+
 // A camera that was unplugged is looked for again this often (s of wall time); a recording or a file that
-// ended stays ended, the wands at rest, until R restarts it.
+// ended plays again once the stage is empty (PerformanceLoop), or when R restarts it.
 constexpr double kReopenCameraEvery = 2.0;
 
 }  // namespace
 
 std::optional<KeyPress> parseKeyPress(const std::string& text, std::string& why) {
   const auto colon = text.find(':');
-  why = "expected FRAME:KEY with KEY one of r d b p c, got '" + text + "'";
+  std::string keys;
+  for (const auto& [key, action] : kScriptedKeys) keys += std::string(keys.empty() ? "" : " ") + key;
+  why = "expected FRAME:KEY with KEY one of " + keys + ", got '" + text + "'";
   if (colon == std::string::npos || colon == 0 || text.size() != colon + 2 ||
-      std::string("rdbpc").find(text.back()) == std::string::npos)
+      keys.find(text.back()) == std::string::npos || text.back() == ' ')
     return std::nullopt;
   KeyPress press{0, text.back()};
   const char* end = text.data() + colon;
@@ -218,108 +286,322 @@ int runView(ViewOptions o) try {
   RunOptions& run = o.run;
   run.tool.kind = o.tool == "ring" ? ToolKind::Ring : ToolKind::TwoWands;
   ShowControl show(run.osc);
+  std::unique_ptr<OscCueReceiver> cues;
+  if (o.oscIn > 0) {
+    cues = std::make_unique<OscCueReceiver>(o.oscIn);
+    std::printf("live: taking OSC cues on UDP port %d (/giantbubble/dip, burst, reset, pause, ...)\n", cues->port());
+    std::fflush(stdout);
+  }
   RenderOptions image = run.render.image;
-  Window window("giantbubble", image.width, image.height, run.device);
+  Window window("giantbubble", image.width, image.height, run.device, {o.fullscreen, o.monitor});
+  // The show's image: the window's size, or the monitor's in full screen (dynamic resolution draws less of it).
+  const std::array<int, 2> windowedSize{image.width, image.height};
+  auto showSize = [&] { return window.fullscreen() ? window.size() : windowedSize; };
+  image.width = showSize()[0];
+  image.height = showSize()[1];
+  if (window.fullscreen())
+    std::printf("live: full screen on %s, drawing at %dx%d\n", window.monitorDescription().c_str(), image.width,
+                image.height);
   image.samples = samplesFor(run.render, window.context()->info().type);
   const InterruptCatcher interrupts;  // Ctrl-C ends the show as Esc does, with its totals
   Renderer renderer(window.context(), image, loadEnvironment(run.render.environment));
-  PerformerWaitScreen waiting(window, renderer);
-  std::unique_ptr<WandInput> input = makeLiveInput(run, window, waiting.hooks());
+  // The stream has the show's own size (--width, --height), whatever the window's: in full screen on a large monitor,
+  // a stream of the monitor's size would cost the show an encoder of that size (at 1920x1080 on two cores, 30% of
+  // the frame rate); --width and --height ask for a larger stream.
+  std::unique_ptr<VideoStream> stream;
+  if (!o.stream.empty()) {
+    const auto [width, height] = windowedSize;
+    stream = std::make_unique<VideoStream>(o.stream, width, height);
+    window.captureFrames(width, height);
+    std::printf("live: streaming %dx%d to %s through ffmpeg\n", width, height, o.stream.c_str());
+  }
+  LiveCamera camera(run.render.camera, run.render.followCamera,
+                    static_cast<float>(image.width) / static_cast<float>(image.height));
+  window.camera() = run.render.camera;
+  PerformerView performerView;
+  std::optional<RealTimePacer> pacer;  // made once the show starts
+  const double floorScale = o.fixedStep ? 1.0 : o.minRenderScale;
+
+  auto say = [](long frame, const std::string& what) {
+    std::printf("live: frame %ld: %s\n", frame, what.c_str());
+    std::fflush(stdout);
+  };
+  // F: the picture goes full screen or back, the image drawn at its new size.
+  auto toggleFullscreen = [&](long frame) {
+    window.setFullscreen(!window.fullscreen());
+    const auto [width, height] = showSize();
+    camera.setAspect(static_cast<float>(width) / static_cast<float>(height));
+    if (pacer) pacer->setMinRenderScale(o.fixedStep ? 1.0 : renderScaleFloor(floorScale, width, height));
+    renderer.resize(width, height);
+    std::string now = window.fullscreen() ? "full screen on " : "a window";
+    if (window.fullscreen()) now += window.monitorDescription();
+    now += ", drawing at ";
+    now += std::to_string(width);
+    now += 'x';
+    now += std::to_string(height);
+    say(frame, now);
+  };
+  // The cues that came in, as the keys they stand for; `fromCue` marks the ones a cue asked for, to report them.
+  WindowKeys fromCue;
+  int pauseCue = -1;  // /pause with an argument: 1 pause, 0 resume
+  auto takeCues = [&](WindowKeys& keys) {
+    fromCue = {};
+    pauseCue = -1;
+    if (!cues) return;
+    for (const Cue& cue : cues->poll()) {
+      flagOf(keys, cue.action) = flagOf(fromCue, cue.action) = true;
+      if (cue.action == CueAction::Pause) pauseCue = cue.state;
+    }
+    for (const std::string& m : cues->takeMessages()) std::fprintf(stderr, "%s\n", m.c_str());
+  };
+  // What a cue did goes back out through OSC, and to the console.
+  // `keyText` is what a key did in the console's words; `done`, a cue's, when they differ.
+  auto reportCue = [&](long frame, bool cued, CueAction action, const std::string& keyText, double time,
+                       const std::string& done = {}) {
+    const std::string cueText = done.empty() ? keyText : done;
+    say(frame, cued ? std::string("cue ") + cueName(action) + ": " + cueText : keyText);
+    if (cued) show.cue(cueName(action), cueText, time);
+  };
+  // The performer view's newest picture into the window's inset.
+  bool viewTold = false;
+  auto updateInset = [&] {
+    if (performerView.shown() && !viewTold) {
+      std::printf("live: the performer view shows what the camera sees (V hides it)\n");
+      std::fflush(stdout);
+      viewTold = true;
+    }
+    if (std::optional<RgbImage> view = performerView.update()) window.setInset(view->width, view->height, view->rgb);
+  };
+
+  // While a performer is waited for: the keys and cues that matter then.
+  long waitFrames = 0;
+  auto serviceWhileWaiting = [&] {
+    WindowKeys keys = window.poll();
+    takeCues(keys);
+    performerView.setWaiting(true);
+    if (keys.fullscreen) toggleFullscreen(waitFrames);
+    if (keys.performerView)
+      reportCue(waitFrames, fromCue.performerView, CueAction::PerformerView, performerView.toggle(), 0.0);
+    updateInset();
+    ++waitFrames;
+    return keys.quit;
+  };
+  PerformerWaitScreen waiting(window, renderer, serviceWhileWaiting);
+  // A camera's depth frames are kept for the performer view.
+  const HandSourceWrapper observe = [&](std::unique_ptr<HandSource> source) -> std::unique_ptr<HandSource> {
+    auto observed = std::make_unique<ObservedHandSource>(std::move(source));
+    performerView.attach(observed.get());
+    return observed;
+  };
+  // The input, waiting for a performer where it is a camera's (the performer view shows meanwhile).
+  auto openInput = [&] {
+    performerView.attach(nullptr);  // the source it shows goes with the input
+    try {
+      std::unique_ptr<WandInput> opened = makeLiveInput(run, window, waiting.hooks(), observe);
+      performerView.setWaiting(false);
+      return opened;
+    } catch (...) {
+      performerView.setWaiting(false);
+      throw;
+    }
+  };
+  std::unique_ptr<WandInput> input = openInput();
   if (waiting.quit()) {
     std::printf("live: ended while waiting for a performer (the window was redrawn %ld times)\n", waiting.redrawn());
     return 0;
   }
   std::printf("live: input %s\n", input->describe().c_str());
-  window.camera() = run.render.camera;
   std::unique_ptr<Stepper> stepper = viewStepper(o.backend, window.context());
   const bool readInPlace = dynamic_cast<VulkanStepper*>(stepper.get()) != nullptr;
   std::printf("live: %s, %d sample%s per pixel, on %s (validation layer %s), simulation on %s\n",
               colouringName(image.colouring), image.samples, image.samples == 1 ? "" : "s",
               window.context()->info().name.c_str(), window.context()->validationEnabled() ? "on" : "off",
               stepper->name().c_str());
+  std::fflush(stdout);
   double t = 0;
-  WandState wands = input->at(t).wands;
+  WandFrame hands = input->at(t);
+  WandState wands = hands.wands;
   auto sim = std::make_unique<Simulation>(run.params, run.tool, wands, std::move(stepper));
   show.frame(*sim, sim->stats(), "film_created");
 
-  bool paused = false;
-  long shown = 0, dips = 0, recoveries = 0;
+  bool paused = false, quitRequested = false;
+  long shown = 0, dips = 0, recoveries = 0, loops = 0;
   double filmGoneSince = -1;  // time the last film disappeared, -1 while there is one
   double inputStart = 0;      // show time at which the current input's time 0 is
   bool inputLost = false;
+  bool freeBubble = false;  // the film on stage has pinched off: the wands hold none
+  bool burstByCue = false;  // the poke of a cue: its burst is told as burst_by_cue
+  // A script or a recording plays again once the stage is empty (performance_loop.h); a performer (a camera, the
+  // mouse) dips again by themselves.
+  const bool performer = run.input.spec() == "kinect" || run.input.spec() == "mouse";
+  PerformanceLoop loop(performer ? -1.0 : o.autoDip);
+  const double scriptEnd = static_cast<double>(run.gestureOptions.start) + run.gestureOptions.duration;
+  auto performanceOver = [&] { return run.input.scripted() ? t - inputStart >= scriptEnd : input->ended(); };
+  // The hands as OSC joints (camera space): the measured ones, or the wand tips of a script.
+  const Calibration scriptCalibration = calibrationOf(run.input);
+  auto sendHands = [&] {
+    const auto* stabilized = dynamic_cast<const StabilizedWands*>(input.get());
+    const Calibration& calibration = stabilized ? stabilized->calibration() : scriptCalibration;
+    const Vec3 left = stabilized ? hands.leftHand : wands.leftPosition;
+    const Vec3 right = stabilized ? hands.rightHand : wands.rightPosition;
+    show.hands(calibration.toCamera(left.cast<double>()), calibration.toCamera(right.cast<double>()));
+  };
   auto lastReopen = std::chrono::steady_clock::now();
   const auto start = std::chrono::steady_clock::now();
-  const double smallestScale = renderScaleFloor(o.minRenderScale, image.width, image.height);
-  RealTimePacer pacer({run.params.frameTime, sim->solverSweeps(), o.minSweeps, 4, o.fixedStep ? 1.0 : smallestScale},
-                      start);
+  pacer.emplace(PacerOptions{run.params.frameTime, sim->solverSweeps(), o.minSweeps, 4,
+                             o.fixedStep ? 1.0 : renderScaleFloor(floorScale, image.width, image.height)},
+                start);
   auto lastTitle = start;
   auto lastPresented = start;
   FilmShownTally filmShown;
+  InPictureTally inPicture;
   for (;;) {
     WindowKeys keys = window.poll();
     addScriptedKeys(o.keys, shown, keys);
-    if (keys.quit || waiting.quit() || InterruptCatcher::requested()) break;  // Esc/Q, closed, Ctrl-C, SIGTERM
-    auto say = [&](const std::string& what) {
-      std::printf("live: frame %ld: %s\n", shown, what.c_str());
-      std::fflush(stdout);
-    };
+    takeCues(keys);
+    if (keys.quit || waiting.quit() || InterruptCatcher::requested()) {  // Esc/Q, closed, a cue, Ctrl-C, SIGTERM
+      if (fromCue.quit) reportCue(shown, true, CueAction::Quit, "the show ends", t);
+      break;
+    }
     auto announce = [&](const std::string& what) {  // a fault the show recovers from: the console and the screen
-      say(what);
+      say(shown, what);
       window.showMessage(what);
     };
     auto dipNewFilm = [&](const std::string& why, const std::string& events) {
       sim->dip(wands);
       filmGoneSince = -1;
+      freeBubble = false;
+      burstByCue = false;
       ++dips;
-      say(why);
       show.frame(*sim, sim->stats(), events);
+      return why;
     };
+    // The input from its start: a new source, since time only moves forward in one. The old one is let go of
+    // first: fakenect plays one recording at a time. One that cannot be opened again (a recording removed since)
+    // leaves the wands at rest, and the show goes on.
+    auto restartInput = [&]() {
+      input.reset();
+      try {
+        input = openInput();
+        inputLost = false;
+      } catch (const HandSourceError& e) {
+        input = std::make_unique<RestingWands>(wands);
+        inputLost = true;
+        announce(std::string("the input cannot be played again: ") + e.what() + "; the wands rest");
+        show.frame(*sim, sim->stats(), "input_lost");
+      }
+      quitRequested = quitRequested || waiting.quit();
+    };
+    if (keys.fullscreen) {
+      toggleFullscreen(shown);
+      if (fromCue.fullscreen) show.cue("fullscreen", window.fullscreen() ? "full screen" : "a window", t);
+    }
+    if (keys.performerView)
+      reportCue(shown, fromCue.performerView, CueAction::PerformerView, performerView.toggle(), t);
+    if (keys.resetCamera) {
+      camera.home();
+      reportCue(shown, fromCue.resetCamera, CueAction::Camera,
+                run.render.followCamera ? "the camera follows the film again" : "the scene's camera again", t);
+    }
     if (keys.pause) {
-      paused = !paused;
-      say(paused ? "paused" : "resumed");
+      paused = pauseCue >= 0 ? pauseCue == 1 : !paused;
+      reportCue(shown, fromCue.pause, CueAction::Pause, paused ? "paused" : "resumed", t);
     }
-    if (keys.reset) {  // the input from its start: a new source, since time only moves forward in one
-      input = makeLiveInput(run, window, waiting.hooks());
-      if (waiting.quit()) break;
+    if (keys.reset) {
+      restartInput();
+      if (quitRequested) break;
       inputStart = t;
-      inputLost = false;
-      wands = input->at(0).wands;
+      loop.restart();
+      hands = input->at(0);
+      wands = hands.wands;
     }
-    // The wands dip again by themselves once they are apart: a film dipped between closed tips would only pinch
-    // off at once into a sliver.
+    // A performer's wands dip again by themselves once they are apart: a film dipped between closed tips would
+    // only pinch off at once into a sliver. A script or a recording loops instead (PerformanceLoop).
     const bool wandsApart = run.tool.kind == ToolKind::Ring ||
                             (wands.rightPosition - wands.leftPosition).norm() > 2.0f * run.params.pinchDistance;
-    const bool autoDip = o.autoDip >= 0 && filmGoneSince >= 0 && t - filmGoneSince >= o.autoDip && wandsApart;
-    if (keys.reset || keys.dip || autoDip)
-      dipNewFilm(keys.reset ? "reset: new film, performance from its start"
-                            : (autoDip ? "auto dip: new film" : "dip: new film"),
-                 "film_created");
-    if (keys.burst) say(pokeTop(*sim) ? "burst" : "B: no film to burst");
+    const bool autoDip =
+        performer && o.autoDip >= 0 && filmGoneSince >= 0 && t - filmGoneSince >= o.autoDip && wandsApart;
+    if (keys.reset)
+      reportCue(shown, fromCue.reset, CueAction::Reset,
+                dipNewFilm("reset: new film, performance from its start", "film_created"), t,
+                "new film, performance from its start");
+    else if (keys.dip)
+      reportCue(shown, fromCue.dip, CueAction::Dip, dipNewFilm("dip: new film", "film_created"), t, "new film");
+    else if (autoDip)
+      say(shown, dipNewFilm("auto dip: new film", "film_created"));
+    if (keys.burst) {
+      const bool poked = pokeTop(*sim);
+      burstByCue = poked && fromCue.burst;
+      reportCue(shown, fromCue.burst, CueAction::Burst, poked ? "burst" : "B: no film to burst", t,
+                poked ? "burst" : "no film to burst");
+    }
     if (keys.nextColouring) {
       renderer.setColouring(static_cast<Colouring>((static_cast<int>(renderer.options().colouring) + 1) % 3));
-      say(colouringName(renderer.options().colouring));
+      reportCue(shown, fromCue.nextColouring, CueAction::Colouring, colouringName(renderer.options().colouring), t);
     }
-    // `frames` frames of h on the wall clock in one step (more than one when behind it): the input, then the
-    // simulation; a simulation that blows up is replaced.
-    auto advanceStep = [&](int frames) {
-      t += static_cast<double>(run.params.frameTime) * frames;
-      wands = input->at(t - inputStart).wands;              // a live camera may wait here for its next frame
+    // The wands of show time t: the input's, or on their way back to its start while the performance loops.
+    auto moveWands = [&] {
+      switch (loop.next(t, performanceOver(), freeBubble || filmGoneSince >= 0, filmGoneSince)) {
+        case PerformanceLoop::Action::StartReturn: {
+          restartInput();
+          const WandState from = wands;
+          loop.startReturn(t, from, input->at(0).wands);
+          char text[120];
+          std::snprintf(text, sizeof text, "the performance is over: the wands go back to its start (%.1f s)",
+                        loop.returnSeconds());
+          say(shown, text);
+          wands = loop.returnWands(t);
+          return;
+        }
+        case PerformanceLoop::Action::Return:
+          wands = loop.returnWands(t);
+          return;
+        case PerformanceLoop::Action::DipAndPlay:
+          wands = loop.returnWands(t);
+          inputStart = t;
+          ++loops;
+          say(shown, dipNewFilm("loop: new film, the performance from its start", "film_created"));
+          return;
+        case PerformanceLoop::Action::StartPlaying:
+          inputStart = t;
+          ++loops;
+          say(shown, "loop: the performance from its start");
+          [[fallthrough]];
+        case PerformanceLoop::Action::Play:
+          break;
+      }
+      hands = input->at(t - inputStart);  // a live camera may wait here for its next frame
+      wands = hands.wands;
       for (const std::string& m : input->takeMessages()) {  // e.g. a camera's hands lost or found
         std::fprintf(stderr, "%s\n", m.c_str());
         window.showMessage(m);
       }
-      if (input->ended() && !inputLost) {  // the wands rest where they are (wand_input.h) until the input returns
+      if (input->ended() && !inputLost && !loop.looping()) {
         inputLost = true;
+        if (!performer) {  // a recording or a file played to its end: it plays again once the stage is empty
+          say(shown, "the input has played to its end; the wands rest" +
+                         std::string(o.autoDip >= 0 ? " until the stage is empty, then it plays again"
+                                                    : " (R plays it again)"));
+          return;
+        }
+        // The wands rest where they are (wand_input.h) until the input returns.
         announce("the input has ended or was lost; the wands rest" +
                  std::string(run.input.spec() == "kinect" ? ", and the camera is looked for again"
                                                           : " (R starts it again)"));
         show.frame(*sim, sim->stats(), "input_lost");
       }
+    };
+    // `frames` frames of h on the wall clock in one step (more than one when behind it): the input, then the
+    // simulation; a simulation that blows up is replaced.
+    auto advanceStep = [&](int frames) {
+      t += static_cast<double>(run.params.frameTime) * frames;
+      moveWands();
+      sendHands();
       if (inputLost && run.input.spec() == "kinect" &&
           std::chrono::duration<double>(std::chrono::steady_clock::now() - lastReopen).count() >= kReopenCameraEvery) {
         lastReopen = std::chrono::steady_clock::now();
         try {
-          input = makeLiveInput(run, window, waiting.hooks());
+          input = openInput();
           inputStart = t;
           inputLost = false;
           announce("the camera is back");
@@ -331,7 +613,13 @@ int runView(ViewOptions o) try {
         sim->setFrameTime(run.params.frameTime * static_cast<float>(frames));
         sim->advanceFrame(wands);
         const FrameStats stats = sim->stats();
-        show.frame(*sim, stats, describeEvents(sim->lastEvents()));
+        std::string events = describeEvents(sim->lastEvents());
+        if (const auto poke = events.find("burst_by_poke"); burstByCue && poke != std::string::npos) {
+          events.replace(poke, std::string("burst_by_poke").size(), "burst_by_cue");
+          burstByCue = false;
+        }
+        show.frame(*sim, stats, events);
+        freeBubble = freeBubble || sim->lastEvents().pinchedOff;
         if (stats.particles == 0 && filmGoneSince < 0) filmGoneSince = t;
       } catch (const SimulationUnstable& e) {
         // The show goes on: the broken simulation is dropped whole (a dip keeps state the blow-up may have
@@ -340,6 +628,7 @@ int runView(ViewOptions o) try {
         std::fprintf(stderr, "warning: %s\n", e.what());
         sim = std::make_unique<Simulation>(run.params, run.tool, wands, viewStepper(o.backend, window.context()));
         filmGoneSince = -1;
+        freeBubble = false;
         ++dips;
         announce("the simulation became unstable; a new film is dipped");
         show.frame(*sim, sim->stats(), "simulation_unstable film_created");
@@ -348,39 +637,49 @@ int runView(ViewOptions o) try {
     int due = 0;
     double simMs = 0;
     if (paused) {
-      pacer.resync();
+      pacer->resync();
     } else {
-      due = o.fixedStep ? 1 : pacer.framesDue();
+      due = o.fixedStep ? 1 : pacer->framesDue();
       if (due == 0) {  // ahead of the wall clock: wait for the next frame rather than draw the same one twice
-        pacer.sleepUntilDue();
-        due = pacer.framesDue();
+        pacer->sleepUntilDue();
+        due = pacer->framesDue();
       }
-      sim->setSolverSweeps(o.fixedStep ? 0 : pacer.sweeps());
+      sim->setSolverSweeps(o.fixedStep ? 0 : pacer->sweeps());
       const auto simStart = std::chrono::steady_clock::now();
       // The frames due in steps of at most longestStep frames: a long step costs what a short one does, so a
       // machine that is behind halves its simulation work before the solver's sweeps go down.
       const int longest = run.params.integrator != 0 ? o.longestStep : 1;  // explicit: substeps would grow instead
-      for (int done = 0; done < due;) {
+      for (int done = 0; done < due && !quitRequested;) {
         const int frames = std::min(longest, due - done);
         advanceStep(frames);
         done += frames;
       }
       simMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - simStart).count();
+      if (quitRequested) break;  // Esc or Ctrl-C while an input restarted waited for a performer
     }
     const auto renderStart = std::chrono::steady_clock::now();
     // The window's blit scales the image to the window (dynamic resolution).
-    renderer.resize(std::max(16, static_cast<int>(std::lround(image.width * pacer.renderScale()))),
-                    std::max(16, static_cast<int>(std::lround(image.height * pacer.renderScale()))));
+    const auto [width, height] = showSize();
+    renderer.resize(std::max(16, static_cast<int>(std::lround(width * pacer->renderScale()))),
+                    std::max(16, static_cast<int>(std::lround(height * pacer->renderScale()))));
+    const OrbitCamera view = camera.update(sim->film().state, wands, run.params.frameTime * static_cast<float>(due),
+                                           window.camera(), keys.cameraMoved);
+    if (filmGoneSince < 0) inPicture.add(view, camera.aspect(), sim->film().state);
+    updateInset();
     const WireFrame wire = sim->wireFrame(wands);
     DeviceFilm deviceFilm;
-    window.present(renderer, renderFrameOf(*sim, wands, wire, window.camera(), readInPlace, deviceFilm));
+    window.present(renderer, renderFrameOf(*sim, wands, wire, view, readInPlace, deviceFilm));
+    if (stream) {
+      stream->offer(window.captured());
+      for (const std::string& m : stream->takeMessages()) std::fprintf(stderr, "warning: %s\n", m.c_str());
+    }
     const auto now = std::chrono::steady_clock::now();
-    pacer.record(due, simMs, std::chrono::duration<double, std::milli>(now - renderStart).count());
+    pacer->record(due, simMs, std::chrono::duration<double, std::milli>(now - renderStart).count());
     if (filmGoneSince < 0 && !paused)
       filmShown.add(due, sim->solverSweeps(), std::chrono::duration<double>(now - lastPresented).count());
     lastPresented = now;
     if (now - lastTitle > std::chrono::seconds(1)) {  // the show's figures in the title bar, once a second
-      window.setTitle(liveFigures(pacer, shown, start, now));
+      window.setTitle(liveFigures(*pacer, shown, start, now));
       lastTitle = now;
     }
     if (++shown == o.frames) break;
@@ -388,13 +687,29 @@ int runView(ViewOptions o) try {
   const auto end = std::chrono::steady_clock::now();
   const double seconds = std::chrono::duration<double>(end - start).count();
   const size_t errors = window.context()->validationErrors();
-  std::printf("live: %s, %ld frames simulated, %ld dropped\n", liveFigures(pacer, shown, start, end).c_str(),
-              pacer.simulatedFrames(), pacer.droppedFrames());
+  std::printf("live: %s, %ld frames simulated, %ld dropped\n", liveFigures(*pacer, shown, start, end).c_str(),
+              pacer->simulatedFrames(), pacer->droppedFrames());
   std::printf(
       "live: presented %ld frames in %.2f s (%.1f frames/s), %ld dips, %zu validation errors, %ld recoveries "
       "from instability\n",
       shown, seconds, static_cast<double>(shown) / std::max(seconds, 1e-9), dips, errors, recoveries);
   std::printf("live: %s\n", filmShown.describe(run.params.frameTime).c_str());
+  std::printf(
+      "live: a film was on stage for %.1f%% of the show's wall time (%.1f of %.1f s); the performance "
+      "played again %ld times\n",
+      100.0 * filmShown.wallSeconds / std::max(seconds, 1e-9), filmShown.wallSeconds, seconds, loops);
+  if (inPicture.frames > 0)
+    std::printf("live: the film's centre was in the picture on %ld of the %ld frames it was on stage (%.1f%%)\n",
+                inPicture.inside, inPicture.frames,
+                100.0 * static_cast<double>(inPicture.inside) / static_cast<double>(inPicture.frames));
+  if (cues)
+    std::printf("live: OSC cues: %ld taken, %ld unknown and %ld malformed ignored\n", cues->taken(), cues->unknown(),
+                cues->malformed());
+  if (stream) {
+    const long sent = stream->sent();
+    stream.reset();  // ends ffmpeg: what it sent is counted
+    std::printf("live: stream: %ld frames sent, %ld dropped\n", sent, shown - sent);
+  }
   if (const Simulation::BudgetRecord& budget = sim->energyBudgetRecord(); budget.frames > 0)
     std::printf(
         "live: the implicit step's energy budget took energy back on %ld steps (smallest factor on the "

@@ -3,9 +3,12 @@
 // recording, a trajectory file, a script, or the mouse: left and right buttons drag the hands, the wheel with a
 // button held pushes them, the middle button orbits) and the film is rendered in a window; the mouse orbits (drag) and
 // zooms (wheel); keys: R reset, D dip the wands (new film), B burst, Space/P pause, C next colouring
-// (interference, thickness, air flow), Home camera back, Esc/Q quit. When the film is gone (burst, or a free
-// bubble burst), the wands dip again after --auto-dip seconds, so a show can run for hours; events and the
-// bubble's state go out as OSC with --osc.
+// (interference, thickness, air flow), F full screen, V performer view, Home camera back, Esc/Q quit. The camera
+// follows the film (live_camera.h) until the mouse moves it. When the film is gone (burst, or a free bubble burst),
+// a script or a recording plays again from its start (performance_loop.h) and a performer's wands dip again after
+// --auto-dip seconds, so a show runs for hours with nobody at the keyboard. Events, the bubble's state and the hands
+// go out as OSC with --osc; cues come in with --osc-in (osc_cues.h); the picture goes out with --stream
+// (video_stream.h).
 //
 // A show never ends on its own: an unstable simulation is reported (console, OSC event
 // simulation_unstable) and a new film dipped at once; an input that ends or is lost leaves the wands at rest
@@ -30,16 +33,20 @@ struct ViewOptions {
   std::string tool = "two-wands";
   std::string backend = "auto";
   std::vector<std::string> assignments;  // --param NAME=VALUE
-  double autoDip = 2.0;                  // seconds without a film before the wands dip again (negative: never)
+  double autoDip = 1.0;                  // seconds of empty stage before the wands dip again (negative: never)
   long frames = 0;                       // quit after this many presented frames (0: when the window closes)
   std::vector<std::string> keys;         // scripted key presses FRAME:KEY (keys r d b p c), as if typed at that frame
   bool fixedStep = false;       // one simulation frame per presented frame (slow motion when the machine is slow)
   int minSweeps = 3;            // the fewest solver sweeps the wall clock may leave the film (realtime_pacer.h)
   int longestStep = 2;          // frames of time one implicit step may cover when the machine falls behind
   double minRenderScale = 0.5;  // the smallest image drawn when behind, as a fraction of the window's size
+  bool fullscreen = false;      // start full screen (borderless, the monitor's resolution)
+  int monitor = 0;              // the monitor for full screen
+  int oscIn = 0;                // UDP port cues come in on (0: none)
+  std::string stream;           // where ffmpeg sends the picture (empty: nowhere)
 };
 
-// A scripted key press of --keys: at presented frame `frame`, key `key` (r d b p c).
+// A scripted key press of --keys: at presented frame `frame`, key `key` (r d b p c f v, and h for Home).
 struct KeyPress {
   long frame = 0;
   char key = 0;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "device_buffer.h"
 #include "device_image.h"
 
 namespace gb {
@@ -35,6 +36,39 @@ VulkanExtensions windowExtensions() {
   return {std::vector<const char*>(names, names + count), {VK_KHR_SWAPCHAIN_EXTENSION_NAME}};
 }
 
+// "N 'name' WxH": monitor `index` of the display, in words.
+std::string monitorInWords(GLFWmonitor* monitor, int index) {
+  std::string words = std::to_string(index);
+  words += " '";
+  words += glfwGetMonitorName(monitor);
+  words += "'";
+  if (const GLFWvidmode* mode = glfwGetVideoMode(monitor)) {
+    words += ' ';
+    words += std::to_string(mode->width);
+    words += 'x';
+    words += std::to_string(mode->height);
+  }
+  return words;
+}
+
+// The display's monitor `index`, or an error naming the ones there are when it is not one of them.
+GLFWmonitor* monitorAt(int index) {
+  int count = 0;
+  GLFWmonitor** monitors = glfwGetMonitors(&count);
+  if (index >= 0 && index < count) return monitors[index];
+  std::string message = "--monitor ";
+  message += std::to_string(index);
+  message += ": the display has ";
+  message += std::to_string(count);
+  message += count == 1 ? " monitor" : " monitors";
+  for (int k = 0; k < count; ++k) {
+    message += k == 0 ? " (" : ", ";
+    message += monitorInWords(monitors[k], k);
+  }
+  if (count > 0) message += ")";
+  throw std::runtime_error(message);
+}
+
 // Mouse state for the orbiting camera.
 struct Mouse {
   bool dragging = false;
@@ -53,19 +87,34 @@ struct Window::Impl {
   std::vector<vk::Image> images;
   vk::Extent2D extent;
   vk::raii::Fence acquired{nullptr};
-  OrbitCamera camera, initialCamera;
+  OrbitCamera camera;
   Mouse mouse;
+  GLFWmonitor* monitor = nullptr;  // for full screen
+  bool fullscreen = false;
+  std::array<int, 4> windowed{0, 0, 0, 0};  // x, y, width, height of the window before it went full screen
+  bool resized = false;                     // the framebuffer changed size: the swapchain is made again
+  // The inset (setInset): its pixels waiting to be copied in, and the image the blit reads.
+  int insetWidth = 0, insetHeight = 0;
+  bool insetChanged = false;
+  DeviceBuffer insetPixels;
+  DeviceImage insetImage;
+  bool insetUploaded = false;  // insetImage holds pixels (in transfer-source layout)
+  // The copies of each frame (captureFrames): a fixed-size image the output is scaled into, and its pixels.
+  DeviceImage captureImage;
+  DeviceBuffer captureBuffer;
+  std::vector<uint8_t> capturedPixels;
   WindowKeys keys;
   PointerListener pointer;  // empty: the mouse only moves the camera
   std::string message;      // the banner's text (showMessage), shown until messageUntil
   std::chrono::steady_clock::time_point messageUntil;
 
-  Impl(const std::string& title, int width, int height, const std::string& device)
-      : ctx(std::make_shared<const VulkanContext>(device, windowExtensions())) {
+  Impl(const std::string& title, int width, int height, const std::string& device, const WindowPlacement& placement)
+      : ctx(std::make_shared<const VulkanContext>(device, windowExtensions())), monitor(monitorAt(placement.monitor)) {
     glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
     window = glfwCreateWindow(width, height, title.c_str(), nullptr, nullptr);
     if (!window)
       throw std::runtime_error("cannot open a window of " + std::to_string(width) + "x" + std::to_string(height));
+    if (placement.fullscreen) enterFullscreen();
     VkSurfaceKHR raw = VK_NULL_HANDLE;
     if (glfwCreateWindowSurface(static_cast<VkInstance>(*ctx->instance), window, nullptr, &raw) != VK_SUCCESS)
       throw std::runtime_error("cannot create a Vulkan surface for the window");
@@ -79,6 +128,39 @@ struct Window::Impl {
     glfwSetMouseButtonCallback(window, onButton);
     glfwSetCursorPosCallback(window, onCursor);
     glfwSetScrollCallback(window, onScroll);
+    glfwSetFramebufferSizeCallback(window, [](GLFWwindow* w, int, int) { of(w).resized = true; });
+  }
+
+  // Borderless over the monitor at its current video mode (so the monitor does not switch modes), the pointer
+  // hidden: a projector shows the picture and nothing else.
+  void enterFullscreen() {
+    glfwGetWindowPos(window, &windowed[0], &windowed[1]);
+    glfwGetWindowSize(window, &windowed[2], &windowed[3]);
+    const GLFWvidmode* mode = glfwGetVideoMode(monitor);
+    if (!mode) throw std::runtime_error("full screen: the monitor " + describeMonitor() + " reports no video mode");
+    glfwSetWindowMonitor(window, monitor, 0, 0, mode->width, mode->height, mode->refreshRate);
+    glfwSetInputMode(window, GLFW_CURSOR, GLFW_CURSOR_HIDDEN);
+    fullscreen = true;
+    resized = true;
+  }
+  void leaveFullscreen() {
+    glfwSetWindowMonitor(window, nullptr, windowed[0], windowed[1], windowed[2], windowed[3], GLFW_DONT_CARE);
+    glfwSetInputMode(window, GLFW_CURSOR, GLFW_CURSOR_NORMAL);
+    fullscreen = false;
+    resized = true;
+  }
+  [[nodiscard]] std::string describeMonitor() const {
+    int count = 0, x = 0, y = 0;
+    GLFWmonitor** monitors = glfwGetMonitors(&count);
+    const int index = static_cast<int>(std::find(monitors, monitors + count, monitor) - monitors);
+    glfwGetMonitorPos(monitor, &x, &y);
+    std::string words = "monitor ";
+    words += monitorInWords(monitor, index);
+    words += " at ";
+    words += std::to_string(x);
+    words += ',';
+    words += std::to_string(y);
+    return words;
   }
 
   ~Impl() {
@@ -111,6 +193,7 @@ struct Window::Impl {
     const bool immediate = std::find(modes.begin(), modes.end(), vk::PresentModeKHR::eImmediate) != modes.end();
     const uint32_t count =
         caps.maxImageCount == 0 ? caps.minImageCount + 1 : std::min(caps.minImageCount + 1, caps.maxImageCount);
+    resized = false;
     vk::SwapchainCreateInfoKHR info(
         {}, *surface, count, format->format, format->colorSpace, extent, 1, vk::ImageUsageFlagBits::eTransferDst,
         vk::SharingMode::eExclusive, {}, caps.currentTransform, vk::CompositeAlphaFlagBitsKHR::eOpaque,
@@ -148,6 +231,12 @@ struct Window::Impl {
       case GLFW_KEY_HOME:
         k.resetCamera = true;
         break;
+      case GLFW_KEY_F:
+        k.fullscreen = true;
+        break;
+      case GLFW_KEY_V:
+        k.performerView = true;
+        break;
       default:
         break;
     }
@@ -175,6 +264,7 @@ struct Window::Impl {
     if (m.mouse.dragging) {
       m.camera.yaw -= 0.005f * static_cast<float>(x - m.mouse.x);
       m.camera.pitch = std::clamp(m.camera.pitch + 0.005f * static_cast<float>(y - m.mouse.y), -1.4f, 1.4f);
+      m.keys.cameraMoved = true;
     }
     m.mouse.x = x;
     m.mouse.y = y;
@@ -187,10 +277,12 @@ struct Window::Impl {
     }
     OrbitCamera& c = m.camera;
     c.distance = std::clamp(c.distance * std::pow(0.9f, static_cast<float>(dy)), 0.3f, 30.0f);
+    m.keys.cameraMoved = true;
   }
 
   // Waits for the next swapchain image; recreates the swapchain when the window changed.
   uint32_t acquire() {
+    if (resized) makeSwapchain();
     for (;;) {
       try {
         const auto [result, index] = swapchain.acquireNextImage(UINT64_MAX, nullptr, *acquired);
@@ -205,7 +297,7 @@ struct Window::Impl {
   }
 
   // Copies the renderer's output into swapchain image `index`, scaled to the window, ready to present.
-  void recordBlit(const vk::raii::CommandBuffer& cb, vk::Image output, vk::Extent2D from, uint32_t index) const {
+  void recordBlit(const vk::raii::CommandBuffer& cb, vk::Image output, vk::Extent2D from, uint32_t index) {
     using Stage = vk::PipelineStageFlagBits;
     using Access = vk::AccessFlagBits;
     const vk::Image target = images[index];
@@ -218,13 +310,74 @@ struct Window::Impl {
                                                                               static_cast<int32_t>(extent.height), 1)};
     cb.blitImage(output, vk::ImageLayout::eTransferSrcOptimal, target, vk::ImageLayout::eTransferDstOptimal,
                  vk::ImageBlit(colour, src, colour, dst), vk::Filter::eLinear);
+    if (insetUploaded) recordInset(cb, target);
     transitionImage(cb, target, vk::ImageLayout::eTransferDstOptimal, vk::ImageLayout::ePresentSrcKHR, Stage::eTransfer,
                     Access::eTransferWrite, Stage::eBottomOfPipe, {});
+    if (captureBuffer.size() > 0) recordCapture(cb, output, from);
+  }
+
+  // The inset's new pixels into its image (when they changed), then the image over the bottom right corner of
+  // `target`, which the main blit wrote before: a barrier orders the two writes.
+  void recordInset(const vk::raii::CommandBuffer& cb, vk::Image target) {
+    using Stage = vk::PipelineStageFlagBits;
+    using Access = vk::AccessFlagBits;
+    using Layout = vk::ImageLayout;
+    if (insetChanged) {
+      transitionImage(cb, insetImage.handle(), Layout::eUndefined, Layout::eTransferDstOptimal, Stage::eTransfer,
+                      Access::eTransferRead, Stage::eTransfer, Access::eTransferWrite);
+      cb.copyBufferToImage(insetPixels.handle(), insetImage.handle(), Layout::eTransferDstOptimal,
+                           vk::BufferImageCopy(0, 0, 0, {vk::ImageAspectFlagBits::eColor, 0, 0, 1}, {0, 0, 0},
+                                               vk::Extent3D(insetImage.extent(), 1)));
+      transitionImage(cb, insetImage.handle(), Layout::eTransferDstOptimal, Layout::eTransferSrcOptimal,
+                      Stage::eTransfer, Access::eTransferWrite, Stage::eTransfer, Access::eTransferRead);
+      insetChanged = false;
+    }
+    const vk::MemoryBarrier afterBlit(Access::eTransferWrite, Access::eTransferWrite);
+    cb.pipelineBarrier(Stage::eTransfer, Stage::eTransfer, {}, afterBlit, {}, {});
+    const auto [x0, y0, x1, y1] = insetRectangle();
+    const vk::ImageSubresourceLayers colour(vk::ImageAspectFlagBits::eColor, 0, 0, 1);
+    const std::array<vk::Offset3D, 2> src{vk::Offset3D(0, 0, 0), vk::Offset3D(insetWidth, insetHeight, 1)};
+    const std::array<vk::Offset3D, 2> dst{vk::Offset3D(x0, y0, 0), vk::Offset3D(x1, y1, 1)};
+    cb.blitImage(insetImage.handle(), Layout::eTransferSrcOptimal, target, Layout::eTransferDstOptimal,
+                 vk::ImageBlit(colour, src, colour, dst), vk::Filter::eLinear);
+  }
+  // Where the inset goes: kInsetWidth of the window's width, its own aspect, a margin from the bottom right corner.
+  [[nodiscard]] std::array<int32_t, 4> insetRectangle() const {
+    const auto w = static_cast<int32_t>(Window::kInsetWidth * extent.width);
+    const auto h = static_cast<int32_t>(static_cast<double>(w) * insetHeight / std::max(insetWidth, 1));
+    const int32_t margin = std::max<int32_t>(4, static_cast<int32_t>(extent.height) / 60);
+    const auto x1 = static_cast<int32_t>(extent.width) - margin, y1 = static_cast<int32_t>(extent.height) - margin;
+    return {std::max(0, x1 - w), std::max(0, y1 - h), x1, y1};
+  }
+
+  // The output scaled into the capture image, and that copied to the capture buffer for the host to read.
+  void recordCapture(const vk::raii::CommandBuffer& cb, vk::Image output, vk::Extent2D from) const {
+    using Stage = vk::PipelineStageFlagBits;
+    using Access = vk::AccessFlagBits;
+    using Layout = vk::ImageLayout;
+    const vk::Extent2D size = captureImage.extent();
+    transitionImage(cb, captureImage.handle(), Layout::eUndefined, Layout::eTransferDstOptimal, Stage::eTransfer,
+                    Access::eTransferRead, Stage::eTransfer, Access::eTransferWrite);
+    const vk::ImageSubresourceLayers colour(vk::ImageAspectFlagBits::eColor, 0, 0, 1);
+    const std::array<vk::Offset3D, 2> src{
+        vk::Offset3D(0, 0, 0), vk::Offset3D(static_cast<int32_t>(from.width), static_cast<int32_t>(from.height), 1)};
+    const std::array<vk::Offset3D, 2> dst{
+        vk::Offset3D(0, 0, 0), vk::Offset3D(static_cast<int32_t>(size.width), static_cast<int32_t>(size.height), 1)};
+    cb.blitImage(output, Layout::eTransferSrcOptimal, captureImage.handle(), Layout::eTransferDstOptimal,
+                 vk::ImageBlit(colour, src, colour, dst), vk::Filter::eLinear);
+    transitionImage(cb, captureImage.handle(), Layout::eTransferDstOptimal, Layout::eTransferSrcOptimal,
+                    Stage::eTransfer, Access::eTransferWrite, Stage::eTransfer, Access::eTransferRead);
+    cb.copyImageToBuffer(
+        captureImage.handle(), Layout::eTransferSrcOptimal, captureBuffer.handle(),
+        vk::BufferImageCopy(0, 0, 0, {vk::ImageAspectFlagBits::eColor, 0, 0, 1}, {0, 0, 0}, vk::Extent3D(size, 1)));
+    const vk::MemoryBarrier toHost(Access::eTransferWrite, Access::eHostRead);
+    cb.pipelineBarrier(Stage::eTransfer, Stage::eHost, {}, toHost, {}, {});
   }
 };
 
-Window::Window(const std::string& title, int width, int height, const std::string& device)
-    : impl_(std::make_unique<Impl>(title, width, height, device)) {}
+Window::Window(const std::string& title, int width, int height, const std::string& device,
+               const WindowPlacement& placement)
+    : impl_(std::make_unique<Impl>(title, width, height, device, placement)) {}
 
 Window::~Window() = default;
 
@@ -239,9 +392,65 @@ WindowKeys Window::poll() {
   WindowKeys keys = m.keys;
   m.keys = {};
   if (glfwWindowShouldClose(m.window)) keys.quit = true;
-  if (keys.resetCamera) m.camera = m.initialCamera;
   return keys;
 }
+
+void Window::setFullscreen(bool on) {
+  if (on == impl_->fullscreen) return;
+  if (on)
+    impl_->enterFullscreen();
+  else
+    impl_->leaveFullscreen();
+  glfwPollEvents();
+  impl_->makeSwapchain();
+}
+
+bool Window::fullscreen() const { return impl_->fullscreen; }
+std::string Window::monitorDescription() const { return impl_->describeMonitor(); }
+std::array<int, 2> Window::size() const {
+  return {static_cast<int>(impl_->extent.width), static_cast<int>(impl_->extent.height)};
+}
+
+void Window::setInset(int width, int height, const std::vector<uint8_t>& rgb) {
+  Impl& m = *impl_;
+  if (rgb.empty() || width <= 0 || height <= 0) {
+    m.insetUploaded = false;
+    return;
+  }
+  if (rgb.size() != 3ull * static_cast<size_t>(width) * static_cast<size_t>(height))
+    throw std::invalid_argument("Window::setInset: " + std::to_string(rgb.size()) + " bytes for " +
+                                std::to_string(width) + "x" + std::to_string(height) + " RGB");
+  if (width != m.insetWidth || height != m.insetHeight || m.insetPixels.size() == 0) {
+    m.ctx->device.waitIdle();  // the old image may still be read by a frame in flight
+    const vk::Extent2D extent(static_cast<uint32_t>(width), static_cast<uint32_t>(height));
+    m.insetImage = DeviceImage(*m.ctx, extent, vk::Format::eR8G8B8A8Srgb,
+                               vk::ImageUsageFlagBits::eTransferDst | vk::ImageUsageFlagBits::eTransferSrc);
+    m.insetPixels = DeviceBuffer(*m.ctx, 4ull * width * height, DeviceBuffer::Placement::Host);
+    m.insetWidth = width;
+    m.insetHeight = height;
+  }
+  std::vector<uint8_t> rgba(4ull * width * height, 255);
+  for (size_t i = 0; i < static_cast<size_t>(width) * static_cast<size_t>(height); ++i)
+    for (size_t c = 0; c < 3; ++c) rgba[4 * i + c] = rgb[3 * i + c];
+  m.insetPixels.write(rgba.data(), rgba.size());  // present() waits for its frame: nothing reads it now
+  m.insetChanged = true;
+  m.insetUploaded = true;
+}
+
+void Window::captureFrames(int width, int height) {
+  Impl& m = *impl_;
+  m.ctx->device.waitIdle();
+  m.captureBuffer = DeviceBuffer();
+  m.captureImage = DeviceImage();
+  m.capturedPixels.clear();
+  if (width <= 0 || height <= 0) return;
+  const vk::Extent2D extent(static_cast<uint32_t>(width), static_cast<uint32_t>(height));
+  m.captureImage = DeviceImage(*m.ctx, extent, vk::Format::eR8G8B8A8Srgb,
+                               vk::ImageUsageFlagBits::eTransferDst | vk::ImageUsageFlagBits::eTransferSrc);
+  m.captureBuffer = DeviceBuffer(*m.ctx, 4ull * width * height, DeviceBuffer::Placement::Readback);
+}
+
+const std::vector<uint8_t>& Window::captured() const { return impl_->capturedPixels; }
 
 void Window::setTitle(const std::string& title) { glfwSetWindowTitle(impl_->window, title.c_str()); }
 
@@ -256,12 +465,15 @@ void Window::showMessage(const std::string& line, double seconds) {
 void Window::present(Renderer& renderer, RenderFrame frame) {
   Impl& m = *impl_;
   const uint32_t index = m.acquire();
-  frame.camera = m.camera;
   if (frame.banner.empty() && std::chrono::steady_clock::now() < m.messageUntil) frame.banner = m.message;
   const vk::Extent2D from(static_cast<uint32_t>(renderer.options().width),
                           static_cast<uint32_t>(renderer.options().height));
   renderer.render(frame, false,
                   [&](const vk::raii::CommandBuffer& cb, vk::Image output) { m.recordBlit(cb, output, from, index); });
+  if (m.captureBuffer.size() > 0) {  // render() waited for the frame: its copy is there
+    m.capturedPixels.resize(m.captureBuffer.size());
+    m.captureBuffer.read(m.capturedPixels.data(), m.capturedPixels.size());
+  }
   try {
     const vk::SwapchainKHR chain = *m.swapchain;
     (void)m.ctx->queue.presentKHR(vk::PresentInfoKHR({}, chain, index));

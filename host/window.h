@@ -1,12 +1,16 @@
 #pragma once
 // The live window (GLFW on X11): a Vulkan swapchain that shows the renderer's output, an orbiting camera on the
-// mouse (drag to turn, wheel to zoom) and the keys of `giantbubble view` (app/view_command.cpp). It runs under
-// Xvfb with lavapipe, which is how CI tests it.
+// mouse (drag to turn, wheel to zoom) and the keys of `giantbubble view` (app/view_command.cpp); full screen on a
+// chosen monitor (a projector), a picture-in-picture inset (the performer view) and a copy of each frame at a fixed
+// size (the video stream). It runs under Xvfb with lavapipe, which is how CI tests it.
 
+#include <array>
 #include <chrono>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "render_scene.h"
 #include "renderer.h"
@@ -25,6 +29,15 @@ struct WindowKeys {
   bool pause = false;          // Space or P: pause / resume the simulation
   bool nextColouring = false;  // C: interference -> thickness -> air flow
   bool resetCamera = false;    // Home
+  bool fullscreen = false;     // F: full screen <-> window
+  bool performerView = false;  // V: the performer view on or off
+  bool cameraMoved = false;    // the mouse turned or zoomed camera() (a drag, the wheel)
+};
+
+// Where the window goes: a window of the given size, or borderless over a whole monitor at its own resolution.
+struct WindowPlacement {
+  bool fullscreen = false;  // full screen on `monitor` from the start (F toggles)
+  int monitor = 0;          // index in the display's list of monitors (0: the primary)
 };
 
 // Where the mouse's hand input goes when the wands follow the mouse (`giantbubble live --input mouse`): the
@@ -39,20 +52,42 @@ struct PointerListener {
 class Window {
  public:
   // Opens a window and a Vulkan device that can present to it (`device` as for VulkanContext). Throws with the
-  // reason when there is no display or no such device.
-  Window(const std::string& title, int width, int height, const std::string& device);
+  // reason when there is no display, no such monitor (naming the ones there are) or no such device.
+  Window(const std::string& title, int width, int height, const std::string& device,
+         const WindowPlacement& placement = {});
   ~Window();
   Window(const Window&) = delete;  // owns the window and the swapchain
   Window& operator=(const Window&) = delete;
 
   [[nodiscard]] std::shared_ptr<const VulkanContext> context() const;
-  // Handles window events: returns the keys pressed and moves the camera with the mouse.
+  // Handles window events: returns the keys pressed and moves camera() with the mouse (WindowKeys::cameraMoved).
   WindowKeys poll();
+  // The camera the mouse turns and zooms; the caller draws with it or with its own (a camera following the film).
   [[nodiscard]] OrbitCamera& camera();
   // Hands the left and right buttons and the wheel (with a button held) to `listener` (see PointerListener).
   void setPointerListener(PointerListener listener);
-  // Renders `frame` and shows it (the renderer's image scaled to the window). Waits until it is presented.
+  // Renders `frame` (with its own camera) and shows it: the renderer's image scaled to the window, the inset over
+  // its bottom right corner. Waits until it is presented.
   void present(Renderer& renderer, RenderFrame frame);
+
+  // Full screen: borderless over the placement's monitor at its own resolution (no change of video mode), or back
+  // to the window as it was. The swapchain follows at once; size() says its new size.
+  void setFullscreen(bool on);
+  [[nodiscard]] bool fullscreen() const;
+  // The monitor used for full screen, in words ("monitor 0 'HDMI-1' 1920x1080 at 0,0").
+  [[nodiscard]] std::string monitorDescription() const;
+  // The pixels presented: the swapchain's width and height.
+  [[nodiscard]] std::array<int, 2> size() const;
+
+  // A picture-in-picture over the bottom right corner of what is shown, kInsetWidth of the window's width, from
+  // the next present on: width x height RGB 8-bit (sRGB), rows from the top. Empty `rgb`: none.
+  void setInset(int width, int height, const std::vector<uint8_t>& rgb);
+  static constexpr double kInsetWidth = 0.3;
+
+  // From the next present on, each frame drawn (without the inset) is also scaled to width x height and kept:
+  // captured() gives it as RGBA 8-bit (sRGB), rows from the top. 0 x 0: no copies.
+  void captureFrames(int width, int height);
+  [[nodiscard]] const std::vector<uint8_t>& captured() const;
   // The title bar's text (the live show's figures).
   void setTitle(const std::string& title);
   // A status line for the audience and the operator (a recovery, a lost camera, nobody in front of it), shown

@@ -20,6 +20,7 @@ packages=(
   libfreenect-dev libfreenect-bin    # Kinect v1 depth capture; fakenect plays recordings back
   libarchive-dev                     # recordings packed as .tar.gz (giantbubble evaluate, gb_hands_bench)
   libglfw3-dev xvfb xauth            # live window; the window test runs under Xvfb
+  x11-utils                          # xwininfo: the full-screen test checks that the window covers the screen
   ffmpeg                             # MP4 output of rendered frames (optional at run time)
   libtomlplusplus-dev                # scene files
   liblo-dev liblo-tools              # OSC events for show control; oscdump in tests

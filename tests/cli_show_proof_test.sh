@@ -165,14 +165,14 @@ case "$CASE" in
     grep -q "^50,.*poked" run/stats.csv || fail "--burst-at 1 did not poke at frame 50"
     ;;
   live_input_ends)
-    # A live show whose input ends: the wands rest, the show goes on to the end of --frames.
+    # A live show whose input (a file) ends: the wands rest with their film, the show goes on to the end of --frames.
     trajectory $(seq 0 0.1 0.5) >short.csv
     xvfb-run -a "$EXE" live --input trajectory:short.csv --frames 60 --width 160 --height 120 --particles 400 \
       --backend cpu --osc 127.0.0.1:9 >log.txt 2>&1
     rc=$?
     cat log.txt
     [ "$rc" -eq 0 ] || fail "exit status $rc"
-    grep -q "the input has ended or was lost; the wands rest" log.txt || fail "the end of the input was not said"
+    grep -q "the input has played to its end; the wands rest" log.txt || fail "the end of the input was not said"
     grep -q "presented 60 frames" log.txt || fail "the show did not go on"
     ;;
   live_unstable)

@@ -1,0 +1,64 @@
+#pragma once
+// The performer view of the live window: what a depth camera sees (its depth, the floor, the body taken for the
+// performer, the hands found and the hands reported), drawn as `record --depth-plot` draws it (depth_plot.h), as a
+// picture-in-picture. V toggles it; until then it shows while the show waits for a performer with a camera input
+// (kinect, fakenect:DIR), so that whoever steps in sees where the camera looks.
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "hand_sources.h"
+#include "kinect_depth.h"
+#include "png_image.h"
+
+namespace gb {
+
+// A hand source passed through unchanged that keeps the newest depth frame and hand sample of a depth camera
+// (a DepthHandSource inside; any other source has no view).
+class ObservedHandSource : public HandSource {
+ public:
+  explicit ObservedHandSource(std::unique_ptr<HandSource> source);
+  std::optional<HandSample> next() override;
+  [[nodiscard]] std::string describe() const override { return source_->describe(); }
+  [[nodiscard]] double period() const override { return source_->period(); }
+  [[nodiscard]] std::optional<double> length() const override { return source_->length(); }
+  std::vector<std::string> takeMessages() override { return source_->takeMessages(); }
+  [[nodiscard]] std::string whyNoHands() const override { return source_->whyNoHands(); }
+
+  [[nodiscard]] bool hasDepth() const { return depth_ != nullptr; }
+  // The newest depth frame drawn at 1/step of the camera's resolution, when one arrived since the last call.
+  std::optional<RgbImage> takeView(int step);
+
+ private:
+  std::unique_ptr<HandSource> source_;
+  DepthHandSource* depth_ = nullptr;  // source_ when it is one
+  kinect::DepthFrame frame_;
+  bool fresh_ = false;  // frame_ not drawn yet
+  HandSample latest_;
+};
+
+// Whether the view shows, and the picture to show.
+class PerformerView {
+ public:
+  static constexpr int kStep = 2;  // drawn at 320 x 240: the inset is a third of the window's width at most
+
+  // The source whose frames are shown (nullptr: none, e.g. while the input is opened again).
+  void attach(ObservedHandSource* source) { source_ = source; }
+  // Waiting for a performer: the view shows then, unless V said otherwise.
+  void setWaiting(bool waiting) { waiting_ = waiting; }
+  // V: shows it if hidden and hides it if shown; says what it did.
+  std::string toggle();
+  [[nodiscard]] bool shown() const;
+  // The picture to show when a new one is there (nothing: keep the one shown); an empty image hides it.
+  std::optional<RgbImage> update();
+
+ private:
+  ObservedHandSource* source_ = nullptr;
+  bool waiting_ = false;
+  std::optional<bool> chosen_;  // by V
+  bool wasShown_ = false;
+};
+
+}  // namespace gb

@@ -59,7 +59,7 @@ struct Params {
   // stress and the air's shear, held by viscosity; it replaces Eqs. (14)-(15) unless filmFlow is 0.
   int filmFlow GB_DEFAULT(1);                    // 1: the thin-film flow; 0: the paper's drainage, Eqs. (14)-(15)
   float liquidViscosity GB_DEFAULT(1e-3f);       // mu of the soap solution (Pa s): water's
-  float surfaceRigidity GB_DEFAULT(1e-5f);       // phi in [0, 1]: how far the surfaces hold the liquid back, the share
+  float surfaceRigidity GB_DEFAULT(3e-4f);       // phi in [0, 1]: how far the surfaces hold the liquid back, the share
                                                  // of the Poiseuille friction 12 mu / e^2 it feels (1: immobile
                                                  // surfaces, lubrication; 0: plug flow)
   float flowViscosity GB_DEFAULT(2e-4f);         // nu_f, the flow's in-plane viscosity at the particles' scale (m^2/s)

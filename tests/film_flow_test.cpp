@@ -235,7 +235,9 @@ TEST(FilmFlow, ASurfactantStepRelaxesByMarangoniFlow) {
     return sum;
   };
   const double contrastBefore = contrast(), rightBefore = rightLiquid(), total = totalLiquid(s);
-  const int steps = 400;  // 8 s: the capped Marangoni diffusion (kMarangoniCourant) crosses the half-width in seconds
+  // 12 s: the capped Marangoni diffusion (kMarangoniCourant), slowed by the surfaces' friction, crosses the half-width
+  // in seconds.
+  const int steps = 600;
   flow(p, film, steps, 0.02f);
   std::printf("ln Gamma step %.3f -> %.3f, right half's liquid x %.3f\n", contrastBefore, contrast(),
               rightLiquid() / rightBefore);

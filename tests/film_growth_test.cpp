@@ -327,10 +327,6 @@ TEST(FilmGrowth, AFastStrokeDrawsNewFilmUntilTheSolutionRunsOut) {
   Params p;
   p.particlesAtFullSolution = 1200;
   p.solutionReserve = 0.3f;  // a little: the wire runs dry within the stroke
-  // The paper's drainage (Eqs. 14-15): the film flow thins this fast stroke's 3.5 um film into bands that its
-  // stretching then takes below the thickness threshold (a burst by thinning at about 2 s, docs/model.md "Film flow"),
-  // and this test is about the wire's reserve running out.
-  p.filmFlow = 0;
   // The wire's growth alone: with the film's own yield (the default) the bag stretches in its interior as well and
   // this stroke leaves 31% of the reserve on the wire.
   p.yieldStretch = 0.0f;

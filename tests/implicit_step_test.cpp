@@ -249,10 +249,6 @@ INSTANTIATE_TEST_SUITE_P(ImplicitStep, RandomAbuse,
 TEST(ImplicitStep, FollowsTheExplicitReferenceOnTheDefaultStroke) {
   Params p;
   p.particlesAtFullSolution = 2000;
-  // The paper's drainage (Eqs. 14-15): the film flow thins this fast stroke's 3.5 um film into bands that its
-  // stretching then takes below the thickness threshold (a burst by thinning at about 2 s, docs/model.md "Film flow"),
-  // and this test is about the integrators.
-  p.filmFlow = 0;
   // The integrators on the elastic film: the yield between frames is a threshold on each spring's stretch, so
   // it turns the two integrators' small differences into different rest lengths that then add up (with it the
   // area was 1.4 m^2 apart, against an added area of 0.9 m^2).
@@ -295,10 +291,6 @@ TEST(ImplicitStep, FollowsTheExplicitReferenceOnTheDefaultStroke) {
 TEST(ImplicitStep, TwoFrameStepsFollowOneFrameStepsOnTheDefaultStroke) {
   Params p;
   p.particlesAtFullSolution = 2000;
-  // The paper's drainage (Eqs. 14-15): the film flow thins this fast stroke's 3.5 um film into bands that its
-  // stretching then takes below the thickness threshold (a burst by thinning at about 2 s, docs/model.md "Film flow"),
-  // and this test is about the step length.
-  p.filmFlow = 0;
   p.yieldStretch = 0.0f;
   const GestureOptions g;
   Simulation shortSteps(p, WandTool{}, gestureAt(Gesture::Straight, g, 0.0));
@@ -422,9 +414,6 @@ TEST(ImplicitStep, AFreeBubbleKeepsTheExplicitBoyleVolume) {
 TEST(ImplicitStep, AFreeBubbleFallsAsGravityPullsItsCentreOfMass) {
   Params p;
   p.airDrag = 0.0f;
-  // The paper's drainage: the film flow moves the bubble's weight down its film between steps, which the step's
-  // energy budget does not count (it gives back 3.7% of the momentum over the second); this test is about the step.
-  p.filmFlow = 0;
   Simulation sim(p, generateSphere(p, Vec3(0, 1.5f, 0), 0.4f, 3), WandState{});
   auto momentumAndWeight = [&] {
     const State& s = sim.film().state;

@@ -559,9 +559,6 @@ TEST_P(VulkanScene, FiveHundredStepsStayWithinAMillimetre) {
   p.particlesAtFullSolution = 2000;
   p.solutionReserve = 0.0f;
   p.coarseIterations = GetParam().coarseIterations;
-  // The paper's drainage: with the film flow the stroke's backends part by 2.6 cm within the 500 steps (measured);
-  // the flow is compared stage by stage (EveryStageAloneMatchesTheCpuReference).
-  p.filmFlow = 0;
   GestureOptions g;
   g.start = 0.0f;
   auto makeSim = [&](std::unique_ptr<Stepper> stepper) {
@@ -578,17 +575,32 @@ TEST_P(VulkanScene, FiveHundredStepsStayWithinAMillimetre) {
   auto gpu = makeSim(std::make_unique<VulkanStepper>(device));
   long steps = 0;
   double movedMost = 0;  // the largest |volume| on the way: the scene must have moved
+  // The films are compared after 500 steps or, where the film begins to burst before that (the stroke's dry film
+  // drains to black film under the wire and bursts by thinning after about 2.3 s), at the frame before, which both
+  // backends must reach together.
+  double worstDistance = 0;
+  FrameStats a, b;
   for (int f = 1; steps < 500; ++f) {
     const WandState w =
         GetParam().bubble ? WandState{} : gestureAt(Gesture::Straight, g, static_cast<float>(f) * p.frameTime);
     cpu->advanceFrame(w);
     gpu->advanceFrame(w);
+    ASSERT_EQ(cpu->lastEvents().started, gpu->lastEvents().started) << "one backend's film began to burst, frame " << f;
+    if (cpu->lastEvents().started) {
+      std::printf("%s: the film began to burst at frame %d (%s) on both backends\n", GetParam().name, f,
+                  cpu->lastEvents().cause ? cpu->lastEvents().cause : "?");
+      break;
+    }
     steps += cpu->substepsPerFrame();
     movedMost = std::max(movedMost, std::abs(cpu->stats().volume));
+    worstDistance = worstParticleDistance(cpu->film(), gpu->film());
+    a = cpu->stats();
+    b = gpu->stats();
   }
-  const double worstDistance = worstParticleDistance(cpu->film(), gpu->film());
-  const FrameStats a = cpu->stats(), b = gpu->stats();
-  std::printf("%s: %ld steps, worst particle distance %.2e m\n", GetParam().name, steps, worstDistance);
+  std::printf("%s: %ld steps compared, worst particle distance %.2e m\n", GetParam().name, steps, worstDistance);
+  // Only the stroke on the film flow bursts within the 500 steps; 100 of them are what a comparison needs to mean
+  // something (the differences grow by three orders of magnitude within the first 100 steps, then level off).
+  EXPECT_GE(steps, GetParam().bubble ? 500 : 100) << "too few steps before the film began to burst";
   EXPECT_LT(worstDistance, 1e-3);
   EXPECT_NEAR(b.area, a.area, 1e-3 * a.area);
   // 0.1% of the scene's volume: of its peak, since a film back at rest sweeps almost none (2e-6 m^3).

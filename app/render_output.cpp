@@ -143,6 +143,7 @@ RenderFrame renderFrameOf(Simulation& sim, const WandState&, const WireFrame& wi
   f.film = &sim.film();
   f.aerosol = &sim.aerosol();
   f.aerosolLifetime = sim.params().aerosolLifetime;
+  f.blackFilmThickness = sim.params().blackFilmThickness;
   f.wireFrame = &wireFrame;
   f.camera = camera;
   if (readInPlace) {

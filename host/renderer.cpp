@@ -565,6 +565,9 @@ struct Renderer::Impl {
     u.pointScale = 0.5f * static_cast<float>(extent.height) / std::tan(0.5f * frame.camera.fovY);
     u.dropletRadius = options.dropletRadius;
     u.thicknessVariation = varied ? 1u : 0u;
+    // Drainage approaches the black film's thickness from above (stages.h, filmFlowLimit): film within a quarter of
+    // it has made the jump to black film.
+    u.blackFilmThickness = 1.25f * frame.blackFilmThickness;
     u.minTubePixels = options.minTubePixels;
     slot().uniforms.write(&u, sizeof u);
   }

@@ -35,17 +35,17 @@ struct RenderOptions {
   int width = 1280;  // pixels
   int height = 720;
   Colouring colouring = Colouring::Interference;
-  float thickColour = 7e-6f;         // thickness drawn red by the thickness colouring (m), as app/ images
-  float airFlowColour = 0.1f;        // air flow strength drawn yellow (m^3/s): the default stroke peaks at 0.08
-  float exposure = 1.0f;             // radiance scale before display encoding
-  float dropletRadius = 0.003f;      // drawn size of an aerosol droplet (m)
-  float minTubePixels = 0.6f;        // the string, wands and rims are drawn at least this radius (pixels):
-                                     // a 4 mm string far away would otherwise break into dashes that
-                                     // no sample pattern can join
-  int samples = 4;                   // multisample anti-aliasing: samples per pixel (the most the device
-                                     // supports up to this; 1: none)
-  float thicknessVariation = 0.45f;  // sigma of the film's drawn thickness swirls (host/film_swirls.h),
-                                     // interference colouring only; 0: the simulated thickness as it is
+  float thickColour = 7e-6f;        // thickness drawn red by the thickness colouring (m), as app/ images
+  float airFlowColour = 0.1f;       // air flow strength drawn yellow (m^3/s): the default stroke peaks at 0.08
+  float exposure = 1.0f;            // radiance scale before display encoding
+  float dropletRadius = 0.003f;     // drawn size of an aerosol droplet (m)
+  float minTubePixels = 0.6f;       // the string, wands and rims are drawn at least this radius (pixels):
+                                    // a 4 mm string far away would otherwise break into dashes that
+                                    // no sample pattern can join
+  int samples = 4;                  // multisample anti-aliasing: samples per pixel (the most the device
+                                    // supports up to this; 1: none)
+  float thicknessVariation = 0.0f;  // sigma of drawn sub-particle thickness swirls (host/film_swirls.h), interference
+                                    // colouring only; 0 (default): the simulated thickness (film flow) as it is
 };
 
 // The largest image side the renderer draws (pixels), whatever the device allows.
@@ -65,8 +65,9 @@ struct RenderFrame {
   const DeviceFilm* deviceFilm = nullptr;  // the Vulkan stepper's buffers on the renderer's device: read in
                                            // place; null: the film's state is uploaded from the host
   const Aerosol* aerosol = nullptr;
-  float aerosolLifetime = 1.0f;          // s, for the droplets' fade
-  const WireFrame* wireFrame = nullptr;  // the wands and their string (or ring)
+  float aerosolLifetime = 1.0f;                            // s, for the droplets' fade
+  float blackFilmThickness = Params{}.blackFilmThickness;  // m: thinner film is drawn as black film
+  const WireFrame* wireFrame = nullptr;                    // the wands and their string (or ring)
   OrbitCamera camera;
   std::string banner;  // a message drawn over the top of the image (host/banner_text.h); empty: none
 };

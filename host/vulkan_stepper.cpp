@@ -374,6 +374,13 @@ struct VulkanStepper::Impl {
         computeToComputeBarrier(cb);  // every outflow is written before anyone gathers
         dispatch(cb, Kernel::DrainageGather, particles, stepIndex);
         break;
+      case Stage::FilmFlow:
+        dispatch(cb, Kernel::FilmFlowVelocity, particles, stepIndex);
+        computeToComputeBarrier(cb);  // every new velocity is written before the limits read their edges
+        dispatch(cb, Kernel::FilmFlowLimit, particles, stepIndex);
+        computeToComputeBarrier(cb);  // every limit and kept surfactant is written before anyone gathers
+        dispatch(cb, Kernel::FilmFlowGather, particles, stepIndex);
+        break;
       case Stage::Count:
         break;
     }

@@ -15,7 +15,7 @@ layout(push_constant) uniform Push { PushBlock pc; };
   layout(std430, binding = b) access buffer NAME##_BUFFER { element declarator; };
 #define GB_PARTICLE_ARRAY(b, NAME, name, components, element, access, transfer, created) \
   layout(std430, binding = b) access buffer NAME##_BUFFER { element name[]; };
-#define GB_PARTICLE_BLOCK(NAME, block, name, transfer) const uint name##Block = block;
+#define GB_PARTICLE_BLOCK(NAME, block, name, components, transfer, created) const uint name##Block = block;
 #include "device_data.h"
 #undef GB_BUFFER
 #undef GB_PARTICLE_ARRAY
@@ -40,6 +40,15 @@ layout(push_constant) uniform Push { PushBlock pc; };
 // The drainage passes' two arrays (drainOutflowBlock, drainWeightBlock from device_data.h).
 #define DRAIN_OUTFLOW(i) drainage[drainOutflowBlock * pc.particles + (i)]
 #define DRAIN_WEIGHT(i) drainage[drainWeightBlock * pc.particles + (i)]
+
+// A per-particle array of the drainage buffer from its block on (device_data.h): one float, or x, y and z blocks.
+#define FLOW(block, i) drainage[(block)*pc.particles + (i)]
+vec3 loadFlow3(uint block, uint i) { return vec3(FLOW(block, i), FLOW(block + 1u, i), FLOW(block + 2u, i)); }
+void storeFlow3(uint block, uint i, vec3 v) {
+  FLOW(block, i) = v.x;
+  FLOW(block + 1u, i) = v.y;
+  FLOW(block + 2u, i) = v.z;
+}
 
 // Vector attribute access: x, y, z blocks of pc.particles floats each.
 #define LOAD3(buf, i) vec3(buf[(i)], buf[pc.particles + (i)], buf[2u * pc.particles + (i)])
@@ -109,4 +118,24 @@ float drainageDirection(vec3 xi, vec3 xj, vec3 g) {
 float boylePressure(float referenceVolume, float currentVolume) {
   return currentVolume > 0.0 ? params.pressureCoefficient * referenceVolume / currentVolume
                              : params.pressureCoefficient;
+}
+
+// logSurfactantRatio of cpu-reference/stages/stages.cpp: ln(Gamma_j / Gamma_i).
+float logSurfactantRatio(float surfactantJ, float thicknessJ, float surfactantI, float thicknessI) {
+  const float a = max(surfactantJ, kLeastSurfactant) * max(thicknessJ, kThinnestFlowingFilm);
+  const float b = max(surfactantI, kLeastSurfactant) * max(thicknessI, kThinnestFlowingFilm);
+  const float x = (a - b) / b;
+  return abs(x) < 0.01 ? x * (1.0 - x * (0.5 - x / 3.0)) : log(a / b);
+}
+
+// filmFlowSweptArea of cpu-reference/stages/stages.cpp: flowSweptArea of i towards j, i's new velocity.
+float areaShare(uint i) {
+  const uint springs = springOffset[i + 1u] - springOffset[i];
+  return springs > 0u ? voronoiArea[i] / float(springs) : 0.0;
+}
+float filmFlowSweptArea(float dt, uint i, uint j) {
+  const vec3 d = LOAD3(position, j) - LOAD3(position, i);
+  const float d2 = dot(d, d);
+  if (!(d2 > 0.0)) return 0.0;
+  return flowSweptArea(dt, areaShare(i), areaShare(j), dot(loadFlow3(flowVelocityNextBlock, i), d), d2);
 }

@@ -8,8 +8,9 @@
 // GB_PARTICLE_ARRAY(binding, NAME, name, components, element, access, transfer, created): a buffer holding one
 //   per-particle array of State, called `name` on both sides: components 3 is a Vec3Array, stored as its x, y and
 //   z blocks of `particles` elements (LOAD3/STORE3); `created` is a new particle's value (State::append).
-// GB_PARTICLE_BLOCK(NAME, block, name, transfer): a per-particle float array of State kept in buffer NAME from
-//   block `block` (of `particles` floats) on, beside the others there (lavapipe allows 32 storage buffers a stage).
+// GB_PARTICLE_BLOCK(NAME, block, name, components, transfer, created): a per-particle float array of State kept in
+//   buffer NAME from block `block` (of `particles` floats) on, beside the others there (lavapipe allows 32 storage
+//   buffers a stage); components 3 is a Vec3Array in blocks block, block + 1 and block + 2.
 //
 // access (GLSL): readonly, or GB_WRITABLE where some stage writes it.
 // transfer (host): ReadBack: load() uploads it and store() brings it back; UploadOnly: load() uploads it, the
@@ -48,9 +49,19 @@ GB_BUFFER(24, BOUNDARY, uint, boundary[], readonly)                 // Topology:
 // The stages' sums: the volume's tree sum, the coarse correction's patch system, the energy budget's terms and
 // slots, one region after the other (reduce regions, shared_step.h).
 GB_BUFFER(25, REDUCE, float, reduce[], GB_WRITABLE)
-GB_BUFFER(26, DRAINAGE, float, drainage[], GB_WRITABLE)  // the drainage passes' two arrays, below
-GB_PARTICLE_BLOCK(DRAINAGE, 0, drainOutflow, ReadBack)   // liquid particle i sends downhill (m^3), drainage pass 1
-GB_PARTICLE_BLOCK(DRAINAGE, 1, drainWeight, ReadBack)    // sum of d_dir of Eq. (14) over i's neighbours, pass 1
+// The liquid's arrays: the paper's drainage passes and the film flow's state and scratch, below.
+GB_BUFFER(26, DRAINAGE, float, drainage[], GB_WRITABLE)
+GB_PARTICLE_BLOCK(DRAINAGE, 0, drainOutflow, 1, ReadBack, 0)  // liquid particle i sends downhill (m^3), drainage pass 1
+GB_PARTICLE_BLOCK(DRAINAGE, 1, drainWeight, 1, ReadBack, 0)   // sum of d_dir of Eq. (14) over i's neighbours, pass 1
+// Film flow (docs/model.md "Film flow"): the liquid's depth-averaged velocity relative to the film's surface, tangent
+// to it (m/s), and the surfactant per liquid, relative to a new film's (Gamma / Gamma_0 = surfactant e / e_0).
+GB_PARTICLE_BLOCK(DRAINAGE, 2, flowVelocity, 3, ReadBack, 0)
+GB_PARTICLE_BLOCK(DRAINAGE, 5, surfactant, 1, ReadBack, 1)
+// Film flow scratch: the new velocity (pass 1), the share of its outflow a particle can give (pass 2, 1: all) and the
+// surfactant at the start of the flow (pass 2), which the gathers of pass 3 read while particles write theirs.
+GB_PARTICLE_BLOCK(DRAINAGE, 6, flowVelocityNext, 3, UploadOnly, 0)
+GB_PARTICLE_BLOCK(DRAINAGE, 9, flowLimit, 1, UploadOnly, 0)
+GB_PARTICLE_BLOCK(DRAINAGE, 10, surfactantBefore, 1, UploadOnly, 0)
 // Per triangle, written by the geometry stage's first pass and gathered by its second (State::triangleNormal,
 // State::cornerArea): (x1 - x0) x (x2 - x0) as x, y and z blocks of `triangles` floats; each corner's Voronoi area.
 GB_BUFFER(27, TRIANGLE_NORMAL, float, triangleNormal[], GB_WRITABLE)

@@ -19,10 +19,14 @@ layout(location = 3) in float airFlowStrength;
 layout(location = 0) out vec4 accum;
 layout(location = 1) out float reveal;
 
-// The sheet's reflected radiance (premultiplied) and its opacity.
+// The sheet's reflected radiance (premultiplied) and its opacity. The thickness is the simulated one interpolated
+// across the triangle. Black film (thinner than u.blackFilmThickness) is tens of nanometres thick and reflects
+// almost nothing: it is drawn as a film of no thickness, whose two reflections cancel, so the patch shows dark and
+// clear, with an edge finer than the particles.
 vec4 interference(vec3 n, vec3 v) {
   const float cosTheta = clamp(dot(n, v), 0.0, 1.0);
-  const vec4 r = texture(thinFilmLut, vec2(lutThicknessTexture(filmThickness), lutAngleTexture(cosTheta)));
+  const float e = filmThickness < u.blackFilmThickness ? 0.0 : filmThickness;
+  const vec4 r = texture(thinFilmLut, vec2(lutThicknessTexture(e), lutAngleTexture(cosTheta)));
   return vec4(r.rgb * environment(reflect(-v, n)), r.a);
 }
 

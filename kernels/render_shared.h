@@ -16,25 +16,26 @@ struct alignas(16) mat4 {
 #define GB_COLOURING_AIR_FLOW 2
 
 struct RenderUniforms {
-  mat4 viewProjection;      // world -> clip (Vulkan: y down, depth 0 near .. 1 far)
-  mat4 skyRays;             // clip -> a view ray's direction from the eye (OrbitCamera::skyRays), for the sky
-  vec4 cameraPosition;      // world (m)
-  vec4 keyLight;            // unit direction towards the key light (the sun, a softbox); w: its strength on props
-  vec4 skyIrradiance;       // mean environment radiance over the upper hemisphere (props' ambient light)
-  vec4 groundIrradiance;    // and over the lower hemisphere
-  vec4 horizon;             // environment radiance just below the horizon (the far ground fades into it); w:
-                            // the floor's fog distance (m)
-  uint particles;           // stride of the x, y, z blocks of the film's vector buffers
-  uint colouring;           // GB_COLOURING_*
-  float thickColour;        // thickness drawn red by the thickness colouring (m)
-  float airFlowColour;      // air flow strength drawn yellow by the air flow colouring (m^3/s)
-  float exposure;           // scale of radiance before display encoding
-  float pointScale;         // droplet sprite size: pixels per metre at distance 1 m
-  float dropletRadius;      // drawn radius of a droplet (m)
-  uint thicknessVariation;  // 1: the interference colouring multiplies the thickness by GB_RENDER_VARIATION
-  float minTubePixels;      // tubes (string, wands, rims) are drawn at least this radius in pixels, so that
-                            // a string thinner than a pixel stays a continuous anti-aliased line
-  uint pad0, pad1, pad2;
+  mat4 viewProjection;       // world -> clip (Vulkan: y down, depth 0 near .. 1 far)
+  mat4 skyRays;              // clip -> a view ray's direction from the eye (OrbitCamera::skyRays), for the sky
+  vec4 cameraPosition;       // world (m)
+  vec4 keyLight;             // unit direction towards the key light (the sun, a softbox); w: its strength on props
+  vec4 skyIrradiance;        // mean environment radiance over the upper hemisphere (props' ambient light)
+  vec4 groundIrradiance;     // and over the lower hemisphere
+  vec4 horizon;              // environment radiance just below the horizon (the far ground fades into it); w:
+                             // the floor's fog distance (m)
+  uint particles;            // stride of the x, y, z blocks of the film's vector buffers
+  uint colouring;            // GB_COLOURING_*
+  float thickColour;         // thickness drawn red by the thickness colouring (m)
+  float airFlowColour;       // air flow strength drawn yellow by the air flow colouring (m^3/s)
+  float exposure;            // scale of radiance before display encoding
+  float pointScale;          // droplet sprite size: pixels per metre at distance 1 m
+  float dropletRadius;       // drawn radius of a droplet (m)
+  uint thicknessVariation;   // 1: the interference colouring multiplies the thickness by GB_RENDER_VARIATION
+  float minTubePixels;       // tubes (string, wands, rims) are drawn at least this radius in pixels, so that
+                             // a string thinner than a pixel stays a continuous anti-aliased line
+  float blackFilmThickness;  // thinner film is black film: the interference colouring draws no reflection (m)
+  uint pad1, pad2;
 };
 
 #ifdef __cplusplus

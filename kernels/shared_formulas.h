@@ -42,6 +42,30 @@ GB_CONST float kPatchTrustScale = 2.0f;
 // Below this normal air speed (m/s) the air coupling fades out: still air only drags (airCoupling).
 GB_CONST float kStillAirSpeed = 0.05f;
 
+// Film flow (filmFlowVelocity, filmFlowLimit, filmFlowGather). Film thinner than this counts as this thick in the
+// flow's rates, which divide by the thickness (m): a particle whose liquid all ran off still has a finite rate.
+GB_CONST float kThinnestFlowingFilm = 1e-9f;
+// A particle sends at most this share of its liquid above the black film's in one flow step (the flow's limiter):
+// with the outflow capped every particle keeps its black film whatever the speed.
+GB_CONST float kLargestOutflowShare = 0.5f;
+// The Marangoni stress diffuses the surfactant (and the liquid it carries) with the diffusivity
+// D = E_M / (rho e) dt / (1 + dt rates) of the velocity update: filmFlowVelocity scales it down where D dt exceeds
+// this share of the particle's squared spacing, the largest an explicit transport step carries without overshooting.
+GB_CONST float kMarangoniCourant = 2.0f;
+// The surfactant per liquid that counts in ln(Gamma) is at least this (relative to a new film's): ln of 0 is not a
+// tension.
+GB_CONST float kLeastSurfactant = 1e-6f;
+
+// The film area that particle i's liquid velocity u_i sweeps across the one-ring edge to neighbour j in dt (m^2):
+// dt max(u_i . d, 0) / |d| times the edge's dual length 2 (A_i / k_i + A_j / k_j) / |d|, A the Voronoi areas, k the
+// particles' spring counts (on a regular mesh the dual edge |d| / sqrt(3)); `along` is u_i . d, d = x_j - x_i. Each
+// particle sends with its own velocity (flux splitting): a thin particle, slowed by its friction, is not emptied at a
+// thick neighbour's speed. The edge's net flux, i's sending less j's, is computed alike from both ends and so is
+// exactly antisymmetric: what leaves one particle enters the other to the last bit.
+GB_FORMULA float flowSweptArea(float dt, float shareI, float shareJ, float along, float lengthSquared) {
+  return along > 0.0f ? dt * (2.0f * (shareI + shareJ)) * along / lengthSquared : 0.0f;
+}
+
 #undef GB_CONST
 #undef GB_FORMULA
 #undef GB_REAL_FORMULA

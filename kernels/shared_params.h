@@ -55,9 +55,22 @@ struct Params {
   float drainageRate GB_DEFAULT(2.0f);  // rate of Eq. (15): liquid fraction sent per second per unit d_dir/Sticky (1/s)
   float surfaceTension GB_DEFAULT(0.025f);  // gamma of the soap solution, for the Taylor-Culick hole speed (N/m)
   float liquidDensity GB_DEFAULT(1000.0f);  // rho of the soap solution (kg/m^3)
-  int holeOpening GB_DEFAULT(0);            // 0: hole front at the Taylor-Culick speed; 1: one ring per frame (paper)
-  float aerosolLifetime GB_DEFAULT(1.5f);   // aerosol droplets fade out over this time (s)
-  float aerosolDrag GB_DEFAULT(2.0f);       // linear air drag rate on a droplet (1/s)
+  // Film flow (docs/model.md "Film flow"): the liquid flows over the film's surface, driven by gravity, Marangoni
+  // stress and the air's shear, held by viscosity; it replaces Eqs. (14)-(15) unless filmFlow is 0.
+  int filmFlow GB_DEFAULT(1);                    // 1: the thin-film flow; 0: the paper's drainage, Eqs. (14)-(15)
+  float liquidViscosity GB_DEFAULT(1e-3f);       // mu of the soap solution (Pa s): water's
+  float surfaceRigidity GB_DEFAULT(3e-4f);       // phi in [0, 1]: how far the surfaces hold the liquid back, the share
+                                                 // of the Poiseuille friction 12 mu / e^2 it feels (1: immobile
+                                                 // surfaces, lubrication; 0: plug flow)
+  float flowViscosity GB_DEFAULT(2e-4f);         // nu_f, the flow's in-plane viscosity at the particles' scale (m^2/s)
+  float airShear GB_DEFAULT(0.004f);             // k_air = mu_air / delta: shear stress of the air per speed of the air
+                                                 // past the film, on each face (Pa s/m)
+  float marangoniElasticity GB_DEFAULT(0.002f);  // E_M = -2 d(gamma)/d(ln Gamma): the surface tension's fall with the
+                                                 // surfactant per area, both faces (N/m)
+  float blackFilmThickness GB_DEFAULT(60e-9f);   // thinner film has turned black film: drawn without interference (m)
+  int holeOpening GB_DEFAULT(0);           // 0: hole front at the Taylor-Culick speed; 1: one ring per frame (paper)
+  float aerosolLifetime GB_DEFAULT(1.5f);  // aerosol droplets fade out over this time (s)
+  float aerosolDrag GB_DEFAULT(2.0f);      // linear air drag rate on a droplet (1/s)
   float collisionThreshold GB_DEFAULT(1.75f);  // lambda_col, Table 2 [1.5, 2.0]: film Weber number of an impact
                                                // that bursts the film (collision.h); 0 turns it off
   float collisionDistance GB_DEFAULT(0.02f);   // film particles closer than this repel (self-collision) (m)

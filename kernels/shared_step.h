@@ -119,7 +119,7 @@ namespace gb::gpu {
 enum Binding : int {
 #define GB_BUFFER(binding, NAME, element, declarator, access) GB_BINDING_##NAME,
 #define GB_PARTICLE_ARRAY(binding, NAME, name, components, element, access, transfer, created) GB_BINDING_##NAME,
-#define GB_PARTICLE_BLOCK(NAME, block, name, transfer)
+#define GB_PARTICLE_BLOCK(NAME, block, name, components, transfer, created)
 #include "device_data.h"
 #undef GB_BUFFER
 #undef GB_PARTICLE_ARRAY
@@ -131,7 +131,7 @@ enum Binding : int {
   static_assert(GB_BINDING_##NAME == (binding), "device_data.h: " #NAME " is not numbered as it is listed");
 #define GB_PARTICLE_ARRAY(binding, NAME, name, components, element, access, transfer, created) \
   GB_BUFFER(binding, NAME, element, name, access)
-#define GB_PARTICLE_BLOCK(NAME, block, name, transfer)
+#define GB_PARTICLE_BLOCK(NAME, block, name, components, transfer, created)
 #include "device_data.h"
 #undef GB_BUFFER
 #undef GB_PARTICLE_ARRAY

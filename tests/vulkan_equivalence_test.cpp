@@ -101,7 +101,9 @@ struct MovingFilm {
 //  - a force is the sum of spring terms that nearly cancel in a film at rest: its error is bounded by
 //    16 ulps of the sum of the terms' magnitudes, not of the net force;
 //  - a boundary particle's velocity is (x_new - x)/dt: one ulp of position becomes ulp(x)/dt of velocity,
-//    so velocities get 8 ulp(|x|)/dt absolute.
+//    so velocities get 8 ulp(|x|)/dt absolute;
+//  - the film flow's liquid velocity is where gravity, the Marangoni stress and the air's shear nearly balance:
+//    its error is bounded by 16 ulps of the sum of its terms' magnitudes (flowTermMagnitude).
 constexpr double kStageTolerance = 1e-5;
 constexpr double kCancellationFloor = 1e-4;
 constexpr double kFloatEpsilon = 1.1920929e-7;
@@ -119,6 +121,14 @@ double forceTermMagnitude(const Params& p, const Film& film, size_t i) {
     sum += p.springDamping * (s.velocity.get(j) - s.velocity.get(i)).norm();
   }
   return sum;
+}
+
+// The magnitudes of the terms of particle i's new liquid velocity (filmFlowVelocity), before its division by the rates:
+// |u| + dt (|g_t| + |marangoni| + airRate |w_t| + |viscosityPull|).
+double flowTermMagnitude(const Params& p, const Film& film, const StepUniforms& u, size_t i) {
+  const FilmFlowTerms t = filmFlowTerms(p, u, film.topology, film.state, i);
+  return film.state.flowVelocity.get(i).norm() +
+         u.drainageDt * (t.gravity.norm() + t.marangoni.norm() + t.airRate * t.air.norm() + t.viscosityPull.norm());
 }
 
 // Worst |gpu - cpu| / (ulps x epsilon x scale_i) over the elements of a 3-vector array; below 1 passes.
@@ -149,6 +159,9 @@ TEST(VulkanEquivalence, EveryStageAloneMatchesTheCpuReference) {
       {Stage::AirTransfer, {{"airFlow", [](const State& s) { return flatten(s.airFlow); }, 3}}},
       {Stage::Integrate, {{"position", [](const State& s) { return flatten(s.position); }, 3}}},
       {Stage::Drainage, {{"liquid", [](const State& s) { return s.liquid; }}}},
+      {Stage::FilmFlow,
+       {{"liquid", [](const State& s) { return s.liquid; }},
+        {"surfactant", [](const State& s) { return s.surfactant; }}}},
   };
   for (const auto& [stage, outputs] : checks) {
     Film cpuFilm = input.film, gpuFilm = input.film;
@@ -190,6 +203,20 @@ TEST(VulkanEquivalence, EveryStageAloneMatchesTheCpuReference) {
   const double velocityRatio = worstUlpRatio(cpuFilm.state.velocity, gpuFilm.state.velocity, velocityScale, 8);
   std::printf("stage integrate    velocity     worst error %.2f x (8 ulp(x)/dt)\n", velocityRatio);
   EXPECT_LT(velocityRatio, 1.0);
+  Film cpuFlow = input.film, gpuFlow = input.film;
+  CpuStepper cpuFlowStepper;
+  VulkanStepper gpuFlowStepper(device);
+  cpuFlowStepper.load(input.params, cpuFlow);
+  gpuFlowStepper.load(input.params, gpuFlow);
+  cpuFlowStepper.runStage(Stage::FilmFlow, input.uniforms);
+  gpuFlowStepper.runStage(Stage::FilmFlow, input.uniforms);
+  gpuFlowStepper.store(gpuFlow);
+  std::vector<double> flowScale(termScale.size());
+  for (size_t i = 0; i < flowScale.size(); ++i)
+    flowScale[i] = flowTermMagnitude(input.params, input.film, input.uniforms, i);
+  const double flowRatio = worstUlpRatio(cpuFlow.state.flowVelocity, gpuFlow.state.flowVelocity, flowScale, 16);
+  std::printf("stage film_flow    flowVelocity worst error %.2f x (16 ulps of the terms)\n", flowRatio);
+  EXPECT_LT(flowRatio, 1.0);
   EXPECT_EQ(device->validationErrors(), 0u);
 }
 
@@ -548,17 +575,32 @@ TEST_P(VulkanScene, FiveHundredStepsStayWithinAMillimetre) {
   auto gpu = makeSim(std::make_unique<VulkanStepper>(device));
   long steps = 0;
   double movedMost = 0;  // the largest |volume| on the way: the scene must have moved
+  // The films are compared after 500 steps or, where the film begins to burst before that (the stroke's dry film
+  // drains to black film under the wire and bursts by thinning after about 2.3 s), at the frame before, which both
+  // backends must reach together.
+  double worstDistance = 0;
+  FrameStats a, b;
   for (int f = 1; steps < 500; ++f) {
     const WandState w =
         GetParam().bubble ? WandState{} : gestureAt(Gesture::Straight, g, static_cast<float>(f) * p.frameTime);
     cpu->advanceFrame(w);
     gpu->advanceFrame(w);
+    ASSERT_EQ(cpu->lastEvents().started, gpu->lastEvents().started) << "one backend's film began to burst, frame " << f;
+    if (cpu->lastEvents().started) {
+      std::printf("%s: the film began to burst at frame %d (%s) on both backends\n", GetParam().name, f,
+                  cpu->lastEvents().cause ? cpu->lastEvents().cause : "?");
+      break;
+    }
     steps += cpu->substepsPerFrame();
     movedMost = std::max(movedMost, std::abs(cpu->stats().volume));
+    worstDistance = worstParticleDistance(cpu->film(), gpu->film());
+    a = cpu->stats();
+    b = gpu->stats();
   }
-  const double worstDistance = worstParticleDistance(cpu->film(), gpu->film());
-  const FrameStats a = cpu->stats(), b = gpu->stats();
-  std::printf("%s: %ld steps, worst particle distance %.2e m\n", GetParam().name, steps, worstDistance);
+  std::printf("%s: %ld steps compared, worst particle distance %.2e m\n", GetParam().name, steps, worstDistance);
+  // Only the stroke on the film flow bursts within the 500 steps; 100 of them are what a comparison needs to mean
+  // something (the differences grow by three orders of magnitude within the first 100 steps, then level off).
+  EXPECT_GE(steps, GetParam().bubble ? 500 : 100) << "too few steps before the film began to burst";
   EXPECT_LT(worstDistance, 1e-3);
   EXPECT_NEAR(b.area, a.area, 1e-3 * a.area);
   // 0.1% of the scene's volume: of its peak, since a film back at rest sweeps almost none (2e-6 m^3).

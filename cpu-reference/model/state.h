@@ -60,7 +60,7 @@ struct State {
 #define GB_BUFFER(binding, NAME, element, declarator, access)
 #define GB_PARTICLE_ARRAY(binding, NAME, name, components, element, access, transfer, created) \
   ParticleArray<GB_ELEMENT_##element, components> name;
-#define GB_PARTICLE_BLOCK(NAME, block, name, transfer) std::vector<float> name;
+#define GB_PARTICLE_BLOCK(NAME, block, name, components, transfer, created) ParticleArray<float, components> name;
 #include "device_data.h"
 #undef GB_BUFFER
 #undef GB_PARTICLE_ARRAY
@@ -95,8 +95,8 @@ void forEachParticleArray(S& state, Visit&& visit) {
 #define GB_BUFFER(binding, NAME, element, declarator, access)
 #define GB_PARTICLE_ARRAY(binding, NAME, name, components, element, access, transfer, created) \
   visit(state.name, ParticleArrayInfo{binding, 0, components, Transfer::transfer, created});
-#define GB_PARTICLE_BLOCK(NAME, block, name, transfer) \
-  visit(state.name, ParticleArrayInfo{gpu::GB_BINDING_##NAME, block, 1, Transfer::transfer, 0});
+#define GB_PARTICLE_BLOCK(NAME, block, name, components, transfer, created) \
+  visit(state.name, ParticleArrayInfo{gpu::GB_BINDING_##NAME, block, components, Transfer::transfer, created});
 #include "device_data.h"
 #undef GB_BUFFER
 #undef GB_PARTICLE_ARRAY

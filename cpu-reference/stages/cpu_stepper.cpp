@@ -143,6 +143,11 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
         forEach(n, [&](size_t i) { drainageOutflow(params_, u.drainageDt, topo, s, i); });
         forEach(n, [&](size_t i) { drainageGather(params_, topo, s, i); });
         break;
+      case Stage::FilmFlow:  // three Jacobi passes: new velocities, then every limit, then the gathers
+        forEach(n, [&](size_t i) { filmFlowVelocity(params_, u, topo, s, i); });
+        forEach(n, [&](size_t i) { filmFlowLimit(params_, u.drainageDt, topo, s, i); });
+        forEach(n, [&](size_t i) { filmFlowGather(u.drainageDt, topo, s, i); });
+        break;
       case Stage::Count:
         break;
     }

@@ -349,6 +349,123 @@ void drainageGather(const Params& p, const Topology& topo, State& s, size_t j) {
   s.liquid[j] = s.liquid[j] - s.drainOutflow[j] + received;
 }
 
+// ---- film flow ------------------------------------------------------------------------------------------
+
+namespace {
+
+Vec3 tangential(const Vec3& v, const Vec3& n) { return v - v.dot(n) * n; }
+
+// A_i / k_i: the particle's area per spring, its share of the dual edges (flowSweptArea).
+float areaShare(const Topology& topo, const State& s, uint32_t i) {
+  const uint32_t springs = topo.springOffset[i + 1] - topo.springOffset[i];
+  return springs > 0 ? s.voronoiArea[i] / static_cast<float>(springs) : 0.0f;
+}
+
+}  // namespace
+
+float logSurfactantRatio(float surfactantJ, float thicknessJ, float surfactantI, float thicknessI) {
+  const float a = std::max(surfactantJ, kLeastSurfactant) * std::max(thicknessJ, kThinnestFlowingFilm);
+  const float b = std::max(surfactantI, kLeastSurfactant) * std::max(thicknessI, kThinnestFlowingFilm);
+  // Near 1, ln(1 + x) by its series: a GPU's log is accurate in absolute, not relative, terms there.
+  const float x = (a - b) / b;
+  return std::abs(x) < 0.01f ? x * (1.0f - x * (0.5f - x / 3.0f)) : std::log(a / b);
+}
+
+FilmFlowTerms filmFlowTerms(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, size_t i) {
+  FilmFlowTerms t;
+  const Vec3 n = s.normal.get(i), xi = s.position.get(i);
+  const float e = std::max(s.thickness[i], kThinnestFlowingFilm), rho = p.liquidDensity;
+  Vec3 gradient = Vec3::Zero(), pull = Vec3::Zero();
+  float weight = 0.0f, neighbours = 0.0f;
+  for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
+    const uint32_t j = topo.springNeighbour[k];
+    if (!s.alive[j]) continue;
+    const Vec3 d = s.position.get(j) - xi;
+    const float d2 = d.squaredNorm();
+    if (!(d2 > 0.0f)) continue;
+    gradient += logSurfactantRatio(s.surfactant[j], s.thickness[j], s.surfactant[i], s.thickness[i]) / d2 * d;
+    pull += s.flowVelocity.get(j) / d2;
+    weight += 1.0f / d2;
+    neighbours += 1.0f;
+  }
+  t.gravity = tangential(Vec3(p.gravityX, p.gravityY, p.gravityZ), n);
+  if (neighbours > 0.0f) {
+    t.marangoni = -(p.marangoniElasticity / (rho * e)) * tangential((2.0f / neighbours) * gradient, n);
+    t.viscosityRate = p.flowViscosity * (4.0f / neighbours) * weight;
+    t.viscosityPull = p.flowViscosity * (4.0f / neighbours) * pull;
+    t.spacingSquared = neighbours / weight;
+  }
+  const Vec3 airVelocity = u.wireArea > 0.0f ? Vec3(s.airFlow.get(i) / u.wireArea) : Vec3::Zero();
+  t.air = tangential(airVelocity - s.velocity.get(i), n);
+  t.airRate = 2.0f * p.airShear / (rho * e);
+  t.wallRate = 12.0f * p.liquidViscosity * p.surfaceRigidity / (rho * e * e);
+  return t;
+}
+
+void filmFlowVelocity(const Params& p, const StepUniforms& u, const Topology& topo, State& s, size_t i) {
+  if (!s.alive[i] || topo.boundary[i]) {
+    s.flowVelocityNext.set(i, Vec3::Zero());
+    return;
+  }
+  const float dt = u.drainageDt;
+  const FilmFlowTerms t = filmFlowTerms(p, u, topo, s, i);
+  const float held = 1.0f + dt * (t.airRate + t.wallRate + t.viscosityRate);
+  const float diffused =
+      p.marangoniElasticity / (p.liquidDensity * std::max(s.thickness[i], kThinnestFlowingFilm)) * dt / held * dt;
+  const float capped = kMarangoniCourant * t.spacingSquared;
+  const float c = diffused > capped ? capped / diffused : 1.0f;
+  const Vec3 driven = s.flowVelocity.get(i) + dt * (t.gravity + c * t.marangoni + t.airRate * t.air + t.viscosityPull);
+  s.flowVelocityNext.set(i, tangential(driven / held, s.normal.get(i)));
+}
+
+float filmFlowSweptArea(float dt, const Topology& topo, const State& s, uint32_t i, uint32_t j) {
+  const Vec3 d = s.position.get(j) - s.position.get(i);
+  const float d2 = d.squaredNorm();
+  if (!(d2 > 0.0f)) return 0.0f;
+  return flowSweptArea(dt, areaShare(topo, s, i), areaShare(topo, s, j), s.flowVelocityNext.get(i).dot(d), d2);
+}
+
+float filmFlowEdgeFlux(float dt, const Topology& topo, const State& s, uint32_t i, uint32_t j) {
+  return filmFlowSweptArea(dt, topo, s, i, j) * s.thickness[i] * s.flowLimit[i] -
+         filmFlowSweptArea(dt, topo, s, j, i) * s.thickness[j] * s.flowLimit[j];
+}
+
+void filmFlowLimit(const Params& p, float dt, const Topology& topo, State& s, size_t i) {
+  s.surfactantBefore[i] = s.surfactant[i];
+  if (!s.alive[i]) {
+    s.flowLimit[i] = 0.0f;
+    return;
+  }
+  float swept = 0.0f;
+  for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
+    const uint32_t j = topo.springNeighbour[k];
+    if (!s.alive[j]) continue;
+    swept += filmFlowSweptArea(dt, topo, s, static_cast<uint32_t>(i), j);
+  }
+  const float black = p.blackFilmThickness * s.voronoiArea[i];  // drainage stops at black film
+  const float outflow = swept * s.thickness[i], allowed = kLargestOutflowShare * std::max(s.liquid[i] - black, 0.0f);
+  s.flowLimit[i] = outflow > allowed ? allowed / outflow : 1.0f;
+}
+
+void filmFlowGather(float dt, const Topology& topo, State& s, size_t j) {
+  s.flowVelocity.set(j, s.flowVelocityNext.get(j));
+  if (!s.alive[j]) return;
+  float liquidOut = 0.0f, surfactantOut = 0.0f;
+  for (uint32_t k = topo.springOffset[j]; k < topo.springOffset[j + 1]; ++k) {
+    const uint32_t i = topo.springNeighbour[k];
+    if (!s.alive[i]) continue;
+    const float sent = filmFlowSweptArea(dt, topo, s, static_cast<uint32_t>(j), i) * s.thickness[j] * s.flowLimit[j];
+    const float received =
+        filmFlowSweptArea(dt, topo, s, i, static_cast<uint32_t>(j)) * s.thickness[i] * s.flowLimit[i];
+    liquidOut += sent - received;
+    surfactantOut += sent * s.surfactantBefore[j] - received * s.surfactantBefore[i];
+  }
+  const float liquid = s.liquid[j] - liquidOut;
+  const float surfactant = s.surfactantBefore[j] * s.liquid[j] - surfactantOut;
+  s.liquid[j] = liquid;
+  s.surfactant[j] = liquid > 0.0f ? surfactant / liquid : s.surfactantBefore[j];
+}
+
 // ---- stability ------------------------------------------------------------------------------------------
 
 float elasticityBound(const Params& p) {

@@ -155,7 +155,7 @@ double boyleGasEnergy(const Params& p, double referenceVolume, double currentVol
 // implies.
 void integrate(const StepUniforms& u, const Topology& topo, State& s, size_t i);
 
-// ---- Stage 8: position-dependent drainage (Section 6.2, Eqs. 14-15) --------------------------------------
+// ---- Stage 8 (filmFlow 0): position-dependent drainage (Section 6.2, Eqs. 14-15) --------------------------
 // Eq. (14): how closely the direction from sender x_i to receiver x_j follows gravity g, MAX(cos, 0).
 float drainageDirection(const Vec3& xi, const Vec3& xj, const Vec3& g);
 
@@ -167,6 +167,54 @@ void drainageOutflow(const Params& p, float dt, const Topology& topo, State& s, 
 // from each neighbour i. What leaves a particle is exactly what its downhill neighbours receive, so the
 // total liquid is conserved to float rounding.
 void drainageGather(const Params& p, const Topology& topo, State& s, size_t j);
+
+// ---- Stage 8 (default): film flow (docs/model.md "Film flow") -------------------------------------------
+// The depth-averaged thin-film flow of Huang et al. 2020 on the particles: the liquid moves over the film's surface
+// with velocity u (relative to the surface, tangent to it), carrying thickness e and surfactant Gamma:
+//   de/dt = -div(e u),  d(Gamma)/dt = -div(Gamma u)  (plug flow: the surfaces move with the liquid),
+//   du/dt = g_t - (E_M / (rho e)) grad ln Gamma + (2 k_air / (rho e)) (w_t - u) - (12 mu phi / (rho e^2)) u
+//           + nu_f lap u,
+// g_t gravity along the surface, E_M the Marangoni elasticity, w_t the air's velocity past the film along it (the
+// wands' air flow less the film's own velocity), phi the surfaces' rigidity, nu_f the in-plane viscosity. The
+// velocity is Jacobi-implicit in its rates (any dt is stable); each particle sends liquid across its one-ring's edges
+// with its own velocity (flowSweptArea), the net flux of each edge exactly antisymmetric (filmFlowEdgeFlux), so liquid
+// is conserved to float rounding.
+
+// The terms of particle i's velocity equation, from the state at the flow's start.
+struct FilmFlowTerms {
+  Vec3 gravity = Vec3::Zero();        // g_t (m/s^2)
+  Vec3 marangoni = Vec3::Zero();      // -(E_M / (rho e)) grad ln Gamma, tangential (m/s^2)
+  Vec3 air = Vec3::Zero();            // w_t, the air's velocity past the film along its surface (m/s)
+  float airRate = 0.0f;               // 2 k_air / (rho e) (1/s): the air's shear pulls u towards w_t at this rate
+  float wallRate = 0.0f;              // 12 mu phi / (rho e^2) (1/s): the surfaces' friction
+  float viscosityRate = 0.0f;         // nu_f (4 / k) sum_j 1 / |d_ij|^2 (1/s), the diagonal of -nu_f lap
+  Vec3 viscosityPull = Vec3::Zero();  // nu_f (4 / k) sum_j u_j / |d_ij|^2 (m/s^2), the off-diagonal part
+  float spacingSquared = 0.0f;        // k / sum_j 1 / |d_ij|^2 (m^2): the ring's squared spacing (harmonic mean)
+};
+// grad f at particle i from its one-ring: (2 / k) sum_j (f_j - f_i) d_ij / |d_ij|^2 (exact for a linear f on a
+// regular ring); lap f: (4 / k) sum_j (f_j - f_i) / |d_ij|^2. Over the living neighbours (k of them).
+FilmFlowTerms filmFlowTerms(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, size_t i);
+// ln(Gamma_j / Gamma_i) = ln(s_j e_j / (s_i e_i)), s the surfactant per liquid, e the thickness: the log of the
+// ratio, not the difference of two logs, which would cancel to a few ulps of ln(1e-6) on a nearly even film.
+float logSurfactantRatio(float surfactantJ, float thicknessJ, float surfactantI, float thicknessI);
+// flowSweptArea of particle i towards neighbour j, with i's new velocity (flowVelocityNext).
+float filmFlowSweptArea(float dt, const Topology& topo, const State& s, uint32_t i, uint32_t j);
+// The liquid the edge from i to j carries from i to j in dt (m^3, negative: from j to i): what i's velocity sweeps
+// times e_i and i's limit, less the same of j. Exactly the negative of filmFlowEdgeFlux(j, i).
+float filmFlowEdgeFlux(float dt, const Topology& topo, const State& s, uint32_t i, uint32_t j);
+
+// Pass 1: u_i's new value, (u + dt (g_t + c marangoni + airRate w_t + viscosityPull)) / (1 + dt (airRate + wallRate +
+// viscosityRate)), projected on the tangent plane; 0 on the wire (the liquid sticks to it) and for a dead particle.
+// c <= 1 caps the Marangoni diffusivity D = E_M / (rho e) dt / (1 + dt rates) at D dt = kMarangoniCourant spacing^2.
+// Writes flowVelocityNext[i].
+void filmFlowVelocity(const Params& p, const StepUniforms& u, const Topology& topo, State& s, size_t i);
+// Pass 2: the share of its outflow particle i can give, min(1, kLargestOutflowShare (w_i - e_b A_i) / outflow_i), e_b
+// the black film's thickness (the disjoining pressure stops drainage there); keeps its surfactant as
+// surfactantBefore for pass 3.
+void filmFlowLimit(const Params& p, float dt, const Topology& topo, State& s, size_t i);
+// Pass 3, a gather: particle j's liquid and surfactant after its edges' fluxes (filmFlowEdgeFlux; each sender's
+// thickness and surfactant, times its limit); u becomes the new velocity.
+void filmFlowGather(float dt, const Topology& topo, State& s, size_t j);
 
 // ---- Stability -----------------------------------------------------------------------------------------
 // Largest elasticity Eq. (4) can give the film: the Gibbs peak 0.5 w_E, or the Marangoni value of a young

@@ -15,7 +15,8 @@ bool budgetedStep(const Params& p, const StepUniforms&) { return p.integrator !=
 // The coarse correction runs inside vertex_block_descent, between its smoothing sweeps (coarse_correction.h),
 // never as a row of its own.
 bool insideTheSweeps(const Params&, const StepUniforms&) { return false; }
-bool drainsThisStep(const Params&, const StepUniforms& u) { return u.drainageDt > 0; }
+bool drainsThisStep(const Params& p, const StepUniforms& u) { return u.drainageDt > 0 && p.filmFlow == 0; }
+bool flowsThisStep(const Params& p, const StepUniforms& u) { return u.drainageDt > 0 && p.filmFlow != 0; }
 
 using enum gpu::Binding;
 // What the gathers read of the mesh: a particle's springs, and its triangles by corner.
@@ -92,6 +93,12 @@ constexpr std::array kStages = {
               bufferSet({GB_BINDING_POSITION, GB_BINDING_SPRING_OFFSET, GB_BINDING_SPRING_NEIGHBOUR, GB_BINDING_LIQUID,
                          GB_BINDING_DRAINAGE}),
               bufferSet({GB_BINDING_DRAINAGE, GB_BINDING_LIQUID}), "the next step's film state reads the new liquid"},
+    StageSpec{
+        Stage::FilmFlow, "film_flow", flowsThisStep,
+        bufferSet({GB_BINDING_ALIVE, GB_BINDING_BOUNDARY, GB_BINDING_POSITION, GB_BINDING_VELOCITY, GB_BINDING_NORMAL,
+                   GB_BINDING_VORONOI_AREA, GB_BINDING_THICKNESS, GB_BINDING_LIQUID, GB_BINDING_AIR_FLOW,
+                   GB_BINDING_SPRING_OFFSET, GB_BINDING_SPRING_NEIGHBOUR, GB_BINDING_DRAINAGE}),
+        bufferSet({GB_BINDING_DRAINAGE, GB_BINDING_LIQUID}), "the next step's film state reads the new liquid"},
 };
 static_assert(kStages.size() == kStageCount, "every stage has one row");
 

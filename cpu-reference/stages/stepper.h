@@ -35,7 +35,8 @@ enum class Stage : int {
   EnergyBudget,        // implicit integrator: the factor on the new velocities that keeps the step's energy within
                        // the work done on the film (energy_budget.h)
   ImplicitVelocity,    // implicit integrator: v = (x - x_t) / h, the free particles' as the energy budget leaves them
-  Drainage,
+  Drainage,            // filmFlow 0: the paper's position-dependent drainage, Eqs. (14)-(15)
+  FilmFlow,            // filmFlow 1: the thin-film flow (stages.h)
   Count
 };
 inline constexpr int kStageCount = static_cast<int>(Stage::Count);

@@ -286,9 +286,14 @@ bool mergeKeepsTheMesh(const Film& film, uint32_t a, uint32_t b, const Vec3& x) 
   return true;
 }
 
-// Particle b joins particle a at their centre of mass: its mass, liquid and momentum go to a, and b dies.
+// Particle b joins particle a at their centre of mass: its mass, liquid and momentum go to a, and b dies; the film
+// flow's surfactant per liquid and liquid velocity become their liquid-weighted means.
 void mergeInto(State& s, uint32_t a, uint32_t b) {
   const float ma = s.mass[a], mb = s.mass[b], m = ma + mb;
+  if (const float la = s.liquid[a], lb = s.liquid[b]; la + lb > 0.0f) {
+    s.surfactant[a] = (la * s.surfactant[a] + lb * s.surfactant[b]) / (la + lb);
+    s.flowVelocity.set(a, (la * s.flowVelocity.get(a) + lb * s.flowVelocity.get(b)) / (la + lb));
+  }
   s.position.set(a, (ma * s.position.get(a) + mb * s.position.get(b)) / m);
   s.previousPosition.set(a, (ma * s.previousPosition.get(a) + mb * s.previousPosition.get(b)) / m);
   s.velocity.set(a, (ma * s.velocity.get(a) + mb * s.velocity.get(b)) / m);

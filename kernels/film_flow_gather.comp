@@ -1,0 +1,27 @@
+#version 450
+// filmFlowGather (cpu-reference/stages/stages.cpp): film flow pass 3, particle j's liquid and surfactant after its
+// edges' fluxes, each the exact negative of its neighbour's; conserves liquid.
+#extension GL_GOOGLE_include_directive : require
+#include "common.glsl"
+
+void main() {
+  const uint j = gl_GlobalInvocationID.x;
+  if (j >= pc.count) return;
+  storeFlow3(flowVelocityBlock, j, loadFlow3(flowVelocityNextBlock, j));
+  if (alive[j] == 0u) return;
+  const float dt = steps[pc.stepIndex].drainageDt;
+  float liquidOut = 0.0, surfactantOut = 0.0;
+  for (uint k = springOffset[j]; k < springOffset[j + 1u]; ++k) {
+    const uint i = springNeighbour[k];
+    if (alive[i] == 0u) continue;
+    const float sent = filmFlowSweptArea(dt, j, i) * thickness[j] * FLOW(flowLimitBlock, j);
+    const float received = filmFlowSweptArea(dt, i, j) * thickness[i] * FLOW(flowLimitBlock, i);
+    liquidOut += sent - received;
+    surfactantOut += sent * FLOW(surfactantBeforeBlock, j) - received * FLOW(surfactantBeforeBlock, i);
+  }
+  const float before = FLOW(surfactantBeforeBlock, j);
+  const float newLiquid = liquid[j] - liquidOut;
+  const float surfactant = before * liquid[j] - surfactantOut;
+  liquid[j] = newLiquid;
+  FLOW(surfactantBlock, j) = newLiquid > 0.0 ? surfactant / newLiquid : before;
+}

@@ -524,6 +524,8 @@ struct VulkanStepper::Impl {
     recordContactScan(cb, contactBuckets + 1, 0);
     dispatch(cb, Kernel::ContactSort, particles, 0, 0, header);
     computeToComputeBarrier(cb);  // every bucket is filled before anyone reads it
+    dispatch(cb, Kernel::ContactSheets, contactBuckets, 0, 0, header);
+    computeToComputeBarrier(cb);  // every bucket's sheet is summarised before the pairs read them
     dispatch(cb, Kernel::ContactPairs, particles, 0, 0, header);
     computeToComputeBarrier(cb);  // every row is counted before the counts are scanned
     recordContactScan(cb, particles + 1, GB_SCAN_ROWS);

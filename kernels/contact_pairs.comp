@@ -31,6 +31,45 @@ bool isPartner(uint i, uint j, float reachSquared, float frameTime, float slack)
   return liesAcross(eigenDot(ni, d), eigenDot(nj, d), lengthSquared) && !isOneRingNeighbour(i, j);
 }
 
+// partnerRadius of collision.cpp: a distance from particle x (normal n) beyond which no particle of the bucket whose
+// sheet starts at `sheet` lies across the film from it (infinite when nothing can be proved). collision.cpp gives the
+// proof: with m the bucket's normal, H its height range about x along m and tilt the larger of its normals' spread and
+// |n -+ m|, a partner needs sqrt(1/2) |d| < H + tilt |d|. H carries 10 um for the rounding of heights of particles
+// metres from the origin, far above the float error of the pair rule's across test.
+float partnerRadius(uint sheet, vec3 x, vec3 n) {
+  const vec3 m =
+      vec3(uintBitsToFloat(contacts[sheet + GB_SHEET_NORMAL]), uintBitsToFloat(contacts[sheet + GB_SHEET_NORMAL + 1]),
+           uintBitsToFloat(contacts[sheet + GB_SHEET_NORMAL + 2]));
+  const float spread = uintBitsToFloat(contacts[sheet + GB_SHEET_SPREAD]);
+  const vec3 d = n - m, e = n + m;
+  const float tilt = max(spread, sqrt(min(dot(d, d), dot(e, e))));
+  if (!(tilt < kAcrossCosine)) return uintBitsToFloat(0x7f800000u);
+  const float height = dot(m, x);
+  const float offPlane = max(uintBitsToFloat(contacts[sheet + GB_SHEET_HEIGHTS + 1]) - height,
+                             height - uintBitsToFloat(contacts[sheet + GB_SHEET_HEIGHTS])) +
+                         1e-5;
+  return offPlane / (kAcrossCosine - tilt);
+}
+
+// Whether a bucket may hold a partner of particle x (normal n): as PartnerRule::listPartnersIn's first tests, false
+// when x is farther from the bucket's box than the reach or than the partner radius its sheet allows, each widened by
+// a thousandth and 10 um for the rounding of the coordinates compared. On a film's flat stretches this leaves a
+// particle only its own bucket of the 27 to read.
+bool bucketMayHold(uint sheet, vec3 x, vec3 n, float reach) {
+  const vec3 lower =
+      vec3(uintBitsToFloat(contacts[sheet + GB_SHEET_LOWER]), uintBitsToFloat(contacts[sheet + GB_SHEET_LOWER + 1]),
+           uintBitsToFloat(contacts[sheet + GB_SHEET_LOWER + 2]));
+  const vec3 upper =
+      vec3(uintBitsToFloat(contacts[sheet + GB_SHEET_UPPER]), uintBitsToFloat(contacts[sheet + GB_SHEET_UPPER + 1]),
+           uintBitsToFloat(contacts[sheet + GB_SHEET_UPPER + 2]));
+  const vec3 outside = max(max(lower - x, x - upper), vec3(0.0));
+  const float gapSquared = dot(outside, outside);
+  const float widenedReach = reach * 1.001 + 1e-5;
+  if (gapSquared > widenedReach * widenedReach) return false;
+  const float radius = min(reach, partnerRadius(sheet, x, n)) * 1.001 + 1e-5;
+  return !(gapSquared > radius * radius);
+}
+
 // Puts j among the row's `count` partners, ascending; past the row's capacity it is only counted.
 void insertPartner(uint row, uint count, uint capacity, uint j) {
   if (count >= capacity) return;
@@ -52,7 +91,8 @@ void main() {
   uint found = 0u;
   // No search without a reach or without contact forces, as on the CPU.
   if (contacts[l.bucketOf + i] != GB_NO_BUCKET && reach > 0.0 && params.collisionStiffness > 0.0) {
-    const ivec3 cell = cellOf(LOAD3(position, i));
+    const vec3 xi = LOAD3(position, i), ni = LOAD3(normal, i);
+    const ivec3 cell = cellOf(xi);
     uint visited[27];  // two of the 27 cells can share a bucket: each bucket is read once
     uint seen = 0u;
     for (int dx = -1; dx <= 1; ++dx)
@@ -63,6 +103,7 @@ void main() {
           for (uint s = 0u; s < seen; ++s) again = again || visited[s] == bucket;
           if (again) continue;
           visited[seen++] = bucket;
+          if (!bucketMayHold(l.sheets + GB_CONTACT_SHEET * bucket, xi, ni, reach)) continue;
           for (uint k = contacts[l.bucketStart + bucket]; k < contacts[l.bucketStart + bucket + 1u]; ++k) {
             const uint j = contacts[l.sorted + k];
             if (j == i || !isPartner(i, j, reachSquared, frameTime, slack)) continue;

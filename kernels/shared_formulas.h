@@ -56,6 +56,7 @@ GB_FORMULA float contactMargin(float frameTime, float slack, float closing) {
 // A pair lies across the film when its separation d makes less than 45 degrees with either normal: (n . d)^2 over
 // 1/2 |d|^2 for one of them.
 GB_CONST float kAcrossCosineSquared = 0.5f;
+GB_CONST float kAcrossCosine = 0.70710678f;  // its root, for the search's bounds (partnerRadius)
 GB_FORMULA bool liesAcross(float alongI, float alongJ, float lengthSquared) {
   return alongI * alongI > kAcrossCosineSquared * lengthSquared ||
          alongJ * alongJ > kAcrossCosineSquared * lengthSquared;

@@ -124,6 +124,7 @@ GB_REGION uint reduceEnergySlotsAt(uint termsAt, uint particleCount) {
 //   sorted         N: the searched particles, bucket by bucket;
 //   rows           N K: each particle's partners, ascending (the first K of them);
 //   scan totals    the block sums of the scans (contact_scan_*), one per GB_SCAN_RUN elements at most;
+//   sheets         B GB_CONTACT_SHEET floats: each bucket's particles as a piece of sheet (contact_sheets);
 //   previous       the last list, packed as the list is, for the pairs' rest distances.
 // The kernels get the header's start in PushBlock::first and read B and K from it.
 #define GB_CONTACT_REACH 0               // the search's reach (float bits): no pair lies farther apart
@@ -137,6 +138,14 @@ GB_REGION uint reduceEnergySlotsAt(uint termsAt, uint particleCount) {
 #define GB_CONTACT_SLACK 8               // what the frame's forces may add to it (float bits, m)
 #define GB_CONTACT_HEADER 9
 #define GB_NO_BUCKET 0xffffffffu
+// A bucket's sheet (BucketSheet of cpu-reference/topology/collision.cpp): its box's lower and upper corners, its
+// mean normal, the spread of its normals about it, and its particles' heights along it (lowest, highest).
+#define GB_SHEET_LOWER 0
+#define GB_SHEET_UPPER 3
+#define GB_SHEET_NORMAL 6
+#define GB_SHEET_SPREAD 9
+#define GB_SHEET_HEIGHTS 10
+#define GB_CONTACT_SHEET 12
 #define GB_SCAN_RUN 16u   // elements one invocation of contact_scan_blocks adds in a row
 #define GB_SCAN_ROWS 16u  // PushBlock::reduceFlags of contact_scan_*: the partner counts (else the bucket counts)
 
@@ -144,7 +153,7 @@ GB_REGION uint reduceEnergySlotsAt(uint termsAt, uint particleCount) {
 namespace gb::gpu {
 #endif
 struct ContactSearchLayout {
-  uint header, bucketStart, bucketOf, slot, sorted, rows, scanTotals, previous;
+  uint header, bucketStart, bucketOf, slot, sorted, rows, scanTotals, sheets, previous;
 };
 #ifdef __cplusplus
 #define GB_REGION inline constexpr
@@ -167,7 +176,8 @@ GB_REGION ContactSearchLayout contactSearchLayout(uint header, uint particleCoun
   l.sorted = l.slot + particleCount;
   l.rows = l.sorted + particleCount;
   l.scanTotals = l.rows + particleCount * rowCapacity;
-  l.previous = l.scanTotals + contactScanTotals(particleCount, buckets);
+  l.sheets = l.scanTotals + contactScanTotals(particleCount, buckets);
+  l.previous = l.sheets + uint(GB_CONTACT_SHEET) * buckets;
   return l;
 }
 #undef GB_REGION

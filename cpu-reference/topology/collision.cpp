@@ -43,9 +43,6 @@ bool inFilm(const Film& film, uint32_t i) {
 // join for a whole time slice.
 constexpr size_t kParallelPass = size_t{1} << 16;
 
-// A pair lies across the film when its separation makes less than 45 degrees with either normal (liesAcross).
-constexpr float kAcrossCosine = 0.70710678f;
-
 // What a bucket's particles look like as a piece of sheet: their bounding box, their mean normal (each normal
 // turned to agree with the first: a normal's sign does not matter to the across test), how far any of their
 // normals is from it, and the range of their heights along it. Most of a film's buckets hold a nearly flat piece

@@ -6,16 +6,21 @@
 //   frame left as the history.
 // BM_FlatFilm/N: a film of N particles hanging still on the default loop after one frame (1,000,000: the largest
 //   size docs/performance.md measures), where every candidate the cells hold is an in-plane neighbour.
+// BM_DefaultPerformanceOnDevice/F, BM_FlatFilmOnDevice/N: the same searches on the Vulkan device
+//   (VulkanStepper::findContacts, kernels/contact_*.comp), the list read back as Simulation has it read back; skipped
+//   with a message when there is no device.
 // Counters: pairs listed, particles, and ns per particle.
 #include <benchmark/benchmark.h>
 
 #include <map>
 #include <memory>
 
+#include "bench_device.h"
 #include "collision.h"
 #include "scene_file.h"
 #include "scripted_gestures.h"
 #include "simulation.h"
+#include "vulkan_stepper.h"
 
 namespace gb {
 namespace {
@@ -53,6 +58,14 @@ const SearchCase& flatFilm(int particles) {
   return cases.emplace(particles, caseFrom(sim)).first->second;
 }
 
+void countPairs(benchmark::State& state, const Film& film, size_t pairs) {
+  const auto particles = static_cast<double>(film.state.size());
+  state.counters["pairs"] = static_cast<double>(pairs);
+  state.counters["particles"] = particles;
+  state.counters["ns_per_particle"] = benchmark::Counter(particles * static_cast<double>(state.iterations()) * 1e-9,
+                                                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
 // The search as Simulation::updateContacts runs it: reach of one frame plus 5 mm of slack, the search's memory kept
 // from one frame to the next.
 void search(benchmark::State& state, const SearchCase& c) {
@@ -60,11 +73,24 @@ void search(benchmark::State& state, const SearchCase& c) {
   ContactSearch search;
   size_t pairs = 0;
   for (auto _ : state) pairs = search.find(c.params, c.params.frameTime, 0.005f, film, c.history);
-  const auto particles = static_cast<double>(film.state.size());
-  state.counters["pairs"] = static_cast<double>(pairs);
-  state.counters["particles"] = particles;
-  state.counters["ns_per_particle"] = benchmark::Counter(particles * static_cast<double>(state.iterations()) * 1e-9,
-                                                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  countPairs(state, film, pairs);
+}
+
+// The same search on the device, its room grown by a first search outside the timing, as a running show's is.
+void searchOnDevice(benchmark::State& state, const SearchCase& c) {
+  const std::shared_ptr<const VulkanContext> device = bench::vulkanDevice();
+  if (!device) {
+    state.SkipWithError("no Vulkan device");
+    return;
+  }
+  Film film = c.film;
+  VulkanStepperOptions onDevice;  // the device search whatever the device (Automatic leaves a CPU driver to the CPU)
+  onDevice.contactSearch = ContactSearchPlace::Device;
+  VulkanStepper stepper(device, onDevice);
+  stepper.load(c.params, film);
+  stepper.findContacts(c.params, c.params.frameTime, 0.005f, film, c.history);
+  for (auto _ : state) stepper.findContacts(c.params, c.params.frameTime, 0.005f, film, c.history);
+  countPairs(state, film, film.topology.contacts[film.state.size()] / 2);
 }
 
 void BM_DefaultPerformance(benchmark::State& state) {
@@ -73,7 +99,21 @@ void BM_DefaultPerformance(benchmark::State& state) {
 BENCHMARK(BM_DefaultPerformance)->Arg(40)->Arg(80)->Arg(110)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_FlatFilm(benchmark::State& state) { search(state, flatFilm(static_cast<int>(state.range(0)))); }
-BENCHMARK(BM_FlatFilm)->Arg(25650)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_FlatFilm)->Arg(10000)->Arg(25650)->Arg(100000)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_DefaultPerformanceOnDevice(benchmark::State& state) {
+  searchOnDevice(state, defaultPerformanceAt(static_cast<int>(state.range(0))));
+}
+BENCHMARK(BM_DefaultPerformanceOnDevice)->Arg(40)->Arg(80)->Arg(110)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_FlatFilmOnDevice(benchmark::State& state) { searchOnDevice(state, flatFilm(static_cast<int>(state.range(0)))); }
+BENCHMARK(BM_FlatFilmOnDevice)
+    ->Arg(10000)
+    ->Arg(25650)
+    ->Arg(100000)
+    ->Arg(1000000)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace gb

@@ -1,9 +1,12 @@
 #include "vulkan_stepper.h"
 
 #include <array>
+#include <bit>
+#include <cstdio>
 #include <vector>
 
 #include "coarse_correction.h"
+#include "collision.h"
 #include "colouring.h"
 #include "device_buffer.h"
 #include "implicit_euler.h"
@@ -27,6 +30,11 @@ static_assert(alignof(Params) == 4 && sizeof(Params) % 4 == 0,
               "Params must stay a block of 4-byte scalars, whose std430 layout is the C layout");
 
 namespace {
+
+bool searchesOnDevice(ContactSearchPlace place, const VulkanDeviceInfo& device) {
+  if (place == ContactSearchPlace::Automatic) return device.type != "CPU";
+  return place == ContactSearchPlace::Device;
+}
 
 gpu::vec4 toVec4(const Vec3& v) { return {v.x(), v.y(), v.z(), 0.0f}; }
 
@@ -63,6 +71,14 @@ void computeToComputeBarrier(const vk::raii::CommandBuffer& cb) {
                                   vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
   cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eComputeShader, {}, barrier,
                      {}, {});
+}
+
+// Makes the transfers recorded so far (fills, copies, updates) visible to the dispatches recorded after it.
+void transferToComputeBarrier(const vk::raii::CommandBuffer& cb) {
+  const vk::MemoryBarrier barrier(vk::AccessFlagBits::eTransferWrite,
+                                  vk::AccessFlagBits::eShaderRead | vk::AccessFlagBits::eShaderWrite);
+  cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eComputeShader, {}, barrier, {},
+                     {});
 }
 
 // Makes the last dispatches' writes visible to the host reading mapped memory after the fence.
@@ -103,6 +119,14 @@ size_t reduceFloats(const Topology& t, size_t particles) {
 // The VelocityBudget's slots, GB_SLOT_SCALE to GB_SLOT_RELEASED.
 constexpr size_t kBudgetSlots = GB_SLOT_RELEASED - GB_SLOT_SCALE + 1;
 
+// The device contact search's buckets for n particles: twice as many as particles, a power of two, as the CPU's
+// table has for a film whose cells are fewer than its particles.
+uint32_t contactBucketsFor(size_t particles) {
+  uint32_t buckets = 64;
+  while (buckets < 2 * particles) buckets *= 2;
+  return buckets;
+}
+
 }  // namespace
 
 struct VulkanStepper::Impl {
@@ -129,7 +153,22 @@ struct VulkanStepper::Impl {
   bool driftInA = true;                       // where external_drift's tree sum left the film's drift
   DeviceBuffer readback;                      // host-cached copy of the state store() brings back
 
-  explicit Impl(std::shared_ptr<const VulkanContext> context) : ctx(std::move(context)) {
+  // The device contact search's room in the contacts buffer (shared_step.h's contact regions).
+  VulkanStepperOptions options;
+  bool contactsOnDevice;               // options.contactSearch resolved for this device
+  uint32_t contactEntryCapacity;       // C: partner entries of the list (kept as grown)
+  uint32_t contactRowCapacity;         // K: partners of one particle (kept as grown: a film crumples again)
+  uint32_t contactBuckets = 64;        // B
+  size_t contactPreviousCapacity = 0;  // uints of the previous list's region
+  size_t deviceListEntries = 0;        // uints of the list the last device search left at the start; 0: none there
+  DeviceContactRecord contactRecord;
+
+  Impl(std::shared_ptr<const VulkanContext> context, VulkanStepperOptions stepperOptions)
+      : ctx(std::move(context)),
+        options(stepperOptions),
+        contactsOnDevice(searchesOnDevice(stepperOptions.contactSearch, ctx->info())),
+        contactEntryCapacity(stepperOptions.contactEntryCapacity),
+        contactRowCapacity(std::max(1u, stepperOptions.contactRowCapacity)) {
     const vk::raii::Device& device = ctx->device;
     workgroup = ctx->preferredWorkgroupSize();
     std::vector<vk::DescriptorSetLayoutBinding> bindings;
@@ -223,17 +262,47 @@ struct VulkanStepper::Impl {
     solverParticles = static_cast<uint32_t>(t.colourOrder.size());
   }
 
-  // The self-collision contacts, found anew every frame.
+  // The self-collision contacts, found anew every frame (by the CPU here; by the device in findContacts).
   void writeContacts(const Topology& t) {
-    const size_t bytes = t.contacts.size() * sizeof(uint32_t);
-    if (bytes > buffer(GB_BINDING_CONTACTS).size()) {  // grow geometrically: contacts come and go
-      buffer(GB_BINDING_CONTACTS) = DeviceBuffer(*ctx, 2 * bytes);
-      writeDescriptorSets();
-    }
+    ensureContactRoom(partnerEntriesOf(t.contacts), 0);
     writeVector(buffer(GB_BINDING_CONTACTS), t.contacts);
+    deviceListEntries = 0;
+  }
+
+  // The partner entries of a packed list for the loaded particles (Topology::contacts): N + 1 offsets, then two
+  // uints an entry.
+  [[nodiscard]] size_t partnerEntriesOf(const std::vector<uint32_t>& list) const {
+    return list.size() > particles + size_t{1} ? (list.size() - particles) / 2 : 0;
+  }
+  [[nodiscard]] uint32_t contactHeader() const { return gpu::contactSearchAt(particles, contactEntryCapacity); }
+  [[nodiscard]] gpu::ContactSearchLayout contactLayout() const {
+    return gpu::contactSearchLayout(contactHeader(), particles, contactBuckets, contactRowCapacity);
+  }
+  // The contacts buffer's uints: the list, and the search's regions when the device searches.
+  [[nodiscard]] size_t contactBufferUints() const {
+    if (!contactsOnDevice) return contactHeader();
+    return size_t{contactLayout().previous} + contactPreviousCapacity;
+  }
+
+  // Room for `entries` partner entries in the list and, searching on the device, a previous list of `previousUints`,
+  // grown geometrically when short (contacts come and go). A new buffer keeps nothing of the old one.
+  void ensureContactRoom(size_t entries, size_t previousUints) {
+    if (entries > contactEntryCapacity)
+      contactEntryCapacity = static_cast<uint32_t>(std::max<size_t>(entries, 2 * size_t{contactEntryCapacity}));
+    contactBuckets = contactBucketsFor(particles);
+    const size_t listUints = gpu::contactSearchAt(particles, contactEntryCapacity);  // what a device copy copies
+    contactPreviousCapacity = std::max({contactPreviousCapacity, previousUints, listUints});
+    contactRecord.rowCapacity = contactRowCapacity;
+    contactRecord.entryCapacity = contactEntryCapacity;
+    const size_t bytes = contactBufferUints() * sizeof(uint32_t);
+    if (bytes <= buffer(GB_BINDING_CONTACTS).size()) return;
+    buffer(GB_BINDING_CONTACTS) = DeviceBuffer(*ctx, bytes);
+    deviceListEntries = 0;
+    writeDescriptorSets();
   }
 
   void writeDescriptorSets() {
+    if (sets.empty()) return;  // load() writes them once it has made every buffer
     std::vector<vk::DescriptorBufferInfo> infos;
     infos.reserve(2 * GB_BINDING_COUNT);
     std::vector<vk::WriteDescriptorSet> writes;
@@ -249,14 +318,19 @@ struct VulkanStepper::Impl {
     ctx->device.updateDescriptorSets(writes, nullptr);
   }
 
+  // One invocation per element of `count`.
   void dispatch(const vk::raii::CommandBuffer& cb, Kernel kernel, uint32_t count, uint32_t stepIndex,
                 uint32_t flags = 0, uint32_t first = 0) {
+    dispatchGroups(cb, kernel, ceilDiv(count, workgroup), count, stepIndex, flags, first);
+  }
+  void dispatchGroups(const vk::raii::CommandBuffer& cb, Kernel kernel, uint32_t groups, uint32_t count,
+                      uint32_t stepIndex, uint32_t flags = 0, uint32_t first = 0) {
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipelines[static_cast<size_t>(kernel)]);
     const vk::DescriptorSet set = *sets[static_cast<size_t>(airParity)];
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipelineLayout, 0, set, {});
     const PushBlock push{count, particles, stepIndex, flags, triangles, first, patches, solverParticles};
     cb.pushConstants<PushBlock>(*pipelineLayout, vk::ShaderStageFlagBits::eCompute, 0, push);
-    cb.dispatch(ceilDiv(count, workgroup), 1, 1);
+    cb.dispatch(groups, 1, 1);
   }
 
   // Where the kernels that read the volume find it.
@@ -403,6 +477,107 @@ struct VulkanStepper::Impl {
     writeVector(buffer(GB_BINDING_STEPS), blocks);
   }
 
+  // The exclusive prefix sum of `count` uints of the contacts buffer (GB_SCAN_ROWS in flags: the partner counts, else
+  // the bucket counts) in its three passes; ends with a barrier.
+  void recordContactScan(const vk::raii::CommandBuffer& cb, uint32_t count, uint32_t flags) {
+    const uint32_t header = contactHeader();
+    dispatchGroups(cb, Kernel::ContactScanBlocks, ceilDiv(count, workgroup * GB_SCAN_RUN), count, 0, flags, header);
+    computeToComputeBarrier(cb);  // every block's sum is written before they are scanned
+    dispatchGroups(cb, Kernel::ContactScanTotals, 1, count, 0, flags, header);  // one workgroup over the sums
+    computeToComputeBarrier(cb);  // the sums are scanned before any block adds its own
+    dispatch(cb, Kernel::ContactScanAdd, count, 0, flags, header);
+    computeToComputeBarrier(cb);  // the scan is done before anyone reads it
+  }
+
+  // The header the device search starts from (shared_step.h's GB_CONTACT_* slots).
+  [[nodiscard]] std::array<uint32_t, GB_CONTACT_HEADER> contactSearchHeader(float frameTime, float slack,
+                                                                            uint32_t previousParticles) const {
+    std::array<uint32_t, GB_CONTACT_HEADER> h{};
+    h[GB_CONTACT_PREVIOUS_PARTICLES] = previousParticles;
+    h[GB_CONTACT_ROW_CAPACITY] = contactRowCapacity;
+    h[GB_CONTACT_ENTRY_CAPACITY] = contactEntryCapacity;
+    h[GB_CONTACT_BUCKETS] = contactBuckets;
+    h[GB_CONTACT_FRAME_TIME] = std::bit_cast<uint32_t>(frameTime);
+    h[GB_CONTACT_SLACK] = std::bit_cast<uint32_t>(slack);
+    return h;
+  }
+
+  // One device search (kernels/contact_*.comp) into the contacts buffer, with the previous list the history's, or
+  // the device's own last list when the history is that one (copied on the device instead of uploaded).
+  void searchContacts(float frameTime, float slack, const ContactHistory& history) {
+    ensureContactRoom(0, history.contacts.size());
+    const gpu::ContactSearchLayout l = contactLayout();
+    DeviceBuffer& contacts = buffer(GB_BINDING_CONTACTS);
+    const bool historyOnDevice =
+        deviceListEntries > 0 && history.particles == particles && history.contacts.size() == deviceListEntries;
+    uint32_t previousParticles = static_cast<uint32_t>(particles);
+    if (!historyOnDevice) {
+      const bool listed = !history.contacts.empty() && history.contacts.size() >= history.particles + 1;
+      previousParticles = listed ? static_cast<uint32_t>(history.particles) : 0u;
+      if (listed)
+        contacts.write(history.contacts.data(), history.contacts.size() * sizeof(uint32_t),
+                       size_t{l.previous} * sizeof(uint32_t));
+    }
+    const vk::raii::CommandBuffer& cb = commands;
+    cb.reset();
+    cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    cb.updateBuffer<uint32_t>(contacts.handle(), vk::DeviceSize{l.header} * sizeof(uint32_t),
+                              contactSearchHeader(frameTime, slack, previousParticles));
+    cb.fillBuffer(contacts.handle(), vk::DeviceSize{l.bucketStart} * sizeof(uint32_t),
+                  (vk::DeviceSize{contactBuckets} + 1) * sizeof(uint32_t), 0u);
+    if (historyOnDevice)
+      cb.copyBuffer(
+          contacts.handle(), contacts.handle(),
+          vk::BufferCopy(0, vk::DeviceSize{l.previous} * sizeof(uint32_t), deviceListEntries * sizeof(uint32_t)));
+    transferToComputeBarrier(cb);  // the header, the zeroed counts and the previous list are in place
+    const uint32_t header = l.header;
+    dispatchGroups(cb, Kernel::ContactReach, 1, particles, 0, 0, header);  // one workgroup: it sums the film
+    computeToComputeBarrier(cb);                                           // the reach sizes the cells
+    dispatch(cb, Kernel::ContactCells, particles, 0, 0, header);
+    computeToComputeBarrier(cb);  // every particle is counted before the counts are scanned
+    recordContactScan(cb, contactBuckets + 1, 0);
+    dispatch(cb, Kernel::ContactSort, particles, 0, 0, header);
+    computeToComputeBarrier(cb);  // every bucket is filled before anyone reads it
+    dispatch(cb, Kernel::ContactSheets, contactBuckets, 0, 0, header);
+    computeToComputeBarrier(cb);  // every bucket's sheet is summarised before the pairs read them
+    dispatch(cb, Kernel::ContactPairs, particles, 0, 0, header);
+    computeToComputeBarrier(cb);  // every row is counted before the counts are scanned
+    recordContactScan(cb, particles + 1, GB_SCAN_ROWS);
+    dispatch(cb, Kernel::ContactWrite, particles, 0, 0, header);
+    computeToHostBarrier(cb);
+    cb.end();
+    ctx->submitAndWait(cb);
+    ++contactRecord.searches;
+  }
+
+  // Whether the last search's rows and list had room for every partner; if not, grows them to what it found or
+  // twice what they had, says so on stderr, and the list at the buffer's start is no longer the last one.
+  bool contactSearchHadRoom() {
+    std::array<uint32_t, GB_CONTACT_HEADER> h{};
+    buffer(GB_BINDING_CONTACTS).read(h.data(), sizeof h, vk::DeviceSize{contactHeader()} * sizeof(uint32_t));
+    const uint32_t most = h[GB_CONTACT_MOST_PARTNERS], entries = h[GB_CONTACT_PARTNER_ENTRIES];
+    if (most <= contactRowCapacity && entries <= contactEntryCapacity) return true;
+    std::fprintf(stderr,
+                 "vulkan: the contact search found %u partners of one particle and %u in all, with room for %u and "
+                 "%u: searching again with more room\n",
+                 most, entries, contactRowCapacity, contactEntryCapacity);
+    if (most > contactRowCapacity) contactRowCapacity = std::max(most, 2 * contactRowCapacity);  // a film crumples on
+    deviceListEntries = 0;
+    ensureContactRoom(entries, 0);
+    ++contactRecord.regrown;
+    return false;
+  }
+
+  // The list the last search left, into `contacts` (Topology::contacts).
+  void readContactList(std::vector<uint32_t>& contacts) {
+    const DeviceBuffer& list = buffer(GB_BINDING_CONTACTS);
+    uint32_t entries = 0;
+    list.read(&entries, sizeof entries, vk::DeviceSize{particles} * sizeof(uint32_t));
+    contacts.resize(particles + size_t{1} + 2 * size_t{entries});
+    list.read(contacts.data(), contacts.size() * sizeof(uint32_t));
+    deviceListEntries = contacts.size();
+  }
+
   float readVolume() {
     float volume = 0.0f;
     buffer(GB_BINDING_REDUCE).read(&volume, sizeof volume, volumeInA ? 0 : gpu::reduceHalfB(triangles) * sizeof(float));
@@ -410,8 +585,8 @@ struct VulkanStepper::Impl {
   }
 };
 
-VulkanStepper::VulkanStepper(std::shared_ptr<const VulkanContext> context)
-    : impl_(std::make_unique<Impl>(std::move(context))) {}
+VulkanStepper::VulkanStepper(std::shared_ptr<const VulkanContext> context, VulkanStepperOptions options)
+    : impl_(std::make_unique<Impl>(std::move(context), options)) {}
 VulkanStepper::~VulkanStepper() = default;
 
 const VulkanContext& VulkanStepper::context() const { return *impl_->ctx; }
@@ -450,7 +625,10 @@ void VulkanStepper::load(const Params& params, Film& film) {
   make(GB_BINDING_SPRING_NEIGHBOUR, t.springNeighbour.size() * sizeof(uint32_t));
   make(GB_BINDING_TRIANGLE_OFFSET, t.triangleOffset.size() * sizeof(uint32_t));
   make(GB_BINDING_TRIANGLE_CORNER, t.triangleCorner.size() * sizeof(uint32_t));
-  make(GB_BINDING_CONTACTS, t.contacts.size() * sizeof(uint32_t));
+  m.buffer(GB_BINDING_CONTACTS) = DeviceBuffer();  // made for these particles by ensureContactRoom
+  m.contactPreviousCapacity = 0;
+  const size_t startingEntries = m.contactEntryCapacity > 0 ? 0 : n;  // the room grown for an earlier film is kept
+  m.ensureContactRoom(std::max(startingEntries, m.partnerEntriesOf(t.contacts)), 0);
   make(GB_BINDING_TRIANGLE_NORMAL, 3 * t.triangleCount() * sizeof(float));
   make(GB_BINDING_CORNER_AREA, 3 * t.triangleCount() * sizeof(float));
   make(GB_BINDING_REDUCE, reduceFloats(t, n) * sizeof(float));
@@ -537,6 +715,26 @@ float VulkanStepper::runStage(Stage stage, const StepUniforms& uniforms) {
 }
 
 void VulkanStepper::updateContacts(const Film& film) { impl_->writeContacts(film.topology); }
+
+bool VulkanStepper::findContacts(const Params& params, float frameTime, float slack, Film& film,
+                                 const ContactHistory& history) {
+  Impl& m = *impl_;
+  if (!m.contactsOnDevice) return false;
+  if (m.sets.empty()) throw std::logic_error("VulkanStepper: no film loaded");
+  if (film.state.size() != m.particles || params.collisionDistance != m.params.collisionDistance ||
+      params.collisionStiffness != m.params.collisionStiffness)
+    throw std::logic_error("VulkanStepper::findContacts: not the loaded film");
+  // A search short of room lists nothing reliable: it runs once more with the room it found it needed.
+  m.searchContacts(frameTime, slack, history);
+  if (!m.contactSearchHadRoom()) {
+    m.searchContacts(frameTime, slack, history);
+    if (!m.contactSearchHadRoom()) throw std::logic_error("VulkanStepper::findContacts: no room after growing");
+  }
+  m.readContactList(film.topology.contacts);
+  return true;
+}
+
+const DeviceContactRecord& VulkanStepper::contactRecord() const { return impl_->contactRecord; }
 
 void VulkanStepper::updateTopology(const Params& params, Film& film) {
   Impl& m = *impl_;

@@ -2,7 +2,8 @@
 // The Vulkan backend: the stages of cpu-reference/stages/stages.h as compute shaders (kernels/) over one storage
 // buffer per attribute. A batch of substeps is recorded into one command buffer and submitted once, with a
 // barrier only where a stage reads what an earlier one wrote. Topology stays on the CPU: load() takes a
-// changed film, store() brings the state back.
+// changed film, store() brings the state back. The self-collision contacts are found on the device
+// (findContacts; kernels/contact_*.comp), where the sweeps read them.
 
 #include <memory>
 
@@ -13,9 +14,34 @@ namespace gb {
 
 class VulkanContext;
 
+// Where the self-collision contacts are found for the Vulkan stepper.
+enum class ContactSearchPlace {
+  Automatic,  // on the device, unless the Vulkan device is a CPU driver (lavapipe), where the CPU's own search is 13
+              // to 25 times faster (docs/performance.md)
+  Device,     // on the device (findContacts), where the sweeps read them
+  Cpu,        // the CPU's search hands them over (updateContacts), as the reference does
+};
+
+struct VulkanStepperOptions {
+  ContactSearchPlace contactSearch = ContactSearchPlace::Automatic;
+  // The room the device search starts with after a load: partners of one particle, and partner entries of the whole
+  // list (0: one per particle). A search that finds more grows them and runs again (DeviceContactRecord::regrown).
+  uint32_t contactRowCapacity = 16;
+  uint32_t contactEntryCapacity = 0;
+};
+
+// What the device contact search has done since the stepper was made: its searches, how many of them found a row or
+// the whole list short of room and ran again in a larger buffer (each also reported on stderr), and its room now.
+struct DeviceContactRecord {
+  size_t searches = 0;
+  size_t regrown = 0;
+  uint32_t rowCapacity = 0;  // partners a particle has room for
+  size_t entryCapacity = 0;  // partner entries the list has room for
+};
+
 class VulkanStepper final : public Stepper {
  public:
-  explicit VulkanStepper(std::shared_ptr<const VulkanContext> context);
+  explicit VulkanStepper(std::shared_ptr<const VulkanContext> context, VulkanStepperOptions options = {});
   ~VulkanStepper() override;
   VulkanStepper(const VulkanStepper&) = delete;  // owns device objects
   VulkanStepper& operator=(const VulkanStepper&) = delete;
@@ -26,6 +52,14 @@ class VulkanStepper final : public Stepper {
   float runStage(Stage stage, const StepUniforms& uniforms) override;
   void store(Film& film) override;
   void updateContacts(const Film& film) override;
+  // The search of findContacts (collision.h) on the device: cells hashed and counting-sorted, each particle gathering
+  // its partners by the same pair rule; the list stays on the device for the sweeps and is read back into
+  // film.topology.contacts (the CPU's impact test and the history kept across a reload read it). `history` is taken
+  // to be the list the last search left when it is that list's size (Simulation keeps it so); the device then reads
+  // its own copy. False when the options say the CPU searches.
+  bool findContacts(const Params& params, float frameTime, float slack, Film& film,
+                    const ContactHistory& history) override;
+  [[nodiscard]] const DeviceContactRecord& contactRecord() const;
   void updateRestLengths(const Film& film) override;
   void updateTopology(const Params& params, Film& film) override;
 

@@ -66,7 +66,8 @@ GB_PARTICLE_BLOCK(DRAINAGE, 10, surfactantBefore, 1, UploadOnly, 0)
 // State::cornerArea): (x1 - x0) x (x2 - x0) as x, y and z blocks of `triangles` floats; each corner's Voronoi area.
 GB_BUFFER(27, TRIANGLE_NORMAL, float, triangleNormal[], GB_WRITABLE)
 GB_BUFFER(28, CORNER_AREA, float, cornerArea[], GB_WRITABLE)
-GB_BUFFER(29, CONTACTS, uint, contacts[], readonly)  // Topology::contacts, packed with the rest distances
+GB_BUFFER(29, CONTACTS, uint, contacts[],
+          GB_WRITABLE)  // Topology::contacts, then the device search's regions (shared_step.h)
 GB_PARTICLE_ARRAY(30, PREVIOUS_POSITION, previousPosition, 3, float, GB_WRITABLE, ReadBack, 0)  // x_t of a step
 // The implicit solver's lists: its particles colour by colour (Topology::colourOrder), then the coarse
 // correction's patch lists (kernels/coarse.glsl).

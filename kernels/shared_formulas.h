@@ -9,11 +9,14 @@ namespace gb {
   template <class Real> \
   inline constexpr Real
 #define GB_REAL Real
+#define GB_PRECISE
 #else
 #define GB_CONST const
 #define GB_FORMULA
 #define GB_REAL_FORMULA float
 #define GB_REAL float
+// Where the C++ twin's rounding is the rule (a threshold both backends must draw alike), no fused multiply-add.
+#define GB_PRECISE precise
 #endif
 
 // The film's thickness at the dip, e0 = w_e x 100 um (Section 5.1, areaWeight; initialThickness).
@@ -66,10 +69,34 @@ GB_FORMULA float flowSweptArea(float dt, float shareI, float shareJ, float along
   return along > 0.0f ? dt * (2.0f * (shareI + shareJ)) * along / lengthSquared : 0.0f;
 }
 
+// Self-collision (cpu-reference/topology/collision.h, findContacts; kernels/contact_pairs.comp). A pair's margin: how
+// much closer than the collision distance it is searched for, at `closing` a bound on the speed at which it closes,
+// capped at kMaxContactMargin (m: a film faster than 2.5 m/s relative to itself bursts anyway).
+GB_CONST float kMaxContactMargin = 0.05f;
+GB_FORMULA float contactMargin(float frameTime, float slack, float closing) {
+  GB_PRECISE const float margin = frameTime * closing + slack;
+  return margin < kMaxContactMargin ? margin : kMaxContactMargin;  // std::min(kMaxContactMargin, margin)
+}
+// A pair lies across the film when its separation d makes less than 45 degrees with either normal: (n . d)^2 over
+// 1/2 |d|^2 for one of them.
+GB_CONST float kAcrossCosineSquared = 0.5f;
+GB_CONST float kAcrossCosine = 0.70710678f;  // its root, for the search's bounds (partnerRadius)
+GB_FORMULA bool liesAcross(float alongI, float alongJ, float lengthSquared) {
+  return alongI * alongI > kAcrossCosineSquared * lengthSquared ||
+         alongJ * alongJ > kAcrossCosineSquared * lengthSquared;
+}
+// A listed pair's rest distance (collision.h says why): the collision distance, or the largest of its separation and
+// the rest distance it had in the last list, whichever is less.
+GB_FORMULA float contactRestDistanceAfter(float collisionDistance, float previousRest, float separation) {
+  const float kept = previousRest < separation ? separation : previousRest;  // std::max(previousRest, separation)
+  return kept < collisionDistance ? kept : collisionDistance;                // std::min(collisionDistance, kept)
+}
+
 #undef GB_CONST
 #undef GB_FORMULA
 #undef GB_REAL_FORMULA
 #undef GB_REAL
+#undef GB_PRECISE
 #ifdef __cplusplus
 }  // namespace gb
 #endif

@@ -113,6 +113,78 @@ GB_REGION uint reduceEnergySlotsAt(uint termsAt, uint particleCount) {
 }  // namespace gb::gpu
 #endif
 
+// The device contact search (kernels/contact_*.comp, host/vulkan_stepper.cpp). The contacts buffer
+// (GB_BINDING_CONTACTS) holds the packed list Topology::contacts from 0, with room for C partner entries: N + 1
+// offsets, C partners, C rest distances. The search's regions follow, from its header at contactSearchAt(N, C) on
+// (uints), with B buckets (a power of two) and room for K partners a particle:
+//   header         GB_CONTACT_HEADER slots (GB_CONTACT_*), set by the host before each search and by the kernels;
+//   bucket starts  B + 1: each bucket's particle count, then (scanned) where its particles start in `sorted`;
+//   bucket of      N: each particle's bucket, GB_NO_BUCKET for one not searched (dead, torn out, not finite);
+//   slot           N: its place among its bucket's particles;
+//   sorted         N: the searched particles, bucket by bucket;
+//   rows           N K: each particle's partners, ascending (the first K of them);
+//   scan totals    the block sums of the scans (contact_scan_*), one per GB_SCAN_RUN elements at most;
+//   sheets         B GB_CONTACT_SHEET floats: each bucket's particles as a piece of sheet (contact_sheets);
+//   previous       the last list, packed as the list is, for the pairs' rest distances.
+// The kernels get the header's start in PushBlock::first and read B and K from it.
+#define GB_CONTACT_REACH 0               // the search's reach (float bits): no pair lies farther apart
+#define GB_CONTACT_MOST_PARTNERS 1       // the most partners one particle has (K or less, or the rows overflowed)
+#define GB_CONTACT_PARTNER_ENTRIES 2     // all partners of all particles: C or less, or the list overflowed
+#define GB_CONTACT_PREVIOUS_PARTICLES 3  // the previous list's particle count N', 0 when there is none
+#define GB_CONTACT_ROW_CAPACITY 4        // K
+#define GB_CONTACT_ENTRY_CAPACITY 5      // C
+#define GB_CONTACT_BUCKETS 6             // B
+#define GB_CONTACT_FRAME_TIME 7          // the frame the pairs may close over (float bits, s)
+#define GB_CONTACT_SLACK 8               // what the frame's forces may add to it (float bits, m)
+#define GB_CONTACT_HEADER 9
+#define GB_NO_BUCKET 0xffffffffu
+// A bucket's sheet (BucketSheet of cpu-reference/topology/collision.cpp): its box's lower and upper corners, its
+// mean normal, the spread of its normals about it, and its particles' heights along it (lowest, highest).
+#define GB_SHEET_LOWER 0
+#define GB_SHEET_UPPER 3
+#define GB_SHEET_NORMAL 6
+#define GB_SHEET_SPREAD 9
+#define GB_SHEET_HEIGHTS 10
+#define GB_CONTACT_SHEET 12
+#define GB_SCAN_RUN 16u   // elements one invocation of contact_scan_blocks adds in a row
+#define GB_SCAN_ROWS 16u  // PushBlock::reduceFlags of contact_scan_*: the partner counts (else the bucket counts)
+
+#ifdef __cplusplus
+namespace gb::gpu {
+#endif
+struct ContactSearchLayout {
+  uint header, bucketStart, bucketOf, slot, sorted, rows, scanTotals, sheets, previous;
+};
+#ifdef __cplusplus
+#define GB_REGION inline constexpr
+#else
+#define GB_REGION
+#endif
+GB_REGION uint contactSearchAt(uint particleCount, uint entryCapacity) {
+  return particleCount + 1u + 2u * entryCapacity;
+}
+// The scans' block sums: at most one per GB_SCAN_RUN elements of the longer of the two arrays scanned.
+GB_REGION uint contactScanTotals(uint particleCount, uint buckets) {
+  return (maxOf(particleCount, buckets) + 1u + GB_SCAN_RUN - 1u) / GB_SCAN_RUN;
+}
+GB_REGION ContactSearchLayout contactSearchLayout(uint header, uint particleCount, uint buckets, uint rowCapacity) {
+  ContactSearchLayout l;
+  l.header = header;
+  l.bucketStart = header + uint(GB_CONTACT_HEADER);
+  l.bucketOf = l.bucketStart + buckets + 1u;
+  l.slot = l.bucketOf + particleCount;
+  l.sorted = l.slot + particleCount;
+  l.rows = l.sorted + particleCount;
+  l.scanTotals = l.rows + particleCount * rowCapacity;
+  l.sheets = l.scanTotals + contactScanTotals(particleCount, buckets);
+  l.previous = l.sheets + uint(GB_CONTACT_SHEET) * buckets;
+  return l;
+}
+#undef GB_REGION
+#ifdef __cplusplus
+}  // namespace gb::gpu
+#endif
+
 #ifdef __cplusplus
 // The storage buffer bindings of descriptor set 0, numbered as device_data.h lists them.
 namespace gb::gpu {

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <random>
 
 #include "cpu_stepper.h"
 #include "scene_file.h"
@@ -124,36 +123,6 @@ std::vector<std::vector<uint32_t>> contactsByTestingEveryPair(const Params& p, f
   return partners;
 }
 
-// The default film folded along x = 0: the half at x > 0 turned about the y axis by `angle` (radians) onto the
-// other half, the two halves `angle`'s complement apart (1.7 cm at 10 cm from the crease for 170 degrees), and
-// moving at random up to 1 m/s.
-Film foldedFilm(const Params& p, float angle, unsigned seed) {
-  Film film = generateFilm(p, WandTool{}, gestureAt(Gesture::Straight, GestureOptions{}, 0.0));
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
-  for (size_t i = 0; i < film.state.size(); ++i) {
-    const Vec3 x = film.state.position.get(i);
-    if (x.x() > 0) film.state.position.set(i, Vec3(x.x() * std::cos(angle), x.y(), x.z() + x.x() * std::sin(angle)));
-    film.state.velocity.set(i, Vec3(u(rng), u(rng), u(rng)) / std::sqrt(3.0f));
-  }
-  CpuStepper::refreshGeometry(p, film);
-  return film;
-}
-
-// Two sheets `gap` apart, the second shifted by `shift` along x, the whole turned by `angle` (radians) about
-// (1, 2, 3): a pair across them lies sqrt(gap^2 + shift^2) apart.
-Film shiftedSheets(const Params& p, float gap, float shift, float angle) {
-  Film film = test::makeTwoSheets(p, gap, 0.0f);
-  const size_t n = film.state.size();
-  const Eigen::AngleAxisf turn(angle, Vec3(1, 2, 3).normalized());
-  for (size_t i = 0; i < n; ++i) {
-    const Vec3 x = film.state.position.get(i) + (i < n / 2 ? Vec3::Zero() : Vec3(shift, 0, 0));
-    film.state.position.set(i, turn * x);
-  }
-  CpuStepper::refreshGeometry(p, film);
-  return film;
-}
-
 // findContacts' lists against testing every pair; returns the number of pairs.
 size_t expectTheSearchListsEveryPair(const Params& p, Film& film, const char* name) {
   const size_t pairs = findContacts(p, p.frameTime, 0.005f, film);
@@ -186,10 +155,10 @@ TEST(Collision, TheSearchListsExactlyThePairsThatTestingEveryPairFinds) {
   // search reads; a radius without the 1 / sqrt(1/2) would lose every pair. Once along the axes, once turned so
   // that the cells cut the sheets obliquely.
   for (float angle : {0.0f, 0.7f}) {
-    Film close = shiftedSheets(sheets, 0.001f, 0.00098f, angle);
+    Film close = test::shiftedSheets(sheets, 0.001f, 0.00098f, angle);
     EXPECT_GT(expectTheSearchListsEveryPair(sheets, close, "sheets 1 mm apart, shifted 0.98 mm"), 500u);
   }
-  Film folded = foldedFilm(Params{}, 170.0f * 3.14159265f / 180.0f, 1);
+  Film folded = test::foldedFilm(Params{}, 170.0f * 3.14159265f / 180.0f, 1);
   EXPECT_GT(expectTheSearchListsEveryPair(Params{}, folded, "the default film folded"), 1000u);
 
   const Scene scene = resolveScene("default");
@@ -210,8 +179,8 @@ TEST(Collision, AReusedSearchListsWhatAFreshSearchLists) {
   // larger film with many pairs left in them may show in a smaller film's lists, nor the other way round. Exactly
   // the same lists, pair for pair and rest distance for rest distance.
   const Params sheets = twoSheetParams(), film = Params{};
-  Film folded = foldedFilm(film, 170.0f * 3.14159265f / 180.0f, 1);
-  Film close = shiftedSheets(sheets, 0.001f, 0.00098f, 0.7f);
+  Film folded = test::foldedFilm(film, 170.0f * 3.14159265f / 180.0f, 1);
+  Film close = test::shiftedSheets(sheets, 0.001f, 0.00098f, 0.7f);
   ContactSearch search;
   for (int round = 0; round < 2; ++round)
     for (auto [params, original] : {std::pair{&film, &folded}, std::pair{&sheets, &close}}) {

@@ -1,8 +1,11 @@
 #pragma once
 // Small hand-made films for unit tests.
 
+#include <cmath>
+#include <random>
 #include <vector>
 
+#include "cpu_stepper.h"
 #include "film.h"
 #include "scripted_gestures.h"
 
@@ -65,6 +68,36 @@ inline void spin(Film& film, const Vec3& axis, float rate) {
   Vec3 centre = Vec3::Zero();
   for (size_t i = 0; i < s.size(); ++i) centre += s.position.get(i) / static_cast<float>(s.size());
   for (size_t i = 0; i < s.size(); ++i) s.velocity.set(i, rate * axis.normalized().cross(s.position.get(i) - centre));
+}
+
+// The default film folded along x = 0: the half at x > 0 turned about the y axis by `angle` (radians) onto the
+// other half, the two halves `angle`'s complement apart (1.7 cm at 10 cm from the crease for 170 degrees), and
+// moving at random up to 1 m/s.
+inline Film foldedFilm(const Params& p, float angle, unsigned seed) {
+  Film film = generateFilm(p, WandTool{}, gestureAt(Gesture::Straight, GestureOptions{}, 0.0));
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> u(-1.0f, 1.0f);
+  for (size_t i = 0; i < film.state.size(); ++i) {
+    const Vec3 x = film.state.position.get(i);
+    if (x.x() > 0) film.state.position.set(i, Vec3(x.x() * std::cos(angle), x.y(), x.z() + x.x() * std::sin(angle)));
+    film.state.velocity.set(i, Vec3(u(rng), u(rng), u(rng)) / std::sqrt(3.0f));
+  }
+  CpuStepper::refreshGeometry(p, film);
+  return film;
+}
+
+// Two sheets `gap` apart, the second shifted by `shift` along x, the whole turned by `angle` (radians) about
+// (1, 2, 3): a pair across them lies sqrt(gap^2 + shift^2) apart.
+inline Film shiftedSheets(const Params& p, float gap, float shift, float angle) {
+  Film film = test::makeTwoSheets(p, gap, 0.0f);
+  const size_t n = film.state.size();
+  const Eigen::AngleAxisf turn(angle, Vec3(1, 2, 3).normalized());
+  for (size_t i = 0; i < n; ++i) {
+    const Vec3 x = film.state.position.get(i) + (i < n / 2 ? Vec3::Zero() : Vec3(shift, 0, 0));
+    film.state.position.set(i, turn * x);
+  }
+  CpuStepper::refreshGeometry(p, film);
+  return film;
 }
 
 }  // namespace gb::test

@@ -259,9 +259,12 @@ void Simulation::updateContacts() {
   // Contacts for the next frame: within reach of what two particles can close in the longest step taken so far,
   // plus 5 mm for what the step's forces add to their start velocities.
   constexpr float slack = 0.005f;
-  contactSearch_.find(params_, contactHorizon_, slack, film_, contactHistory_);
+  // A stepper that searches on its device keeps the list there for its sweeps; otherwise the CPU searches.
+  if (!stepper_->findContacts(params_, contactHorizon_, slack, film_, contactHistory_)) {
+    contactSearch_.find(params_, contactHorizon_, slack, film_, contactHistory_);
+    stepper_->updateContacts(film_);
+  }
   contactHistory_ = {film_.topology.contacts, film_.state.size()};
-  stepper_->updateContacts(film_);
 }
 
 void Simulation::startBurst(size_t particle) { startCrack(burst_, film_, particle, time_, "poke"); }

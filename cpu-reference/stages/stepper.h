@@ -16,6 +16,8 @@
 
 namespace gb {
 
+struct ContactHistory;  // collision.h
+
 // The stages a step can run. Their order, when each runs and the barrier after each are stepStages().
 enum class Stage : int {
   Geometry,
@@ -85,6 +87,12 @@ class Stepper {
   virtual void store(Film& film) = 0;
   // Takes the film's new self-collision contact list (Topology::contacts), found between frames.
   virtual void updateContacts(const Film&) {}
+  // Finds the film's self-collision contacts for the next frame itself, the list findContacts makes with the same
+  // arguments (collision.h), and leaves it in film.topology.contacts too. Returns false when the stepper leaves the
+  // search to the caller (findContacts on the CPU, then updateContacts), as the CPU stepper does.
+  virtual bool findContacts(const Params&, float /*frameTime*/, float /*slack*/, Film&, const ContactHistory&) {
+    return false;
+  }
   // Takes a film whose mesh changed but whose particles did not move or change (a burst removed springs and
   // triangles and flagged particles dead): a GPU stepper writes only the topology and the alive flags and
   // keeps its state. By default, and whenever the particle count changed, it is a load().

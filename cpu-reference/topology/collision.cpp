@@ -43,10 +43,6 @@ bool inFilm(const Film& film, uint32_t i) {
 // join for a whole time slice.
 constexpr size_t kParallelPass = size_t{1} << 16;
 
-// A pair lies across the film when its separation makes less than 45 degrees with either normal.
-constexpr float kAcrossCosineSquared = 0.5f;
-constexpr float kAcrossCosine = 0.70710678f;
-
 // What a bucket's particles look like as a piece of sheet: their bounding box, their mean normal (each normal
 // turned to agree with the first: a normal's sign does not matter to the across test), how far any of their
 // normals is from it, and the range of their heights along it. Most of a film's buckets hold a nearly flat piece
@@ -306,12 +302,6 @@ size_t bucketsAround(const CellTable& table, uint32_t home, const Cell& c, float
   return count;
 }
 
-// How much closer than the collision distance a pair is searched for, at `closing` a bound on the speed at which
-// the pair closes (its relative speed; twice the fastest speed about the mean for the cells' width).
-float contactMargin(float frameTime, float slack, float closing) {
-  return std::min(kMaxContactMargin, frameTime * closing + slack);
-}
-
 // The pair rule of findContacts (collision.h) for the particles of the table.
 struct PartnerRule {
   const Params& p;
@@ -360,9 +350,8 @@ struct PartnerRule {
       const float pairReach = distance + contactMargin(time, extra, (velocity(k) - vi).norm());
       if (!(lengthSquared < pairReach * pairReach)) return;
       const float alongI = ni.dot(d), alongJ = normal[k].dot(d);
-      const bool across = alongI * alongI > kAcrossCosineSquared * lengthSquared ||
-                          alongJ * alongJ > kAcrossCosineSquared * lengthSquared;
-      if (across && !isOneRingNeighbour(topo, i, table.particle[k])) partners.push_back(table.particle[k]);
+      if (liesAcross(alongI, alongJ, lengthSquared) && !isOneRingNeighbour(topo, i, table.particle[k]))
+        partners.push_back(table.particle[k]);
     };
     const float highest = centre + radius;
     size_t k = first;
@@ -426,7 +415,7 @@ float previousRestDistance(const ContactHistory& history, uint32_t i, uint32_t j
 }  // namespace
 
 float contactRestDistanceAfter(const Params& p, float previousRest, float separation) {
-  return std::min(p.collisionDistance, std::max(previousRest, separation));
+  return contactRestDistanceAfter(p.collisionDistance, previousRest, separation);
 }
 
 struct ContactSearch::Memory {

@@ -69,12 +69,13 @@ std::vector<std::string> streamArguments(const std::string& url, int width, int 
   return args;
 }
 
-VideoStream::VideoStream(const std::string& url, int width, int height)
+VideoStream::VideoStream(const std::string& url, int width, int height, StreamPriority priority)
     : url_(url),
       arguments_(streamArguments(url, width, height)),
       width_(width),
       height_(height),
-      frameBytes_(4ull * static_cast<size_t>(width) * static_cast<size_t>(height)) {
+      frameBytes_(4ull * static_cast<size_t>(width) * static_cast<size_t>(height)),
+      priority_(priority) {
   if (!ffmpegAvailable())
     throw std::runtime_error("--stream needs ffmpeg, which is not installed (apt-get install ffmpeg)");
   std::signal(SIGPIPE, SIG_IGN);  // ffmpeg ending shows as a failed write, not as a signal that ends the show
@@ -133,7 +134,8 @@ int VideoStream::start() {
     // Below the show: ffmpeg runs when the show leaves a core idle, so the stream drops frames first (its threads,
     // made later, inherit this). Where idle scheduling is refused, nice 19.
     const sched_param none{};
-    if (sched_setscheduler(pid, SCHED_IDLE, &none) != 0) setpriority(PRIO_PROCESS, static_cast<id_t>(pid), 19);
+    if (priority_ == StreamPriority::BelowTheShow && sched_setscheduler(pid, SCHED_IDLE, &none) != 0)
+      setpriority(PRIO_PROCESS, static_cast<id_t>(pid), 19);
     std::lock_guard lock(mutex_);
     pid_ = pid;
   } catch (const std::runtime_error& e) {

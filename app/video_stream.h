@@ -25,6 +25,14 @@ namespace gb {
 // URL and the forms taken when it is none of them.
 std::vector<std::string> streamArguments(const std::string& url, int width, int height);
 
+// How ffmpeg is scheduled beside the show.
+enum class StreamPriority {
+  BelowTheShow,  // SCHED_IDLE (nice 19 where refused): it runs on what the show leaves of the cores, so the stream
+                 // drops frames before the show slows (live's stream)
+  Normal,        // as the show: frames flow whatever else keeps the cores busy (the tests of the sender on a
+                 // machine busy with other tests)
+};
+
 class VideoStream {
  public:
   static constexpr double kRetrySeconds = 5.0;
@@ -32,7 +40,7 @@ class VideoStream {
 
   // Checks the URL (streamArguments) and that ffmpeg is installed, then starts it. Throws std::runtime_error (or
   // std::invalid_argument for the URL) naming the problem.
-  VideoStream(const std::string& url, int width, int height);
+  VideoStream(const std::string& url, int width, int height, StreamPriority priority = StreamPriority::BelowTheShow);
   ~VideoStream();  // ends the stream: ffmpeg gets kCloseSeconds to finish, and is killed after that
   VideoStream(const VideoStream&) = delete;  // owns the sender thread and ffmpeg
   VideoStream& operator=(const VideoStream&) = delete;
@@ -52,6 +60,7 @@ class VideoStream {
   std::vector<std::string> arguments_;
   int width_, height_;
   size_t frameBytes_;
+  StreamPriority priority_;
   std::mutex mutex_;
   std::condition_variable wake_;
   std::vector<uint8_t> waiting_;  // the frame offered and not yet taken by the sender

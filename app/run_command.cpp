@@ -339,6 +339,7 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
                     input.camera());
   record.setRealTimeFactor(last.time / std::max(wall, 1e-9));
   record.setEnergyBudget(sim.energyBudgetRecord());
+  record.setReadback(sim.readbackRecord());
   record.writeJson(o.outDir / "stats.json", o.scene, status);
   if (status == "interrupted") {
     std::fprintf(stderr,

@@ -139,6 +139,15 @@ void RunRecord::writeJson(const std::filesystem::path& path, const std::string& 
   j["energy_budget"] = {{"frames", budget_.frames},
                         {"smallest_factor", budget_.smallestScale},
                         {"largest_drift_given_back_mps", budget_.largestShift}};
+  const auto perFrame = [](uint64_t bytes, long frames) {
+    return frames > 0 ? static_cast<double>(bytes) / static_cast<double>(frames) : 0.0;
+  };
+  j["readback"] = {
+      {"state_readbacks", readback_.stateReadbacks},
+      {"frames", readback_.frames},
+      {"frames_without_event", readback_.framesWithoutEvent},
+      {"bytes_per_frame", perFrame(readback_.bytes, readback_.frames)},
+      {"bytes_per_frame_without_event", perFrame(readback_.bytesWithoutEvent, readback_.framesWithoutEvent)}};
   j["first_frame"] = frameJson(first_);
   j["last_frame"] = frameJson(last_);
   j["largest"] = {{"area_m2", largestArea_.area},       {"area_time_s", largestArea_.time},
@@ -256,7 +265,7 @@ std::string RunRecord::story() const {
   std::snprintf(largest, sizeof largest, "area %.4f m^2 (%s), volume %.4f m^3 (%s), %zu particles, %zu droplets",
                 largestArea_.area, seconds(largestArea_.time).c_str(), largestVolume_.volume,
                 seconds(largestVolume_.time).c_str(), mostParticles_, mostDroplets_);
-  char lines[160];
+  char lines[200];
   std::snprintf(lines, sizeof lines, "%-28s ", "film's life");
   std::string text = lines + story + "\n";
   std::snprintf(lines, sizeof lines, "%-28s ", "largest");
@@ -266,6 +275,18 @@ std::string RunRecord::story() const {
                   "%-28s took energy back on %ld of %ld frames (smallest factor on the wobble %.2f, most drift given "
                   "back %.3f m/s)\n",
                   "energy budget", budget_.frames, frames_, budget_.smallestScale, budget_.largestShift);
+    text += lines;
+  }
+  if (readback_.stateReadbacks > 0) {  // a device stepper: what its frames copied back (docs/backends.md)
+    const auto kib = [](uint64_t bytes, long frames) {
+      return frames > 0 ? static_cast<double>(bytes) / 1024.0 / static_cast<double>(frames) : 0.0;
+    };
+    std::snprintf(lines, sizeof lines,
+                  "%-28s the state on %zu of %ld frames; %.1f KiB a frame, %.1f KiB on the %ld frames without a "
+                  "topology event\n",
+                  "read back from the device", readback_.stateReadbacks, readback_.frames,
+                  kib(readback_.bytes, readback_.frames),
+                  kib(readback_.bytesWithoutEvent, readback_.framesWithoutEvent), readback_.framesWithoutEvent);
     text += lines;
   }
   return text;

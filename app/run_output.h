@@ -34,6 +34,9 @@ class RunRecord {
   void setRealTimeFactor(double factor) { realTimeFactor_ = factor; }
   // What the implicit step's energy budget did (Simulation::energyBudgetRecord), for stats.json and the summary.
   void setEnergyBudget(const Simulation::BudgetRecord& budget) { budget_ = budget; }
+  // What the frames read back from the device (Simulation::readbackRecord), for stats.json's "readback" and the
+  // summary.
+  void setReadback(const Simulation::ReadbackRecord& readback) { readback_ = readback; }
   // A string field of stats.json beside the figures, e.g. "video_error".
   void note(const std::string& key, const std::string& value);
   // Adds `milliseconds` of this frame to the phase `name` ("step", "render"...): stats.json's "phase_ms" and the
@@ -58,6 +61,7 @@ class RunRecord {
   size_t mostParticles_ = 0, mostDroplets_ = 0;
   double realTimeFactor_ = 0;
   Simulation::BudgetRecord budget_;
+  Simulation::ReadbackRecord readback_;
   std::vector<std::pair<double, std::string>> events_;
   std::vector<std::pair<std::string, double>> phaseSums_;  // ms over all frames
 };

@@ -162,6 +162,7 @@ struct VulkanStepper::Impl {
   size_t contactPreviousCapacity = 0;  // uints of the previous list's region
   size_t deviceListEntries = 0;        // uints of the list the last device search left at the start; 0: none there
   DeviceContactRecord contactRecord;
+  DeviceReadback copiedToHost;  // every copy into host memory (readFrom)
 
   Impl(std::shared_ptr<const VulkanContext> context, VulkanStepperOptions stepperOptions)
       : ctx(std::move(context)),
@@ -242,9 +243,15 @@ struct VulkanStepper::Impl {
     slots[GB_SLOT_RELEASED - GB_SLOT_SCALE] = b.released;
     buffer(GB_BINDING_REDUCE).write(slots.data(), sizeof slots, velocityBudgetOffset());
   }
+  // A copy from device memory into host memory, counted in `copiedToHost`.
+  void readFrom(const DeviceBuffer& from, void* to, vk::DeviceSize bytes, vk::DeviceSize offset = 0) {
+    from.read(to, bytes, offset);
+    copiedToHost.bytes += bytes;
+  }
+
   [[nodiscard]] VelocityBudget readVelocityBudget() {
     std::array<float, kBudgetSlots> slots{};
-    buffer(GB_BINDING_REDUCE).read(slots.data(), sizeof slots, velocityBudgetOffset());
+    readFrom(buffer(GB_BINDING_REDUCE), slots.data(), sizeof slots, velocityBudgetOffset());
     const auto at = [&](int slot) { return slots[static_cast<size_t>(slot - GB_SLOT_SCALE)]; };
     return {at(GB_SLOT_SCALE), Vec3(at(GB_SLOT_CENTRE), at(GB_SLOT_CENTRE + 1), at(GB_SLOT_CENTRE + 2)),
             Vec3(at(GB_SLOT_SHIFT), at(GB_SLOT_SHIFT + 1), at(GB_SLOT_SHIFT + 2)), at(GB_SLOT_RELEASED)};
@@ -554,7 +561,7 @@ struct VulkanStepper::Impl {
   // twice what they had, says so on stderr, and the list at the buffer's start is no longer the last one.
   bool contactSearchHadRoom() {
     std::array<uint32_t, GB_CONTACT_HEADER> h{};
-    buffer(GB_BINDING_CONTACTS).read(h.data(), sizeof h, vk::DeviceSize{contactHeader()} * sizeof(uint32_t));
+    readFrom(buffer(GB_BINDING_CONTACTS), h.data(), sizeof h, vk::DeviceSize{contactHeader()} * sizeof(uint32_t));
     const uint32_t most = h[GB_CONTACT_MOST_PARTNERS], entries = h[GB_CONTACT_PARTNER_ENTRIES];
     if (most <= contactRowCapacity && entries <= contactEntryCapacity) return true;
     std::fprintf(stderr,
@@ -572,15 +579,16 @@ struct VulkanStepper::Impl {
   void readContactList(std::vector<uint32_t>& contacts) {
     const DeviceBuffer& list = buffer(GB_BINDING_CONTACTS);
     uint32_t entries = 0;
-    list.read(&entries, sizeof entries, vk::DeviceSize{particles} * sizeof(uint32_t));
+    readFrom(list, &entries, sizeof entries, vk::DeviceSize{particles} * sizeof(uint32_t));
     contacts.resize(particles + size_t{1} + 2 * size_t{entries});
-    list.read(contacts.data(), contacts.size() * sizeof(uint32_t));
+    readFrom(list, contacts.data(), contacts.size() * sizeof(uint32_t));
     deviceListEntries = contacts.size();
   }
 
   float readVolume() {
     float volume = 0.0f;
-    buffer(GB_BINDING_REDUCE).read(&volume, sizeof volume, volumeInA ? 0 : gpu::reduceHalfB(triangles) * sizeof(float));
+    readFrom(buffer(GB_BINDING_REDUCE), &volume, sizeof volume,
+             volumeInA ? 0 : gpu::reduceHalfB(triangles) * sizeof(float));
     return volume;
   }
 };
@@ -812,11 +820,14 @@ void VulkanStepper::store(Film& film) {
   forEachParticleArray(s, [&](auto& array, const ParticleArrayInfo& info) {
     if (info.transfer != Transfer::ReadBack) return;
     forEachComponent(array, [&](auto& values, int) {
-      m.readback.read(values.data(), blockBytes, at);
+      m.readFrom(m.readback, values.data(), blockBytes, at);
       at += blockBytes;
     });
   });
+  ++m.copiedToHost.stateReadbacks;
 }
+
+DeviceReadback VulkanStepper::readback() const { return impl_->copiedToHost; }
 
 std::shared_ptr<const VulkanContext> VulkanStepper::sharedContext() const { return impl_->ctx; }
 

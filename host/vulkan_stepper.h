@@ -60,6 +60,7 @@ class VulkanStepper final : public Stepper {
   bool findContacts(const Params& params, float frameTime, float slack, Film& film,
                     const ContactHistory& history) override;
   [[nodiscard]] const DeviceContactRecord& contactRecord() const;
+  [[nodiscard]] DeviceReadback readback() const override;
   void updateRestLengths(const Film& film) override;
   void updateTopology(const Params& params, Film& film) override;
 

@@ -718,5 +718,39 @@ TEST(VulkanEquivalence, PhysicalTensionCatenoidMatches) {
   EXPECT_EQ(device->validationErrors(), 0u);
 }
 
+// The run's read-back record (Simulation::readbackRecord, stats.json "readback") counts what the Vulkan stepper copies
+// back: today the whole state every frame (128 bytes a particle with the film flow's arrays), and the frames with no
+// topology event apart. The CPU backend copies nothing.
+TEST(VulkanReadback, EveryFrameReadsTheStateBackAndTheRecordCountsIt) {
+  GB_REQUIRE_VULKAN(device);
+  Params p;
+  p.particlesAtFullSolution = 1500;
+  const WandState still = gestureAt(Gesture::Straight, GestureOptions{}, 0.0);  // no growth, no pinch: no events
+  Simulation gpu(p, WandTool{}, still, std::make_unique<VulkanStepper>(device));
+  Simulation cpu(p, WandTool{}, still, std::make_unique<CpuStepper>());
+  size_t stateBytes = 0;  // one store(): the ReadBack arrays of the one list
+  forEachParticleArray(gpu.film().state, [&](const auto&, const ParticleArrayInfo& info) {
+    if (info.transfer == Transfer::ReadBack) stateBytes += size_t(info.components) * sizeof(float);
+  });
+  stateBytes *= gpu.film().state.size();
+  constexpr int kFrames = 10;
+  for (int f = 0; f < kFrames; ++f) {
+    gpu.advanceFrame(still);
+    cpu.advanceFrame(still);
+  }
+  const Simulation::ReadbackRecord& r = gpu.readbackRecord();
+  EXPECT_EQ(r.frames, kFrames);
+  EXPECT_EQ(r.stateReadbacks, size_t{kFrames});
+  EXPECT_EQ(r.framesWithoutEvent, kFrames) << "a film hanging still has no topology event";
+  // The state, plus the few floats of the volume and the energy budget and, searching on the device, the contacts.
+  EXPECT_GE(r.bytes, kFrames * stateBytes);
+  EXPECT_EQ(r.bytesWithoutEvent, r.bytes);
+  EXPECT_EQ(cpu.readbackRecord().frames, kFrames);
+  EXPECT_EQ(cpu.readbackRecord().stateReadbacks, 0u);
+  EXPECT_EQ(cpu.readbackRecord().bytes, 0u);
+  std::printf("%zu particles: %.1f KiB read back a frame (the state %.1f KiB)\n", gpu.film().state.size(),
+              r.bytes / 1024.0 / kFrames, stateBytes / 1024.0);
+}
+
 }  // namespace
 }  // namespace gb

@@ -164,6 +164,8 @@ void Simulation::advanceFrame(const WandState& next) {
     substepUniforms_.back().solverSweeps = solverSweeps_;
   }
   substepUniforms_.back().drainageDt = params_.frameTime;  // the frame's drainage, after its last substep
+  const DeviceReadback readBefore = stepper_->readback();
+  const long loadsBefore = loads_;
   const auto started = Clock::now();
   pressure_ = stepper_->run(substepUniforms_);
   stepper_->store(film_);
@@ -204,6 +206,22 @@ void Simulation::advanceFrame(const WandState& next) {
   phases_ = {millisecondsBetween(started, stepped), millisecondsBetween(stepped, changed),
              millisecondsBetween(changed, Clock::now())};
   aerosol_.advance(params_, params_.frameTime);
+  recordReadback(readBefore, loadsBefore);
+}
+
+void Simulation::recordReadback(const DeviceReadback& before, long loadsBefore) {
+  const DeviceReadback now = stepper_->readback();
+  const uint64_t bytes = now.bytes - before.bytes;
+  const bool topologyEvent = burst_.active() || events_.started || events_.finished || events_.particlesRemoved > 0 ||
+                             events_.pinchedOff || events_.particlesAdded > 0 || loads_ != loadsBefore;
+  ReadbackRecord& r = readbackRecord_;
+  ++r.frames;
+  r.stateReadbacks += now.stateReadbacks - before.stateReadbacks;
+  r.bytes += bytes;
+  if (!topologyEvent) {
+    ++r.framesWithoutEvent;
+    r.bytesWithoutEvent += bytes;
+  }
 }
 
 void Simulation::burstOnHardImpact() {
@@ -250,6 +268,7 @@ void Simulation::growFilm(const WandState& wands, float wandSpeed) {
 }
 
 void Simulation::reloadFilm() {
+  ++loads_;
   CpuStepper::refreshGeometry(params_, film_);
   chooseSubsteps();
   stepper_->load(params_, film_);

@@ -111,6 +111,17 @@ class Simulation {
     float largestShift = 0.0f;   // the most drift it gave back in one step (m/s)
   };
   [[nodiscard]] const BudgetRecord& energyBudgetRecord() const { return budgetRecord_; }
+  // What the frames copied from the stepper's device into host memory (Stepper::readback), split by whether the
+  // frame had a topology event (a burst under way, film growth at the wire, a pinch-off, a merge): the frames
+  // without one are those a GPU-resident frame needs no state for. All zero on the CPU backend.
+  struct ReadbackRecord {
+    long frames = 0;
+    long framesWithoutEvent = 0;
+    size_t stateReadbacks = 0;
+    uint64_t bytes = 0;
+    uint64_t bytesWithoutEvent = 0;
+  };
+  [[nodiscard]] const ReadbackRecord& readbackRecord() const { return readbackRecord_; }
   [[nodiscard]] Stepper& stepper() { return *stepper_; }
   [[nodiscard]] FrameStats stats();
 
@@ -136,6 +147,7 @@ class Simulation {
   void burstOnFloorTouch();
   void updateContacts();
   void checkStable() const;
+  void recordReadback(const DeviceReadback& before, long loadsBefore);
 
   Params params_;
   Film film_;
@@ -156,6 +168,8 @@ class Simulation {
   ContactSearch contactSearch_;
   long stepCount_ = 0;
   BudgetRecord budgetRecord_;
+  ReadbackRecord readbackRecord_;
+  long loads_ = 0;  // reloadFilm calls: a merge's or a growth's new film on the stepper
 };
 
 }  // namespace gb

@@ -68,6 +68,14 @@ const char* stageName(Stage stage);
 // Time spent per stage (ms) since the last reset; filled when timing is enabled.
 using StageTimes = std::array<double, kStageCount>;
 
+// What a stepper has copied from its device into host memory since it was made: whole-state read-backs (store)
+// and the bytes of every copy (the state, the contact list, the reductions' few floats). None for a stepper that
+// works in host memory.
+struct DeviceReadback {
+  size_t stateReadbacks = 0;
+  uint64_t bytes = 0;
+};
+
 class Stepper {
  public:
   virtual ~Stepper() = default;
@@ -103,6 +111,8 @@ class Stepper {
   // What the energy budget did in the last step run (the last substep of run()): nothing (VelocityBudget{}) when
   // the step kept within its budget or no budget ran (energy_budget.h).
   [[nodiscard]] const VelocityBudget& lastBudget() const { return lastBudget_; }
+
+  [[nodiscard]] virtual DeviceReadback readback() const { return {}; }
 
   virtual void enableTiming(bool on) { timing_ = on; }
   [[nodiscard]] const StageTimes& stageTimes() const { return times_; }

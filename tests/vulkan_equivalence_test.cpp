@@ -749,7 +749,7 @@ TEST(VulkanReadback, EveryFrameReadsTheStateBackAndTheRecordCountsIt) {
   EXPECT_EQ(cpu.readbackRecord().stateReadbacks, 0u);
   EXPECT_EQ(cpu.readbackRecord().bytes, 0u);
   std::printf("%zu particles: %.1f KiB read back a frame (the state %.1f KiB)\n", gpu.film().state.size(),
-              r.bytes / 1024.0 / kFrames, stateBytes / 1024.0);
+              static_cast<double>(r.bytes) / 1024.0 / kFrames, static_cast<double>(stateBytes) / 1024.0);
 }
 
 }  // namespace

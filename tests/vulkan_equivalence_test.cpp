@@ -139,6 +139,25 @@ double worstUlpRatio(const Vec3Array& cpu, const Vec3Array& gpu, const std::vect
   return worst;
 }
 
+// The moving film after `stages` run one after the other on each backend, the GPU's state read back.
+struct OnBothBackends {
+  Film cpu, gpu;
+};
+OnBothBackends afterStages(const std::shared_ptr<const VulkanContext>& device, const MovingFilm& input,
+                           std::initializer_list<Stage> stages) {
+  OnBothBackends films{input.film, input.film};
+  CpuStepper cpu;
+  VulkanStepper gpu(device);
+  cpu.load(input.params, films.cpu);
+  gpu.load(input.params, films.gpu);
+  for (const Stage stage : stages) {
+    cpu.runStage(stage, input.uniforms);
+    gpu.runStage(stage, input.uniforms);
+  }
+  gpu.store(films.gpu);
+  return films;
+}
+
 TEST(VulkanEquivalence, EveryStageAloneMatchesTheCpuReference) {
   GB_REQUIRE_VULKAN(device);
   const MovingFilm input;
@@ -164,57 +183,35 @@ TEST(VulkanEquivalence, EveryStageAloneMatchesTheCpuReference) {
         {"surfactant", [](const State& s) { return s.surfactant; }}}},
   };
   for (const auto& [stage, outputs] : checks) {
-    Film cpuFilm = input.film, gpuFilm = input.film;
-    CpuStepper cpu;
-    VulkanStepper gpu(device);
-    cpu.load(input.params, cpuFilm);
-    gpu.load(input.params, gpuFilm);
-    cpu.runStage(stage, input.uniforms);
-    gpu.runStage(stage, input.uniforms);
-    gpu.store(gpuFilm);
+    const OnBothBackends films = afterStages(device, input, {stage});
     for (const Output& out : outputs) {
       const double error =
-          worstRelativeError(out.get(cpuFilm.state), out.get(gpuFilm.state), kCancellationFloor, out.components);
+          worstRelativeError(out.get(films.cpu.state), out.get(films.gpu.state), kCancellationFloor, out.components);
       EXPECT_LT(error, kStageTolerance) << stageName(stage) << " -> " << out.name;
       std::printf("stage %-12s %-12s worst relative error %.2e\n", stageName(stage), out.name, error);
     }
   }
-  // The two cancelling outputs, against their few-ulp bounds.
-  Film cpuFilm = input.film, gpuFilm = input.film;
-  CpuStepper cpu;
-  VulkanStepper gpu(device);
-  cpu.load(input.params, cpuFilm);
-  gpu.load(input.params, gpuFilm);
-  cpu.runStage(Stage::Forces, input.uniforms);
-  gpu.runStage(Stage::Forces, input.uniforms);
-  gpu.store(gpuFilm);
+  // The three cancelling outputs, against their few-ulp bounds.
+  const OnBothBackends forces = afterStages(device, input, {Stage::Forces});
   std::vector<double> termScale(input.film.state.size());
   for (size_t i = 0; i < termScale.size(); ++i) termScale[i] = forceTermMagnitude(input.params, input.film, i);
-  const double forceRatio = worstUlpRatio(cpuFilm.state.force, gpuFilm.state.force, termScale, 16);
+  const double forceRatio = worstUlpRatio(forces.cpu.state.force, forces.gpu.state.force, termScale, 16);
   std::printf("stage forces       force        worst error %.2f x (16 ulps of the terms)\n", forceRatio);
   EXPECT_LT(forceRatio, 1.0);
-  cpu.runStage(Stage::Integrate, input.uniforms);
-  gpu.runStage(Stage::Integrate, input.uniforms);
-  gpu.store(gpuFilm);
+  const OnBothBackends integrated = afterStages(device, input, {Stage::Forces, Stage::Integrate});
   double positionScale = 0;
   for (size_t i = 0; i < termScale.size(); ++i)
-    positionScale = std::max(positionScale, static_cast<double>(cpuFilm.state.position.get(i).norm()));
+    positionScale = std::max(positionScale, static_cast<double>(integrated.cpu.state.position.get(i).norm()));
   const std::vector<double> velocityScale(termScale.size(), positionScale / input.uniforms.dt);
-  const double velocityRatio = worstUlpRatio(cpuFilm.state.velocity, gpuFilm.state.velocity, velocityScale, 8);
+  const double velocityRatio =
+      worstUlpRatio(integrated.cpu.state.velocity, integrated.gpu.state.velocity, velocityScale, 8);
   std::printf("stage integrate    velocity     worst error %.2f x (8 ulp(x)/dt)\n", velocityRatio);
   EXPECT_LT(velocityRatio, 1.0);
-  Film cpuFlow = input.film, gpuFlow = input.film;
-  CpuStepper cpuFlowStepper;
-  VulkanStepper gpuFlowStepper(device);
-  cpuFlowStepper.load(input.params, cpuFlow);
-  gpuFlowStepper.load(input.params, gpuFlow);
-  cpuFlowStepper.runStage(Stage::FilmFlow, input.uniforms);
-  gpuFlowStepper.runStage(Stage::FilmFlow, input.uniforms);
-  gpuFlowStepper.store(gpuFlow);
+  const OnBothBackends flowed = afterStages(device, input, {Stage::FilmFlow});
   std::vector<double> flowScale(termScale.size());
   for (size_t i = 0; i < flowScale.size(); ++i)
     flowScale[i] = flowTermMagnitude(input.params, input.film, input.uniforms, i);
-  const double flowRatio = worstUlpRatio(cpuFlow.state.flowVelocity, gpuFlow.state.flowVelocity, flowScale, 16);
+  const double flowRatio = worstUlpRatio(flowed.cpu.state.flowVelocity, flowed.gpu.state.flowVelocity, flowScale, 16);
   std::printf("stage film_flow    flowVelocity worst error %.2f x (16 ulps of the terms)\n", flowRatio);
   EXPECT_LT(flowRatio, 1.0);
   EXPECT_EQ(device->validationErrors(), 0u);

@@ -1,6 +1,6 @@
 #version 450
 // filmFlowGather (cpu-reference/stages/stages.cpp): film flow pass 3, particle j's liquid and surfactant after its
-// edges' fluxes, each the exact negative of its neighbour's; conserves liquid.
+// edges' fluxes, each the exact negative of its neighbour's (the flow conserves liquid), less what evaporated.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
@@ -20,8 +20,10 @@ void main() {
     surfactantOut += sent * FLOW(surfactantBeforeBlock, j) - received * FLOW(surfactantBeforeBlock, i);
   }
   const float before = FLOW(surfactantBeforeBlock, j);
-  const float newLiquid = liquid[j] - liquidOut;
-  const float surfactant = before * liquid[j] - surfactantOut;
+  const float flowed = liquid[j] - liquidOut;
+  const float newLiquid =
+      flowed - evaporatedLiquid(params.evaporationRate, dt, flowed, voronoiArea[j], params.blackFilmThickness);
+  const float surfactant = before * liquid[j] - surfactantOut;  // evaporation leaves it behind
   liquid[j] = newLiquid;
   FLOW(surfactantBlock, j) = newLiquid > 0.0 ? surfactant / newLiquid : before;
 }

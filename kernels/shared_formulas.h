@@ -69,6 +69,14 @@ GB_FORMULA float flowSweptArea(float dt, float shareI, float shareJ, float along
   return along > 0.0f ? dt * (2.0f * (shareI + shareJ)) * along / lengthSquared : 0.0f;
 }
 
+// The liquid a particle of area `area` loses by evaporation in dt (m^3; filmFlowGather): the film thins at `rate`
+// (evaporationRate) until it is black film, which holds too little water to lose more (docs/model.md "Evaporation").
+GB_FORMULA float evaporatedLiquid(float rate, float dt, float liquid, float area, float blackFilmThickness) {
+  const float aboveBlackFilm = liquid - blackFilmThickness * area;
+  const float most = rate * dt * area;
+  return aboveBlackFilm <= 0.0f ? 0.0f : (aboveBlackFilm < most ? aboveBlackFilm : most);
+}
+
 // Self-collision (cpu-reference/topology/collision.h, findContacts; kernels/contact_pairs.comp). A pair's margin: how
 // much closer than the collision distance it is searched for, at `closing` a bound on the speed at which it closes,
 // capped at kMaxContactMargin (m: a film faster than 2.5 m/s relative to itself bursts anyway).

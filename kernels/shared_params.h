@@ -67,6 +67,8 @@ struct Params {
                                                  // past the film, on each face (Pa s/m)
   float marangoniElasticity GB_DEFAULT(0.002f);  // E_M = -2 d(gamma)/d(ln Gamma): the surface tension's fall with the
                                                  // surfactant per area, both faces (N/m)
+  float evaporationRate GB_DEFAULT(1.5e-7f);     // how fast the film thins by evaporation into the air, both faces
+                                                 // (m/s; docs/model.md "Evaporation"); 0: saturated air
   float blackFilmThickness GB_DEFAULT(60e-9f);   // thinner film has turned black film: drawn without interference (m)
   int holeOpening GB_DEFAULT(0);           // 0: hole front at the Taylor-Culick speed; 1: one ring per frame (paper)
   float aerosolLifetime GB_DEFAULT(1.5f);  // aerosol droplets fade out over this time (s)

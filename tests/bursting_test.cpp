@@ -37,6 +37,7 @@ TEST(Bursting, OneCrackRemovesTheWholeFilmOnceIntoDropletsCarryingItsLiquid) {
   p.particlesAtFullSolution = 1500;
   p.gravityY = 0.0f;  // droplets stay in the air: all of them are counted
   p.aerosolLifetime = 100.0f;
+  p.evaporationRate = 0.0f;  // saturated air: the film's liquid goes into the droplets and nowhere else
   Simulation sim(p, WandTool{}, restingWands());
   const size_t triangles = sim.film().topology.triangleCount();
   const State& s = sim.film().state;

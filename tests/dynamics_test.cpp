@@ -24,6 +24,9 @@ double maxAbsZ(const State& s, const Topology& topo) {
 TEST(Dynamics, FlatFilmOnAFixedRingStaysFlatAndComesToRest) {
   Params p;
   p.particlesAtFullSolution = 800;
+  // Saturated air: a film that keeps thinning keeps changing its elasticity (Eq. 4 reads the thickness), and so
+  // never quite comes to rest.
+  p.evaporationRate = 0.0f;
   WandTool ring;
   ring.kind = ToolKind::Ring;
   const WandState wands = restingWands();

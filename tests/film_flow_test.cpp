@@ -1,6 +1,6 @@
 // The thin-film flow (cpu-reference/stages/stages.h, docs/model.md "Film flow"): each term of the liquid's velocity
 // against a hand-computed value, the flux of an edge, the lubrication limit on a tilted film, Marangoni relaxation
-// of a surfactant step, conservation of liquid, and the burst by thinning it leads to.
+// of a surfactant step, conservation of liquid, evaporation, and the burst by thinning it leads to.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -75,6 +75,7 @@ Params quietParams() {
   p.surfaceRigidity = 0.0f;
   p.flowViscosity = 0.0f;
   p.marangoniElasticity = 0.0f;
+  p.evaporationRate = 0.0f;
   return p;
 }
 
@@ -216,6 +217,7 @@ TEST(FilmFlow, ASurfactantStepRelaxesByMarangoniFlow) {
   // and the Marangoni stress pulls liquid and surfactant over to the right until the step has smoothed out.
   Params p;
   p.gravityY = -9.81f;
+  p.evaporationRate = 0.0f;  // saturated air: the liquid only flows
   const int columns = 24, rows = 12;
   Film film = makeSheet(p, columns, rows, 0.02f, Vec3(1, 0, 0), Vec3(0, 0, 1));
   setThickness(p, film, 2e-6f);
@@ -249,18 +251,25 @@ TEST(FilmFlow, ASurfactantStepRelaxesByMarangoniFlow) {
   EXPECT_NEAR(totalLiquid(s), total, steps * 0x1p-24 * total);
 }
 
-TEST(FilmFlow, ConservesLiquidToFloatRounding) {
-  // A vertical ring film under the whole default flow, with the wands' air blowing across it, 10 s: liquid
-  // only moves. Each step rounds each particle's new liquid once (at most 2^-24 relative), so after N steps the
-  // total is within N 2^-24 of where it started; a flux that is not exactly antisymmetric loses far more.
-  Params p;
-  p.particlesAtFullSolution = 1500;
+// A vertical ring film under the whole default flow, with the wands' air blowing across it.
+Film ringFilmInAMovingAir(const Params& p) {
   WandTool ring;
   ring.kind = ToolKind::Ring;
   Film film = generateFilm(p, ring, gestureAt(Gesture::Straight, GestureOptions{}, 0.0));
   CpuStepper::refreshGeometry(p, film);
   for (size_t i = 0; i < film.state.size(); ++i)
     film.state.airFlow.set(i, Vec3(0.05f * std::sin(7.0f * film.state.position.y[i]), 0.02f, 0.0f));
+  return film;
+}
+
+TEST(FilmFlow, ConservesLiquidToFloatRounding) {
+  // The ring film in saturated air, 10 s: liquid only moves. Each step rounds each particle's new liquid once (at
+  // most 2^-24 relative), so after N steps the total is within N 2^-24 of where it started; a flux that is not
+  // exactly antisymmetric loses far more.
+  Params p;
+  p.particlesAtFullSolution = 1500;
+  p.evaporationRate = 0.0f;
+  Film film = ringFilmInAMovingAir(p);
   const double before = totalLiquid(film.state);
   const int steps = 500;
   flow(p, film, steps, 0.02f);
@@ -271,6 +280,50 @@ TEST(FilmFlow, ConservesLiquidToFloatRounding) {
     ASSERT_GE(film.state.liquid[i], 0.0f) << "the limiter keeps every particle's liquid";
     ASSERT_TRUE(std::isfinite(film.state.surfactant[i]));
   }
+}
+
+TEST(FilmFlow, EvaporationTakesItsRateTimesTheAreaWhileTheFlowMovesTheRest) {
+  // The same ring film flowing in dry air (the default evaporation), 2 s, no particle near black film (where
+  // evaporation stops): what is lost is exactly rate x time x area, the flow moves the rest, and evaporation
+  // leaves the surfactant behind (its total, surfactant per liquid times liquid, is kept). Rounding as above, twice
+  // per step (the flow's and evaporation's).
+  Params p;
+  p.particlesAtFullSolution = 1500;
+  ASSERT_GT(p.evaporationRate, 0.0f) << "the default air is dry";
+  Film film = ringFilmInAMovingAir(p);
+  const State& s = film.state;
+  const auto totalSurfactant = [&] {
+    double sum = 0;
+    for (size_t i = 0; i < s.size(); ++i) sum += double(s.surfactant[i]) * s.liquid[i];
+    return sum;
+  };
+  const double area = std::accumulate(s.voronoiArea.begin(), s.voronoiArea.end(), 0.0);
+  const double before = totalLiquid(s), surfactantBefore = totalSurfactant();
+  const int steps = 100;
+  const float dt = 0.02f;
+  flow(p, film, steps, dt);
+  const double lost = before - totalLiquid(s), expected = double(p.evaporationRate) * steps * dt * area;
+  std::printf("evaporated %.6g m^3, rate x time x area %.6g m^3 (%.1f%% of the liquid)\n", lost, expected,
+              100 * expected / before);
+  ASSERT_GT(*std::min_element(s.thickness.begin(), s.thickness.end()), 10 * p.blackFilmThickness)
+      << "no particle came near black film";
+  EXPECT_NEAR(lost, expected, 2 * steps * 0x1p-24 * before);
+  EXPECT_NEAR(totalSurfactant(), surfactantBefore, 2 * steps * 0x1p-24 * surfactantBefore);
+}
+
+TEST(FilmFlow, EvaporationStopsAtBlackFilm) {
+  // A level film 0.3 um thick in dry air with no flow: it thins at the evaporation rate, 2 s to black film, and
+  // stays black film (the few nanometres of a black film hold too little water to lose more).
+  Params p = quietParams();
+  p.evaporationRate = 1.5e-7f;
+  Film film = makeSheet(p, 8, 8, 0.02f, Vec3(1, 0, 0), Vec3(0, 0, 1));
+  setThickness(p, film, 0.3e-6f);
+  flow(p, film, 50, 0.02f);  // 1 s: 0.15 um gone
+  for (size_t i = 0; i < film.state.size(); ++i)
+    ASSERT_NEAR(film.state.thickness[i], 0.15e-6f, 1e-4f * 0.15e-6f) << "thins at the rate, particle " << i;
+  flow(p, film, 100, 0.02f);  // 2 s more: would be 0.15 um under zero
+  for (size_t i = 0; i < film.state.size(); ++i)
+    ASSERT_NEAR(film.state.thickness[i], p.blackFilmThickness, 1e-5f * p.blackFilmThickness) << "particle " << i;
 }
 
 TEST(FilmFlow, DrainageStopsAtBlackFilm) {

@@ -327,6 +327,7 @@ TEST(FilmGrowth, AFastStrokeDrawsNewFilmUntilTheSolutionRunsOut) {
   Params p;
   p.particlesAtFullSolution = 1200;
   p.solutionReserve = 0.3f;  // a little: the wire runs dry within the stroke
+  p.evaporationRate = 0.0f;  // saturated air: the liquid is only drawn, stretched and flows
   // The wire's growth alone: with the film's own yield (the default) the bag stretches in its interior as well and
   // this stroke leaves 31% of the reserve on the wire.
   p.yieldStretch = 0.0f;

@@ -146,7 +146,7 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
       case Stage::FilmFlow:  // three Jacobi passes: new velocities, then every limit, then the gathers
         forEach(n, [&](size_t i) { filmFlowVelocity(params_, u, topo, s, i); });
         forEach(n, [&](size_t i) { filmFlowLimit(params_, u.drainageDt, topo, s, i); });
-        forEach(n, [&](size_t i) { filmFlowGather(u.drainageDt, topo, s, i); });
+        forEach(n, [&](size_t i) { filmFlowGather(params_, u.drainageDt, topo, s, i); });
         break;
       case Stage::Count:
         break;

@@ -447,7 +447,7 @@ void filmFlowLimit(const Params& p, float dt, const Topology& topo, State& s, si
   s.flowLimit[i] = outflow > allowed ? allowed / outflow : 1.0f;
 }
 
-void filmFlowGather(float dt, const Topology& topo, State& s, size_t j) {
+void filmFlowGather(const Params& p, float dt, const Topology& topo, State& s, size_t j) {
   s.flowVelocity.set(j, s.flowVelocityNext.get(j));
   if (!s.alive[j]) return;
   float liquidOut = 0.0f, surfactantOut = 0.0f;
@@ -460,8 +460,9 @@ void filmFlowGather(float dt, const Topology& topo, State& s, size_t j) {
     liquidOut += sent - received;
     surfactantOut += sent * s.surfactantBefore[j] - received * s.surfactantBefore[i];
   }
-  const float liquid = s.liquid[j] - liquidOut;
-  const float surfactant = s.surfactantBefore[j] * s.liquid[j] - surfactantOut;
+  const float flowed = s.liquid[j] - liquidOut;
+  const float liquid = flowed - evaporatedLiquid(p.evaporationRate, dt, flowed, s.voronoiArea[j], p.blackFilmThickness);
+  const float surfactant = s.surfactantBefore[j] * s.liquid[j] - surfactantOut;  // evaporation leaves it behind
   s.liquid[j] = liquid;
   s.surfactant[j] = liquid > 0.0f ? surfactant / liquid : s.surfactantBefore[j];
 }

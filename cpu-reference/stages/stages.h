@@ -213,8 +213,9 @@ void filmFlowVelocity(const Params& p, const StepUniforms& u, const Topology& to
 // surfactantBefore for pass 3.
 void filmFlowLimit(const Params& p, float dt, const Topology& topo, State& s, size_t i);
 // Pass 3, a gather: particle j's liquid and surfactant after its edges' fluxes (filmFlowEdgeFlux; each sender's
-// thickness and surfactant, times its limit); u becomes the new velocity.
-void filmFlowGather(float dt, const Topology& topo, State& s, size_t j);
+// thickness and surfactant, times its limit), less what evaporates (evaporatedLiquid; its surfactant stays); u
+// becomes the new velocity.
+void filmFlowGather(const Params& p, float dt, const Topology& topo, State& s, size_t j);
 
 // ---- Stability -----------------------------------------------------------------------------------------
 // Largest elasticity Eq. (4) can give the film: the Gibbs peak 0.5 w_E, or the Marangoni value of a young

@@ -16,25 +16,41 @@ namespace gb {
 
 namespace {
 
-// Computes term(i) for i in [0, n) in parallel, a block at a time, and hands the terms to fold in index order: the
-// same result, bit for bit, as one serial loop computing and adding them (floating-point sums depend on their
-// order), in a fraction of its time on a film of a million particles. The block stays in cache.
-template <class Terms, class Term, class Fold>
-void foldInOrder(size_t n, Term&& term, Fold&& fold) {
-  constexpr size_t kBlock = size_t{1} << 14;
-  std::vector<Terms> terms(std::min(n, kBlock));
-  for (size_t first = 0; first < n; first += kBlock) {
-    const auto count = static_cast<long>(std::min(kBlock, n - first));
-#pragma omp parallel for schedule(static)
-    for (long k = 0; k < count; ++k) terms[static_cast<size_t>(k)] = term(first + static_cast<size_t>(k));
-    for (long k = 0; k < count; ++k) fold(terms[static_cast<size_t>(k)]);
+// Sums leaf(i) over i in [0, n) with add(sums, leaf) in parallel and in a fixed order: each block of kBlock indices
+// in index order, then the blocks' sums in block order. The rounding depends on n alone, never on the thread count
+// or the schedule (the same figures on every machine), and no thread waits on a serial pass over the film: on a
+// million particles a serial pass cost most of the statistics' time.
+template <class Sums, class Leaf, class Add>
+Sums sumInBlocks(size_t n, Leaf&& leaf, Add&& add) {
+  constexpr size_t kBlock = size_t{1} << 12;
+  const size_t blocks = (n + kBlock - 1) / kBlock;
+  std::vector<Sums> partial(blocks);
+#pragma omp parallel for schedule(static) if (blocks > 1)
+  for (long b = 0; b < static_cast<long>(blocks); ++b) {
+    const size_t first = static_cast<size_t>(b) * kBlock, last = std::min(n, first + kBlock);
+    Sums sums{};
+    for (size_t i = first; i < last; ++i) add(sums, leaf(i));
+    partial[static_cast<size_t>(b)] = sums;
   }
+  Sums total{};
+  for (const Sums& sums : partial) add(total, sums);
+  return total;
 }
 
-// One particle's part of the frame's statistics.
-struct ParticleTerms {
-  bool alive = false;
-  double kinetic = 0, potential = 0, liquid = 0, speed = 0, thickness = 0, airFlow = 0;
+// The particles' part of the frame's statistics: one particle's, or the sums (and largest speed) of many.
+struct ParticleSums {
+  size_t alive = 0;
+  double kinetic = 0, potential = 0, liquid = 0, maxSpeed = 0, thickness = 0, airFlow = 0;
+
+  static void add(ParticleSums& sums, const ParticleSums& more) {
+    sums.alive += more.alive;
+    sums.kinetic += more.kinetic;
+    sums.potential += more.potential;
+    sums.liquid += more.liquid;
+    sums.maxSpeed = std::max(sums.maxSpeed, more.maxSpeed);
+    sums.thickness += more.thickness;
+    sums.airFlow += more.airFlow;
+  }
 };
 
 // Eq. (5)'s MAX(cos(theta), 0): how alike the two wands' velocities are. A wand at rest has no direction;
@@ -351,68 +367,68 @@ FrameStats Simulation::stats() {
   FrameStats st;
   st.time = time_;
   const Eigen::Vector3d g = gravityOf(params_).cast<double>();
-  double thicknessSum = 0, airSum = 0;
-  foldInOrder<ParticleTerms>(
+  const ParticleSums particles = sumInBlocks<ParticleSums>(
       s.size(),
       [&](size_t i) {
-        ParticleTerms p;
-        if (!(p.alive = s.alive[i] != 0)) return p;
+        ParticleSums p;
+        if (!s.alive[i]) return p;
         const Eigen::Vector3d v = s.velocity.get(i).cast<double>();
+        p.alive = 1;
         p.kinetic = 0.5 * s.mass[i] * v.squaredNorm();
         p.potential = liquidMass(params_, s.liquid[i]) * g.dot(s.position.get(i).cast<double>());
         p.liquid = s.liquid[i];
-        p.speed = v.norm();
+        p.maxSpeed = v.norm();
         p.thickness = s.thickness[i];
         p.airFlow = s.airFlow.get(i).norm();
         return p;
       },
-      [&](const ParticleTerms& p) {
-        if (!p.alive) return;
-        ++st.particles;
-        st.kineticEnergy += p.kinetic;
-        st.potentialEnergy -= p.potential;
-        st.liquid += p.liquid;
-        st.maxSpeed = std::max(st.maxSpeed, p.speed);
-        thicknessSum += p.thickness;
-        airSum += p.airFlow;
-      });
-  st.meanThickness = st.particles ? thicknessSum / static_cast<double>(st.particles) : 0;
-  st.meanAirFlow = st.particles ? airSum / static_cast<double>(st.particles) : 0;
+      ParticleSums::add);
+  st.particles = particles.alive;
+  st.kineticEnergy = particles.kinetic;
+  st.potentialEnergy = -particles.potential;
+  st.liquid = particles.liquid;
+  st.maxSpeed = particles.maxSpeed;
+  st.meanThickness = st.particles ? particles.thickness / static_cast<double>(st.particles) : 0;
+  st.meanAirFlow = st.particles ? particles.airFlow / static_cast<double>(st.particles) : 0;
   st.solution = film_.solutionLeft(params_);
   st.droplets = aerosol_.size();
   for (float m : aerosol_.mass) st.dropletMass += m;
+  const auto addDouble = [](double& sum, double more) { sum += more; };
   if (params_.tensionModel == 1) {
-    foldInOrder<double>(
+    st.elasticEnergy = sumInBlocks<double>(
         s.size(),
         [&](size_t i) {
           return s.alive[i] ? filmTensionEnergy(params_, surfactantLiquid(params_, s.mass[i]), s.voronoiArea[i]) : 0.0;
         },
-        [&](double energy) { st.elasticEnergy += energy; });
+        addDouble);
   } else {
-    foldInOrder<double>(
+    st.elasticEnergy = sumInBlocks<double>(
         topo.springCount(),
         [&](size_t k) {
           const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
           const double stretch = (s.position.get(a) - s.position.get(b)).cast<double>().norm() - topo.restLength[k];
           return springEnergyOf<double>(springStiffness(s, a, b), stretch);
         },
-        [&](double energy) { st.elasticEnergy += energy; });
+        addDouble);
   }
   const Vec3 origin = topo.isClosed() ? centroid(s) : wireFrame(wands_).center;
   st.triangles = topo.triangleCount();
-  foldInOrder<std::array<double, 2>>(
+  using AreaVolume = std::array<double, 2>;
+  const AreaVolume areaVolume = sumInBlocks<AreaVolume>(
       topo.triangleCount(),
       [&](size_t t) {
         const uint32_t* tri = &topo.triangles[3 * t];
         const Eigen::Vector3d a = (s.position.get(tri[0]) - origin).cast<double>();
         const Eigen::Vector3d b = (s.position.get(tri[1]) - origin).cast<double>();
         const Eigen::Vector3d c = (s.position.get(tri[2]) - origin).cast<double>();
-        return std::array<double, 2>{0.5 * (b - a).cross(c - a).norm(), a.dot(b.cross(c)) / 6.0};
+        return AreaVolume{0.5 * (b - a).cross(c - a).norm(), a.dot(b.cross(c)) / 6.0};
       },
-      [&](const std::array<double, 2>& areaVolume) {
-        st.area += areaVolume[0];
-        st.volume += areaVolume[1];
+      [](AreaVolume& sum, const AreaVolume& more) {
+        sum[0] += more[0];
+        sum[1] += more[1];
       });
+  st.area = areaVolume[0];
+  st.volume = areaVolume[1];
   return st;
 }
 

@@ -85,7 +85,7 @@ void searchOnDevice(benchmark::State& state, const SearchCase& c) {
   }
   Film film = c.film;
   VulkanStepperOptions onDevice;  // the device search whatever the device (Automatic leaves a CPU driver to the CPU)
-  onDevice.contactSearch = ContactSearchPlace::Device;
+  onDevice.contactSearch = WorkPlace::Device;
   VulkanStepper stepper(device, onDevice);
   stepper.load(c.params, film);
   stepper.findContacts(c.params, c.params.frameTime, 0.005f, film, c.history);

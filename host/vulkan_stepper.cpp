@@ -2,6 +2,7 @@
 
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -31,9 +32,9 @@ static_assert(alignof(Params) == 4 && sizeof(Params) % 4 == 0,
 
 namespace {
 
-bool searchesOnDevice(ContactSearchPlace place, const VulkanDeviceInfo& device) {
-  if (place == ContactSearchPlace::Automatic) return device.type != "CPU";
-  return place == ContactSearchPlace::Device;
+bool worksOnDevice(WorkPlace place, const VulkanDeviceInfo& device) {
+  if (place == WorkPlace::Automatic) return device.type != "CPU";
+  return place == WorkPlace::Device;
 }
 
 gpu::vec4 toVec4(const Vec3& v) { return {v.x(), v.y(), v.z(), 0.0f}; }
@@ -114,7 +115,7 @@ uint32_t energyTermsAt(const Topology& t) {
                                   static_cast<uint32_t>(patches));
 }
 size_t reduceFloats(const Topology& t, size_t particles) {
-  return gpu::reduceEnergySlotsAt(energyTermsAt(t), static_cast<uint32_t>(particles)) + GB_ENERGY_SLOTS;
+  return gpu::reduceFloatsWith(energyTermsAt(t), static_cast<uint32_t>(particles));
 }
 // The VelocityBudget's slots, GB_SLOT_SCALE to GB_SLOT_RELEASED.
 constexpr size_t kBudgetSlots = GB_SLOT_RELEASED - GB_SLOT_SCALE + 1;
@@ -152,10 +153,12 @@ struct VulkanStepper::Impl {
   bool volumeInA = true;                      // where the last volume reduction left its result
   bool driftInA = true;                       // where external_drift's tree sum left the film's drift
   DeviceBuffer readback;                      // host-cached copy of the state store() brings back
+  DeviceBuffer statisticsReadback;            // host-cached copy of the frame's statistics (sumFilm)
 
   // The device contact search's room in the contacts buffer (shared_step.h's contact regions).
   VulkanStepperOptions options;
   bool contactsOnDevice;               // options.contactSearch resolved for this device
+  bool statisticsOnDevice;             // options.statistics resolved for this device
   uint32_t contactEntryCapacity;       // C: partner entries of the list (kept as grown)
   uint32_t contactRowCapacity;         // K: partners of one particle (kept as grown: a film crumples again)
   uint32_t contactBuckets = 64;        // B
@@ -167,7 +170,8 @@ struct VulkanStepper::Impl {
   Impl(std::shared_ptr<const VulkanContext> context, VulkanStepperOptions stepperOptions)
       : ctx(std::move(context)),
         options(stepperOptions),
-        contactsOnDevice(searchesOnDevice(stepperOptions.contactSearch, ctx->info())),
+        contactsOnDevice(worksOnDevice(stepperOptions.contactSearch, ctx->info())),
+        statisticsOnDevice(worksOnDevice(stepperOptions.statistics, ctx->info())),
         contactEntryCapacity(stepperOptions.contactEntryCapacity),
         contactRowCapacity(std::max(1u, stepperOptions.contactRowCapacity)) {
     const vk::raii::Device& device = ctx->device;
@@ -585,6 +589,49 @@ struct VulkanStepper::Impl {
     deviceListEntries = contacts.size();
   }
 
+  // The frame's statistics: the geometry and the film state at the film's present positions (what
+  // CpuStepper::refreshGeometry does to a film in host memory: the next step's first stages compute the same), the
+  // terms and their tree, then the sums read back.
+  std::array<float, GB_STATISTICS_TERMS> sumStatistics(const Vec3& origin) {
+    StepUniforms u;
+    u.dt = 0.0f;  // the film state without ageing it
+    u.volumeOrigin = origin;
+    uploadSteps(std::span(&u, 1));
+    const uint32_t at = gpu::reduceStatisticsAt(energyBase, particles);
+    const vk::raii::CommandBuffer& cb = commands;
+    cb.reset();
+    cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    recordStage(cb, Stage::Geometry, u, 0);
+    computeToComputeBarrier(cb);
+    recordStage(cb, Stage::FilmState, u, 0);
+    computeToComputeBarrier(cb);
+    dispatch(cb, Kernel::FilmStatisticsTerms, particles, 0, 0, at);
+    computeToComputeBarrier(cb);
+    bool inA = true;
+    for (uint32_t n = particles; n > 1; n = (n + 1) / 2) {  // the levels of the tree
+      dispatch(cb, Kernel::FilmStatisticsTree, n, 0, inA ? GB_REDUCE_STATISTICS_IN_A : 0u, at);
+      computeToComputeBarrier(cb);
+      inA = !inA;
+    }
+    // Each term's sum is the first float of its block: the ten copied side by side into host-cached memory.
+    std::array<float, GB_STATISTICS_TERMS> sums{};
+    if (statisticsReadback.size() < sizeof sums)
+      statisticsReadback = DeviceBuffer(*ctx, sizeof sums, DeviceBuffer::Placement::Readback);
+    const vk::MemoryBarrier fromTree(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eTransferRead);
+    cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, fromTree,
+                       {}, {});
+    const size_t half = inA ? 0 : size_t{GB_STATISTICS_TERMS} * particles;
+    for (size_t c = 0; c < sums.size(); ++c)
+      statisticsReadback.recordCopyFrom(cb, buffer(GB_BINDING_REDUCE), (at + half + c * particles) * sizeof(float),
+                                        sizeof(float), c * sizeof(float));
+    const vk::MemoryBarrier toHost(vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eHostRead);
+    cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, toHost, {}, {});
+    cb.end();
+    ctx->submitAndWait(cb);
+    readFrom(statisticsReadback, sums.data(), sizeof sums);
+    return sums;
+  }
+
   float readVolume() {
     float volume = 0.0f;
     readFrom(buffer(GB_BINDING_REDUCE), &volume, sizeof volume,
@@ -825,6 +872,28 @@ void VulkanStepper::store(Film& film) {
     });
   });
   ++m.copiedToHost.stateReadbacks;
+}
+
+bool VulkanStepper::sumFilm(const Vec3& origin, FilmSums& sums) {
+  Impl& m = *impl_;
+  if (!m.statisticsOnDevice) return false;
+  if (m.sets.empty()) throw std::logic_error("VulkanStepper: no film loaded");
+  if (m.particles == 0) {
+    sums = {};
+    return true;
+  }
+  const std::array<float, GB_STATISTICS_TERMS> t = m.sumStatistics(origin);
+  sums.particles = static_cast<size_t>(std::lround(t[GB_STAT_PARTICLES]));
+  sums.kinetic = t[GB_STAT_KINETIC];
+  sums.potential = t[GB_STAT_POTENTIAL];
+  sums.liquid = t[GB_STAT_LIQUID];
+  sums.thickness = t[GB_STAT_THICKNESS];
+  sums.airFlow = t[GB_STAT_AIR_FLOW];
+  sums.elastic = t[GB_STAT_ELASTIC];
+  sums.area = t[GB_STAT_AREA];
+  sums.volume = t[GB_STAT_VOLUME];
+  sums.maxSpeed = t[GB_STAT_SPEED];
+  return true;
 }
 
 DeviceReadback VulkanStepper::readback() const { return impl_->copiedToHost; }

@@ -15,15 +15,20 @@ namespace gb {
 class VulkanContext;
 
 // Where the self-collision contacts are found for the Vulkan stepper.
-enum class ContactSearchPlace {
-  Automatic,  // on the device, unless the Vulkan device is a CPU driver (lavapipe), where the CPU's own search is 13
-              // to 25 times faster (docs/performance.md)
-  Device,     // on the device (findContacts), where the sweeps read them
-  Cpu,        // the CPU's search hands them over (updateContacts), as the reference does
+// Where a part of a frame's work between steps runs.
+enum class WorkPlace {
+  Automatic,  // on the device, unless the Vulkan device is a CPU driver (lavapipe), where the CPU does it faster
+              // (docs/performance.md)
+  Device,     // on the device
+  Cpu,        // on the CPU, from the state read back, as the reference does
 };
 
 struct VulkanStepperOptions {
-  ContactSearchPlace contactSearch = ContactSearchPlace::Automatic;
+  // The self-collision search: on the device (findContacts), where the sweeps read the list, or the CPU's, handed
+  // over (updateContacts). A CPU driver searches 13 to 25 times slower than the CPU's own search.
+  WorkPlace contactSearch = WorkPlace::Automatic;
+  // The frame's statistics: reduced on the device (sumFilm, a few floats read back), or summed by the caller.
+  WorkPlace statistics = WorkPlace::Automatic;
   // The room the device search starts with after a load: partners of one particle, and partner entries of the whole
   // list (0: one per particle). A search that finds more grows them and runs again (DeviceContactRecord::regrown).
   uint32_t contactRowCapacity = 16;
@@ -60,6 +65,8 @@ class VulkanStepper final : public Stepper {
   bool findContacts(const Params& params, float frameTime, float slack, Film& film,
                     const ContactHistory& history) override;
   [[nodiscard]] const DeviceContactRecord& contactRecord() const;
+  // On the device (film_statistics_terms, film_statistics_tree) where options.statistics says so.
+  bool sumFilm(const Vec3& origin, FilmSums& sums) override;
   [[nodiscard]] DeviceReadback readback() const override;
   void updateRestLengths(const Film& film) override;
   void updateTopology(const Params& params, Film& film) override;

@@ -37,6 +37,10 @@ layout(push_constant) uniform Push { PushBlock pc; };
   vec3(ENERGY_SLOT(GB_SLOT_CENTRE), ENERGY_SLOT(GB_SLOT_CENTRE + 1), ENERGY_SLOT(GB_SLOT_CENTRE + 2))
 #define ENERGY_SHIFT vec3(ENERGY_SLOT(GB_SLOT_SHIFT), ENERGY_SLOT(GB_SLOT_SHIFT + 1), ENERGY_SLOT(GB_SLOT_SHIFT + 2))
 #define ENERGY_RELEASED ENERGY_SLOT(GB_SLOT_RELEASED)
+// The frame's statistics terms from pc.first on (reduceStatisticsAt), halves A and B of GB_STATISTICS_TERMS blocks.
+#define STATISTICS_TERMS uint(GB_STATISTICS_TERMS)
+#define STATISTICS_A(c, k) reduce[pc.first + (c)*pc.particles + (k)]
+#define STATISTICS_B(c, k) reduce[pc.first + (STATISTICS_TERMS + (c)) * pc.particles + (k)]
 // The drainage passes' two arrays (drainOutflowBlock, drainWeightBlock from device_data.h).
 #define DRAIN_OUTFLOW(i) drainage[drainOutflowBlock * pc.particles + (i)]
 #define DRAIN_WEIGHT(i) drainage[drainWeightBlock * pc.particles + (i)]

@@ -3,6 +3,7 @@
 // physical film tension (from the surfactant per area), age.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
+#include "film_tension.glsl"
 
 // elasticity of cpu-reference/stages/stages.cpp: Marangoni while young, Gibbs after; Eq. (4) divided by k.
 float elasticityOf(float thicknessValue, float age) {
@@ -11,17 +12,6 @@ float elasticityOf(float thicknessValue, float age) {
   const float g = max(x, params.gibbsFloorThickness / params.elasticityThickness);  // held below the floor
   return params.elasticityWeight * 4.0 * g / ((g + 2.0) * (g + 2.0));
 }
-
-// filmTension of cpu-reference/stages/stages.cpp: 2 gamma, gamma from the thickness through Gibbs-Marangoni elasticity.
-float filmTension(float thicknessValue) {
-  const float gamma0 = params.surfaceTension;
-  const float e0 = initialThicknessOf(params.areaWeight);
-  const float gamma = gamma0 + 0.5 * params.gibbsElasticity * log(e0 / max(thicknessValue, 1e-12));
-  return 2.0 * clamp(gamma, kLowestGammaFactor * gamma0, kHighestGammaFactor * gamma0);
-}
-
-// surfactantLiquid of cpu-reference/model/film.h: the liquid the particle was made with, which its mass still weighs.
-float surfactantLiquid(uint i) { return mass[i] / params.liquidDensity; }
 
 void main() {
   const uint i = gl_GlobalInvocationID.x;

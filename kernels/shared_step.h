@@ -56,10 +56,11 @@ struct PushBlock {
 
 // PushBlock::reduceFlags, one meaning per bit in every kernel. A tree sum ping-pongs between the halves A and B of
 // its region; a flag says which half holds what a kernel reads (a level's input, or a finished sum).
-#define GB_REDUCE_VOLUME_IN_A 1u    // the volume's tree sum: half A holds it (else half B)
-#define GB_REDUCE_ENERGY_IN_A 2u    // the energy terms' tree sum: half A holds it (else half B)
-#define GB_REDUCE_AT_STEP_START 4u  // triangle_volume: the volume at the step's start (the energy budget's)
-#define GB_REDUCE_DRIFT_ONLY 8u     // energy_tree_sum: only external_drift's first GB_DRIFT_TERMS blocks
+#define GB_REDUCE_VOLUME_IN_A 1u       // the volume's tree sum: half A holds it (else half B)
+#define GB_REDUCE_ENERGY_IN_A 2u       // the energy terms' tree sum: half A holds it (else half B)
+#define GB_REDUCE_AT_STEP_START 4u     // triangle_volume: the volume at the step's start (the energy budget's)
+#define GB_REDUCE_DRIFT_ONLY 8u        // energy_tree_sum: only external_drift's first GB_DRIFT_TERMS blocks
+#define GB_REDUCE_STATISTICS_IN_A 32u  // film_statistics_tree: half A holds the level it reads (else half B)
 
 // The energy budget's slack (cpu-reference/solver/energy_budget.h says why this much), one value for both backends.
 #define GB_ENERGY_BUDGET_TOLERANCE 1e-4
@@ -77,7 +78,8 @@ struct PushBlock {
 //   coarse vectors  its right-hand side, solution, residual, direction, preconditioned, product (3 P each, x, y and
 //                   z blocks of P), the patches' shortest springs (P), its dot products' halves A and B (P each);
 //   energy terms    the energy budget's terms, halves A and B of GB_ENERGY_TERMS blocks of N floats;
-//   energy slots    the bubble's volume before the step, then the VelocityBudget (GB_SLOT_*).
+//   energy slots    the bubble's volume before the step, then the VelocityBudget (GB_SLOT_*);
+//   statistics      the frame's statistics terms (GB_STAT_*), halves A and B of GB_STATISTICS_TERMS blocks of N.
 // The functions give where each region starts; the host sizes the buffer and passes the energy terms' start in
 // PushBlock::first, the kernels address the regions from them.
 #define GB_COARSE_VECTORS 6                                  // right-hand side ... product, 3 P floats each
@@ -88,6 +90,20 @@ struct PushBlock {
 #define GB_SLOT_SHIFT 5                                      // VelocityBudget::shift, x y z
 #define GB_SLOT_RELEASED 8                                   // VelocityBudget::released
 #define GB_ENERGY_SLOTS 9
+// The frame's statistics on the device (film_statistics_terms, film_statistics_tree; FrameStats of
+// cpu-reference/simulation/simulation.h): each particle's terms, then their sums over the film, except GB_STAT_SPEED,
+// whose largest value is kept.
+#define GB_STAT_PARTICLES 0  // 1 for a living particle
+#define GB_STAT_KINETIC 1    // 1/2 m v^2 (J)
+#define GB_STAT_POTENTIAL 2  // the liquid's potential energy in gravity, -rho w g . x (J)
+#define GB_STAT_LIQUID 3     // w (m^3)
+#define GB_STAT_THICKNESS 4  // e (m), summed for the mean
+#define GB_STAT_AIR_FLOW 5   // |air flow| (m^3/s), summed for the mean
+#define GB_STAT_ELASTIC 6    // half of each spring's energy (Eq. 3), or the film tension's energy (tensionModel 1) (J)
+#define GB_STAT_AREA 7       // a third of each of its triangles' area (m^2)
+#define GB_STAT_VOLUME 8     // a third of each of its triangles' cone volume to the frame's origin (m^3)
+#define GB_STAT_SPEED 9      // |v| (m/s): the largest is kept
+#define GB_STATISTICS_TERMS 10
 
 #ifdef __cplusplus
 namespace gb::gpu {
@@ -107,6 +123,12 @@ GB_REGION uint reduceEnergyTermsAt(uint triangleCount, uint rowEntries, uint pat
 }
 GB_REGION uint reduceEnergySlotsAt(uint termsAt, uint particleCount) {
   return termsAt + 2u * uint(GB_ENERGY_TERMS) * particleCount;
+}
+GB_REGION uint reduceStatisticsAt(uint energyTermsAt, uint particleCount) {
+  return reduceEnergySlotsAt(energyTermsAt, particleCount) + uint(GB_ENERGY_SLOTS);
+}
+GB_REGION uint reduceFloatsWith(uint energyTermsAt, uint particleCount) {
+  return reduceStatisticsAt(energyTermsAt, particleCount) + 2u * uint(GB_STATISTICS_TERMS) * maxOf(particleCount, 1u);
 }
 #undef GB_REGION
 #ifdef __cplusplus

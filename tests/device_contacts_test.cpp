@@ -23,7 +23,7 @@ namespace {
 // The device search itself, whatever the device: on a CPU driver (lavapipe) the stepper would hand the CPU's list over.
 VulkanStepperOptions onDevice() {
   VulkanStepperOptions options;
-  options.contactSearch = ContactSearchPlace::Device;
+  options.contactSearch = WorkPlace::Device;
   return options;
 }
 

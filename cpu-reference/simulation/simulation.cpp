@@ -63,6 +63,72 @@ float wandAlignment(const WandState& w) {
 
 Vec3 gravityOf(const Params& p) { return {p.gravityX, p.gravityY, p.gravityZ}; }
 
+// The frame's sums over the film in host memory (Simulation::stats), in double; cone volumes to `origin`.
+FilmSums sumFilm(const Params& params, const Film& film, const Vec3& origin) {
+  const State& s = film.state;
+  const Topology& topo = film.topology;
+  FilmSums sums;
+  const Eigen::Vector3d g = gravityOf(params).cast<double>();
+  const ParticleSums particles = sumInBlocks<ParticleSums>(
+      s.size(),
+      [&](size_t i) {
+        ParticleSums p;
+        if (!s.alive[i]) return p;
+        const Eigen::Vector3d v = s.velocity.get(i).cast<double>();
+        p.alive = 1;
+        p.kinetic = 0.5 * s.mass[i] * v.squaredNorm();
+        p.potential = liquidMass(params, s.liquid[i]) * g.dot(s.position.get(i).cast<double>());
+        p.liquid = s.liquid[i];
+        p.maxSpeed = v.norm();
+        p.thickness = s.thickness[i];
+        p.airFlow = s.airFlow.get(i).norm();
+        return p;
+      },
+      ParticleSums::add);
+  sums.particles = particles.alive;
+  sums.kinetic = particles.kinetic;
+  sums.potential = -particles.potential;
+  sums.liquid = particles.liquid;
+  sums.maxSpeed = particles.maxSpeed;
+  sums.thickness = particles.thickness;
+  sums.airFlow = particles.airFlow;
+  const auto addDouble = [](double& sum, double more) { sum += more; };
+  if (params.tensionModel == 1) {
+    sums.elastic = sumInBlocks<double>(
+        s.size(),
+        [&](size_t i) {
+          return s.alive[i] ? filmTensionEnergy(params, surfactantLiquid(params, s.mass[i]), s.voronoiArea[i]) : 0.0;
+        },
+        addDouble);
+  } else {
+    sums.elastic = sumInBlocks<double>(
+        topo.springCount(),
+        [&](size_t k) {
+          const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+          const double stretch = (s.position.get(a) - s.position.get(b)).cast<double>().norm() - topo.restLength[k];
+          return springEnergyOf<double>(springStiffness(s, a, b), stretch);
+        },
+        addDouble);
+  }
+  using AreaVolume = std::array<double, 2>;
+  const AreaVolume areaVolume = sumInBlocks<AreaVolume>(
+      topo.triangleCount(),
+      [&](size_t t) {
+        const uint32_t* tri = &topo.triangles[3 * t];
+        const Eigen::Vector3d a = (s.position.get(tri[0]) - origin).cast<double>();
+        const Eigen::Vector3d b = (s.position.get(tri[1]) - origin).cast<double>();
+        const Eigen::Vector3d c = (s.position.get(tri[2]) - origin).cast<double>();
+        return AreaVolume{0.5 * (b - a).cross(c - a).norm(), a.dot(b.cross(c)) / 6.0};
+      },
+      [](AreaVolume& sum, const AreaVolume& more) {
+        sum[0] += more[0];
+        sum[1] += more[1];
+      });
+  sums.area = areaVolume[0];
+  sums.volume = areaVolume[1];
+  return sums;
+}
+
 using Clock = std::chrono::steady_clock;
 
 double millisecondsBetween(Clock::time_point from, Clock::time_point to) {
@@ -361,74 +427,33 @@ void Simulation::checkStable() const {
 }
 
 FrameStats Simulation::stats() {
+  // The film's geometry as it stands after the step, for the sums on the CPU and for what reads the film after
+  // them (the outputs, the renderer).
   CpuStepper::refreshGeometry(params_, film_);
-  const State& s = film_.state;
   const Topology& topo = film_.topology;
   FrameStats st;
   st.time = time_;
-  const Eigen::Vector3d g = gravityOf(params_).cast<double>();
-  const ParticleSums particles = sumInBlocks<ParticleSums>(
-      s.size(),
-      [&](size_t i) {
-        ParticleSums p;
-        if (!s.alive[i]) return p;
-        const Eigen::Vector3d v = s.velocity.get(i).cast<double>();
-        p.alive = 1;
-        p.kinetic = 0.5 * s.mass[i] * v.squaredNorm();
-        p.potential = liquidMass(params_, s.liquid[i]) * g.dot(s.position.get(i).cast<double>());
-        p.liquid = s.liquid[i];
-        p.maxSpeed = v.norm();
-        p.thickness = s.thickness[i];
-        p.airFlow = s.airFlow.get(i).norm();
-        return p;
-      },
-      ParticleSums::add);
-  st.particles = particles.alive;
-  st.kineticEnergy = particles.kinetic;
-  st.potentialEnergy = -particles.potential;
-  st.liquid = particles.liquid;
-  st.maxSpeed = particles.maxSpeed;
-  st.meanThickness = st.particles ? particles.thickness / static_cast<double>(st.particles) : 0;
-  st.meanAirFlow = st.particles ? particles.airFlow / static_cast<double>(st.particles) : 0;
+  st.triangles = topo.triangleCount();
+  // The cone volumes' apex: a closed film's volume does not depend on it (the device takes the bubble's fixed
+  // origin, the CPU its centroid, which keeps the float differences small); an open film's swept volume is the cone
+  // to the frame's centre.
+  const Vec3 frameCentre = wireFrame(wands_).center;
+  FilmSums sums;
+  if (!stepper_->sumFilm(topo.isClosed() ? film_.volumeOrigin : frameCentre, sums))
+    sums = sumFilm(params_, film_, topo.isClosed() ? centroid(film_.state) : frameCentre);
+  st.particles = sums.particles;
+  st.area = sums.area;
+  st.volume = sums.volume;
+  st.kineticEnergy = sums.kinetic;
+  st.elasticEnergy = sums.elastic;
+  st.potentialEnergy = sums.potential;
+  st.liquid = sums.liquid;
+  st.maxSpeed = sums.maxSpeed;
+  st.meanThickness = st.particles ? sums.thickness / static_cast<double>(st.particles) : 0;
+  st.meanAirFlow = st.particles ? sums.airFlow / static_cast<double>(st.particles) : 0;
   st.solution = film_.solutionLeft(params_);
   st.droplets = aerosol_.size();
   for (float m : aerosol_.mass) st.dropletMass += m;
-  const auto addDouble = [](double& sum, double more) { sum += more; };
-  if (params_.tensionModel == 1) {
-    st.elasticEnergy = sumInBlocks<double>(
-        s.size(),
-        [&](size_t i) {
-          return s.alive[i] ? filmTensionEnergy(params_, surfactantLiquid(params_, s.mass[i]), s.voronoiArea[i]) : 0.0;
-        },
-        addDouble);
-  } else {
-    st.elasticEnergy = sumInBlocks<double>(
-        topo.springCount(),
-        [&](size_t k) {
-          const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
-          const double stretch = (s.position.get(a) - s.position.get(b)).cast<double>().norm() - topo.restLength[k];
-          return springEnergyOf<double>(springStiffness(s, a, b), stretch);
-        },
-        addDouble);
-  }
-  const Vec3 origin = topo.isClosed() ? centroid(s) : wireFrame(wands_).center;
-  st.triangles = topo.triangleCount();
-  using AreaVolume = std::array<double, 2>;
-  const AreaVolume areaVolume = sumInBlocks<AreaVolume>(
-      topo.triangleCount(),
-      [&](size_t t) {
-        const uint32_t* tri = &topo.triangles[3 * t];
-        const Eigen::Vector3d a = (s.position.get(tri[0]) - origin).cast<double>();
-        const Eigen::Vector3d b = (s.position.get(tri[1]) - origin).cast<double>();
-        const Eigen::Vector3d c = (s.position.get(tri[2]) - origin).cast<double>();
-        return AreaVolume{0.5 * (b - a).cross(c - a).norm(), a.dot(b.cross(c)) / 6.0};
-      },
-      [](AreaVolume& sum, const AreaVolume& more) {
-        sum[0] += more[0];
-        sum[1] += more[1];
-      });
-  st.area = areaVolume[0];
-  st.volume = areaVolume[1];
   return st;
 }
 

@@ -76,6 +76,15 @@ struct DeviceReadback {
   uint64_t bytes = 0;
 };
 
+// The frame's sums over the film (Simulation::stats, FrameStats): the living particles, their energies, liquid,
+// thickness and air flow, the springs' or the film tension's energy, the triangles' area and cone volume, and the
+// largest speed.
+struct FilmSums {
+  size_t particles = 0;
+  double kinetic = 0, potential = 0, liquid = 0, thickness = 0, airFlow = 0, elastic = 0, area = 0, volume = 0;
+  double maxSpeed = 0;
+};
+
 class Stepper {
  public:
   virtual ~Stepper() = default;
@@ -112,6 +121,10 @@ class Stepper {
   // the step kept within its budget or no budget ran (energy_budget.h).
   [[nodiscard]] const VelocityBudget& lastBudget() const { return lastBudget_; }
 
+  // Sums the film as the last step left it where the stepper holds it, the cone volumes to `origin`: a GPU stepper
+  // reduces them on the device and reads back a few floats. Returns false when the caller sums them from the film
+  // in host memory, as the CPU stepper's caller does.
+  virtual bool sumFilm(const Vec3& /*origin*/, FilmSums&) { return false; }
   [[nodiscard]] virtual DeviceReadback readback() const { return {}; }
 
   virtual void enableTiming(bool on) { timing_ = on; }

@@ -20,13 +20,6 @@
 namespace gb {
 namespace {
 
-// The device search itself, whatever the device: on a CPU driver (lavapipe) the stepper would hand the CPU's list over.
-VulkanStepperOptions onDevice() {
-  VulkanStepperOptions options;
-  options.contactSearch = WorkPlace::Device;
-  return options;
-}
-
 // How far a device rest distance may lie from the CPU's, relative: each is the collision distance, a rest distance
 // copied from the previous list, or a separation sqrt(dx^2 + dy^2 + dz^2), which the shader computes with the C++
 // operations in their order and no fused multiply-add (precise). Vulkan lets a GPU's square root be off by a few
@@ -121,7 +114,7 @@ Film crumpledFilm(const Params& p, unsigned seed) {
 
 TEST(DeviceContacts, TheDeviceListsThePairsAndRestDistancesTheCpuLists) {
   GB_REQUIRE_VULKAN(device);
-  VulkanStepper stepper(device, onDevice());
+  VulkanStepper stepper(device, test::everythingOnDevice());
   const Params sheets = twoSheetParams();
   EXPECT_GT(expectTheDeviceListsWhatTheCpuLists(stepper, sheets, test::makeTwoSheets(sheets, 0.022f, 0.8f), {},
                                                 "two sheets 2.2 cm apart, one moving"),
@@ -155,7 +148,7 @@ TEST(DeviceContacts, PairsKeepTheRestDistancesOfTheLastListOnTheDeviceAsOnTheCpu
   GB_REQUIRE_VULKAN(device);
   const Params p = twoSheetParams();
   Film cpu = test::makeTwoSheets(p, 0.01f, 0.0f), gpu = cpu;
-  VulkanStepper stepper(device, onDevice());
+  VulkanStepper stepper(device, test::everythingOnDevice());
   stepper.load(p, gpu);
   ContactHistory cpuHistory, gpuHistory;
   for (float dz : {0.0f, 0.005f, -0.008f}) {
@@ -185,7 +178,7 @@ TEST(DeviceContacts, ASearchShortOfRoomGrowsItSaysSoAndListsEveryPair) {
   const Params p;
   const Film folded = test::foldedFilm(p, kFoldAngle, 1);
   for (const auto& [rows, entries] : {std::pair{1u, 0u}, std::pair{16u, 1u}}) {
-    VulkanStepperOptions options = onDevice();
+    VulkanStepperOptions options = test::everythingOnDevice();
     options.contactRowCapacity = rows;
     options.contactEntryCapacity = entries;
     VulkanStepper stepper(device, options);
@@ -210,7 +203,7 @@ TEST(DeviceContacts, TheDefaultPerformanceOnTheDeviceListsWhatTheCpuWould) {
   const Params& p = scene.run.params;
   const GestureOptions& stroke = scene.run.gestureOptions;
   Simulation sim(p, WandTool{}, gestureAt(Gesture::Giant, stroke, 0.0),
-                 std::make_unique<VulkanStepper>(device, onDevice()));
+                 std::make_unique<VulkanStepper>(device, test::everythingOnDevice()));
   ContactHistory history{sim.film().topology.contacts, sim.film().state.size()};
   for (int f = 1; f <= 110; ++f) {
     sim.advanceFrame(gestureAt(Gesture::Giant, stroke, static_cast<double>(f) * p.frameTime));

@@ -18,12 +18,6 @@
 namespace gb {
 namespace {
 
-VulkanStepperOptions statisticsOnDevice() {
-  VulkanStepperOptions options;
-  options.statistics = WorkPlace::Device;
-  return options;
-}
-
 // How far the device's figures may lie from the CPU's, relative. The device adds floats in a tree (at most
 // log2(n) = 14 roundings of 2^-24 on these films) where the CPU adds doubles; each term also rounds a few times in
 // float: 1e-5 leaves a factor of five for a GPU's fused multiply-adds and square roots a few ulp off.
@@ -72,7 +66,7 @@ TEST(DeviceStatistics, TheDefaultPerformancesFiguresAreTheCpusFromTheDevice) {
   const Params& p = scene.run.params;
   const GestureOptions& stroke = scene.run.gestureOptions;
   Simulation sim(p, WandTool{}, gestureAt(Gesture::Giant, stroke, 0.0),
-                 std::make_unique<VulkanStepper>(device, statisticsOnDevice()));
+                 std::make_unique<VulkanStepper>(device, test::everythingOnDevice()));
   const uint64_t bytesAtStart = dynamic_cast<const VulkanStepper&>(sim.stepper()).readback().bytes;
   for (int f = 1; f <= 110; ++f) {
     const WandState wands = gestureAt(Gesture::Giant, stroke, static_cast<double>(f) * p.frameTime);
@@ -96,7 +90,7 @@ TEST(DeviceStatistics, APhysicalTensionBubblesFiguresAreTheCpusFromTheDevice) {
   Params p;
   p.tensionModel = 1;
   Simulation sim(p, generateSphere(p, Vec3(0, 1.5f, 0), 0.4f, 3), WandState{},
-                 std::make_unique<VulkanStepper>(device, statisticsOnDevice()));
+                 std::make_unique<VulkanStepper>(device, test::everythingOnDevice()));
   for (int f = 0; f < 25; ++f) sim.advanceFrame(WandState{});
   expectSameStatistics(sim, sim.stats(), WandState{}, "a physical-tension bubble after 0.5 s");
 }

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "vulkan_context.h"
+#include "vulkan_stepper.h"
 
 namespace gb::test {
 
@@ -51,6 +52,15 @@ inline std::shared_ptr<const VulkanContext> vulkanDevice(std::string& whyNot) {
   }
   whyNot = reason;
   return device;
+}
+
+// The stepper's work between steps on the device whatever the device: on a CPU driver (lavapipe) Automatic would
+// leave the contact search and the statistics to the CPU, and the tests of the device's own would test nothing.
+inline VulkanStepperOptions everythingOnDevice() {
+  VulkanStepperOptions options;
+  options.contactSearch = WorkPlace::Device;
+  options.statistics = WorkPlace::Device;
+  return options;
 }
 
 }  // namespace gb::test

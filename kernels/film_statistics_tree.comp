@@ -14,9 +14,11 @@ void main() {
   const bool pair = 2u * k + 1u < n;
   for (uint c = 0u; c < STATISTICS_TERMS; ++c) {
     if ((pc.reduceFlags & GB_REDUCE_STATISTICS_IN_A) != 0u) {
-      STATISTICS_B(c, k) = pair ? combined(c, STATISTICS_A(c, 2u * k), STATISTICS_A(c, 2u * k + 1u)) : STATISTICS_A(c, 2u * k);
+      STATISTICS_B(c, k) =
+          pair ? combined(c, STATISTICS_A(c, 2u * k), STATISTICS_A(c, 2u * k + 1u)) : STATISTICS_A(c, 2u * k);
     } else {
-      STATISTICS_A(c, k) = pair ? combined(c, STATISTICS_B(c, 2u * k), STATISTICS_B(c, 2u * k + 1u)) : STATISTICS_B(c, 2u * k);
+      STATISTICS_A(c, k) =
+          pair ? combined(c, STATISTICS_B(c, 2u * k), STATISTICS_B(c, 2u * k + 1u)) : STATISTICS_B(c, 2u * k);
     }
   }
 }

@@ -414,10 +414,19 @@ void Simulation::checkStable() const {
   // A film moving faster than this has blown up: real giant bubbles never approach it.
   constexpr float maxSpeed = 100.0f;
   const State& s = film_.state;
-  for (size_t i = 0; i < s.size(); ++i) {
-    if (!s.alive[i]) continue;
+  const auto stable = [&](size_t i) {
     const Vec3 x = s.position.get(i), v = s.velocity.get(i);
-    if (x.allFinite() && v.allFinite() && v.norm() <= maxSpeed) continue;
+    return !s.alive[i] || (x.allFinite() && v.allFinite() && v.norm() <= maxSpeed);
+  };
+  // The first unstable particle, found in parallel (the lowest index whatever the threads).
+  const auto count = static_cast<long>(s.size());
+  long first = count;
+#pragma omp parallel for schedule(static) reduction(min : first) if (count >= (long{1} << 16))
+  for (long i = 0; i < count; ++i)
+    if (!stable(static_cast<size_t>(i))) first = std::min(first, i);
+  if (first < count) {
+    const auto i = static_cast<size_t>(first);
+    const Vec3 x = s.position.get(i), v = s.velocity.get(i);
     std::ostringstream msg;
     msg << "simulation unstable at t = " << time_ << " s (step " << stepCount_ << "): particle " << i
         << (x.allFinite() && v.allFinite() ? " moves faster than 100 m/s" : " has a non-finite position or velocity")

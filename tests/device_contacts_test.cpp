@@ -11,6 +11,7 @@
 #include <string>
 
 #include "collision.h"
+#include "default_performance_on_device.h"
 #include "scene_file.h"
 #include "simulation.h"
 #include "test_films.h"
@@ -199,16 +200,11 @@ TEST(DeviceContacts, TheDefaultPerformanceOnTheDeviceListsWhatTheCpuWould) {
   // the history: after each of these frames the CPU's search on the same film and history lists the same pairs.
   // Frame 40: the bag being drawn; 80: mid-stroke, at its fastest; 110: the free bubble after the pinch-off.
   GB_REQUIRE_VULKAN(device);
-  const Scene scene = resolveScene("default");
-  const Params& p = scene.run.params;
-  const GestureOptions& stroke = scene.run.gestureOptions;
-  Simulation sim(p, WandTool{}, gestureAt(Gesture::Giant, stroke, 0.0),
-                 std::make_unique<VulkanStepper>(device, test::everythingOnDevice()));
-  ContactHistory history{sim.film().topology.contacts, sim.film().state.size()};
-  for (int f = 1; f <= 110; ++f) {
-    sim.advanceFrame(gestureAt(Gesture::Giant, stroke, static_cast<double>(f) * p.frameTime));
-    const Film& film = sim.film();
-    if (f == 40 || f == 80 || f == 110) {
+  ContactHistory history;  // the list the last frame left, as Simulation keeps it
+  const auto sim = test::playDefaultPerformanceOnDevice(device, [&](Simulation& played, const WandState&, int f) {
+    const Params& p = played.params();
+    const Film& film = played.film();
+    if (test::checkedFrame(f)) {
       Film cpu = film;
       findContacts(p, p.frameTime, 0.005f, cpu, history);
       const std::string name = "the default performance at frame " + std::to_string(f);
@@ -218,8 +214,8 @@ TEST(DeviceContacts, TheDefaultPerformanceOnTheDeviceListsWhatTheCpuWould) {
       }
     }
     history = {film.topology.contacts, film.state.size()};
-  }
-  const auto& record = dynamic_cast<const VulkanStepper&>(sim.stepper()).contactRecord();
+  });
+  const auto& record = dynamic_cast<const VulkanStepper&>(sim->stepper()).contactRecord();
   EXPECT_GE(record.searches, 111u);
   std::printf("%zu device searches, %zu grown, room for %u a row and %zu entries\n", record.searches, record.regrown,
               record.rowCapacity, record.entryCapacity);

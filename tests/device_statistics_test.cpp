@@ -9,7 +9,7 @@
 #include <cstdio>
 #include <string>
 
-#include "scene_file.h"
+#include "default_performance_on_device.h"
 #include "simulation.h"
 #include "test_films.h"
 #include "vulkan_stepper.h"
@@ -62,25 +62,15 @@ TEST(DeviceStatistics, TheDefaultPerformancesFiguresAreTheCpusFromTheDevice) {
   // being drawn (an open film: the volume is the cone to the frame's centre); 80: mid-stroke, at its fastest; 110:
   // the free bubble after the pinch-off (closed: the device takes the bubble's fixed origin, the CPU its centroid).
   GB_REQUIRE_VULKAN(device);
-  const Scene scene = resolveScene("default");
-  const Params& p = scene.run.params;
-  const GestureOptions& stroke = scene.run.gestureOptions;
-  Simulation sim(p, WandTool{}, gestureAt(Gesture::Giant, stroke, 0.0),
-                 std::make_unique<VulkanStepper>(device, test::everythingOnDevice()));
-  const uint64_t bytesAtStart = dynamic_cast<const VulkanStepper&>(sim.stepper()).readback().bytes;
-  for (int f = 1; f <= 110; ++f) {
-    const WandState wands = gestureAt(Gesture::Giant, stroke, static_cast<double>(f) * p.frameTime);
-    sim.advanceFrame(wands);
-    if (f == 40 || f == 80 || f == 110) {
-      const auto& stepper = dynamic_cast<const VulkanStepper&>(sim.stepper());
-      const uint64_t before = stepper.readback().bytes;
-      const FrameStats onDevice = sim.stats();
-      EXPECT_EQ(stepper.readback().bytes - before, GB_STATISTICS_TERMS * sizeof(float)) << "the sums alone come back";
-      expectSameStatistics(sim, onDevice, wands, "the default performance at frame " + std::to_string(f));
-    }
-  }
-  EXPECT_TRUE(sim.film().topology.isClosed()) << "frame 110 is the free bubble";
-  EXPECT_GT(dynamic_cast<const VulkanStepper&>(sim.stepper()).readback().bytes, bytesAtStart);
+  const auto sim = test::playDefaultPerformanceOnDevice(device, [&](Simulation& played, const WandState& wands, int f) {
+    if (!test::checkedFrame(f)) return;
+    const auto& stepper = dynamic_cast<const VulkanStepper&>(played.stepper());
+    const uint64_t before = stepper.readback().bytes;
+    const FrameStats onDevice = played.stats();
+    EXPECT_EQ(stepper.readback().bytes - before, GB_STATISTICS_TERMS * sizeof(float)) << "the sums alone come back";
+    expectSameStatistics(played, onDevice, wands, "the default performance at frame " + std::to_string(f));
+  });
+  EXPECT_TRUE(sim->film().topology.isClosed()) << "frame 110 is the free bubble";
 }
 
 TEST(DeviceStatistics, APhysicalTensionBubblesFiguresAreTheCpusFromTheDevice) {

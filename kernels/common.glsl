@@ -143,3 +143,9 @@ float filmFlowSweptArea(float dt, uint i, uint j) {
   if (!(d2 > 0.0)) return 0.0;
   return flowSweptArea(dt, areaShare(i), areaShare(j), dot(loadFlow3(flowVelocityNextBlock, i), d), d2);
 }
+
+// filmFlowSent of cpu-reference/stages/stages.cpp: the liquid i sends to j in dt, its swept area times e_i and its
+// limit.
+float filmFlowSent(float dt, uint i, uint j) {
+  return filmFlowSweptArea(dt, i, j) * thickness[i] * FLOW(flowLimitBlock, i);
+}

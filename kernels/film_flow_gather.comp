@@ -14,8 +14,8 @@ void main() {
   for (uint k = springOffset[j]; k < springOffset[j + 1u]; ++k) {
     const uint i = springNeighbour[k];
     if (alive[i] == 0u) continue;
-    const float sent = filmFlowSweptArea(dt, j, i) * thickness[j] * FLOW(flowLimitBlock, j);
-    const float received = filmFlowSweptArea(dt, i, j) * thickness[i] * FLOW(flowLimitBlock, i);
+    const float sent = filmFlowSent(dt, j, i);
+    const float received = filmFlowSent(dt, i, j);
     liquidOut += sent - received;
     surfactantOut += sent * FLOW(surfactantBeforeBlock, j) - received * FLOW(surfactantBeforeBlock, i);
   }

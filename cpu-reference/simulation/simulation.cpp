@@ -37,21 +37,17 @@ Sums sumInBlocks(size_t n, Leaf&& leaf, Add&& add) {
   return total;
 }
 
-// The particles' part of the frame's statistics: one particle's, or the sums (and largest speed) of many.
-struct ParticleSums {
-  size_t alive = 0;
-  double kinetic = 0, potential = 0, liquid = 0, maxSpeed = 0, thickness = 0, airFlow = 0;
-
-  static void add(ParticleSums& sums, const ParticleSums& more) {
-    sums.alive += more.alive;
-    sums.kinetic += more.kinetic;
-    sums.potential += more.potential;
-    sums.liquid += more.liquid;
-    sums.maxSpeed = std::max(sums.maxSpeed, more.maxSpeed);
-    sums.thickness += more.thickness;
-    sums.airFlow += more.airFlow;
-  }
-};
+// Adds the particles' part of the frame's sums: their count, energies, liquid, thickness and air flow, and the
+// largest speed.
+void addParticleSums(FilmSums& sums, const FilmSums& more) {
+  sums.particles += more.particles;
+  sums.kinetic += more.kinetic;
+  sums.potential += more.potential;
+  sums.liquid += more.liquid;
+  sums.thickness += more.thickness;
+  sums.airFlow += more.airFlow;
+  sums.maxSpeed = std::max(sums.maxSpeed, more.maxSpeed);
+}
 
 // Eq. (5)'s MAX(cos(theta), 0): how alike the two wands' velocities are. A wand at rest has no direction;
 // the moving one then blows on its own (factor 1).
@@ -67,31 +63,23 @@ Vec3 gravityOf(const Params& p) { return {p.gravityX, p.gravityY, p.gravityZ}; }
 FilmSums sumFilm(const Params& params, const Film& film, const Vec3& origin) {
   const State& s = film.state;
   const Topology& topo = film.topology;
-  FilmSums sums;
   const Eigen::Vector3d g = gravityOf(params).cast<double>();
-  const ParticleSums particles = sumInBlocks<ParticleSums>(
+  FilmSums sums = sumInBlocks<FilmSums>(
       s.size(),
       [&](size_t i) {
-        ParticleSums p;
+        FilmSums p;
         if (!s.alive[i]) return p;
         const Eigen::Vector3d v = s.velocity.get(i).cast<double>();
-        p.alive = 1;
+        p.particles = 1;
         p.kinetic = 0.5 * s.mass[i] * v.squaredNorm();
-        p.potential = liquidMass(params, s.liquid[i]) * g.dot(s.position.get(i).cast<double>());
+        p.potential = -liquidMass(params, s.liquid[i]) * g.dot(s.position.get(i).cast<double>());
         p.liquid = s.liquid[i];
-        p.maxSpeed = v.norm();
         p.thickness = s.thickness[i];
         p.airFlow = s.airFlow.get(i).norm();
+        p.maxSpeed = v.norm();
         return p;
       },
-      ParticleSums::add);
-  sums.particles = particles.alive;
-  sums.kinetic = particles.kinetic;
-  sums.potential = -particles.potential;
-  sums.liquid = particles.liquid;
-  sums.maxSpeed = particles.maxSpeed;
-  sums.thickness = particles.thickness;
-  sums.airFlow = particles.airFlow;
+      addParticleSums);
   const auto addDouble = [](double& sum, double more) { sum += more; };
   if (params.tensionModel == 1) {
     sums.elastic = sumInBlocks<double>(

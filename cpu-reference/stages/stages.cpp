@@ -425,9 +425,12 @@ float filmFlowSweptArea(float dt, const Topology& topo, const State& s, uint32_t
   return flowSweptArea(dt, areaShare(topo, s, i), areaShare(topo, s, j), s.flowVelocityNext.get(i).dot(d), d2);
 }
 
+float filmFlowSent(float dt, const Topology& topo, const State& s, uint32_t i, uint32_t j) {
+  return filmFlowSweptArea(dt, topo, s, i, j) * s.thickness[i] * s.flowLimit[i];
+}
+
 float filmFlowEdgeFlux(float dt, const Topology& topo, const State& s, uint32_t i, uint32_t j) {
-  return filmFlowSweptArea(dt, topo, s, i, j) * s.thickness[i] * s.flowLimit[i] -
-         filmFlowSweptArea(dt, topo, s, j, i) * s.thickness[j] * s.flowLimit[j];
+  return filmFlowSent(dt, topo, s, i, j) - filmFlowSent(dt, topo, s, j, i);
 }
 
 void filmFlowLimit(const Params& p, float dt, const Topology& topo, State& s, size_t i) {
@@ -454,9 +457,8 @@ void filmFlowGather(const Params& p, float dt, const Topology& topo, State& s, s
   for (uint32_t k = topo.springOffset[j]; k < topo.springOffset[j + 1]; ++k) {
     const uint32_t i = topo.springNeighbour[k];
     if (!s.alive[i]) continue;
-    const float sent = filmFlowSweptArea(dt, topo, s, static_cast<uint32_t>(j), i) * s.thickness[j] * s.flowLimit[j];
-    const float received =
-        filmFlowSweptArea(dt, topo, s, i, static_cast<uint32_t>(j)) * s.thickness[i] * s.flowLimit[i];
+    const float sent = filmFlowSent(dt, topo, s, static_cast<uint32_t>(j), i);
+    const float received = filmFlowSent(dt, topo, s, i, static_cast<uint32_t>(j));
     liquidOut += sent - received;
     surfactantOut += sent * s.surfactantBefore[j] - received * s.surfactantBefore[i];
   }

@@ -199,8 +199,10 @@ FilmFlowTerms filmFlowTerms(const Params& p, const StepUniforms& u, const Topolo
 float logSurfactantRatio(float surfactantJ, float thicknessJ, float surfactantI, float thicknessI);
 // flowSweptArea of particle i towards neighbour j, with i's new velocity (flowVelocityNext).
 float filmFlowSweptArea(float dt, const Topology& topo, const State& s, uint32_t i, uint32_t j);
-// The liquid the edge from i to j carries from i to j in dt (m^3, negative: from j to i): what i's velocity sweeps
-// times e_i and i's limit, less the same of j. Exactly the negative of filmFlowEdgeFlux(j, i).
+// The liquid particle i sends to neighbour j in dt (m^3): what i's velocity sweeps times e_i and i's limit.
+float filmFlowSent(float dt, const Topology& topo, const State& s, uint32_t i, uint32_t j);
+// The liquid the edge from i to j carries from i to j in dt (m^3, negative: from j to i): what i sends less what j
+// sends. Exactly the negative of filmFlowEdgeFlux(j, i).
 float filmFlowEdgeFlux(float dt, const Topology& topo, const State& s, uint32_t i, uint32_t j);
 
 // Pass 1: u_i's new value, (u + dt (g_t + c marangoni + airRate w_t + viscosityPull)) / (1 + dt (airRate + wallRate +
@@ -212,9 +214,9 @@ void filmFlowVelocity(const Params& p, const StepUniforms& u, const Topology& to
 // the black film's thickness (the disjoining pressure stops drainage there); keeps its surfactant as
 // surfactantBefore for pass 3.
 void filmFlowLimit(const Params& p, float dt, const Topology& topo, State& s, size_t i);
-// Pass 3, a gather: particle j's liquid and surfactant after its edges' fluxes (filmFlowEdgeFlux; each sender's
-// thickness and surfactant, times its limit), less what evaporates (evaporatedLiquid; its surfactant stays); u
-// becomes the new velocity.
+// Pass 3, a gather: particle j's liquid and surfactant after its edges' fluxes (what each end sends, filmFlowSent,
+// its surfactant with it), less what evaporates (evaporatedLiquid; its surfactant stays); u becomes the new
+// velocity.
 void filmFlowGather(const Params& p, float dt, const Topology& topo, State& s, size_t j);
 
 // ---- Stability -----------------------------------------------------------------------------------------

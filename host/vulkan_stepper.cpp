@@ -88,6 +88,19 @@ void computeToHostBarrier(const vk::raii::CommandBuffer& cb) {
   cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eHost, {}, barrier, {}, {});
 }
 
+// Makes the last dispatches' writes visible to the copies recorded after it (a read-back into host-cached memory).
+void computeToTransferBarrier(const vk::raii::CommandBuffer& cb) {
+  const vk::MemoryBarrier barrier(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eTransferRead);
+  cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, barrier, {},
+                     {});
+}
+
+// Makes the last copies visible to the host reading their destination after the fence.
+void transferToHostBarrier(const vk::raii::CommandBuffer& cb) {
+  const vk::MemoryBarrier barrier(vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eHostRead);
+  cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, barrier, {}, {});
+}
+
 template <class T>
 void writeVector(DeviceBuffer& buffer, const std::vector<T>& values) {
   buffer.write(values.data(), values.size() * sizeof(T));
@@ -617,15 +630,12 @@ struct VulkanStepper::Impl {
     std::array<float, GB_STATISTICS_TERMS> sums{};
     if (statisticsReadback.size() < sizeof sums)
       statisticsReadback = DeviceBuffer(*ctx, sizeof sums, DeviceBuffer::Placement::Readback);
-    const vk::MemoryBarrier fromTree(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eTransferRead);
-    cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, fromTree,
-                       {}, {});
+    computeToTransferBarrier(cb);
     const size_t half = inA ? 0 : size_t{GB_STATISTICS_TERMS} * particles;
     for (size_t c = 0; c < sums.size(); ++c)
       statisticsReadback.recordCopyFrom(cb, buffer(GB_BINDING_REDUCE), (at + half + c * particles) * sizeof(float),
                                         sizeof(float), c * sizeof(float));
-    const vk::MemoryBarrier toHost(vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eHostRead);
-    cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, toHost, {}, {});
+    transferToHostBarrier(cb);
     cb.end();
     ctx->submitAndWait(cb);
     readFrom(statisticsReadback, sums.data(), sizeof sums);
@@ -850,16 +860,13 @@ void VulkanStepper::store(Film& film) {
   const vk::raii::CommandBuffer& cb = m.commands;
   cb.reset();
   cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
-  const vk::MemoryBarrier fromSteps(vk::AccessFlagBits::eShaderWrite, vk::AccessFlagBits::eTransferRead);
-  cb.pipelineBarrier(vk::PipelineStageFlagBits::eComputeShader, vk::PipelineStageFlagBits::eTransfer, {}, fromSteps, {},
-                     {});
+  computeToTransferBarrier(cb);
   vk::DeviceSize at = 0;
   for (const Part& part : parts) {
     m.readback.recordCopyFrom(cb, *part.from, part.offset, part.bytes, at);
     at += part.bytes;
   }
-  const vk::MemoryBarrier toHost(vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eHostRead);
-  cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eHost, {}, toHost, {}, {});
+  transferToHostBarrier(cb);
   cb.end();
   m.ctx->submitAndWait(cb);
   // The same arrays in the same order, out of the copy.

@@ -189,15 +189,22 @@ namespace {
 // cost more than the pass.
 constexpr long kParallelSprings = long{1} << 16;
 
-// Calls body(spring, its ends, its length) for every living spring not held by the wire (the wire's springs follow
-// the wire's own rule, payOutFilmAtWire, which also decides ring insertion).
+// Whether the spring between a and b lives and is not held by the wire (the wire's springs follow the wire's own
+// rule, payOutFilmAtWire, which also decides ring insertion).
+bool livesOffTheWire(const Film& film, uint32_t a, uint32_t b) {
+  const State& s = film.state;
+  const Topology& topo = film.topology;
+  return s.alive[a] && s.alive[b] && !topo.boundary[a] && !topo.boundary[b];
+}
+
+// Calls body(spring, its ends, its length) for every living spring not held by the wire.
 template <typename Body>
 void forEachSpringOffTheWire(const Film& film, Body body) {
   const Topology& topo = film.topology;
   const State& s = film.state;
   for (size_t k = 0; k < topo.springCount(); ++k) {
     const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
-    if (!s.alive[a] || !s.alive[b] || topo.boundary[a] || topo.boundary[b]) continue;
+    if (!livesOffTheWire(film, a, b)) continue;
     body(k, a, b, (s.position.get(a) - s.position.get(b)).norm());
   }
 }
@@ -216,7 +223,7 @@ size_t reshapeSpringsOffTheWire(Film& film, NewRest newRest) {
   for (long spring = 0; spring < springs; ++spring) {
     const auto k = static_cast<size_t>(spring);
     const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
-    if (!s.alive[a] || !s.alive[b] || topo.boundary[a] || topo.boundary[b]) continue;  // as forEachSpringOffTheWire
+    if (!livesOffTheWire(film, a, b)) continue;
     const std::optional<float> rest = newRest(k, a, b, (s.position.get(a) - s.position.get(b)).norm());
     if (!rest) continue;
     topo.restLength[k] = *rest;

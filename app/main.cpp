@@ -132,6 +132,12 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
   runCmd->add_option("--device", run.device,
                      "Vulkan device: index or part of its name (default: $GIANTBUBBLE_VULKAN_DEVICE, else the best)");
+  std::string betweenSteps = "auto";
+  runCmd
+      ->add_option("--between-steps", betweenSteps,
+                   "Vulkan backend: where the contact search, the statistics and the film checks run: device, cpu, or "
+                   "auto (the device unless it is a CPU driver)")
+      ->check(CLI::IsMember({"auto", "device", "cpu"}));
   gb::addRenderOptions(*runCmd, run.render);
 
   gb::BenchOptions bench;
@@ -177,6 +183,7 @@ int main(int argc, char** argv) {
     run.durationFromInput = runCmd->count("--duration") == 0 && !sceneSetsDuration;
     if (runCmd->count("--burst-at") > 0) run.burstOnAnyInput = true;
     run.backend = gb::backendFromName(backend);
+    run.betweenSteps = gb::workPlaceFromName(betweenSteps);
     // A scene's own video (the default scene's) is made where a Vulkan device allows, with a note where not;
     // --render asks for it and fails without one.
     run.renderIfPossible = runCmd->count("--render") == 0;

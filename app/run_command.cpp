@@ -206,7 +206,7 @@ OpenedRun openRun(const RunOptions& o) {
   run.startFrame = run.input->at(0.0);
   passOnMessages(*run.input, false);
   std::string backendReport;
-  std::unique_ptr<Stepper> stepper = makeStepper(o.backend, o.device, backendReport);
+  std::unique_ptr<Stepper> stepper = makeStepper(o.backend, o.device, backendReport, o.betweenSteps);
   std::printf("%s\n", backendReport.c_str());
   run.sim = std::make_unique<Simulation>(o.params, o.tool, run.startFrame.wands, std::move(stepper));
   run.show = std::make_unique<ShowControl>(o.osc);

@@ -31,11 +31,12 @@ struct RunOptions {
   bool progress = true;
   bool realtime = false;  // keep the wall clock: wait when ahead, fewer solver sweeps when behind
   Backend backend = Backend::Auto;
-  std::string device;             // Vulkan device index or name part (empty: best available)
-  std::string osc;                // HOST:PORT to send events and the bubble's state to (empty: off)
-  bool renderIfPossible = false;  // the main job renders when it can and says so when it cannot
-  std::string experiment;         // a physics experiment instead of a performance (experiments.h)
-  RenderOutputOptions render;     // --render: rendered frames and video (app/render_output.h)
+  std::string device;                             // Vulkan device index or name part (empty: best available)
+  WorkPlace betweenSteps = WorkPlace::Automatic;  // Vulkan: where the contacts, statistics and film checks run
+  std::string osc;                                // HOST:PORT to send events and the bubble's state to (empty: off)
+  bool renderIfPossible = false;                  // the main job renders when it can and says so when it cannot
+  std::string experiment;                         // a physics experiment instead of a performance (experiments.h)
+  RenderOutputOptions render;                     // --render: rendered frames and video (app/render_output.h)
 };
 
 // The longest run a duration taken from a recorded input may ask for, as --duration allows (s).

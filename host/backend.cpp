@@ -15,7 +15,15 @@ Backend backendFromName(const std::string& name) {
   throw std::invalid_argument("unknown backend '" + name + "' (choices: cpu, vulkan, auto)");
 }
 
-std::unique_ptr<Stepper> makeStepper(Backend backend, const std::string& device, std::string& report) {
+WorkPlace workPlaceFromName(const std::string& name) {
+  if (name == "auto") return WorkPlace::Automatic;
+  if (name == "device") return WorkPlace::Device;
+  if (name == "cpu") return WorkPlace::Cpu;
+  throw std::invalid_argument("unknown place '" + name + "' (choices: auto, device, cpu)");
+}
+
+std::unique_ptr<Stepper> makeStepper(Backend backend, const std::string& device, std::string& report,
+                                     WorkPlace betweenSteps) {
   if (backend == Backend::Cpu) {
     report = "backend: cpu (requested)";
     return std::make_unique<CpuStepper>();
@@ -29,7 +37,9 @@ std::unique_ptr<Stepper> makeStepper(Backend backend, const std::string& device,
                ", is a CPU driver, slower than the CPU backend; use --backend vulkan to run on it)";
       return std::make_unique<CpuStepper>();
     }
-    auto stepper = std::make_unique<VulkanStepper>(std::move(context));
+    VulkanStepperOptions options;
+    options.contactSearch = options.statistics = betweenSteps;
+    auto stepper = std::make_unique<VulkanStepper>(std::move(context), options);
     const char* why = backend == Backend::Vulkan ? ""
                       : device.empty()           ? " (auto: a Vulkan GPU exists)"
                                                  : " (auto: the requested device)";

@@ -60,6 +60,7 @@ StepUniformsBlock toBlock(const StepUniforms& u) {
   b.closed = u.closed;
   b.drainageDt = u.drainageDt;
   b.wireArea = u.wireArea;
+  b.frameTime = u.frameTime;
   return b;
 }
 
@@ -532,8 +533,8 @@ struct VulkanStepper::Impl {
     ensureContactRoom(0, history.contacts.size());
     const gpu::ContactSearchLayout l = contactLayout();
     DeviceBuffer& contacts = buffer(GB_BINDING_CONTACTS);
-    const bool historyOnDevice =
-        deviceListEntries > 0 && history.particles == particles && history.contacts.size() == deviceListEntries;
+    const bool historyOnDevice = deviceListEntries > 0 && history.particles == particles &&
+                                 (history.onDevice || history.contacts.size() == deviceListEntries);
     uint32_t previousParticles = static_cast<uint32_t>(particles);
     if (!historyOnDevice) {
       const bool listed = !history.contacts.empty() && history.contacts.size() >= history.particles + 1;
@@ -593,31 +594,39 @@ struct VulkanStepper::Impl {
   }
 
   // The list the last search left, into `contacts` (Topology::contacts).
-  void readContactList(std::vector<uint32_t>& contacts) {
-    const DeviceBuffer& list = buffer(GB_BINDING_CONTACTS);
+  // The size of the list the device search left (its partner entries, the last offset): deviceListEntries.
+  void countContactList() {
     uint32_t entries = 0;
-    readFrom(list, &entries, sizeof entries, vk::DeviceSize{particles} * sizeof(uint32_t));
-    contacts.resize(particles + size_t{1} + 2 * size_t{entries});
-    readFrom(list, contacts.data(), contacts.size() * sizeof(uint32_t));
-    deviceListEntries = contacts.size();
+    readFrom(buffer(GB_BINDING_CONTACTS), &entries, sizeof entries, vk::DeviceSize{particles} * sizeof(uint32_t));
+    deviceListEntries = particles + size_t{1} + 2 * size_t{entries};
   }
 
-  // The frame's statistics: the geometry and the film state at the film's present positions (what
-  // CpuStepper::refreshGeometry does to a film in host memory: the next step's first stages compute the same), the
-  // terms and their tree, then the sums read back.
-  std::array<float, GB_STATISTICS_TERMS> sumStatistics(const Vec3& origin) {
+  void readContactList(std::vector<uint32_t>& contacts) {
+    contacts.resize(deviceListEntries);
+    readFrom(buffer(GB_BINDING_CONTACTS), contacts.data(), contacts.size() * sizeof(uint32_t));
+  }
+
+  // The frame's statistics and film checks: with probe.atPresentPositions the geometry and the film state at the
+  // film's present positions first (what CpuStepper::refreshGeometry does to a film in host memory: the next step's
+  // first stages compute the same), then the terms and their tree, then the sums read back.
+  std::array<float, GB_STATISTICS_TERMS> sumStatistics(const FilmProbe& probe) {
     StepUniforms u;
     u.dt = 0.0f;  // the film state without ageing it
-    u.volumeOrigin = origin;
+    u.volumeOrigin = probe.origin;
+    u.wands.leftPosition = probe.tips[0];
+    u.wands.rightPosition = probe.tips[1];
+    u.frameTime = probe.frameTime;
     uploadSteps(std::span(&u, 1));
     const uint32_t at = gpu::reduceStatisticsAt(energyBase, particles);
     const vk::raii::CommandBuffer& cb = commands;
     cb.reset();
     cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
-    recordStage(cb, Stage::Geometry, u, 0);
-    computeToComputeBarrier(cb);
-    recordStage(cb, Stage::FilmState, u, 0);
-    computeToComputeBarrier(cb);
+    if (probe.atPresentPositions) {
+      recordStage(cb, Stage::Geometry, u, 0);
+      computeToComputeBarrier(cb);
+      recordStage(cb, Stage::FilmState, u, 0);
+      computeToComputeBarrier(cb);
+    }
     dispatch(cb, Kernel::FilmStatisticsTerms, particles, 0, 0, at);
     computeToComputeBarrier(cb);
     bool inA = true;
@@ -626,7 +635,7 @@ struct VulkanStepper::Impl {
       computeToComputeBarrier(cb);
       inA = !inA;
     }
-    // Each term's sum is the first float of its block: the ten copied side by side into host-cached memory.
+    // Each term's sum is the first float of its block: the terms copied side by side into host-cached memory.
     std::array<float, GB_STATISTICS_TERMS> sums{};
     if (statisticsReadback.size() < sizeof sums)
       statisticsReadback = DeviceBuffer(*ctx, sizeof sums, DeviceBuffer::Placement::Readback);
@@ -783,10 +792,18 @@ void VulkanStepper::updateContacts(const Film& film) { impl_->writeContacts(film
 
 bool VulkanStepper::findContacts(const Params& params, float frameTime, float slack, Film& film,
                                  const ContactHistory& history) {
+  if (film.state.size() != impl_->particles) throw std::logic_error("VulkanStepper::findContacts: not the loaded film");
+  if (!findContactsOnDevice(params, frameTime, slack, history)) return false;
+  storeContacts(film);
+  return true;
+}
+
+bool VulkanStepper::findContactsOnDevice(const Params& params, float frameTime, float slack,
+                                         const ContactHistory& history) {
   Impl& m = *impl_;
   if (!m.contactsOnDevice) return false;
   if (m.sets.empty()) throw std::logic_error("VulkanStepper: no film loaded");
-  if (film.state.size() != m.particles || params.collisionDistance != m.params.collisionDistance ||
+  if (params.collisionDistance != m.params.collisionDistance ||
       params.collisionStiffness != m.params.collisionStiffness)
     throw std::logic_error("VulkanStepper::findContacts: not the loaded film");
   // A search short of room lists nothing reliable: it runs once more with the room it found it needed.
@@ -795,8 +812,15 @@ bool VulkanStepper::findContacts(const Params& params, float frameTime, float sl
     m.searchContacts(frameTime, slack, history);
     if (!m.contactSearchHadRoom()) throw std::logic_error("VulkanStepper::findContacts: no room after growing");
   }
-  m.readContactList(film.topology.contacts);
+  m.countContactList();
   return true;
+}
+
+void VulkanStepper::storeContacts(Film& film) {
+  Impl& m = *impl_;
+  if (m.deviceListEntries == 0) return;  // the list the CPU gave (updateContacts, load) is the one there
+  if (film.state.size() != m.particles) throw std::logic_error("VulkanStepper::storeContacts: not the loaded film");
+  m.readContactList(film.topology.contacts);
 }
 
 const DeviceContactRecord& VulkanStepper::contactRecord() const { return impl_->contactRecord; }
@@ -881,15 +905,14 @@ void VulkanStepper::store(Film& film) {
   ++m.copiedToHost.stateReadbacks;
 }
 
-bool VulkanStepper::sumFilm(const Vec3& origin, FilmSums& sums) {
+bool VulkanStepper::probeFilm(const FilmProbe& probe, FilmSums& sums, FilmChecks& checks) {
   Impl& m = *impl_;
   if (!m.statisticsOnDevice) return false;
   if (m.sets.empty()) throw std::logic_error("VulkanStepper: no film loaded");
-  if (m.particles == 0) {
-    sums = {};
-    return true;
-  }
-  const std::array<float, GB_STATISTICS_TERMS> t = m.sumStatistics(origin);
+  sums = {};
+  checks = {};
+  if (m.particles == 0) return true;
+  const std::array<float, GB_STATISTICS_TERMS> t = m.sumStatistics(probe);
   sums.particles = static_cast<size_t>(std::lround(t[GB_STAT_PARTICLES]));
   sums.kinetic = t[GB_STAT_KINETIC];
   sums.potential = t[GB_STAT_POTENTIAL];
@@ -900,6 +923,22 @@ bool VulkanStepper::sumFilm(const Vec3& origin, FilmSums& sums) {
   sums.area = t[GB_STAT_AREA];
   sums.volume = t[GB_STAT_VOLUME];
   sums.maxSpeed = t[GB_STAT_SPEED];
+  checks.particles = sums.particles;
+  if (sums.particles == 0) return true;  // the largest-kept terms hold no particle's value
+  checks.unstable = t[GB_STAT_UNSTABLE] > 0.0f;
+  checks.lowest = -t[GB_STAT_DEPTH];
+  checks.nearestTip = {-t[GB_STAT_NEAR_LEFT], -t[GB_STAT_NEAR_RIGHT]};
+  checks.winding = {t[GB_STAT_WINDING_LEFT], t[GB_STAT_WINDING_RIGHT]};
+  if (t[GB_STAT_THIN] > -1e38f) checks.thinnest = -t[GB_STAT_THIN];  // else no particle has area
+  checks.hardestImpact = t[GB_STAT_IMPACT];
+  checks.yielding = t[GB_STAT_YIELDING];
+  checks.slack = t[GB_STAT_SLACK];
+  checks.crowded = t[GB_STAT_CROWDED];
+  checks.rungsPastGrowth = t[GB_STAT_RUNGS_PAST_GROWTH];
+  checks.rungs = t[GB_STAT_RUNG_COUNT];
+  checks.rungRest = t[GB_STAT_RUNG_REST];
+  checks.wireEdges = t[GB_STAT_WIRE_EDGE_COUNT];
+  checks.wireEdgeLength = t[GB_STAT_WIRE_EDGES];
   return true;
 }
 

@@ -1,11 +1,12 @@
 #version 450
 // The frame's statistics, pass 2: one level of the tree over every term's block at once (treeSum of
 // cpu-reference/stages/stages.cpp), out[k] = in[2k] + in[2k+1] (or in[2k] alone for the odd last element), and
-// max instead of + for GB_STAT_SPEED. GB_REDUCE_STATISTICS_IN_A: the level reads half A and writes half B.
+// max instead of + for the terms of which the largest is kept (GB_STAT_KEEPS_LARGEST). GB_REDUCE_STATISTICS_IN_A: the
+// level reads half A and writes half B.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
-float combined(uint c, float a, float b) { return c == uint(GB_STAT_SPEED) ? max(a, b) : a + b; }
+float combined(uint c, float a, float b) { return GB_STAT_KEEPS_LARGEST(c) ? max(a, b) : a + b; }
 
 void main() {
   const uint k = gl_GlobalInvocationID.x;

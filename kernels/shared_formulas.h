@@ -100,6 +100,38 @@ GB_FORMULA float contactRestDistanceAfter(float collisionDistance, float previou
   return kept < collisionDistance ? kept : collisionDistance;                // std::min(collisionDistance, kept)
 }
 
+// The per-frame film rules between steps (cpu-reference/topology/film_checks.h lists them; the device's
+// film_statistics_terms.comp counts where they would act). The device's checks fire this much (relative) before the
+// rules' thresholds: float sums and lengths on the device round differently from the CPU's by a few units in the last
+// place (1e-7 relative); a thousand times that is never missed. A frame near a threshold brings the state back and
+// lets the CPU rules decide exactly.
+GB_CONST float kFilmCheckMargin = 1e-4f;
+// A film moving faster than this (m/s) has blown up: real giant bubbles never approach it (Simulation's stability
+// check).
+GB_CONST float kUnstableSpeed = 100.0f;
+// A particle this close above the floor (m) touches it: a soap film bursts on a dry floor.
+GB_CONST float kFloorTouching = 1e-3f;
+// Plastic yield (yieldStretchedSprings): a spring stretched past yieldStretch times its rest, both ends at least
+// yieldThickness thick, yields.
+GB_FORMULA bool springYields(float length, float rest, float thinnerEnd, float yieldStretch, float yieldThickness) {
+  return !(thinnerEnd < yieldThickness) && length > yieldStretch * rest;
+}
+// Contraction (contractSlackSprings): a slack spring whose ends are both thinner than the dip contracts.
+GB_FORMULA bool springContracts(float length, float rest, float thickerEnd, float dipThickness) {
+  return length < rest && thickerEnd < dipThickness;
+}
+// Crowding (mergeCrowdedParticles): a slack spring with an end at least as thick as the dip may merge its ends (if
+// it is also short against the film's median spring).
+GB_FORMULA bool springCrowded(float length, float rest, float thickerEnd, float dipThickness) {
+  return length < rest && !(thickerEnd < dipThickness);
+}
+// Payout at the wire (payOutFilmAtWire): a rung stretched past growthStretch times its rest draws new film.
+GB_FORMULA bool rungPaysOut(float length, float rest, float growthStretch) { return length > growthStretch * rest; }
+// The impact of two film particles meeting at approach speed v (impactNumber, collision.h): m_A v^2 / E.
+GB_FORMULA float impactNumberOf(float filmInertia, float approachSpeed, float elasticity) {
+  return approachSpeed <= 0.0f || elasticity <= 0.0f ? 0.0f : filmInertia * approachSpeed * approachSpeed / elasticity;
+}
+
 #undef GB_CONST
 #undef GB_FORMULA
 #undef GB_REAL_FORMULA

@@ -34,7 +34,7 @@ struct StepUniformsBlock {
   uint closed;            // 1 for a closed bubble
   float drainageDt;       // drainage time of this substep, 0: no drainage
   float wireArea;         // Area_wm of Eq. (6): turns the air flow into the air's speed (air coupling)
-  uint pad2;
+  float frameTime;        // the frame's length (s): the film checks' impact test (film_statistics_terms)
 };
 
 // Push constants of every stage (32 bytes of the 128 guaranteed).
@@ -91,8 +91,9 @@ struct PushBlock {
 #define GB_SLOT_RELEASED 8                                   // VelocityBudget::released
 #define GB_ENERGY_SLOTS 9
 // The frame's statistics on the device (film_statistics_terms, film_statistics_tree; FrameStats of
-// cpu-reference/simulation/simulation.h): each particle's terms, then their sums over the film, except GB_STAT_SPEED,
-// whose largest value is kept.
+// cpu-reference/simulation/simulation.h) and the film checks of the rules between steps (FilmChecks of
+// cpu-reference/topology/film_checks.h): each particle's terms, then their sums over the film, except the largest
+// kept (GB_STAT_KEEPS_LARGEST): the speed and the checks' extremes, a least value kept as its negative.
 #define GB_STAT_PARTICLES 0  // 1 for a living particle
 #define GB_STAT_KINETIC 1    // 1/2 m v^2 (J)
 #define GB_STAT_POTENTIAL 2  // the liquid's potential energy in gravity, -rho w g . x (J)
@@ -103,7 +104,24 @@ struct PushBlock {
 #define GB_STAT_AREA 7       // a third of each of its triangles' area (m^2)
 #define GB_STAT_VOLUME 8     // a third of each of its triangles' cone volume to the frame's origin (m^3)
 #define GB_STAT_SPEED 9      // |v| (m/s): the largest is kept
-#define GB_STATISTICS_TERMS 10
+#define GB_STAT_WINDING_LEFT 10       // a third of each of its triangles' solid angle about the left tip over 4 pi
+#define GB_STAT_WINDING_RIGHT 11      // the same about the right tip
+#define GB_STAT_YIELDING 12           // half of each of its springs the yield rule would lengthen
+#define GB_STAT_SLACK 13              // half of each of its springs the contraction would take
+#define GB_STAT_CROWDED 14            // half of each of its slack springs with a thick end
+#define GB_STAT_RUNGS_PAST_GROWTH 15  // half of each of its rungs past growthStretch
+#define GB_STAT_WIRE_EDGES 16         // half the length of each of its springs along the wire (m)
+#define GB_STAT_WIRE_EDGE_COUNT 17    // half of each of its springs along the wire
+#define GB_STAT_RUNG_REST 18          // half the rest length of each of its rungs (m)
+#define GB_STAT_RUNG_COUNT 19         // half of each of its rungs
+#define GB_STAT_UNSTABLE 20           // 1 for a living particle not finite or faster than kUnstableSpeed: largest kept
+#define GB_STAT_DEPTH 21              // -y of a living particle (m): largest kept, the lowest particle
+#define GB_STAT_NEAR_LEFT 22          // -|x - left tip| of a living particle (m): largest kept, the nearest
+#define GB_STAT_NEAR_RIGHT 23         // -|x - right tip| (m): largest kept
+#define GB_STAT_THIN 24               // -e of a living particle with area (m): largest kept, the thinnest
+#define GB_STAT_IMPACT 25             // impact number of its hardest contact closing within the frame: largest kept
+#define GB_STATISTICS_TERMS 26
+#define GB_STAT_KEEPS_LARGEST(c) ((c) == GB_STAT_SPEED || (c) >= GB_STAT_UNSTABLE)
 
 #ifdef __cplusplus
 namespace gb::gpu {

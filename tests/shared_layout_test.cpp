@@ -85,7 +85,7 @@ TEST(SharedLayout, StepUniformsAndPushConstantsMatchTheCppOffsets) {
                                                   {"closed", offsetof(StepUniformsBlock, closed)},
                                                   {"drainageDt", offsetof(StepUniformsBlock, drainageDt)},
                                                   {"wireArea", offsetof(StepUniformsBlock, wireArea)},
-                                                  {"pad2", offsetof(StepUniformsBlock, pad2)}};
+                                                  {"frameTime", offsetof(StepUniformsBlock, frameTime)}};
   const auto members = structLayout(kernels::spirv(kernels::Kernel::Integrate), "StepUniformsBlock");
   ASSERT_EQ(members.size(), expected.size());
   for (const Member& m : members) {

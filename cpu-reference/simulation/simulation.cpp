@@ -9,6 +9,7 @@
 #include <string>
 
 #include "collision.h"
+#include "film_checks.h"
 #include "film_growth.h"
 #include "implicit_euler.h"
 
@@ -209,6 +210,7 @@ void Simulation::setFrameTime(float h) {
   if (!(h > 0.0f && h <= 0.1f))
     throw std::invalid_argument("frame time " + std::to_string(h) + " s is not in (0, 0.1]");
   if (h == params_.frameTime) return;
+  pullState();  // the substeps follow the film's stable step
   params_.frameTime = h;
   chooseSubsteps();
   if (h > contactHorizon_) {  // from now on contacts reach as far as the longest step: not searched again each time
@@ -238,17 +240,34 @@ void Simulation::advanceFrame(const WandState& next) {
   const long loadsBefore = loads_;
   const auto started = Clock::now();
   pressure_ = stepper_->run(substepUniforms_);
-  stepper_->store(film_);
+  stateOnDevice_ = true;  // the step's state is the stepper's until brought back
+  refreshOnPull_ = false;
+  checksForNextFrame_.reset();
   if (const VelocityBudget& budget = stepper_->lastBudget(); budget.acted()) {
     ++budgetRecord_.frames;
     budgetRecord_.smallestScale = std::min(budgetRecord_.smallestScale, budget.scale);
     budgetRecord_.largestShift = std::max(budgetRecord_.largestShift, budget.shift.norm());
   }
-  const auto stepped = Clock::now();
   stepCount_ += substeps_;
   wands_ = next;
   film_.loopHang = hangNext;
   time_ += params_.frameTime;
+  // The rules below read the state in host memory: it comes back only when the device's checks say one may act.
+  const std::optional<FilmChecks> checks = stateStaysOnDevice_ ? checksOnDevice(false) : std::nullopt;
+  if (checks && !rulesMayAct(*checks, next, wandSpeed)) {
+    for (int w = 0; w < 2; ++w)  // burstOnWandTouch's arming, far from its threshold (rulesMayAct)
+      wandArmed_[w] = wandArmed_[w] || checks->nearestTip[w] > params_.pinchDistance;
+    events_ = {};
+    ++readbackRecord_.framesPassed;
+    const auto stepped = Clock::now();
+    updateContacts();
+    phases_ = {millisecondsBetween(started, stepped), 0.0, millisecondsBetween(stepped, Clock::now())};
+    aerosol_.advance(params_, params_.frameTime);
+    recordReadback(readBefore, loadsBefore);
+    return;
+  }
+  pullState();
+  const auto stepped = Clock::now();
   checkStable();
   burstOnWandTouch();
   burstOnFloorTouch();
@@ -294,8 +313,66 @@ void Simulation::recordReadback(const DeviceReadback& before, long loadsBefore) 
   }
 }
 
+std::optional<FilmChecks> Simulation::checksOnDevice(bool atPresentPositions) {
+  FilmProbe probe;
+  probe.tips = {wands_.leftPosition, wands_.rightPosition};
+  probe.frameTime = params_.frameTime;
+  probe.atPresentPositions = atPresentPositions;
+  FilmSums sums;
+  FilmChecks checks;
+  if (!stepper_->probeFilm(probe, sums, checks)) return std::nullopt;
+  return checks;
+}
+
+bool Simulation::rulesMayAct(const FilmChecks& c, const WandState& next, float wandSpeed) const {
+  constexpr float m = kFilmCheckMargin;
+  const Params& p = params_;
+  const Topology& topo = film_.topology;
+  if (c.particles == 0) return false;                               // the film is gone
+  if (c.unstable) return true;                                      // checkStable
+  if (burst_.cause != nullptr && burst_.finished < 0) return true;  // a crack scheduled, or a burst under way
+  if (c.lowest < kFloorTouching * (1.0f + m)) return true;          // burstOnFloorTouch
+  if (c.thinnest < p.thicknessThreshold * (1.0f + m)) return true;  // advanceBurst: a crack by thinning
+  if (topo.isClosed()) {  // burstOnWandTouch; the winding number is 0 or 1, its float sum within 5% of it
+    for (int w = 0; w < 2; ++w) {
+      const float d = c.nearestTip[w];
+      if (!wandArmed_[w] ? std::abs(d - p.pinchDistance) <= m * p.pinchDistance
+                         : d < p.collisionDistance * (1.0f + m) || !(c.winding[w] <= 0.45f))
+        return true;
+    }
+  }
+  const bool restLengths = p.tensionModel == 0;
+  if (!topo.isClosed() && restLengths && p.yieldStretch > 1.0f && c.yielding > 0) return true;  // yield
+  if (topo.isClosed() && restLengths && (c.slack > 0 || c.crowded > 0)) return true;            // contraction, merges
+  // growFilm: the payout, and a new ring once the band is wide enough.
+  if (wandSpeed >= kDrawingSpeed && film_.wireLiquid > 0.0f && c.rungsPastGrowth > 0) return true;
+  if (wireBandWidthOf(c.rungRest, c.rungs, c.wireEdgeLength, c.wireEdges) >= kRingInsertionWidth * (1.0f - m))
+    return true;
+  const bool tipsTogether =
+      film_.tool.kind == ToolKind::TwoWands && (next.rightPosition - next.leftPosition).norm() < p.pinchDistance;
+  return tipsTogether && !topo.isClosed();  // pinch
+}
+
+void Simulation::pullState() const {
+  if (stateOnDevice_) {
+    stepper_->store(film_);
+    stateOnDevice_ = false;
+    if (refreshOnPull_) CpuStepper::refreshGeometry(params_, film_);  // as stats() leaves a film in host memory
+  }
+  if (contactsOnDevice_) {
+    stepper_->storeContacts(film_);
+    contactsOnDevice_ = false;
+    contactHistory_ = {film_.topology.contacts, film_.state.size()};
+  }
+}
+
 void Simulation::burstOnHardImpact() {
   if (burst_.active() || params_.collisionThreshold <= 0.0f) return;
+  if (stateOnDevice_ || contactsOnDevice_) {  // the device's checks first: the state comes back near an impact
+    const std::optional<FilmChecks> checks = checksForNextFrame_ ? checksForNextFrame_ : checksOnDevice(false);
+    if (checks && checks->hardestImpact <= params_.collisionThreshold * (1.0f - kFilmCheckMargin)) return;
+    pullState();
+  }
   const Impact impact = hardestImpact(params_, params_.frameTime, film_);
   if (impact.number > params_.collisionThreshold) startCrack(burst_, film_, impact.particle, time_, "impact");
 }
@@ -316,11 +393,10 @@ void Simulation::burstOnWandTouch() {
 
 void Simulation::burstOnFloorTouch() {
   // A soap film bursts on a dry floor: the step lets particles land on y = 0 (and slide), this pops them.
-  constexpr float kTouching = 1e-3f;  // m above the floor
   if (burst_.active()) return;
   const State& s = film_.state;
   for (uint32_t i = 0; i < s.size(); ++i)
-    if (s.alive[i] && s.position.get(i).y() < kTouching) {
+    if (s.alive[i] && s.position.get(i).y() < kFloorTouching) {
       startCrack(burst_, film_, i, time_, "floor");
       return;
     }
@@ -338,6 +414,7 @@ void Simulation::growFilm(const WandState& wands, float wandSpeed) {
 }
 
 void Simulation::reloadFilm() {
+  pullState();
   ++loads_;
   CpuStepper::refreshGeometry(params_, film_);
   chooseSubsteps();
@@ -348,17 +425,27 @@ void Simulation::updateContacts() {
   // Contacts for the next frame: within reach of what two particles can close in the longest step taken so far,
   // plus 5 mm for what the step's forces add to their start velocities.
   constexpr float slack = 0.005f;
-  // A stepper that searches on its device keeps the list there for its sweeps; otherwise the CPU searches.
-  if (!stepper_->findContacts(params_, contactHorizon_, slack, film_, contactHistory_)) {
-    contactSearch_.find(params_, contactHorizon_, slack, film_, contactHistory_);
-    stepper_->updateContacts(film_);
+  // A stepper that searches on its device keeps the list there for its sweeps (and brings it back with the state);
+  // otherwise the CPU searches.
+  if (stepper_->findContactsOnDevice(params_, contactHorizon_, slack, contactHistory_)) {
+    contactsOnDevice_ = true;
+    contactHistory_ = {{}, film_.state.size(), true};
+    if (!stateStaysOnDevice_) pullState();
+    return;
   }
+  pullState();
+  contactSearch_.find(params_, contactHorizon_, slack, film_, contactHistory_);
+  stepper_->updateContacts(film_);
   contactHistory_ = {film_.topology.contacts, film_.state.size()};
 }
 
-void Simulation::startBurst(size_t particle) { startCrack(burst_, film_, particle, time_, "poke"); }
+void Simulation::startBurst(size_t particle) {
+  pullState();
+  startCrack(burst_, film_, particle, time_, "poke");
+}
 
 size_t Simulation::topParticle() const {
+  pullState();
   const State& s = film_.state;
   size_t best = 0;
   float bestY = -std::numeric_limits<float>::infinity();
@@ -372,6 +459,7 @@ size_t Simulation::topParticle() const {
 
 bool Simulation::pinch() {
   if (film_.topology.isClosed() || burst_.active()) return false;
+  pullState();
   try {
     if (!pinchOff(params_, film_)) return false;
   } catch (const std::runtime_error&) {
@@ -392,19 +480,18 @@ bool Simulation::pinch() {
 
 void Simulation::dip(const WandState& wands) {
   film_ = generateFilm(params_, film_.tool, wands);
-  contactHistory_ = {};  // the new film's particles are not the old one's
+  stateOnDevice_ = contactsOnDevice_ = false;  // the old film's, replaced
+  contactHistory_ = {};                        // the new film's particles are not the old one's
   burst_ = BurstFront{};
   wands_ = wands;
   reloadFilm();
 }
 
 void Simulation::checkStable() const {
-  // A film moving faster than this has blown up: real giant bubbles never approach it.
-  constexpr float maxSpeed = 100.0f;
   const State& s = film_.state;
   const auto stable = [&](size_t i) {
     const Vec3 x = s.position.get(i), v = s.velocity.get(i);
-    return !s.alive[i] || (x.allFinite() && v.allFinite() && v.norm() <= maxSpeed);
+    return !s.alive[i] || (x.allFinite() && v.allFinite() && v.norm() <= kUnstableSpeed);
   };
   // The first unstable particle, found in parallel (the lowest index whatever the threads).
   const auto count = static_cast<long>(s.size());
@@ -424,9 +511,6 @@ void Simulation::checkStable() const {
 }
 
 FrameStats Simulation::stats() {
-  // The film's geometry as it stands after the step, for the sums on the CPU and for what reads the film after
-  // them (the outputs, the renderer).
-  CpuStepper::refreshGeometry(params_, film_);
   const Topology& topo = film_.topology;
   FrameStats st;
   st.time = time_;
@@ -435,9 +519,26 @@ FrameStats Simulation::stats() {
   // origin, the CPU its centroid, which keeps the float differences small); an open film's swept volume is the cone
   // to the frame's centre.
   const Vec3 frameCentre = wireFrame(wands_).center;
+  FilmProbe probe;
+  probe.origin = topo.isClosed() ? film_.volumeOrigin : frameCentre;
+  probe.tips = {wands_.leftPosition, wands_.rightPosition};
+  probe.frameTime = params_.frameTime;
   FilmSums sums;
-  if (!stepper_->sumFilm(topo.isClosed() ? film_.volumeOrigin : frameCentre, sums))
+  FilmChecks checks;
+  if (stepper_->probeFilm(probe, sums, checks)) {
+    checksForNextFrame_ = checks;  // of the film the next frame starts from: its impact test
+    // The device refreshed its geometry: so does the film in host memory, now or when it comes back.
+    if (stateOnDevice_)
+      refreshOnPull_ = true;
+    else
+      CpuStepper::refreshGeometry(params_, film_);
+  } else {
+    // The film's geometry as it stands after the step, for the sums on the CPU and for what reads the film after
+    // them (the outputs, the renderer).
+    pullState();
+    CpuStepper::refreshGeometry(params_, film_);
     sums = sumFilm(params_, film_, topo.isClosed() ? centroid(film_.state) : frameCentre);
+  }
   st.particles = sums.particles;
   st.area = sums.area;
   st.volume = sums.volume;

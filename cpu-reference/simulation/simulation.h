@@ -5,6 +5,7 @@
 
 #include <array>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 
 #include "bursting.h"
@@ -88,8 +89,20 @@ class Simulation {
   [[nodiscard]] const TopologyEvents& lastEvents() const { return events_; }
   [[nodiscard]] const FramePhases& lastPhases() const { return phases_; }
 
-  [[nodiscard]] const Film& film() const { return film_; }
-  [[nodiscard]] Film& film() { return film_; }
+  // The film, its state brought back from the stepper's device first where it stayed there (stateStaysOnDevice).
+  [[nodiscard]] const Film& film() const {
+    pullState();
+    return film_;
+  }
+  [[nodiscard]] Film& film() {
+    pullState();
+    return film_;
+  }
+  // Whether a frame on which no rule between steps acts leaves the film's state and contact list on the stepper's
+  // device (true, the default), where the stepper checks the film there (Stepper::probeFilm, film_checks.h): the
+  // state then comes back only when a rule acts, a topology event fires or something reads film(). False brings it
+  // back after every step. A stepper in host memory has nothing to bring back either way.
+  void setStateStaysOnDevice(bool stays) { stateStaysOnDevice_ = stays; }
   [[nodiscard]] const Params& params() const { return params_; }
   [[nodiscard]] double time() const { return time_; }
   [[nodiscard]] int substepsPerFrame() const { return substeps_; }
@@ -117,6 +130,7 @@ class Simulation {
   struct ReadbackRecord {
     long frames = 0;
     long framesWithoutEvent = 0;
+    long framesPassed = 0;  // on which the device's checks let the rules between steps pass (film_checks.h)
     size_t stateReadbacks = 0;
     uint64_t bytes = 0;
     uint64_t bytesWithoutEvent = 0;
@@ -148,9 +162,24 @@ class Simulation {
   void updateContacts();
   void checkStable() const;
   void recordReadback(const DeviceReadback& before, long loadsBefore);
+  // The film checks of the rules between steps from the stepper's device (FilmChecks), if it checks there.
+  [[nodiscard]] std::optional<FilmChecks> checksOnDevice(bool atPresentPositions);
+  // Whether a rule between steps may act on the film the device's checks describe: every rule of advanceFrame's,
+  // each with its thresholds loosened by kFilmCheckMargin. False means that none of them acts.
+  [[nodiscard]] bool rulesMayAct(const FilmChecks& checks, const WandState& next, float wandSpeed) const;
+  // Brings the state and the contact list back from the stepper's device where they stayed (film(), every rule).
+  void pullState() const;
 
   Params params_;
-  Film film_;
+  // The film. Its state and contact list may stay on the stepper's device after a frame (stateStaysOnDevice); every
+  // read of them brings them back first (pullState), also through the const film(): a cache, hence mutable.
+  mutable Film film_;
+  mutable bool stateOnDevice_ = false;     // film_.state is behind the device's
+  mutable bool contactsOnDevice_ = false;  // film_.topology.contacts is behind the device's
+  mutable bool refreshOnPull_ = false;     // the statistics refreshed the device's geometry: so does a pull
+  bool stateStaysOnDevice_ = true;
+  // The checks stats() made of the film the next frame starts from (its impact test), reset by each step.
+  std::optional<FilmChecks> checksForNextFrame_;
   std::unique_ptr<Stepper> stepper_;
   BurstFront burst_;
   Aerosol aerosol_;
@@ -163,8 +192,8 @@ class Simulation {
   int substeps_ = 1;
   int solverSweeps_ = 0;  // 0: Params::solverSweeps
   float pressure_ = 0;
-  float contactHorizon_;           // the longest step taken (s): what the contact search must reach across
-  ContactHistory contactHistory_;  // the last contact list, for the pairs' rest distances (collision.h)
+  float contactHorizon_;                   // the longest step taken (s): what the contact search must reach across
+  mutable ContactHistory contactHistory_;  // the last contact list, for the pairs' rest distances (collision.h)
   ContactSearch contactSearch_;
   long stepCount_ = 0;
   BudgetRecord budgetRecord_;

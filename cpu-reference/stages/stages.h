@@ -29,6 +29,7 @@ struct StepUniforms {
                                      // drains over seconds, so once per frame is enough (Simulation)
   int solverSweeps = 0;              // implicit integrator: vertex block descent sweeps in this step (the live
                                      // loop lowers it when a frame runs over its budget)
+  float frameTime = 0.0f;            // the frame's length (s), for the film checks between steps (film_checks.h)
 };
 
 // ---- Stage 1-2: geometry -------------------------------------------------------------------------------

@@ -11,6 +11,7 @@
 
 #include "energy_budget.h"
 #include "film.h"
+#include "film_checks.h"
 #include "shared_step.h"
 #include "stages.h"
 
@@ -121,10 +122,25 @@ class Stepper {
   // the step kept within its budget or no budget ran (energy_budget.h).
   [[nodiscard]] const VelocityBudget& lastBudget() const { return lastBudget_; }
 
-  // Sums the film as the last step left it where the stepper holds it, the cone volumes to `origin`: a GPU stepper
-  // reduces them on the device and reads back a few floats. Returns false when the caller sums them from the film
-  // in host memory, as the CPU stepper's caller does.
-  virtual bool sumFilm(const Vec3& /*origin*/, FilmSums&) { return false; }
+  // Sums and checks the film where the stepper holds it (FilmSums, and FilmChecks of film_checks.h with its
+  // thresholds loosened by kFilmCheckMargin), the cone volumes to probe.origin: a GPU stepper reduces them on the
+  // device and reads back a few floats. With probe.atPresentPositions the geometry and film state are first brought up
+  // to the present positions, as the statistics want; without, the checks see them as the last step left them, as
+  // the rules between steps read them. Returns false when the caller sums and checks the film in host memory, as the
+  // CPU stepper's caller does.
+  virtual bool probeFilm(const FilmProbe& /*probe*/, FilmSums&, FilmChecks&) { return false; }
+  // probeFilm for the sums alone, at the present positions.
+  bool sumFilm(const Vec3& origin, FilmSums& sums) {
+    FilmChecks unused;
+    return probeFilm({.origin = origin}, sums, unused);
+  }
+  // Finds the contacts as findContacts does but leaves the list on the device, for the sweeps (storeContacts brings
+  // it into film.topology.contacts when the CPU needs it); the list's entries are counted in host memory. False when
+  // the stepper leaves the search to the caller.
+  virtual bool findContactsOnDevice(const Params&, float /*frameTime*/, float /*slack*/, const ContactHistory&) {
+    return false;
+  }
+  virtual void storeContacts(Film&) {}
   [[nodiscard]] virtual DeviceReadback readback() const { return {}; }
 
   virtual void enableTiming(bool on) { timing_ = on; }

@@ -505,8 +505,7 @@ size_t ContactSearch::find(const Params& p, float frameTime, float slack, Film& 
 }
 
 float impactNumber(const Params& params, float approachSpeed, float elasticity) {
-  if (approachSpeed <= 0.0f || elasticity <= 0.0f) return 0.0f;
-  return params.filmInertia * approachSpeed * approachSpeed / elasticity;
+  return impactNumberOf(params.filmInertia, approachSpeed, elasticity);
 }
 
 Impact hardestImpact(const Params& params, float frameTime, const Film& film) {

@@ -18,6 +18,7 @@ namespace gb {
 struct ContactHistory {
   std::vector<uint32_t> contacts;
   size_t particles = 0;
+  bool onDevice = false;  // the list is the one the stepper's last search left on its device (contacts is empty)
 };
 
 // A listed pair's rest distance: the collision distance, or the pair's separation when it enters the list

@@ -173,7 +173,7 @@ size_t payOutFilmAtWire(const Params& params, Film& film) {
     const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
     if (!isRung(topo, a, b) && !isRung(topo, b, a)) continue;
     const float length = (s.position.get(a) - s.position.get(b)).norm();
-    if (length > params.growthStretch * topo.restLength[k]) stretched.emplace_back(k, length);
+    if (rungPaysOut(length, topo.restLength[k], params.growthStretch)) stretched.emplace_back(k, length);
   }
   // The loop test walks every triangle's edges: only when there is something to pay out (every frame the wands
   // move, otherwise).
@@ -253,8 +253,7 @@ size_t contractSlackSprings(const Params& params, Film& film, SpringEnergyAllowa
   std::vector<Contraction> candidates;
   forEachSpringOffTheWire(film, [&](size_t k, uint32_t a, uint32_t b, float length) {
     const float rest = topo.restLength[k];
-    if (!(length < rest)) return;
-    if (std::max(s.thickness[a], s.thickness[b]) >= dipThickness) return;
+    if (!springContracts(length, rest, std::max(s.thickness[a], s.thickness[b]), dipThickness)) return;
     const float taut =
         params.energyNeutralContraction
             ? length - std::min(rest - length, params.springPrestrain * length)  // stretched as compressed
@@ -340,9 +339,10 @@ size_t mergeCrowdedParticles(const Params& params, Film& film, SpringEnergyAllow
   std::vector<std::pair<float, size_t>> crowded;  // length, spring: slack, with a thick end
   for (size_t k = 0; k < topo.springCount(); ++k) {
     const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
-    if (!s.alive[a] || !s.alive[b] || std::max(s.thickness[a], s.thickness[b]) < dipThickness) continue;
+    if (!s.alive[a] || !s.alive[b]) continue;
     const float length = (s.position.get(a) - s.position.get(b)).norm();
-    if (length < topo.restLength[k]) crowded.emplace_back(length, k);
+    if (springCrowded(length, topo.restLength[k], std::max(s.thickness[a], s.thickness[b]), dipThickness))
+      crowded.emplace_back(length, k);
   }
   if (crowded.empty()) return 0;  // most frames: the median below is not needed
   std::vector<float> lengths;
@@ -398,8 +398,9 @@ size_t yieldStretchedSprings(const Params& params, Film& film) {
   const std::vector<float>& rest = film.topology.restLength;
   const std::vector<float>& thickness = film.state.thickness;
   return reshapeSpringsOffTheWire(film, [&](size_t k, uint32_t a, uint32_t b, float length) -> std::optional<float> {
-    if (std::min(thickness[a], thickness[b]) < params.yieldThickness) return std::nullopt;
-    if (!(length > params.yieldStretch * rest[k])) return std::nullopt;
+    if (!springYields(length, rest[k], std::min(thickness[a], thickness[b]), params.yieldStretch,
+                      params.yieldThickness))
+      return std::nullopt;
     return length / params.yieldStretch;
   });
 }
@@ -418,8 +419,12 @@ float wireBandWidth(const Film& film) {
       ++edges;
     }
   }
-  if (rungs == 0 || edges == 0 || edgeLength <= 0) return 0.0f;
-  return static_cast<float>((rungRest / static_cast<double>(rungs)) / (edgeLength / static_cast<double>(edges)));
+  return wireBandWidthOf(rungRest, static_cast<double>(rungs), edgeLength, static_cast<double>(edges));
+}
+
+float wireBandWidthOf(double rungRest, double rungs, double edgeLength, double edges) {
+  if (rungs <= 0 || edges <= 0 || edgeLength <= 0) return 0.0f;
+  return static_cast<float>((rungRest / rungs) / (edgeLength / edges));
 }
 
 GrowthEvent growFilmAtWire(const Params& params, const WireFrame& frame, float wandSpeed, Film& film) {

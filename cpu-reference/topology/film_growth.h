@@ -29,6 +29,9 @@ float wireRungStretch(const Film& film);
 
 // Mean rest length of the rungs in units of the mean spacing of the wire's particles.
 float wireBandWidth(const Film& film);
+// The same from the rungs' count and summed rest length and the wire's springs' count and summed length (0 when a
+// count is 0).
+float wireBandWidthOf(double rungRest, double rungs, double edgeLength, double edges);
 
 // Step 1 alone: lengthens the rest of every rung stretched past Params::growthStretch, if the film is open
 // and intact and the wire still holds liquid. Returns how many rungs it lengthened.

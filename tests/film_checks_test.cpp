@@ -1,0 +1,195 @@
+// The film checks of the rules between steps (cpu-reference/topology/film_checks.h): a frame on which the checks say
+// that no rule acts may leave the state on the stepper's device. On the CPU, a stepper that checks the film as the
+// device does plays the default performance exactly as the plain CPU stepper: no rule the checks let pass ever acts.
+// On the device (lavapipe in CI), the checks reduced there are the CPU's, and the performance played with the state
+// left on the device is the one played with the state read back after every step.
+#include "film_checks.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "cpu_stepper.h"
+#include "default_performance_on_device.h"
+#include "scene_file.h"
+#include "simulation.h"
+#include "vulkan_stepper.h"
+#include "vulkan_test_device.h"
+
+namespace gb {
+namespace {
+
+// The CPU stepper, checking the film between steps in host memory as a device stepper checks it on its device
+// (checkFilm with the device's margin).
+class CheckingCpuStepper final : public Stepper {
+ public:
+  [[nodiscard]] std::string name() const override { return "cpu, checking"; }
+  void load(const Params& params, Film& film) override {
+    params_ = params;
+    film_ = &film;
+    cpu_.load(params, film);
+  }
+  float run(std::span<const StepUniforms> substeps) override {
+    const float pressure = cpu_.run(substeps);
+    lastBudget_ = cpu_.lastBudget();
+    return pressure;
+  }
+  float runStage(Stage stage, const StepUniforms& uniforms) override { return cpu_.runStage(stage, uniforms); }
+  void store(Film&) override {}
+  void updateTopology(const Params& params, Film& film) override { cpu_.updateTopology(params, film); }
+  void updateRestLengths(const Film& film) override { cpu_.updateRestLengths(film); }
+  void updateContacts(const Film& film) override { cpu_.updateContacts(film); }
+  // The checks between steps; the statistics are left to the caller.
+  bool probeFilm(const FilmProbe& probe, FilmSums&, FilmChecks& checks) override {
+    if (probe.atPresentPositions) return false;
+    checks = checkFilm(params_, *film_, probe, kFilmCheckMargin);
+    return true;
+  }
+
+ private:
+  CpuStepper cpu_;
+  Params params_;
+  Film* film_ = nullptr;
+};
+
+// The default performance (Scene "default"), played on two simulations side by side to `frames`: after every frame
+// their figures and events are the same to the last bit.
+void expectTheSamePerformance(const Scene& scene, Simulation& a, Simulation& b, int frames) {
+  for (int f = 1; f <= frames; ++f) {
+    const WandState wands =
+        gestureAt(Gesture::Giant, scene.run.gestureOptions, static_cast<double>(f) * scene.run.params.frameTime);
+    a.advanceFrame(wands);
+    b.advanceFrame(wands);
+    const FrameStats x = a.stats(), y = b.stats();
+    ASSERT_EQ(x.particles, y.particles) << "frame " << f;
+    ASSERT_EQ(x.triangles, y.triangles) << "frame " << f;
+    ASSERT_EQ(x.kineticEnergy, y.kineticEnergy) << "frame " << f;
+    ASSERT_EQ(x.elasticEnergy, y.elasticEnergy) << "frame " << f;
+    ASSERT_EQ(x.volume, y.volume) << "frame " << f;
+    ASSERT_EQ(x.liquid, y.liquid) << "frame " << f;
+    ASSERT_EQ(a.lastEvents().pinchedOff, b.lastEvents().pinchedOff) << "frame " << f;
+    ASSERT_EQ(a.burst().started, b.burst().started) << "frame " << f;
+  }
+}
+
+WandState defaultStart(const Scene& scene) { return gestureAt(Gesture::Giant, scene.run.gestureOptions, 0.0); }
+
+TEST(FilmChecks, NoRuleActsWhereTheChecksLetTheFramePass) {
+  // The default performance to the end of its burst on the plain CPU stepper and on the checking one: every frame's
+  // figures and events are the same to the last bit, so no rule the checks let pass would have acted (a yield, a
+  // contraction, a merge, a payout, a crack or a pinch skipped would change the film's energies from that frame
+  // on). And the checks let frames pass: the open bag hanging before the stroke, the free bubble's calmer frames.
+  const Scene scene = resolveScene("default");
+  Simulation plain(scene.run.params, WandTool{}, defaultStart(scene));
+  Simulation checked(scene.run.params, WandTool{}, defaultStart(scene), std::make_unique<CheckingCpuStepper>());
+  constexpr int kFrames = 230;
+  expectTheSamePerformance(scene, plain, checked, kFrames);
+  const long passed = checked.readbackRecord().framesPassed;
+  std::printf("the checks let %ld of %d frames pass without the rules\n", passed, kFrames);
+  EXPECT_GT(plain.burst().started, 0.0) << "the performance's bubble burst";
+  EXPECT_GT(passed, kFrames / 10);
+  EXPECT_EQ(plain.readbackRecord().framesPassed, 0) << "the plain CPU stepper does not check: every rule runs";
+}
+
+// How far the device's checks may lie from the CPU's. Distances and heights are float lengths of the same floats
+// (a few ulp, 1e-6 relative leaves a factor of eight); the winding number is a float sum over the triangles where
+// the CPU's is in double (18,000 terms of about 1e-4 each: 1e-4 absolute); the impact number divides and squares
+// float speeds (1e-5 relative).
+constexpr float kDistanceTolerance = 1e-6f;
+constexpr float kWindingTolerance = 1e-4f;
+constexpr float kImpactTolerance = 1e-5f;
+
+void expectSameChecks(const FilmChecks& device, const Params& p, const Film& film, const FilmProbe& probe,
+                      const std::string& name) {
+  const FilmChecks exact = checkFilm(p, film, probe, 0.0f), loose = checkFilm(p, film, probe, 2.0f * kFilmCheckMargin);
+  std::printf(
+      "%s: %zu particles, lowest %.6f m, tips %.5f and %.5f m away, winding %.5f and %.5f, thinnest %.3g m, "
+      "impact %.4g; springs yielding %g, slack %g, crowded %g, rungs past growth %g of %g, wire %g m\n",
+      name.c_str(), device.particles, device.lowest, device.nearestTip[0], device.nearestTip[1], device.winding[0],
+      device.winding[1], device.thinnest, device.hardestImpact, device.yielding, device.slack, device.crowded,
+      device.rungsPastGrowth, device.rungs, device.wireEdgeLength);
+  EXPECT_EQ(device.particles, exact.particles) << name;
+  EXPECT_EQ(device.unstable, exact.unstable) << name;
+  EXPECT_NEAR(device.lowest, exact.lowest, kDistanceTolerance * std::abs(exact.lowest)) << name;
+  EXPECT_NEAR(device.thinnest, exact.thinnest, kDistanceTolerance * exact.thinnest) << name;
+  for (int w = 0; w < 2; ++w) {
+    EXPECT_NEAR(device.nearestTip[w], exact.nearestTip[w], kDistanceTolerance * exact.nearestTip[w]) << name;
+    // Only a closed film's winding number is read (burstOnWandTouch); an open film's tips lie on its wire, where
+    // the solid angles are undefined.
+    if (film.topology.isClosed()) {
+      EXPECT_NEAR(device.winding[w], exact.winding[w], kWindingTolerance) << name;
+    }
+  }
+  EXPECT_NEAR(device.hardestImpact, exact.hardestImpact, kImpactTolerance * exact.hardestImpact) << name;
+  // Each count lies between the rules' own (margin 0: the device's margin never misses one) and twice the margin's.
+  const auto between = [&](float d, float low, float high, const char* what) {
+    EXPECT_LE(low, d) << name << ": " << what;
+    EXPECT_LE(d, high) << name << ": " << what;
+  };
+  between(device.yielding, exact.yielding, loose.yielding, "yielding");
+  between(device.slack, exact.slack, loose.slack, "slack");
+  between(device.crowded, exact.crowded, loose.crowded, "crowded");
+  between(device.rungsPastGrowth, exact.rungsPastGrowth, loose.rungsPastGrowth, "rungs past growth");
+  EXPECT_EQ(device.rungs, exact.rungs) << name;
+  EXPECT_EQ(device.wireEdges, exact.wireEdges) << name;
+  EXPECT_NEAR(device.rungRest, exact.rungRest, 1e-5f * exact.rungRest) << name;
+  EXPECT_NEAR(device.wireEdgeLength, exact.wireEdgeLength, 1e-5f * exact.wireEdgeLength) << name;
+}
+
+TEST(DeviceFilmChecks, TheDevicesChecksAreTheCpus) {
+  // The default performance on the Vulkan backend: at the bag being drawn, at its fastest and at the free bubble,
+  // the checks reduced on the device against checkFilm of the state brought back; for the free bubble also with a
+  // tip at its centre (winding number 1).
+  GB_REQUIRE_VULKAN(device);
+  test::playDefaultPerformanceOnDevice(device, [&](Simulation& played, const WandState& wands, int f) {
+    if (!test::checkedFrame(f)) return;
+    FilmProbe probe;
+    probe.tips = {wands.leftPosition, wands.rightPosition};
+    probe.frameTime = played.params().frameTime;
+    probe.atPresentPositions = false;
+    const std::string name = "the default performance at frame " + std::to_string(f);
+    FilmSums sums;
+    FilmChecks checks;
+    ASSERT_TRUE(played.stepper().probeFilm(probe, sums, checks));
+    const Film& film = played.film();  // brought back
+    expectSameChecks(checks, played.params(), film, probe, name);
+    if (!film.topology.isClosed()) return;
+    probe.tips[0] = centroid(film.state);
+    ASSERT_TRUE(played.stepper().probeFilm(probe, sums, checks));
+    expectSameChecks(checks, played.params(), film, probe, name + ", a tip at its centre");
+    EXPECT_NEAR(checks.winding[0], 1.0f, kWindingTolerance);
+  });
+}
+
+TEST(DeviceFilmChecks, TheStateStaysOnTheDeviceWhereNoRuleActs) {
+  // The default performance to the free bubble on the Vulkan backend twice: with the state brought back after every
+  // step, and left on the device where the checks let a frame pass. The device steps the same film either way and
+  // the CPU's rules act on the same frames: the same figures at every frame, and the pinch-off at the same frame.
+  // The frames that pass bring back no state: a few hundred bytes (the checks, the contact count) instead of the
+  // state's 1.4 MiB.
+  GB_REQUIRE_VULKAN(device);
+  const Scene scene = resolveScene("default");
+  const auto onTheDevice = [&] { return std::make_unique<VulkanStepper>(device, test::everythingOnDevice()); };
+  Simulation everyFrame(scene.run.params, WandTool{}, defaultStart(scene), onTheDevice());
+  everyFrame.setStateStaysOnDevice(false);
+  Simulation onDevice(scene.run.params, WandTool{}, defaultStart(scene), onTheDevice());
+  expectTheSamePerformance(scene, everyFrame, onDevice, 110);
+  EXPECT_TRUE(onDevice.film().topology.isClosed()) << "frame 110 is the free bubble";
+  const Simulation::ReadbackRecord &all = everyFrame.readbackRecord(), &some = onDevice.readbackRecord();
+  std::printf(
+      "state read back on %zu of %ld frames (every frame: %zu), %ld passed by the checks; %.1f KiB a frame "
+      "without an event (%.1f)\n",
+      some.stateReadbacks, some.frames, all.stateReadbacks, some.framesPassed,
+      static_cast<double>(some.bytesWithoutEvent) / 1024.0 / static_cast<double>(some.framesWithoutEvent),
+      static_cast<double>(all.bytesWithoutEvent) / 1024.0 / static_cast<double>(all.framesWithoutEvent));
+  EXPECT_GE(all.stateReadbacks, 110u);
+  EXPECT_LT(some.stateReadbacks, all.stateReadbacks);
+  EXPECT_EQ(all.framesPassed, 0);
+  EXPECT_EQ(some.stateReadbacks + static_cast<size_t>(some.framesPassed), all.stateReadbacks)
+      << "a frame the checks pass brings nothing back";
+}
+
+}  // namespace
+}  // namespace gb

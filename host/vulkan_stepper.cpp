@@ -576,8 +576,10 @@ struct VulkanStepper::Impl {
   }
 
   // Whether the last search's rows and list had room for every partner; if not, grows them to what it found or
-  // twice what they had, says so on stderr, and the list at the buffer's start is no longer the last one.
-  bool contactSearchHadRoom() {
+  // twice what they had, says so on stderr, and the list at the buffer's start is no longer the last one. The list
+  // the search read as its history, where that was the device's own (history.onDevice), comes back into `history`
+  // first: the grown buffer keeps nothing of it.
+  bool contactSearchHadRoom(ContactHistory& history) {
     std::array<uint32_t, GB_CONTACT_HEADER> h{};
     readFrom(buffer(GB_BINDING_CONTACTS), h.data(), sizeof h, vk::DeviceSize{contactHeader()} * sizeof(uint32_t));
     const uint32_t most = h[GB_CONTACT_MOST_PARTNERS], entries = h[GB_CONTACT_PARTNER_ENTRIES];
@@ -587,13 +589,17 @@ struct VulkanStepper::Impl {
                  "%u: searching again with more room\n",
                  most, entries, contactRowCapacity, contactEntryCapacity);
     if (most > contactRowCapacity) contactRowCapacity = std::max(most, 2 * contactRowCapacity);  // a film crumples on
+    if (history.onDevice && deviceListEntries > 0) {
+      history = {std::vector<uint32_t>(deviceListEntries), particles, false};
+      readFrom(buffer(GB_BINDING_CONTACTS), history.contacts.data(), deviceListEntries * sizeof(uint32_t),
+               vk::DeviceSize{contactLayout().previous} * sizeof(uint32_t));
+    }
     deviceListEntries = 0;
     ensureContactRoom(entries, 0);
     ++contactRecord.regrown;
     return false;
   }
 
-  // The list the last search left, into `contacts` (Topology::contacts).
   // The size of the list the device search left (its partner entries, the last offset): deviceListEntries.
   void countContactList() {
     uint32_t entries = 0;
@@ -601,6 +607,7 @@ struct VulkanStepper::Impl {
     deviceListEntries = particles + size_t{1} + 2 * size_t{entries};
   }
 
+  // The list the last search left, into `contacts` (Topology::contacts).
   void readContactList(std::vector<uint32_t>& contacts) {
     contacts.resize(deviceListEntries);
     readFrom(buffer(GB_BINDING_CONTACTS), contacts.data(), contacts.size() * sizeof(uint32_t));
@@ -649,6 +656,21 @@ struct VulkanStepper::Impl {
     ctx->submitAndWait(cb);
     readFrom(statisticsReadback, sums.data(), sizeof sums);
     return sums;
+  }
+
+  // A rest-length rule between steps (film_rest_lengths, GB_RULE_*) on the device, where the statistics are reduced.
+  bool runSpringRule(uint32_t rule) {
+    if (!statisticsOnDevice) return false;
+    if (sets.empty()) throw std::logic_error("VulkanStepper: no film loaded");
+    const vk::raii::CommandBuffer& cb = commands;
+    cb.reset();
+    cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    computeToComputeBarrier(cb);
+    dispatch(cb, Kernel::FilmRestLengths, particles, 0, rule);
+    computeToHostBarrier(cb);  // storeRestLengths reads them through the buffer's mapping
+    cb.end();
+    ctx->submitAndWait(cb);
+    return true;
   }
 
   float readVolume() {
@@ -807,10 +829,11 @@ bool VulkanStepper::findContactsOnDevice(const Params& params, float frameTime, 
       params.collisionStiffness != m.params.collisionStiffness)
     throw std::logic_error("VulkanStepper::findContacts: not the loaded film");
   // A search short of room lists nothing reliable: it runs once more with the room it found it needed.
-  m.searchContacts(frameTime, slack, history);
-  if (!m.contactSearchHadRoom()) {
-    m.searchContacts(frameTime, slack, history);
-    if (!m.contactSearchHadRoom()) throw std::logic_error("VulkanStepper::findContacts: no room after growing");
+  ContactHistory kept = history;
+  m.searchContacts(frameTime, slack, kept);
+  if (!m.contactSearchHadRoom(kept)) {
+    m.searchContacts(frameTime, slack, kept);
+    if (!m.contactSearchHadRoom(kept)) throw std::logic_error("VulkanStepper::findContacts: no room after growing");
   }
   m.countContactList();
   return true;
@@ -940,6 +963,18 @@ bool VulkanStepper::probeFilm(const FilmProbe& probe, FilmSums& sums, FilmChecks
   checks.wireEdges = t[GB_STAT_WIRE_EDGE_COUNT];
   checks.wireEdgeLength = t[GB_STAT_WIRE_EDGES];
   return true;
+}
+
+bool VulkanStepper::yieldStretchedSprings() { return impl_->runSpringRule(GB_RULE_YIELD); }
+
+bool VulkanStepper::payOutFilmAtWire() { return impl_->runSpringRule(GB_RULE_PAYOUT); }
+
+void VulkanStepper::storeRestLengths(Film& film) {
+  Impl& m = *impl_;
+  std::vector<float>& rest = film.topology.restLength;
+  if (rest.size() * sizeof(float) > m.buffer(GB_BINDING_REST_LENGTH).size())
+    throw std::logic_error("VulkanStepper::storeRestLengths: not the loaded film");
+  m.readFrom(m.buffer(GB_BINDING_REST_LENGTH), rest.data(), rest.size() * sizeof(float));
 }
 
 DeviceReadback VulkanStepper::readback() const { return impl_->copiedToHost; }

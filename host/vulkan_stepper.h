@@ -27,8 +27,8 @@ struct VulkanStepperOptions {
   // The self-collision search: on the device (findContacts), where the sweeps read the list, or the CPU's, handed
   // over (updateContacts). A CPU driver searches 13 to 25 times slower than the CPU's own search.
   WorkPlace contactSearch = WorkPlace::Automatic;
-  // The frame's statistics and the film checks of the rules between steps: reduced on the device (probeFilm, a few
-  // floats read back), or summed by the caller from the state read back.
+  // The frame's statistics, the film checks of the rules between steps and the yield of stretched springs: on the
+  // device (probeFilm, a few floats read back; yieldStretchedSprings), or by the caller from the state read back.
   WorkPlace statistics = WorkPlace::Automatic;
   // The room the device search starts with after a load: partners of one particle, and partner entries of the whole
   // list (0: one per particle). A search that finds more grows them and runs again (DeviceContactRecord::regrown).
@@ -68,6 +68,10 @@ class VulkanStepper final : public Stepper {
   [[nodiscard]] const DeviceContactRecord& contactRecord() const;
   bool findContactsOnDevice(const Params& params, float frameTime, float slack, const ContactHistory& history) override;
   void storeContacts(Film& film) override;
+  // On the device (film_rest_lengths) where options.statistics says so.
+  bool yieldStretchedSprings() override;
+  bool payOutFilmAtWire() override;
+  void storeRestLengths(Film& film) override;
   // On the device (film_statistics_terms, film_statistics_tree) where options.statistics says so.
   bool probeFilm(const FilmProbe& probe, FilmSums& sums, FilmChecks& checks) override;
   [[nodiscard]] DeviceReadback readback() const override;

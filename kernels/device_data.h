@@ -39,7 +39,7 @@ GB_PARTICLE_ARRAY(15, WIRE_PARAM, wireParam, 1, float, readonly, UploadOnly, 0)
 // 1 while the particle exists: a removed particle is flagged dead, never renumbered.
 GB_PARTICLE_ARRAY(16, ALIVE, alive, 1, uint, readonly, WithMesh, 1)
 GB_BUFFER(17, TRIANGLES, uint, triangles[], readonly)               // Topology::triangles
-GB_BUFFER(18, REST_LENGTH, float, restLength[], readonly)           // Topology::restLength
+GB_BUFFER(18, REST_LENGTH, float, restLength[], GB_WRITABLE)        // Topology::restLength (film_rest_lengths)
 GB_BUFFER(19, SPRING_OFFSET, uint, springOffset[], readonly)        // Topology::springOffset (CSR)
 GB_BUFFER(20, SPRING_INDEX, uint, springIndex[], readonly)          // Topology::springIndex
 GB_BUFFER(21, SPRING_NEIGHBOUR, uint, springNeighbour[], readonly)  // Topology::springNeighbour

@@ -61,6 +61,8 @@ struct PushBlock {
 #define GB_REDUCE_AT_STEP_START 4u     // triangle_volume: the volume at the step's start (the energy budget's)
 #define GB_REDUCE_DRIFT_ONLY 8u        // energy_tree_sum: only external_drift's first GB_DRIFT_TERMS blocks
 #define GB_REDUCE_STATISTICS_IN_A 32u  // film_statistics_tree: half A holds the level it reads (else half B)
+#define GB_RULE_YIELD 64u              // film_rest_lengths: the yield of stretched springs
+#define GB_RULE_PAYOUT 128u            // film_rest_lengths: the wire's payout
 
 // The energy budget's slack (cpu-reference/solver/energy_budget.h says why this much), one value for both backends.
 #define GB_ENERGY_BUDGET_TOLERANCE 1e-4

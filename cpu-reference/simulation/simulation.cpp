@@ -253,8 +253,18 @@ void Simulation::advanceFrame(const WandState& next) {
   film_.loopHang = hangNext;
   time_ += params_.frameTime;
   // The rules below read the state in host memory: it comes back only when the device's checks say one may act.
-  const std::optional<FilmChecks> checks = stateStaysOnDevice_ ? checksOnDevice(false) : std::nullopt;
-  if (checks && !rulesMayAct(*checks, next, wandSpeed)) {
+  std::optional<FilmChecks> checks = stateStaysOnDevice_ ? checksOnDevice(false) : std::nullopt;
+  if (checks && !rulesMayAct(*checks, next, wandSpeed, false)) {
+    // The rest-length rules the device runs itself may still act: there. The payout widens the wire's band, which
+    // the checks then measure again for a new ring (growFilmAtWire looks for one after its payout).
+    const bool yielded = checks->yielding > 0 && yieldApplies() && stepper_->yieldStretchedSprings();
+    const bool paidOut = checks->rungsPastGrowth > 0 && payoutApplies(wandSpeed) && stepper_->payOutFilmAtWire();
+    if (paidOut) checks = checksOnDevice(false);
+    if (yielded) checks->yielding = 0;  // its springs now at the yield stretch, within the checks' margin
+    if (paidOut) checks->rungsPastGrowth = 0;
+    restLengthsOnDevice_ = restLengthsOnDevice_ || yielded || paidOut;
+  }
+  if (checks && !rulesMayAct(*checks, next, wandSpeed, true)) {
     for (int w = 0; w < 2; ++w)  // burstOnWandTouch's arming, far from its threshold (rulesMayAct)
       wandArmed_[w] = wandArmed_[w] || checks->nearestTip[w] > params_.pinchDistance;
     events_ = {};
@@ -279,7 +289,12 @@ void Simulation::advanceFrame(const WandState& next) {
     // was drawn as holds about 1.6 times the surface of a sphere of its air, which otherwise hangs in wrinkles
     // (and fills the contact lists). The open bag is not contracted: it is slack where the air has not yet filled
     // it, and there it is still being drawn.
-    if (!film_.topology.isClosed() && yieldStretchedSprings(params_, film_) > 0) stepper_->updateRestLengths(film_);
+    if (yieldApplies()) {
+      if (stepper_->yieldStretchedSprings())
+        restLengthsOnDevice_ = true;
+      else if (yieldStretchedSprings(params_, film_) > 0)
+        stepper_->updateRestLengths(film_);
+    }
     // What contraction and merging add to the springs, the step's dissipation pays (SpringEnergyAllowance).
     SpringEnergyAllowance allowance{stepper_->lastBudget().released};
     if (film_.topology.isClosed() && contractSlackSprings(params_, film_, allowance) > 0)
@@ -324,7 +339,11 @@ std::optional<FilmChecks> Simulation::checksOnDevice(bool atPresentPositions) {
   return checks;
 }
 
-bool Simulation::rulesMayAct(const FilmChecks& c, const WandState& next, float wandSpeed) const {
+bool Simulation::yieldApplies() const {
+  return !film_.topology.isClosed() && params_.tensionModel == 0 && params_.yieldStretch > 1.0f;
+}
+
+bool Simulation::rulesMayAct(const FilmChecks& c, const WandState& next, float wandSpeed, bool deviceRules) const {
   constexpr float m = kFilmCheckMargin;
   const Params& p = params_;
   const Topology& topo = film_.topology;
@@ -341,11 +360,10 @@ bool Simulation::rulesMayAct(const FilmChecks& c, const WandState& next, float w
         return true;
     }
   }
-  const bool restLengths = p.tensionModel == 0;
-  if (!topo.isClosed() && restLengths && p.yieldStretch > 1.0f && c.yielding > 0) return true;  // yield
-  if (topo.isClosed() && restLengths && (c.slack > 0 || c.crowded > 0)) return true;            // contraction, merges
+  if (deviceRules && yieldApplies() && c.yielding > 0) return true;
+  if (topo.isClosed() && p.tensionModel == 0 && (c.slack > 0 || c.crowded > 0)) return true;  // contraction, merges
   // growFilm: the payout, and a new ring once the band is wide enough.
-  if (wandSpeed >= kDrawingSpeed && film_.wireLiquid > 0.0f && c.rungsPastGrowth > 0) return true;
+  if (deviceRules && wandSpeed >= kDrawingSpeed && film_.wireLiquid > 0.0f && c.rungsPastGrowth > 0) return true;
   if (wireBandWidthOf(c.rungRest, c.rungs, c.wireEdgeLength, c.wireEdges) >= kRingInsertionWidth * (1.0f - m))
     return true;
   const bool tipsTogether =
@@ -354,6 +372,10 @@ bool Simulation::rulesMayAct(const FilmChecks& c, const WandState& next, float w
 }
 
 void Simulation::pullState() const {
+  if (restLengthsOnDevice_) {
+    stepper_->storeRestLengths(film_);
+    restLengthsOnDevice_ = false;
+  }
   if (stateOnDevice_) {
     stepper_->store(film_);
     stateOnDevice_ = false;
@@ -402,9 +424,16 @@ void Simulation::burstOnFloorTouch() {
     }
 }
 
+bool Simulation::payoutApplies(float wandSpeed) const {
+  return wandSpeed >= kDrawingSpeed && film_.wireLiquid > 0.0f && wireLoopIntact(film_);
+}
+
 void Simulation::growFilm(const WandState& wands, float wandSpeed) {
+  const bool paidOnDevice = payoutApplies(wandSpeed) && stepper_->payOutFilmAtWire();
+  if (paidOnDevice) restLengthsOnDevice_ = true;
+  pullState();  // the rest lengths the device's rules changed: the ring insertion reads them, the payout uploads them
   const WireFrame frame = wireFrame(wands);
-  const GrowthEvent grew = growFilmAtWire(params_, frame, wandSpeed, film_);
+  const GrowthEvent grew = growFilmAtWire(params_, frame, wandSpeed, film_, !paidOnDevice);
   if (grew.particlesAdded == 0) {
     if (grew.restLengthsChanged > 0) stepper_->updateRestLengths(film_);
     return;
@@ -480,8 +509,8 @@ bool Simulation::pinch() {
 
 void Simulation::dip(const WandState& wands) {
   film_ = generateFilm(params_, film_.tool, wands);
-  stateOnDevice_ = contactsOnDevice_ = false;  // the old film's, replaced
-  contactHistory_ = {};                        // the new film's particles are not the old one's
+  stateOnDevice_ = contactsOnDevice_ = restLengthsOnDevice_ = false;  // the old film's, replaced
+  contactHistory_ = {};                                               // the new film's particles are not the old one's
   burst_ = BurstFront{};
   wands_ = wands;
   reloadFilm();

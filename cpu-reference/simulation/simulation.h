@@ -164,9 +164,15 @@ class Simulation {
   void recordReadback(const DeviceReadback& before, long loadsBefore);
   // The film checks of the rules between steps from the stepper's device (FilmChecks), if it checks there.
   [[nodiscard]] std::optional<FilmChecks> checksOnDevice(bool atPresentPositions);
-  // Whether a rule between steps may act on the film the device's checks describe: every rule of advanceFrame's,
-  // each with its thresholds loosened by kFilmCheckMargin. False means that none of them acts.
-  [[nodiscard]] bool rulesMayAct(const FilmChecks& checks, const WandState& next, float wandSpeed) const;
+  // Whether a rule between steps may act on the film the device's checks describe: every rule of advanceFrame's
+  // (the yield and the payout, which a stepper may run on its device, only with `deviceRules`), each with its
+  // thresholds loosened by kFilmCheckMargin. False means that none acts.
+  [[nodiscard]] bool rulesMayAct(const FilmChecks& checks, const WandState& next, float wandSpeed,
+                                 bool deviceRules) const;
+  // Whether the yield of stretched springs applies to the film: an open film of the spring model with yieldStretch.
+  [[nodiscard]] bool yieldApplies() const;
+  // Whether the wire pays out film now: its tips draw (kDrawingSpeed), it holds solution, its loop is intact.
+  [[nodiscard]] bool payoutApplies(float wandSpeed) const;
   // Brings the state and the contact list back from the stepper's device where they stayed (film(), every rule).
   void pullState() const;
 
@@ -174,9 +180,10 @@ class Simulation {
   // The film. Its state and contact list may stay on the stepper's device after a frame (stateStaysOnDevice); every
   // read of them brings them back first (pullState), also through the const film(): a cache, hence mutable.
   mutable Film film_;
-  mutable bool stateOnDevice_ = false;     // film_.state is behind the device's
-  mutable bool contactsOnDevice_ = false;  // film_.topology.contacts is behind the device's
-  mutable bool refreshOnPull_ = false;     // the statistics refreshed the device's geometry: so does a pull
+  mutable bool stateOnDevice_ = false;        // film_.state is behind the device's
+  mutable bool contactsOnDevice_ = false;     // film_.topology.contacts is behind the device's
+  mutable bool restLengthsOnDevice_ = false;  // film_.topology.restLength is behind the device's (its yield)
+  mutable bool refreshOnPull_ = false;        // the statistics refreshed the device's geometry: so does a pull
   bool stateStaysOnDevice_ = true;
   // The checks stats() made of the film the next frame starts from (its impact test), reset by each step.
   std::optional<FilmChecks> checksForNextFrame_;

@@ -141,6 +141,14 @@ class Stepper {
     return false;
   }
   virtual void storeContacts(Film&) {}
+  // Runs a rest-length rule between steps on the rest lengths on the device, from the state as the last step left it:
+  // the yield of stretched springs, or the wire's payout (yieldStretchedSprings and payOutFilmAtWire of
+  // film_growth.h, with the same tests). They change there, and storeRestLengths brings them into
+  // film.topology.restLength. False when the caller runs the rule on the film in host memory (and uploads the rest
+  // lengths with updateRestLengths).
+  virtual bool yieldStretchedSprings() { return false; }
+  virtual bool payOutFilmAtWire() { return false; }
+  virtual void storeRestLengths(Film&) {}
   [[nodiscard]] virtual DeviceReadback readback() const { return {}; }
 
   virtual void enableTiming(bool on) { timing_ = on; }

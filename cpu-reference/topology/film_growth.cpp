@@ -427,9 +427,11 @@ float wireBandWidthOf(double rungRest, double rungs, double edgeLength, double e
   return static_cast<float>((rungRest / rungs) / (edgeLength / edges));
 }
 
-GrowthEvent growFilmAtWire(const Params& params, const WireFrame& frame, float wandSpeed, Film& film) {
+bool wireLoopIntact(const Film& film) { return !intactWireLoop(film).empty(); }
+
+GrowthEvent growFilmAtWire(const Params& params, const WireFrame& frame, float wandSpeed, Film& film, bool payOut) {
   GrowthEvent event;
-  if (wandSpeed >= kDrawingSpeed) event.restLengthsChanged = payOutFilmAtWire(params, film);
+  if (payOut && wandSpeed >= kDrawingSpeed) event.restLengthsChanged = payOutFilmAtWire(params, film);
   if (wireBandWidth(film) < kRingInsertionWidth || film.tool.kind != frame.kind) return event;
   const std::vector<uint32_t> loop = intactWireLoop(film);
   if (loop.size() < 3 || film.wireLiquid <= 0.0f) return event;

@@ -98,6 +98,11 @@ struct GrowthEvent {
 // Both steps on an open, intact film (one boundary loop) at the wire frame `frame` of now, the payout only
 // while the faster wand tip moves at wandSpeed >= kDrawingSpeed; a closed, torn or dry film is left as it is. New
 // particles are appended (old indices stay); the mesh stays an oriented manifold disc whose boundary is the new ring.
-GrowthEvent growFilmAtWire(const Params& params, const WireFrame& frame, float wandSpeed, Film& film);
+// With payOut false the payout has been done elsewhere (on the stepper's device): only a new ring is looked for.
+GrowthEvent growFilmAtWire(const Params& params, const WireFrame& frame, float wandSpeed, Film& film,
+                           bool payOut = true);
+
+// Whether the film is open and intact, with one boundary loop on its wire: where the wire pays out film.
+bool wireLoopIntact(const Film& film);
 
 }  // namespace gb

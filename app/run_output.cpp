@@ -146,6 +146,7 @@ void RunRecord::writeJson(const std::filesystem::path& path, const std::string& 
       {"state_readbacks", readback_.stateReadbacks},
       {"frames", readback_.frames},
       {"frames_without_event", readback_.framesWithoutEvent},
+      {"frames_passed_by_checks", readback_.framesPassed},
       {"bytes_per_frame", perFrame(readback_.bytes, readback_.frames)},
       {"bytes_per_frame_without_event", perFrame(readback_.bytesWithoutEvent, readback_.framesWithoutEvent)}};
   j["first_frame"] = frameJson(first_);
@@ -282,9 +283,9 @@ std::string RunRecord::story() const {
       return frames > 0 ? static_cast<double>(bytes) / 1024.0 / static_cast<double>(frames) : 0.0;
     };
     std::snprintf(lines, sizeof lines,
-                  "%-28s the state on %zu of %ld frames; %.1f KiB a frame, %.1f KiB on the %ld frames without a "
-                  "topology event\n",
-                  "read back from the device", readback_.stateReadbacks, readback_.frames,
+                  "%-28s the state on %zu of %ld frames (%ld passed by the device's checks); %.1f KiB a frame, "
+                  "%.1f KiB on the %ld frames without a topology event\n",
+                  "read back from the device", readback_.stateReadbacks, readback_.frames, readback_.framesPassed,
                   kib(readback_.bytes, readback_.frames),
                   kib(readback_.bytesWithoutEvent, readback_.framesWithoutEvent), readback_.framesWithoutEvent);
     text += lines;

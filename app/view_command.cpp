@@ -65,6 +65,10 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
   cmd->add_option("--backend", o.backend, "cpu, vulkan (on the window's device), or auto (Vulkan on a GPU)")
       ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
   cmd->add_option("--device", o.run.device, "Vulkan device: index or part of its name");
+  cmd->add_option("--between-steps", o.betweenSteps,
+                  "Vulkan backend: where the contact search, the statistics and the film checks run: device, cpu, or "
+                  "auto (the device unless it is a CPU driver)")
+      ->check(CLI::IsMember({"auto", "device", "cpu"}));
   cmd->add_option("--frames", o.frames, "quit after this many frames (0: when the window closes)")
       ->check(CLI::Range(0L, 100000000L));
   cmd->add_option("--keys", o.keys,
@@ -90,10 +94,13 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
 namespace {
 
 // The stepper for the view: the Vulkan stepper shares the window's device, so the renderer reads its buffers.
-std::unique_ptr<Stepper> viewStepper(const std::string& backend, const std::shared_ptr<const VulkanContext>& context) {
+std::unique_ptr<Stepper> viewStepper(const std::string& backend, const std::shared_ptr<const VulkanContext>& context,
+                                     const std::string& betweenSteps) {
   const bool gpu = context->info().type != "CPU";
-  if (backend == "vulkan" || (backend == "auto" && gpu)) return std::make_unique<VulkanStepper>(context);
-  return std::make_unique<CpuStepper>();
+  if (backend != "vulkan" && !(backend == "auto" && gpu)) return std::make_unique<CpuStepper>();
+  VulkanStepperOptions options;
+  options.contactSearch = options.statistics = workPlaceFromName(betweenSteps);
+  return std::make_unique<VulkanStepper>(context, options);
 }
 
 // The wands' input: the mouse (the window's pointer moves a PointerHandSource, read through the stabilizer
@@ -411,7 +418,7 @@ int runView(ViewOptions o) try {
     return 0;
   }
   std::printf("live: input %s\n", input->describe().c_str());
-  std::unique_ptr<Stepper> stepper = viewStepper(o.backend, window.context());
+  std::unique_ptr<Stepper> stepper = viewStepper(o.backend, window.context(), o.betweenSteps);
   const bool readInPlace = dynamic_cast<VulkanStepper*>(stepper.get()) != nullptr;
   std::printf("live: %s, %d sample%s per pixel, on %s (validation layer %s), simulation on %s\n",
               colouringName(image.colouring), image.samples, image.samples == 1 ? "" : "s",
@@ -626,7 +633,8 @@ int runView(ViewOptions o) try {
         // poisoned, such as the air) and a new one starts with a film on the wands as they are.
         ++recoveries;
         std::fprintf(stderr, "warning: %s\n", e.what());
-        sim = std::make_unique<Simulation>(run.params, run.tool, wands, viewStepper(o.backend, window.context()));
+        sim = std::make_unique<Simulation>(run.params, run.tool, wands,
+                                           viewStepper(o.backend, window.context(), o.betweenSteps));
         filmGoneSince = -1;
         freeBubble = false;
         ++dips;

@@ -32,6 +32,7 @@ struct ViewOptions {
   RunOptions run;  // tool, input, parameters, OSC, backend (run.render.image: size and colouring)
   std::string tool = "two-wands";
   std::string backend = "auto";
+  std::string betweenSteps = "auto";  // Vulkan: where the contacts, statistics and film checks run (run.betweenSteps)
   std::vector<std::string> assignments;  // --param NAME=VALUE
   double autoDip = 1.0;                  // seconds of empty stage before the wands dip again (negative: never)
   long frames = 0;                       // quit after this many presented frames (0: when the window closes)

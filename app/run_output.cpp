@@ -278,7 +278,7 @@ std::string RunRecord::story() const {
                   "energy budget", budget_.frames, frames_, budget_.smallestScale, budget_.largestShift);
     text += lines;
   }
-  if (readback_.stateReadbacks > 0) {  // a device stepper: what its frames copied back (docs/backends.md)
+  if (readback_.bytes > 0) {  // a device stepper: what its frames copied back (docs/backends.md)
     const auto kib = [](uint64_t bytes, long frames) {
       return frames > 0 ? static_cast<double>(bytes) / 1024.0 / static_cast<double>(frames) : 0.0;
     };

@@ -444,6 +444,7 @@ void Simulation::growFilm(const WandState& wands, float wandSpeed) {
 
 void Simulation::reloadFilm() {
   pullState();
+  checksForNextFrame_.reset();  // of the film before it changed
   ++loads_;
   CpuStepper::refreshGeometry(params_, film_);
   chooseSubsteps();
@@ -451,6 +452,7 @@ void Simulation::reloadFilm() {
 }
 
 void Simulation::updateContacts() {
+  checksForNextFrame_.reset();  // its impact test read the last list
   // Contacts for the next frame: within reach of what two particles can close in the longest step taken so far,
   // plus 5 mm for what the step's forces add to their start velocities.
   constexpr float slack = 0.005f;

@@ -252,9 +252,27 @@ void Simulation::advanceFrame(const WandState& next) {
   wands_ = next;
   film_.loopHang = hangNext;
   time_ += params_.frameTime;
-  // The rules below read the state in host memory: it comes back only when the device's checks say one may act.
-  std::optional<FilmChecks> checks = stateStaysOnDevice_ ? checksOnDevice(false) : std::nullopt;
-  if (checks && !rulesMayAct(*checks, next, wandSpeed, false)) {
+  // The rules between steps read the state in host memory: it comes back only when the device's checks say one of
+  // them may act.
+  const bool passed = stateStaysOnDevice_ && passesOnDevice(next, wandSpeed);
+  if (!passed) pullState();
+  const auto stepped = Clock::now();
+  if (passed)
+    ++readbackRecord_.framesPassed;
+  else
+    applyRulesBetweenSteps(next, wandSpeed);
+  const auto changed = Clock::now();
+  updateContacts();
+  phases_ = {millisecondsBetween(started, stepped), millisecondsBetween(stepped, changed),
+             millisecondsBetween(changed, Clock::now())};
+  aerosol_.advance(params_, params_.frameTime);
+  recordReadback(readBefore, loadsBefore);
+}
+
+bool Simulation::passesOnDevice(const WandState& next, float wandSpeed) {
+  std::optional<FilmChecks> checks = checksOnDevice(false);
+  if (!checks) return false;
+  if (!rulesMayAct(*checks, next, wandSpeed, false)) {
     // The rest-length rules the device runs itself may still act: there. The payout widens the wire's band, which
     // the checks then measure again for a new ring (growFilmAtWire looks for one after its payout).
     const bool yielded = checks->yielding > 0 && yieldApplies() && stepper_->yieldStretchedSprings();
@@ -264,20 +282,14 @@ void Simulation::advanceFrame(const WandState& next) {
     if (paidOut) checks->rungsPastGrowth = 0;
     restLengthsOnDevice_ = restLengthsOnDevice_ || yielded || paidOut;
   }
-  if (checks && !rulesMayAct(*checks, next, wandSpeed, true)) {
-    for (int w = 0; w < 2; ++w)  // burstOnWandTouch's arming, far from its threshold (rulesMayAct)
-      wandArmed_[w] = wandArmed_[w] || checks->nearestTip[w] > params_.pinchDistance;
-    events_ = {};
-    ++readbackRecord_.framesPassed;
-    const auto stepped = Clock::now();
-    updateContacts();
-    phases_ = {millisecondsBetween(started, stepped), 0.0, millisecondsBetween(stepped, Clock::now())};
-    aerosol_.advance(params_, params_.frameTime);
-    recordReadback(readBefore, loadsBefore);
-    return;
-  }
-  pullState();
-  const auto stepped = Clock::now();
+  if (rulesMayAct(*checks, next, wandSpeed, true)) return false;
+  for (int w = 0; w < 2; ++w)  // burstOnWandTouch's arming, far from its threshold (rulesMayAct)
+    wandArmed_[w] = wandArmed_[w] || checks->nearestTip[w] > params_.pinchDistance;
+  events_ = {};
+  return true;
+}
+
+void Simulation::applyRulesBetweenSteps(const WandState& next, float wandSpeed) {
   checkStable();
   burstOnWandTouch();
   burstOnFloorTouch();
@@ -305,12 +317,6 @@ void Simulation::advanceFrame(const WandState& next) {
   const bool tipsTogether =
       film_.tool.kind == ToolKind::TwoWands && (next.rightPosition - next.leftPosition).norm() < params_.pinchDistance;
   if (tipsTogether && !film_.topology.isClosed() && !burst_.active()) events_.pinchedOff = pinch();
-  const auto changed = Clock::now();
-  updateContacts();
-  phases_ = {millisecondsBetween(started, stepped), millisecondsBetween(stepped, changed),
-             millisecondsBetween(changed, Clock::now())};
-  aerosol_.advance(params_, params_.frameTime);
-  recordReadback(readBefore, loadsBefore);
 }
 
 void Simulation::recordReadback(const DeviceReadback& before, long loadsBefore) {

@@ -162,6 +162,12 @@ class Simulation {
   void updateContacts();
   void checkStable() const;
   void recordReadback(const DeviceReadback& before, long loadsBefore);
+  // Whether the frame passes without the state in host memory: the device's checks say that no rule between steps
+  // acts but those the device runs itself (the yield, the payout), which it then runs. Updates the tips' arming.
+  bool passesOnDevice(const WandState& next, float wandSpeed);
+  // The rules between steps on the film in host memory: the stability check, the bursts, the rest-length rules,
+  // merges, growth at the wire, pinch-off (the device's yield and payout in their places where it runs them).
+  void applyRulesBetweenSteps(const WandState& next, float wandSpeed);
   // The film checks of the rules between steps from the stepper's device (FilmChecks), if it checks there.
   [[nodiscard]] std::optional<FilmChecks> checksOnDevice(bool atPresentPositions);
   // Whether a rule between steps may act on the film the device's checks describe: every rule of advanceFrame's

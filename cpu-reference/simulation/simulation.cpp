@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "collision.h"
 #include "film_checks.h"
@@ -147,6 +148,7 @@ Simulation::Simulation(const Params& params, Film film, const WandState& wands, 
   chooseSubsteps();
   stepper_->load(params_, film_);
   updateContacts();
+  readbackRecorded_ = stepper_->readback();
 }
 
 void Simulation::chooseSubsteps() {
@@ -236,7 +238,6 @@ void Simulation::advanceFrame(const WandState& next) {
     substepUniforms_.back().solverSweeps = solverSweeps_;
   }
   substepUniforms_.back().drainageDt = params_.frameTime;  // the frame's drainage, after its last substep
-  const DeviceReadback readBefore = stepper_->readback();
   const long loadsBefore = loads_;
   const auto started = Clock::now();
   pressure_ = stepper_->run(substepUniforms_);
@@ -266,7 +267,7 @@ void Simulation::advanceFrame(const WandState& next) {
   phases_ = {millisecondsBetween(started, stepped), millisecondsBetween(stepped, changed),
              millisecondsBetween(changed, Clock::now())};
   aerosol_.advance(params_, params_.frameTime);
-  recordReadback(readBefore, loadsBefore);
+  recordReadback(loadsBefore);
 }
 
 bool Simulation::passesOnDevice(const WandState& next, float wandSpeed) {
@@ -319,8 +320,11 @@ void Simulation::applyRulesBetweenSteps(const WandState& next, float wandSpeed) 
   if (tipsTogether && !film_.topology.isClosed() && !burst_.active()) events_.pinchedOff = pinch();
 }
 
-void Simulation::recordReadback(const DeviceReadback& before, long loadsBefore) {
-  const DeviceReadback now = stepper_->readback();
+void Simulation::recordReadback(long loadsBefore) {
+  // Since the last frame's record: this frame's copies and those made between the frames, for the statistics and
+  // whatever read film() (the outputs, the renderer's framing).
+  const DeviceReadback before = std::exchange(readbackRecorded_, stepper_->readback());
+  const DeviceReadback& now = readbackRecorded_;
   const uint64_t bytes = now.bytes - before.bytes;
   const bool topologyEvent = burst_.active() || events_.started || events_.finished || events_.particlesRemoved > 0 ||
                              events_.pinchedOff || events_.particlesAdded > 0 || loads_ != loadsBefore;

@@ -124,8 +124,9 @@ class Simulation {
     float largestShift = 0.0f;   // the most drift it gave back in one step (m/s)
   };
   [[nodiscard]] const BudgetRecord& energyBudgetRecord() const { return budgetRecord_; }
-  // What the frames copied from the stepper's device into host memory (Stepper::readback), split by whether the
-  // frame had a topology event (a burst under way, film growth at the wire, a pinch-off, a merge): the frames
+  // What the frames copied from the stepper's device into host memory (Stepper::readback), each frame with what was
+  // copied since the frame before it (the statistics, the outputs and the renderer reading film()), split by whether
+  // the frame had a topology event (a burst under way, film growth at the wire, a pinch-off, a merge): the frames
   // without one are those a GPU-resident frame needs no state for. All zero on the CPU backend.
   struct ReadbackRecord {
     long frames = 0;
@@ -161,7 +162,7 @@ class Simulation {
   void burstOnFloorTouch();
   void updateContacts();
   void checkStable() const;
-  void recordReadback(const DeviceReadback& before, long loadsBefore);
+  void recordReadback(long loadsBefore);
   // Whether the frame passes without the state in host memory: the device's checks say that no rule between steps
   // acts but those the device runs itself (the yield, the payout), which it then runs. Updates the tips' arming.
   bool passesOnDevice(const WandState& next, float wandSpeed);
@@ -211,7 +212,8 @@ class Simulation {
   long stepCount_ = 0;
   BudgetRecord budgetRecord_;
   ReadbackRecord readbackRecord_;
-  long loads_ = 0;  // reloadFilm calls: a merge's or a growth's new film on the stepper
+  DeviceReadback readbackRecorded_;  // the stepper's copies counted up to the last frame's record
+  long loads_ = 0;                   // reloadFilm calls: a merge's or a growth's new film on the stepper
 };
 
 }  // namespace gb

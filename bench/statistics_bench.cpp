@@ -1,5 +1,5 @@
 // The frame's statistics (Simulation::stats): summed on the CPU from the film in host memory, and on the Vulkan
-// device (VulkanStepper::sumFilm, a few floats read back). Both also bring the film's geometry in host memory up to
+// device (VulkanStepper::probeFilm, a few floats read back). Both also bring the film's geometry in host memory up to
 // date, which the outputs read (Simulation::stats says why).
 // Run: ./build/bench/gb_statistics_bench
 //

@@ -167,7 +167,7 @@ struct VulkanStepper::Impl {
   bool volumeInA = true;                      // where the last volume reduction left its result
   bool driftInA = true;                       // where external_drift's tree sum left the film's drift
   DeviceBuffer readback;                      // host-cached copy of the state store() brings back
-  DeviceBuffer statisticsReadback;            // host-cached copy of the frame's statistics (sumFilm)
+  DeviceBuffer statisticsReadback;            // host-cached copy of the frame's statistics and checks (probeFilm)
 
   // The device contact search's room in the contacts buffer (shared_step.h's contact regions).
   VulkanStepperOptions options;

@@ -530,10 +530,7 @@ void Simulation::dip(const WandState& wands) {
 
 void Simulation::checkStable() const {
   const State& s = film_.state;
-  const auto stable = [&](size_t i) {
-    const Vec3 x = s.position.get(i), v = s.velocity.get(i);
-    return !s.alive[i] || (x.allFinite() && v.allFinite() && v.norm() <= kUnstableSpeed);
-  };
+  const auto stable = [&](size_t i) { return !s.alive[i] || particleStable(s.position.get(i), s.velocity.get(i)); };
   // The first unstable particle, found in parallel (the lowest index whatever the threads).
   const auto count = static_cast<long>(s.size());
   long first = count;

@@ -129,11 +129,6 @@ class Stepper {
   // the rules between steps read them. Returns false when the caller sums and checks the film in host memory, as the
   // CPU stepper's caller does.
   virtual bool probeFilm(const FilmProbe& /*probe*/, FilmSums&, FilmChecks&) { return false; }
-  // probeFilm for the sums alone, at the present positions.
-  bool sumFilm(const Vec3& origin, FilmSums& sums) {
-    FilmChecks unused;
-    return probeFilm({.origin = origin}, sums, unused);
-  }
   // Finds the contacts as findContacts does but leaves the list on the device, for the sweeps (storeContacts brings
   // it into film.topology.contacts when the CPU needs it); the list's entries are counted in host memory. False when
   // the stepper leaves the search to the caller.

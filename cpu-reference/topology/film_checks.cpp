@@ -49,7 +49,7 @@ FilmChecks checkFilm(const Params& params, const Film& film, const FilmProbe& pr
     if (!s.alive[i]) continue;
     ++checks.particles;
     const Vec3 x = s.position.get(i), v = s.velocity.get(i);
-    if (!(x.allFinite() && v.allFinite() && v.norm() * (1.0f + margin) <= kUnstableSpeed)) checks.unstable = true;
+    if (!particleStable(x, v, margin)) checks.unstable = true;
     checks.lowest = std::min(checks.lowest, x.y());
     if (s.voronoiArea[i] > 0) checks.thinnest = std::min(checks.thinnest, s.thickness[i]);
   }

@@ -41,6 +41,12 @@ struct FilmChecks {
   float rungs = 0.0f, rungRest = 0.0f, wireEdges = 0.0f, wireEdgeLength = 0.0f;
 };
 
+// Whether a particle at x moving at v is stable (Simulation's stability check): finite, and no faster than
+// kUnstableSpeed over `margin` more.
+inline bool particleStable(const Vec3& x, const Vec3& v, float margin = 0.0f) {
+  return x.allFinite() && v.allFinite() && v.norm() * (1.0f + margin) <= kUnstableSpeed;
+}
+
 // The checks of `film` in host memory, each threshold loosened by `margin` (0: the rules' own thresholds): the
 // reference of the device's (film_statistics_terms.comp computes the same terms per particle).
 FilmChecks checkFilm(const Params& params, const Film& film, const FilmProbe& probe, float margin);

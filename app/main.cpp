@@ -80,7 +80,7 @@ void refuseOptionsForAnExperiment(const CLI::App& command, const std::string& ex
 }  // namespace
 
 int main(int argc, char** argv) {
-  gb::preferPassiveOpenMpWaiting(argv);  // before any thread starts (app/thread_policy.h)
+  gb::setOpenMpWaiting(argv);  // before any thread starts (app/thread_policy.h)
   CLI::App app{"giantbubble: real-time giant soap bubbles blown and burst with your hands"};
   app.require_subcommand(0, 1);
 

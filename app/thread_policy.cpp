@@ -6,9 +6,9 @@
 
 namespace gb {
 
-void preferPassiveOpenMpWaiting(char** argv) {
+void setOpenMpWaiting(char** argv) {
   if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
-  if (setenv("OMP_WAIT_POLICY", "PASSIVE", 0) != 0) return;
+  if (setenv("GOMP_SPINCOUNT", kOpenMpSpinCount, 0) != 0) return;
   execv("/proc/self/exe", argv);  // returns only on failure (no /proc): carry on as we are
 }
 

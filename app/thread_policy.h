@@ -1,18 +1,26 @@
 #pragma once
-// How the simulation's OpenMP threads wait. libgomp's default lets an idle thread spin for about
-// 300,000 iterations before it sleeps; beside another busy process on the same cores (a renderer, lavapipe's
-// threads, a camera thread, another program) the spinning threads take the cores the working ones need, and a
-// run of 0.4 s took 63.6 s instead of 1.95 s on a busy 2-core machine (docs/performance.md "Threads"). giantbubble
-// therefore waits passively by default.
+// How the simulation's OpenMP threads wait. A frame of the default film starts about 28 parallel regions (the
+// solver's sweeps, the flow's passes, the contact search, the statistics) and passes about 65 barriers in them, at
+// each of which the thread that finishes first waits for the other:
+// - A thread that sleeps at once (OMP_WAIT_POLICY=PASSIVE) must be woken by a system call for the next loop: on
+//   the default film on two cores that costs about 2.5 ms of a 12 ms frame.
+// - A thread that spins long (libgomp's OMP_WAIT_POLICY=ACTIVE, or its 300,000-iteration spin) takes the core a
+//   working thread needs when another busy process shares the cores: a run of 0.4 s took 63.6 s instead of 1.95 s
+//   on a busy 2-core machine (docs/performance.md "Threads").
+// giantbubble therefore spins briefly, kOpenMpSpinCount iterations (about 20 us), then sleeps: the quiet default
+// film runs about a fifth faster than sleeping at once, beside one busy process about an eighth slower, beside two
+// a tenth faster (docs/performance.md "Threads").
 //
-// libgomp reads OMP_WAIT_POLICY once, when it is loaded, before main(): so when neither OMP_WAIT_POLICY nor
-// GOMP_SPINCOUNT is set, the program sets OMP_WAIT_POLICY=PASSIVE and executes itself again (once; the variable
-// is then set). Whoever sets either variable gets exactly what they set.
+// libgomp reads GOMP_SPINCOUNT once, when it is loaded, before main(): so when neither OMP_WAIT_POLICY nor
+// GOMP_SPINCOUNT is set, the program sets GOMP_SPINCOUNT and executes itself again (once; the variable is then
+// set). Whoever sets either variable gets exactly what they set.
 
 namespace gb {
 
+inline constexpr const char* kOpenMpSpinCount = "2000";
+
 // Call first in main(). Returns only when the policy is in place (or the re-exec failed: the program then goes
-// on with libgomp's default, which is slower under load, never wrong).
-void preferPassiveOpenMpWaiting(char** argv);
+// on with libgomp's default, which is slower, never wrong).
+void setOpenMpWaiting(char** argv);
 
 }  // namespace gb

@@ -77,7 +77,8 @@ void ShowControl::frame(const Simulation& sim, const FrameStats& stats, const st
   std::istringstream words(events);
   bool ok = true;
   for (std::string event; words >> event;) ok = sender_->event(event, stats.time) && ok;
-  ok = sender_->bubble(stats.time, centroid(sim.film().state), stats.area, stats.volume, stats.solution) && ok;
+  ok = sender_->bubble(stats.time, centroid(sim.filmPositionsOnly().state), stats.area, stats.volume, stats.solution) &&
+       ok;
   check(ok);
 }
 

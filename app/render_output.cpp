@@ -137,10 +137,12 @@ void VideoWriter::close() {
                                               : " (killed by signal " + std::to_string(WTERMSIG(status)) + ")"));
 }
 
-RenderFrame renderFrameOf(Simulation& sim, const WandState&, const WireFrame& wireFrame, const OrbitCamera& camera,
-                          bool readInPlace, DeviceFilm& deviceFilm) {
+const Film& filmToDraw(Simulation& sim, bool readInPlace) { return readInPlace ? sim.filmPositionsOnly() : sim.film(); }
+
+RenderFrame renderFrameOf(Simulation& sim, const WireFrame& wireFrame, const OrbitCamera& camera, bool readInPlace,
+                          DeviceFilm& deviceFilm) {
   RenderFrame f;
-  f.film = &sim.film();
+  f.film = &filmToDraw(sim, readInPlace);
   f.aerosol = &sim.aerosol();
   f.aerosolLifetime = sim.params().aerosolLifetime;
   f.blackFilmThickness = sim.params().blackFilmThickness;
@@ -195,13 +197,14 @@ void RunRenderer::frame(long index, Simulation& sim, const WandState& wands) {
   while (drawing_.size() >= 2) writeDrawnFrame();  // the renderer keeps two frames
   const bool png = options_.pngEvery > 0 && index % options_.pngEvery == 0;
   // The framing eases every frame, drawn or not, so that it moves at the same pace whatever is written.
-  const OrbitCamera camera = options_.followCamera
-                                 ? framing_.update(options_.camera, sim.film().state, sim.params().frameTime)
-                                 : options_.camera;
+  const OrbitCamera camera =
+      options_.followCamera
+          ? framing_.update(options_.camera, filmToDraw(sim, readInPlace_).state, sim.params().frameTime)
+          : options_.camera;
   if (!png && !video_) return;
   const WireFrame wire = sim.wireFrame(wands);
   DeviceFilm deviceFilm;
-  const Renderer::Ticket ticket = renderer_->submit(renderFrameOf(sim, wands, wire, camera, readInPlace_, deviceFilm));
+  const Renderer::Ticket ticket = renderer_->submit(renderFrameOf(sim, wire, camera, readInPlace_, deviceFilm));
   drawing_.push_back({ticket, index, png});
   if (readInPlace_) writeDrawnFrame();
 }

@@ -103,9 +103,14 @@ class RunRenderer {
   void dropVideo(const std::string& why);
 };
 
+// The film in host memory as far as drawing it reads it: where the renderer draws the Vulkan stepper's buffers in
+// place (readInPlace), the framing and the hole rims need only where the particles are, and the state stays on the
+// device but for its positions (Simulation::filmPositionsOnly); otherwise the whole film.
+const Film& filmToDraw(Simulation& sim, bool readInPlace);
+
 // The frame a renderer draws of a simulation: its film, droplets and wands, in place on the device when the
 // stepper is the Vulkan stepper on `renderer`'s device. `deviceFilm` is storage for that case.
-RenderFrame renderFrameOf(Simulation& sim, const WandState& wands, const WireFrame& wireFrame,
-                          const OrbitCamera& camera, bool readInPlace, DeviceFilm& deviceFilm);
+RenderFrame renderFrameOf(Simulation& sim, const WireFrame& wireFrame, const OrbitCamera& camera, bool readInPlace,
+                          DeviceFilm& deviceFilm);
 
 }  // namespace gb

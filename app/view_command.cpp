@@ -670,13 +670,14 @@ int runView(ViewOptions o) try {
     const auto [width, height] = showSize();
     renderer.resize(std::max(16, static_cast<int>(std::lround(width * pacer->renderScale()))),
                     std::max(16, static_cast<int>(std::lround(height * pacer->renderScale()))));
-    const OrbitCamera view = camera.update(sim->film().state, wands, run.params.frameTime * static_cast<float>(due),
-                                           window.camera(), keys.cameraMoved);
-    if (filmGoneSince < 0) inPicture.add(view, camera.aspect(), sim->film().state);
+    const State& drawn = filmToDraw(*sim, readInPlace).state;  // where the particles are
+    const OrbitCamera view =
+        camera.update(drawn, wands, run.params.frameTime * static_cast<float>(due), window.camera(), keys.cameraMoved);
+    if (filmGoneSince < 0) inPicture.add(view, camera.aspect(), drawn);
     updateInset();
     const WireFrame wire = sim->wireFrame(wands);
     DeviceFilm deviceFilm;
-    window.present(renderer, renderFrameOf(*sim, wands, wire, view, readInPlace, deviceFilm));
+    window.present(renderer, renderFrameOf(*sim, wire, view, readInPlace, deviceFilm));
     if (stream) {
       stream->offer(window.captured());
       for (const std::string& m : stream->takeMessages()) std::fprintf(stderr, "warning: %s\n", m.c_str());

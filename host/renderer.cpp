@@ -538,10 +538,14 @@ struct Renderer::Impl {
   // The film's swirls (host/film_swirls.h), for the interference colouring only: the diagnostic colourings show
   // the simulated thickness as it is.
   bool uploadVariation(const RenderFrame& frame) {
+    if (options.colouring != Colouring::Interference || swirls.sigma() <= 0.0f) {
+      reserve(slot().variation, 0);  // bound, not read
+      return false;
+    }
     const std::vector<float>& factors = swirls.update(frame.film->state);
     reserve(slot().variation, factors.size() * sizeof(float));
     slot().variation.write(factors.data(), factors.size() * sizeof(float));
-    return options.colouring == Colouring::Interference && swirls.sigma() > 0.0f;
+    return true;
   }
 
   void uploadUniforms(const RenderFrame& frame, uint32_t particles, bool varied) {

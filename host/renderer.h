@@ -61,6 +61,8 @@ std::string renderSizeProblem(int width, int height, int samples, int largestSid
 
 // One frame to draw. Everything but the film is optional.
 struct RenderFrame {
+  // The film's topology, and its state: uploaded whole without deviceFilm; with it, the positions of the hole rims
+  // and, for the drawn swirls (thicknessVariation), which particles are new are read from it.
   const Film* film = nullptr;
   const DeviceFilm* deviceFilm = nullptr;  // the Vulkan stepper's buffers on the renderer's device: read in
                                            // place; null: the film's state is uploaded from the host

@@ -885,19 +885,30 @@ void VulkanStepper::updateRestLengths(const Film& film) {
 // CPU reads the device's own memory through a mapping (resizable BAR) at uncached speed, which made this the
 // slowest part of a frame on an H100 (docs/performance.md).
 void VulkanStepper::store(Film& film) {
+  storeArrays(film, [](const void*, const ParticleArrayInfo& info) { return info.transfer == Transfer::ReadBack; });
+  ++impl_->copiedToHost.stateReadbacks;
+}
+
+void VulkanStepper::storePositions(Film& film) {
+  const void* position = &film.state.position;
+  storeArrays(film, [&](const void* array, const ParticleArrayInfo&) { return array == position; });
+}
+
+template <class Chosen>
+void VulkanStepper::storeArrays(Film& film, Chosen&& chosen) {
   Impl& m = *impl_;
   State& s = film.state;
   if (s.size() != m.particles) throw std::logic_error("VulkanStepper::store: not the loaded film");
-  // The arrays to bring back (device_data.h's ReadBack ones): where each lies on the device, in the table's order,
-  // one after the other in the host-cached copy.
+  // The arrays to bring back: where each lies on the device, in the table's order (device_data.h), one after the
+  // other in the host-cached copy.
   const vk::DeviceSize blockBytes = s.size() * sizeof(float);
   struct Part {
     const DeviceBuffer* from;
     vk::DeviceSize offset, bytes;
   };
   std::vector<Part> parts;
-  forEachParticleArray(s, [&](const auto&, const ParticleArrayInfo& info) {
-    if (info.transfer == Transfer::ReadBack)
+  forEachParticleArray(s, [&](const auto& array, const ParticleArrayInfo& info) {
+    if (chosen(&array, info))
       parts.push_back({&m.holding(info.binding), static_cast<vk::DeviceSize>(info.block) * blockBytes,
                        static_cast<vk::DeviceSize>(info.components) * blockBytes});
   });
@@ -919,13 +930,12 @@ void VulkanStepper::store(Film& film) {
   // The same arrays in the same order, out of the copy.
   at = 0;
   forEachParticleArray(s, [&](auto& array, const ParticleArrayInfo& info) {
-    if (info.transfer != Transfer::ReadBack) return;
+    if (!chosen(&array, info)) return;
     forEachComponent(array, [&](auto& values, int) {
       m.readFrom(m.readback, values.data(), blockBytes, at);
       at += blockBytes;
     });
   });
-  ++m.copiedToHost.stateReadbacks;
 }
 
 bool VulkanStepper::probeFilm(const FilmProbe& probe, FilmSums& sums, FilmChecks& checks) {

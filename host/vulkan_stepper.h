@@ -57,6 +57,7 @@ class VulkanStepper final : public Stepper {
   float run(std::span<const StepUniforms> substeps) override;
   float runStage(Stage stage, const StepUniforms& uniforms) override;
   void store(Film& film) override;
+  void storePositions(Film& film) override;
   void updateContacts(const Film& film) override;
   // The search of findContacts (collision.h) on the device: cells hashed and counting-sorted, each particle gathering
   // its partners by the same pair rule; the list stays on the device for the sweeps and is read back into
@@ -85,6 +86,10 @@ class VulkanStepper final : public Stepper {
   [[nodiscard]] std::shared_ptr<const VulkanContext> sharedContext() const;
 
  private:
+  // Copies the per-particle arrays that chosen(array, info) picks from the device into the film's state.
+  template <class Chosen>
+  void storeArrays(Film& film, Chosen&& chosen);
+
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -54,12 +54,16 @@ class CheckingCpuStepper final : public Stepper {
   Film* film_ = nullptr;
 };
 
-// The default performance (Scene "default"), played on two simulations side by side to `frames`: after every frame
-// their figures and events are the same to the last bit.
+// The default performance's wands at frame f (Scene "default").
+WandState defaultWandsAt(const Scene& scene, int f) {
+  return gestureAt(Gesture::Giant, scene.run.gestureOptions, static_cast<double>(f) * scene.run.params.frameTime);
+}
+
+// The default performance, played on two simulations side by side to `frames`: after every frame their figures and
+// events are the same to the last bit.
 void expectTheSamePerformance(const Scene& scene, Simulation& a, Simulation& b, int frames) {
   for (int f = 1; f <= frames; ++f) {
-    const WandState wands =
-        gestureAt(Gesture::Giant, scene.run.gestureOptions, static_cast<double>(f) * scene.run.params.frameTime);
+    const WandState wands = defaultWandsAt(scene, f);
     a.advanceFrame(wands);
     b.advanceFrame(wands);
     const FrameStats x = a.stats(), y = b.stats();
@@ -74,7 +78,22 @@ void expectTheSamePerformance(const Scene& scene, Simulation& a, Simulation& b, 
   }
 }
 
-WandState defaultStart(const Scene& scene) { return gestureAt(Gesture::Giant, scene.run.gestureOptions, 0.0); }
+WandState defaultStart(const Scene& scene) { return defaultWandsAt(scene, 0); }
+
+// The default performance on the Vulkan backend twice: with the state brought back after every step, and left on
+// the device where the checks let a frame pass.
+struct ReadBackAndKept {
+  ReadBackAndKept(const std::shared_ptr<const VulkanContext>& device, const Scene& scene)
+      : everyFrame(scene.run.params, WandTool{}, defaultStart(scene), onThe(device)),
+        onDevice(scene.run.params, WandTool{}, defaultStart(scene), onThe(device)) {
+    everyFrame.setStateStaysOnDevice(false);
+  }
+  static std::unique_ptr<Stepper> onThe(const std::shared_ptr<const VulkanContext>& device) {
+    return std::make_unique<VulkanStepper>(device, test::everythingOnDevice());
+  }
+  Simulation everyFrame;
+  Simulation onDevice;
+};
 
 TEST(FilmChecks, NoRuleActsWhereTheChecksLetTheFramePass) {
   // The default performance to the end of its burst on the plain CPU stepper and on the checking one: every frame's
@@ -171,10 +190,8 @@ TEST(DeviceFilmChecks, TheStateStaysOnTheDeviceWhereNoRuleActs) {
   // state's 1.4 MiB.
   GB_REQUIRE_VULKAN(device);
   const Scene scene = resolveScene("default");
-  const auto onTheDevice = [&] { return std::make_unique<VulkanStepper>(device, test::everythingOnDevice()); };
-  Simulation everyFrame(scene.run.params, WandTool{}, defaultStart(scene), onTheDevice());
-  everyFrame.setStateStaysOnDevice(false);
-  Simulation onDevice(scene.run.params, WandTool{}, defaultStart(scene), onTheDevice());
+  ReadBackAndKept plays(device, scene);
+  Simulation &everyFrame = plays.everyFrame, &onDevice = plays.onDevice;
   expectTheSamePerformance(scene, everyFrame, onDevice, 110);
   EXPECT_TRUE(onDevice.film().topology.isClosed()) << "frame 110 is the free bubble";
   const Simulation::ReadbackRecord &all = everyFrame.readbackRecord(), &some = onDevice.readbackRecord();
@@ -189,6 +206,39 @@ TEST(DeviceFilmChecks, TheStateStaysOnTheDeviceWhereNoRuleActs) {
   EXPECT_EQ(all.framesPassed, 0);
   EXPECT_EQ(some.stateReadbacks + static_cast<size_t>(some.framesPassed), all.stateReadbacks)
       << "a frame the checks pass brings nothing back";
+}
+
+TEST(DeviceFilmChecks, ADrawnFilmBringsBackItsPositionsAlone) {
+  // The renderer drawing the stepper's buffers in place frames the film from where its particles are: on a frame
+  // whose state stayed on the device, filmPositionsOnly brings back the positions alone (3 floats a particle, not a
+  // state read-back), and they are the positions of the same performance read back whole after every step, to the
+  // bit. 50 frames of the default performance: the bag being drawn, most frames passing the checks.
+  GB_REQUIRE_VULKAN(device);
+  const Scene scene = resolveScene("default");
+  ReadBackAndKept plays(device, scene);
+  Simulation &everyFrame = plays.everyFrame, &onDevice = plays.onDevice;
+  int positionsAlone = 0;
+  for (int f = 1; f <= 50; ++f) {
+    const WandState wands = defaultWandsAt(scene, f);
+    everyFrame.advanceFrame(wands);
+    onDevice.advanceFrame(wands);
+    const DeviceReadback before = onDevice.stepper().readback();
+    const State& drawn = onDevice.filmPositionsOnly().state;
+    const DeviceReadback after = onDevice.stepper().readback();
+    ASSERT_EQ(after.stateReadbacks, before.stateReadbacks) << "frame " << f << ": no state read back";
+    const uint64_t positionBytes = 3 * sizeof(float) * drawn.size();
+    ASSERT_TRUE(after.bytes == before.bytes || after.bytes == before.bytes + positionBytes) << "frame " << f;
+    if (after.bytes > before.bytes) ++positionsAlone;
+    const State& whole = everyFrame.film().state;
+    ASSERT_EQ(drawn.size(), whole.size()) << "frame " << f;
+    for (size_t i = 0; i < whole.size(); ++i)
+      ASSERT_EQ(drawn.position.get(i), whole.position.get(i)) << "frame " << f << ", particle " << i;
+    const DeviceReadback again = onDevice.stepper().readback();
+    (void)onDevice.filmPositionsOnly();
+    ASSERT_EQ(onDevice.stepper().readback().bytes, again.bytes) << "frame " << f << ": brought back once a frame";
+  }
+  std::printf("positions alone brought back on %d of 50 frames\n", positionsAlone);
+  EXPECT_GT(positionsAlone, 10) << "most of the bag's frames pass the checks and keep the state on the device";
 }
 
 }  // namespace

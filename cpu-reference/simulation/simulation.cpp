@@ -241,7 +241,7 @@ void Simulation::advanceFrame(const WandState& next) {
   const long loadsBefore = loads_;
   const auto started = Clock::now();
   pressure_ = stepper_->run(substepUniforms_);
-  stateOnDevice_ = true;  // the step's state is the stepper's until brought back
+  stateOnDevice_ = positionsOnDevice_ = true;  // the step's state is the stepper's until brought back
   refreshOnPull_ = false;
   checksForNextFrame_.reset();
   if (const VelocityBudget& budget = stepper_->lastBudget(); budget.acted()) {
@@ -388,7 +388,7 @@ void Simulation::pullState() const {
   }
   if (stateOnDevice_) {
     stepper_->store(film_);
-    stateOnDevice_ = false;
+    stateOnDevice_ = positionsOnDevice_ = false;
     if (refreshOnPull_) CpuStepper::refreshGeometry(params_, film_);  // as stats() leaves a film in host memory
   }
   if (contactsOnDevice_) {
@@ -396,6 +396,14 @@ void Simulation::pullState() const {
     contactsOnDevice_ = false;
     contactHistory_ = {film_.topology.contacts, film_.state.size()};
   }
+}
+
+const Film& Simulation::filmPositionsOnly() const {
+  if (positionsOnDevice_) {
+    stepper_->storePositions(film_);
+    positionsOnDevice_ = false;
+  }
+  return film_;
 }
 
 void Simulation::burstOnHardImpact() {
@@ -521,8 +529,8 @@ bool Simulation::pinch() {
 
 void Simulation::dip(const WandState& wands) {
   film_ = generateFilm(params_, film_.tool, wands);
-  stateOnDevice_ = contactsOnDevice_ = restLengthsOnDevice_ = false;  // the old film's, replaced
-  contactHistory_ = {};                                               // the new film's particles are not the old one's
+  stateOnDevice_ = positionsOnDevice_ = contactsOnDevice_ = restLengthsOnDevice_ = false;  // the old film's, replaced
+  contactHistory_ = {};  // the new film's particles are not the old one's
   burst_ = BurstFront{};
   wands_ = wands;
   reloadFilm();

@@ -98,6 +98,11 @@ class Simulation {
     pullState();
     return film_;
   }
+  // The film as far as where it is: its topology, which particles live and their positions, the positions brought
+  // back alone from the device where the state stayed there (Stepper::storePositions, a tenth of the state). The
+  // rest of its state is as it was last brought back: read that through film(). For the renderer's framing and hole
+  // rims when it draws the stepper's own buffers in place, and the bubble's centre sent over OSC.
+  [[nodiscard]] const Film& filmPositionsOnly() const;
   // Whether a frame on which no rule between steps acts leaves the film's state and contact list on the stepper's
   // device (true, the default), where the stepper checks the film there (Stepper::probeFilm, film_checks.h): the
   // state then comes back only when a rule acts, a topology event fires or something reads film(). False brings it
@@ -188,6 +193,7 @@ class Simulation {
   // read of them brings them back first (pullState), also through the const film(): a cache, hence mutable.
   mutable Film film_;
   mutable bool stateOnDevice_ = false;        // film_.state is behind the device's
+  mutable bool positionsOnDevice_ = false;    // film_.state.position is behind the device's
   mutable bool contactsOnDevice_ = false;     // film_.topology.contacts is behind the device's
   mutable bool restLengthsOnDevice_ = false;  // film_.topology.restLength is behind the device's (its yield)
   mutable bool refreshOnPull_ = false;        // the statistics refreshed the device's geometry: so does a pull

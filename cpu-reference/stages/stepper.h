@@ -103,6 +103,9 @@ class Stepper {
   virtual float runStage(Stage stage, const StepUniforms& uniforms) = 0;
   // Brings the per-particle state back into the film given to load (nothing to do on the CPU).
   virtual void store(Film& film) = 0;
+  // Brings back only the particles' positions (a renderer drawing the stepper's buffers in place frames the film
+  // from them): by default the whole state.
+  virtual void storePositions(Film& film) { store(film); }
   // Takes the film's new self-collision contact list (Topology::contacts), found between frames.
   virtual void updateContacts(const Film&) {}
   // Finds the film's self-collision contacts for the next frame itself, the list findContacts makes with the same

@@ -103,7 +103,7 @@ TEST(FilmChecks, NoRuleActsWhereTheChecksLetTheFramePass) {
   const Scene scene = resolveScene("default");
   Simulation plain(scene.run.params, WandTool{}, defaultStart(scene));
   Simulation checked(scene.run.params, WandTool{}, defaultStart(scene), std::make_unique<CheckingCpuStepper>());
-  constexpr int kFrames = 230;
+  constexpr int kFrames = 280;
   expectTheSamePerformance(scene, plain, checked, kFrames);
   const long passed = checked.readbackRecord().framesPassed;
   std::printf("the checks let %ld of %d frames pass without the rules\n", passed, kFrames);

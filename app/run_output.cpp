@@ -147,6 +147,7 @@ void RunRecord::writeJson(const std::filesystem::path& path, const std::string& 
       {"frames", readback_.frames},
       {"frames_without_event", readback_.framesWithoutEvent},
       {"frames_passed_by_checks", readback_.framesPassed},
+      {"frames_held_by_rule", readback_.framesHeldByRule},
       {"bytes_per_frame", perFrame(readback_.bytes, readback_.frames)},
       {"bytes_per_frame_without_event", perFrame(readback_.bytesWithoutEvent, readback_.framesWithoutEvent)}};
   j["first_frame"] = frameJson(first_);
@@ -289,6 +290,13 @@ std::string RunRecord::story() const {
                   kib(readback_.bytes, readback_.frames),
                   kib(readback_.bytesWithoutEvent, readback_.framesWithoutEvent), readback_.framesWithoutEvent);
     text += lines;
+    if (!readback_.framesHeldByRule.empty()) {
+      std::string held;
+      for (const auto& [rule, frames] : readback_.framesHeldByRule)
+        held += (held.empty() ? "" : ", ") + rule + " " + std::to_string(frames);
+      std::snprintf(lines, sizeof lines, "%-28s %s\n", "frames held by the rule", held.c_str());
+      text += lines;
+    }
   }
   return text;
 }

@@ -15,6 +15,10 @@ foreach(rendering no-render render)
   string(JSON passed GET ${stats} readback frames_passed_by_checks)
   string(JSON readbacks GET ${stats} readback state_readbacks)
   math(EXPR accounted "${passed} + ${readbacks}")
+  string(JSON held TYPE ${stats} readback frames_held_by_rule)
+  if(NOT held STREQUAL "OBJECT")
+    message(FATAL_ERROR "${rendering}: stats.json's readback has no frames_held_by_rule:\n${stats}")
+  endif()
   # Every frame either passed the checks or brought the state back; a film hanging still passes most (all 20 on
   # lavapipe): a few may come near a threshold on another device's rounding.
   if(NOT frames EQUAL 20 OR NOT accounted EQUAL frames OR passed LESS 15)

@@ -206,6 +206,15 @@ TEST(DeviceFilmChecks, TheStateStaysOnTheDeviceWhereNoRuleActs) {
   EXPECT_EQ(all.framesPassed, 0);
   EXPECT_EQ(some.stateReadbacks + static_cast<size_t>(some.framesPassed), all.stateReadbacks)
       << "a frame the checks pass brings nothing back";
+  // Every frame the checks held names the rule that may act on it; the free bubble's slack springs hold most.
+  long held = 0;
+  for (const auto& [rule, frames] : some.framesHeldByRule) {
+    std::printf("held by %s: %ld frames\n", rule.c_str(), frames);
+    held += frames;
+  }
+  EXPECT_EQ(held + some.framesPassed, some.frames);
+  EXPECT_GT(some.framesHeldByRule.count("contraction"), 0u);
+  EXPECT_TRUE(all.framesHeldByRule.empty()) << "read back every frame, the checks were not asked";
 }
 
 TEST(DeviceFilmChecks, ADrawnFilmBringsBackItsPositionsAlone) {

@@ -273,7 +273,7 @@ void Simulation::advanceFrame(const WandState& next) {
 bool Simulation::passesOnDevice(const WandState& next, float wandSpeed) {
   std::optional<FilmChecks> checks = checksOnDevice(false);
   if (!checks) return false;
-  if (!rulesMayAct(*checks, next, wandSpeed, false)) {
+  if (!ruleThatMayAct(*checks, next, wandSpeed, false)) {
     // The rest-length rules the device runs itself may still act: there. The payout widens the wire's band, which
     // the checks then measure again for a new ring (growFilmAtWire looks for one after its payout).
     const bool yielded = checks->yielding > 0 && yieldApplies() && stepper_->yieldStretchedSprings();
@@ -283,8 +283,11 @@ bool Simulation::passesOnDevice(const WandState& next, float wandSpeed) {
     if (paidOut) checks->rungsPastGrowth = 0;
     restLengthsOnDevice_ = restLengthsOnDevice_ || yielded || paidOut;
   }
-  if (rulesMayAct(*checks, next, wandSpeed, true)) return false;
-  for (int w = 0; w < 2; ++w)  // burstOnWandTouch's arming, far from its threshold (rulesMayAct)
+  if (const char* rule = ruleThatMayAct(*checks, next, wandSpeed, true)) {
+    ++readbackRecord_.framesHeldByRule[rule];
+    return false;
+  }
+  for (int w = 0; w < 2; ++w)  // burstOnWandTouch's arming, far from its threshold (ruleThatMayAct)
     wandArmed_[w] = wandArmed_[w] || checks->nearestTip[w] > params_.pinchDistance;
   events_ = {};
   return true;
@@ -353,32 +356,34 @@ bool Simulation::yieldApplies() const {
   return !film_.topology.isClosed() && params_.tensionModel == 0 && params_.yieldStretch > 1.0f;
 }
 
-bool Simulation::rulesMayAct(const FilmChecks& c, const WandState& next, float wandSpeed, bool deviceRules) const {
+const char* Simulation::ruleThatMayAct(const FilmChecks& c, const WandState& next, float wandSpeed,
+                                       bool deviceRules) const {
   constexpr float m = kFilmCheckMargin;
   const Params& p = params_;
   const Topology& topo = film_.topology;
-  if (c.particles == 0) return false;                               // the film is gone
-  if (c.unstable) return true;                                      // checkStable
-  if (burst_.cause != nullptr && burst_.finished < 0) return true;  // a crack scheduled, or a burst under way
-  if (c.lowest < kFloorTouching * (1.0f + m)) return true;          // burstOnFloorTouch
-  if (c.thinnest < p.thicknessThreshold * (1.0f + m)) return true;  // advanceBurst: a crack by thinning
+  if (c.particles == 0) return nullptr;                                   // the film is gone
+  if (c.unstable) return "unstable";                                      // checkStable
+  if (burst_.cause != nullptr && burst_.finished < 0) return "burst";     // a crack scheduled, or a burst under way
+  if (c.lowest < kFloorTouching * (1.0f + m)) return "floor";             // burstOnFloorTouch
+  if (c.thinnest < p.thicknessThreshold * (1.0f + m)) return "thinning";  // advanceBurst: a crack by thinning
   if (topo.isClosed()) {  // burstOnWandTouch; the winding number is 0 or 1, its float sum within 5% of it
     for (int w = 0; w < 2; ++w) {
       const float d = c.nearestTip[w];
       if (!wandArmed_[w] ? std::abs(d - p.pinchDistance) <= m * p.pinchDistance
                          : d < p.collisionDistance * (1.0f + m) || !(c.winding[w] <= 0.45f))
-        return true;
+        return "wand";
     }
   }
-  if (deviceRules && yieldApplies() && c.yielding > 0) return true;
-  if (topo.isClosed() && p.tensionModel == 0 && (c.slack > 0 || c.crowded > 0)) return true;  // contraction, merges
+  if (deviceRules && yieldApplies() && c.yielding > 0) return "yield";
+  if (topo.isClosed() && p.tensionModel == 0 && c.slack > 0) return "contraction";
+  if (topo.isClosed() && p.tensionModel == 0 && c.crowded > 0) return "merge";
   // growFilm: the payout, and a new ring once the band is wide enough.
-  if (deviceRules && wandSpeed >= kDrawingSpeed && film_.wireLiquid > 0.0f && c.rungsPastGrowth > 0) return true;
+  if (deviceRules && wandSpeed >= kDrawingSpeed && film_.wireLiquid > 0.0f && c.rungsPastGrowth > 0) return "payout";
   if (wireBandWidthOf(c.rungRest, c.rungs, c.wireEdgeLength, c.wireEdges) >= kRingInsertionWidth * (1.0f - m))
-    return true;
+    return "ring";
   const bool tipsTogether =
       film_.tool.kind == ToolKind::TwoWands && (next.rightPosition - next.leftPosition).norm() < p.pinchDistance;
-  return tipsTogether && !topo.isClosed();  // pinch
+  return tipsTogether && !topo.isClosed() ? "pinch" : nullptr;
 }
 
 void Simulation::pullState() const {

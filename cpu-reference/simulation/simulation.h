@@ -4,6 +4,7 @@
 // feeds the stepper interpolated wand states, and stops with a clear error if the film goes unstable.
 
 #include <array>
+#include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -137,6 +138,9 @@ class Simulation {
     long frames = 0;
     long framesWithoutEvent = 0;
     long framesPassed = 0;  // on which the device's checks let the rules between steps pass (film_checks.h)
+    // The other frames on which the device checked the film, by the first rule its checks said may act
+    // (Simulation::ruleThatMayAct's names).
+    std::map<std::string, long> framesHeldByRule;
     size_t stateReadbacks = 0;
     uint64_t bytes = 0;
     uint64_t bytesWithoutEvent = 0;
@@ -176,11 +180,12 @@ class Simulation {
   void applyRulesBetweenSteps(const WandState& next, float wandSpeed);
   // The film checks of the rules between steps from the stepper's device (FilmChecks), if it checks there.
   [[nodiscard]] std::optional<FilmChecks> checksOnDevice(bool atPresentPositions);
-  // Whether a rule between steps may act on the film the device's checks describe: every rule of advanceFrame's
-  // (the yield and the payout, which a stepper may run on its device, only with `deviceRules`), each with its
-  // thresholds loosened by kFilmCheckMargin. False means that none acts.
-  [[nodiscard]] bool rulesMayAct(const FilmChecks& checks, const WandState& next, float wandSpeed,
-                                 bool deviceRules) const;
+  // The first rule between steps that may act on the film the device's checks describe, by name ("contraction or
+  // merge", "ring", ...): every rule of advanceFrame's (the yield and the payout, which a stepper may run on its
+  // device, only with `deviceRules`), each with its thresholds loosened by kFilmCheckMargin. Null means that none
+  // acts.
+  [[nodiscard]] const char* ruleThatMayAct(const FilmChecks& checks, const WandState& next, float wandSpeed,
+                                           bool deviceRules) const;
   // Whether the yield of stretched springs applies to the film: an open film of the spring model with yieldStretch.
   [[nodiscard]] bool yieldApplies() const;
   // Whether the wire pays out film now: its tips draw (kDrawingSpeed), it holds solution, its loop is intact.

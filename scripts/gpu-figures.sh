@@ -16,7 +16,7 @@ run() {  # a label, the thread count, then the run's arguments
   echo "== $label (OMP_NUM_THREADS=$threads)"
   OMP_NUM_THREADS=$threads timeout "$limit" "$exe" run --backend vulkan --no-progress --ply-every 0 \
     --images-every 0 --out "$out/run" "$@" 2>&1 |
-    grep -E "^backend|wall time|real-time factor|read back|ms per frame|^default|timed out" || echo "(no summary)"
+    grep -E "^backend|wall time|real-time factor|read back|frames held|ms per frame|^default|timed out" || echo "(no summary)"
 }
 nproc=$(nproc)
 run "default film, whole frames" 2 --no-render

@@ -187,7 +187,7 @@ TEST(DeviceFilmChecks, TheStateStaysOnTheDeviceWhereNoRuleActs) {
   // step, and left on the device where the checks let a frame pass. The device steps the same film either way and
   // the CPU's rules act on the same frames: the same figures at every frame, and the pinch-off at the same frame.
   // The frames that pass bring back no state: a few hundred bytes (the checks, the contact count) instead of the
-  // state's 1.4 MiB.
+  // state's 1.5 MiB.
   GB_REQUIRE_VULKAN(device);
   const Scene scene = resolveScene("default");
   ReadBackAndKept plays(device, scene);

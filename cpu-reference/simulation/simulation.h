@@ -180,10 +180,10 @@ class Simulation {
   void applyRulesBetweenSteps(const WandState& next, float wandSpeed);
   // The film checks of the rules between steps from the stepper's device (FilmChecks), if it checks there.
   [[nodiscard]] std::optional<FilmChecks> checksOnDevice(bool atPresentPositions);
-  // The first rule between steps that may act on the film the device's checks describe, by name ("contraction or
-  // merge", "ring", ...): every rule of advanceFrame's (the yield and the payout, which a stepper may run on its
-  // device, only with `deviceRules`), each with its thresholds loosened by kFilmCheckMargin. Null means that none
-  // acts.
+  // The first rule between steps that may act on the film the device's checks describe, by name ("contraction",
+  // "merge", "ring", ...; docs/formats.md lists them): every rule of advanceFrame's (the yield and the payout, which a
+  // stepper may run on its device, only with `deviceRules`), each with its thresholds loosened by kFilmCheckMargin.
+  // Null means that none acts.
   [[nodiscard]] const char* ruleThatMayAct(const FilmChecks& checks, const WandState& next, float wandSpeed,
                                            bool deviceRules) const;
   // Whether the yield of stretched springs applies to the film: an open film of the spring model with yieldStretch.

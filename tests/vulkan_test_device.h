@@ -63,6 +63,15 @@ inline VulkanStepperOptions everythingOnDevice() {
   return options;
 }
 
+// The stepper's work between steps on the CPU whatever the device: on a GPU Automatic would put it on the device,
+// and the state would stay there on frames where no rule acts.
+inline VulkanStepperOptions everythingOnCpu() {
+  VulkanStepperOptions options;
+  options.contactSearch = WorkPlace::Cpu;
+  options.statistics = WorkPlace::Cpu;
+  return options;
+}
+
 }  // namespace gb::test
 
 // Gets the device into `var`, or fails (CI) / skips loudly (elsewhere).

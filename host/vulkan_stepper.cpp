@@ -66,6 +66,10 @@ StepUniformsBlock toBlock(const StepUniforms& u) {
 
 uint32_t ceilDiv(uint32_t n, uint32_t d) { return (n + d - 1) / d; }
 
+// Reads up to this size go through the buffer's mapping: a copy's submission and wait cost more than reading a few
+// KiB at uncached speed.
+constexpr vk::DeviceSize kDirectReadBytes = 16 * 1024;
+
 // Makes every write of the dispatches recorded so far visible to the dispatches recorded after it: the
 // one barrier kind the step needs (a stage reads what an earlier stage of this or the last step wrote).
 void computeToComputeBarrier(const vk::raii::CommandBuffer& cb) {
@@ -166,7 +170,8 @@ struct VulkanStepper::Impl {
   int airParity = 0;                          // which set is current (Jacobi swap of the air transfer)
   bool volumeInA = true;                      // where the last volume reduction left its result
   bool driftInA = true;                       // where external_drift's tree sum left the film's drift
-  DeviceBuffer readback;                      // host-cached copy of the state store() brings back
+  DeviceBuffer readback;                      // host-cached copy of the state store() brings back, and of reads
+                                              // larger than kDirectReadBytes
   DeviceBuffer statisticsReadback;            // host-cached copy of the frame's statistics and checks (probeFilm)
 
   // The device contact search's room in the contacts buffer (shared_step.h's contact regions).
@@ -219,6 +224,15 @@ struct VulkanStepper::Impl {
   // The air buffer that currently holds the transferred air (the Jacobi front).
   DeviceBuffer& airFront() { return holding(GB_BINDING_AIR_FLOW); }
 
+  // A buffer of `binding` with room for `bytes`. A film reloaded after merges or grown by a ring keeps its buffers
+  // where they have room (allocating and freeing some 30 buffers took 3-7 ms a load on an H100): a new one has an
+  // eighth more room, for the rings a growing film adds next, and one more than 4 times too large is made again.
+  void ensureRoom(int binding, size_t bytes) {
+    DeviceBuffer& b = buffer(binding);
+    if (b.size() >= bytes && b.size() <= 4 * std::max<size_t>(bytes, 16)) return;
+    b = DeviceBuffer(*ctx, bytes + bytes / 8);
+  }
+
   void ensureStepCapacity(size_t count) {
     if (count <= stepsCapacity) return;
     stepsCapacity = std::max<size_t>(count, 2 * stepsCapacity);
@@ -261,10 +275,27 @@ struct VulkanStepper::Impl {
     slots[GB_SLOT_RELEASED - GB_SLOT_SCALE] = b.released;
     buffer(GB_BINDING_REDUCE).write(slots.data(), sizeof slots, velocityBudgetOffset());
   }
-  // A copy from device memory into host memory, counted in `copiedToHost`.
+  // A copy from device memory into host memory, counted in `copiedToHost`. More than a few KiB come through a copy
+  // into the host-cached `readback` buffer: a discrete GPU's own memory read through its mapping (resizable BAR) is
+  // uncached, about 0.5 GB/s on an H100, where reading the default film's contact list that way took 2.7 ms.
   void readFrom(const DeviceBuffer& from, void* to, vk::DeviceSize bytes, vk::DeviceSize offset = 0) {
-    from.read(to, bytes, offset);
+    if (&from == &readback || bytes <= kDirectReadBytes)
+      from.read(to, bytes, offset);
+    else
+      readThroughReadback(from, to, bytes, offset);
     copiedToHost.bytes += bytes;
+  }
+  void readThroughReadback(const DeviceBuffer& from, void* to, vk::DeviceSize bytes, vk::DeviceSize offset) {
+    if (readback.size() < bytes) readback = DeviceBuffer(*ctx, bytes, DeviceBuffer::Placement::Readback);
+    const vk::raii::CommandBuffer& cb = commands;
+    cb.reset();
+    cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    computeToTransferBarrier(cb);
+    readback.recordCopyFrom(cb, from, offset, bytes, 0);
+    transferToHostBarrier(cb);
+    cb.end();
+    ctx->submitAndWait(cb);
+    readback.read(to, bytes);
   }
 
   [[nodiscard]] VelocityBudget readVelocityBudget() {
@@ -556,8 +587,13 @@ struct VulkanStepper::Impl {
           vk::BufferCopy(0, vk::DeviceSize{l.previous} * sizeof(uint32_t), deviceListEntries * sizeof(uint32_t)));
     transferToComputeBarrier(cb);  // the header, the zeroed counts and the previous list are in place
     const uint32_t header = l.header;
-    dispatchGroups(cb, Kernel::ContactReach, 1, particles, 0, 0, header);  // one workgroup: it sums the film
-    computeToComputeBarrier(cb);                                           // the reach sizes the cells
+    const uint32_t runs = gpu::contactReachGroups(particles, workgroup);
+    dispatchGroups(cb, Kernel::ContactReach, runs, particles, 0, 0, header);  // each run's velocity sum
+    computeToComputeBarrier(cb);
+    dispatchGroups(cb, Kernel::ContactReach, runs, particles, 0, GB_REACH_FASTEST, header);  // about the mean
+    computeToComputeBarrier(cb);
+    dispatchGroups(cb, Kernel::ContactReach, 1, particles, 0, GB_REACH_FINAL, header);  // the largest: the reach
+    computeToComputeBarrier(cb);                                                        // the reach sizes the cells
     dispatch(cb, Kernel::ContactCells, particles, 0, 0, header);
     computeToComputeBarrier(cb);  // every particle is counted before the counts are scanned
     recordContactScan(cb, contactBuckets + 1, 0);
@@ -701,7 +737,7 @@ void VulkanStepper::load(const Params& params, Film& film) {
   m.particles = static_cast<uint32_t>(s.size());
   m.triangles = static_cast<uint32_t>(t.triangleCount());
   const size_t n = s.size();
-  auto make = [&](int binding, size_t bytes) { m.buffer(binding) = DeviceBuffer(*m.ctx, bytes); };
+  auto make = [&](int binding, size_t bytes) { m.ensureRoom(binding, bytes); };
   make(GB_BINDING_PARAMS, sizeof(Params));
   // The per-particle buffers: as many blocks of n elements as the arrays of device_data.h they hold.
   std::array<int, GB_BINDING_COUNT> blocks{};
@@ -721,15 +757,12 @@ void VulkanStepper::load(const Params& params, Film& film) {
   make(GB_BINDING_SPRING_NEIGHBOUR, t.springNeighbour.size() * sizeof(uint32_t));
   make(GB_BINDING_TRIANGLE_OFFSET, t.triangleOffset.size() * sizeof(uint32_t));
   make(GB_BINDING_TRIANGLE_CORNER, t.triangleCorner.size() * sizeof(uint32_t));
-  m.buffer(GB_BINDING_CONTACTS) = DeviceBuffer();  // made for these particles by ensureContactRoom
-  m.contactPreviousCapacity = 0;
+  m.contactPreviousCapacity = 0;  // the contacts buffer is kept as grown, and grown for these particles below
   const size_t startingEntries = m.contactEntryCapacity > 0 ? 0 : n;  // the room grown for an earlier film is kept
   m.ensureContactRoom(std::max(startingEntries, m.partnerEntriesOf(t.contacts)), 0);
   make(GB_BINDING_TRIANGLE_NORMAL, 3 * t.triangleCount() * sizeof(float));
   make(GB_BINDING_CORNER_AREA, 3 * t.triangleCount() * sizeof(float));
   make(GB_BINDING_REDUCE, reduceFloats(t, n) * sizeof(float));
-  m.stepsCapacity = 0;
-  make(GB_BINDING_STEPS, sizeof(StepUniformsBlock));
 
   m.buffer(GB_BINDING_PARAMS).write(&params, sizeof(Params));
   m.airParity = 0;  // each air array into its own buffer
@@ -876,7 +909,7 @@ void VulkanStepper::updateTopology(const Params& params, Film& film) {
 
 void VulkanStepper::updateRestLengths(const Film& film) {
   Impl& m = *impl_;
-  if (film.topology.restLength.size() * sizeof(float) != m.buffer(GB_BINDING_REST_LENGTH).size())
+  if (film.topology.restLength.size() * sizeof(float) > m.buffer(GB_BINDING_REST_LENGTH).size())
     throw std::logic_error("VulkanStepper::updateRestLengths: not the loaded film");
   writeVector(m.buffer(GB_BINDING_REST_LENGTH), film.topology.restLength);
 }

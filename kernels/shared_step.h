@@ -63,6 +63,8 @@ struct PushBlock {
 #define GB_REDUCE_STATISTICS_IN_A 32u  // film_statistics_tree: half A holds the level it reads (else half B)
 #define GB_RULE_YIELD 64u              // film_rest_lengths: the yield of stretched springs
 #define GB_RULE_PAYOUT 128u            // film_rest_lengths: the wire's payout
+#define GB_REACH_FASTEST 256u          // contact_reach: the runs' fastest speeds (its second pass; else their sums)
+#define GB_REACH_FINAL 512u            // contact_reach: the reach from the runs' fastest speeds (its third pass)
 
 // The energy budget's slack (cpu-reference/solver/energy_budget.h says why this much), one value for both backends.
 #define GB_ENERGY_BUDGET_TOLERANCE 1e-4
@@ -166,7 +168,8 @@ GB_REGION uint reduceFloatsWith(uint energyTermsAt, uint particleCount) {
 //   sorted         N: the searched particles, bucket by bucket;
 //   rows           N K: each particle's partners, ascending (the first K of them);
 //   scan totals    the block sums of the scans (contact_scan_*), one per GB_SCAN_RUN elements at most;
-//   sheets         B GB_CONTACT_SHEET floats: each bucket's particles as a piece of sheet (contact_sheets);
+//   sheets         B GB_CONTACT_SHEET floats: each bucket's particles as a piece of sheet (contact_sheets), and
+//                  before them contact_reach's partial results (contactReachGroups);
 //   previous       the last list, packed as the list is, for the pairs' rest distances.
 // The kernels get the header's start in PushBlock::first and read B and K from it.
 #define GB_CONTACT_REACH 0               // the search's reach (float bits): no pair lies farther apart
@@ -190,6 +193,7 @@ GB_REGION uint reduceFloatsWith(uint energyTermsAt, uint particleCount) {
 #define GB_CONTACT_SHEET 12
 #define GB_SCAN_RUN 16u   // elements one invocation of contact_scan_blocks adds in a row
 #define GB_SCAN_ROWS 16u  // PushBlock::reduceFlags of contact_scan_*: the partner counts (else the bucket counts)
+#define GB_REACH_RUN 16u  // particles one invocation of contact_reach reads in each of its passes
 
 #ifdef __cplusplus
 namespace gb::gpu {
@@ -208,6 +212,11 @@ GB_REGION uint contactSearchAt(uint particleCount, uint entryCapacity) {
 // The scans' block sums: at most one per GB_SCAN_RUN elements of the longer of the two arrays scanned.
 GB_REGION uint contactScanTotals(uint particleCount, uint buckets) {
   return (maxOf(particleCount, buckets) + 1u + GB_SCAN_RUN - 1u) / GB_SCAN_RUN;
+}
+// The workgroups of contact_reach's first two passes: one per GB_REACH_RUN particles an invocation. Their partial
+// results lie at the start of the sheets region (4 floats a workgroup, then 1), which contact_sheets fills later.
+GB_REGION uint contactReachGroups(uint particleCount, uint workgroupSize) {
+  return maxOf(1u, (particleCount + workgroupSize * GB_REACH_RUN - 1u) / (workgroupSize * GB_REACH_RUN));
 }
 GB_REGION ContactSearchLayout contactSearchLayout(uint header, uint particleCount, uint buckets, uint rowCapacity) {
   ContactSearchLayout l;

@@ -10,13 +10,23 @@ limit=${1:-120}
 exe=build/app/giantbubble
 [ -x "$exe" ] || { echo "gpu-figures: no $exe: build first" >&2; exit 2; }
 out=$(mktemp -d)
+# The median of stats.csv's frame_ms (each frame's step, rules between steps and contact search; the statistics
+# apart): the steady rate, without the first frames' one-off costs (the contact search growing its room) that a short
+# run's mean holds.
+median_frame() {
+  [ -f "$1" ] || return 0
+  awk -F, 'NR == 1 { for (c = 1; c <= NF; ++c) if ($c == "frame_ms") col = c; next } $1 > 0 { print $col }' "$1" |
+    sort -g | awk '{ v[NR] = $1 } END { if (NR) { m = v[int((NR + 1) / 2)]; printf "median frame_ms %.2f (%.0f frames/s)\n", m, 1000 / m } }'
+}
 run() {  # a label, the thread count, then the run's arguments
   local label=$1 threads=$2
   shift 2
   echo "== $label (OMP_NUM_THREADS=$threads)"
+  rm -rf "$out/run"
   OMP_NUM_THREADS=$threads timeout "$limit" "$exe" run --backend vulkan --no-progress --ply-every 0 \
     --images-every 0 --out "$out/run" "$@" 2>&1 |
     grep -E "^backend|wall time|real-time factor|read back|frames held|ms per frame|^default|timed out" || echo "(no summary)"
+  median_frame "$out/run/stats.csv"
 }
 nproc=$(nproc)
 run "default film, whole frames" 2 --no-render

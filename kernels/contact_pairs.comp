@@ -51,11 +51,14 @@ float partnerRadius(uint sheet, vec3 x, vec3 n) {
   return offPlane / (kAcrossCosine - tilt);
 }
 
-// Whether a bucket may hold a partner of particle x (normal n): as PartnerRule::listPartnersIn's first tests, false
-// when x is farther from the bucket's box than the reach or than the partner radius its sheet allows, each widened by
-// a thousandth and 10 um for the rounding of the coordinates compared. On a film's flat stretches this leaves a
-// particle only its own bucket of the 27 to read.
-bool bucketMayHold(uint sheet, vec3 x, vec3 n, float reach) {
+// How far from particle x (normal n) a partner may lie in the bucket whose sheet starts at `sheet`, by
+// PartnerRule::listPartnersIn's first tests: the reach, or the partner radius its sheet allows where that is less,
+// each widened by a thousandth and 10 um for the rounding of the coordinates compared; 0 when x is farther than that
+// from the bucket's box. On a film's flat stretches this leaves a particle only its own bucket of the 27 to read, and
+// there only the particles within some 15 um of it to test further (the CPU reads a slab that wide of the bucket
+// sorted along its sheet): a cell is as wide as the reach, 2.5 cm at least, and on a fine film hundreds of particles
+// share one.
+float partnerDistanceIn(uint sheet, vec3 x, vec3 n, float reach) {
   const vec3 lower =
       vec3(uintBitsToFloat(contacts[sheet + GB_SHEET_LOWER]), uintBitsToFloat(contacts[sheet + GB_SHEET_LOWER + 1]),
            uintBitsToFloat(contacts[sheet + GB_SHEET_LOWER + 2]));
@@ -65,9 +68,9 @@ bool bucketMayHold(uint sheet, vec3 x, vec3 n, float reach) {
   const vec3 outside = max(max(lower - x, x - upper), vec3(0.0));
   const float gapSquared = dot(outside, outside);
   const float widenedReach = reach * 1.001 + 1e-5;
-  if (gapSquared > widenedReach * widenedReach) return false;
+  if (gapSquared > widenedReach * widenedReach) return 0.0;
   const float radius = min(reach, partnerRadius(sheet, x, n)) * 1.001 + 1e-5;
-  return !(gapSquared > radius * radius);
+  return gapSquared > radius * radius ? 0.0 : radius;
 }
 
 // Puts j among the row's `count` partners, ascending; past the row's capacity it is only counted.
@@ -103,10 +106,13 @@ void main() {
           for (uint s = 0u; s < seen; ++s) again = again || visited[s] == bucket;
           if (again) continue;
           visited[seen++] = bucket;
-          if (!bucketMayHold(l.sheets + GB_CONTACT_SHEET * bucket, xi, ni, reach)) continue;
+          const float within = partnerDistanceIn(l.sheets + GB_CONTACT_SHEET * bucket, xi, ni, reach);
+          if (!(within > 0.0)) continue;
+          const float withinSquared = within * within;
           for (uint k = contacts[l.bucketStart + bucket]; k < contacts[l.bucketStart + bucket + 1u]; ++k) {
             const uint j = contacts[l.sorted + k];
-            if (j == i || !isPartner(i, j, reachSquared, frameTime, slack)) continue;
+            const vec3 d = LOAD3(position, j) - xi;
+            if (j == i || !(dot(d, d) < withinSquared) || !isPartner(i, j, reachSquared, frameTime, slack)) continue;
             insertPartner(row, found, capacity, j);
             ++found;
           }

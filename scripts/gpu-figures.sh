@@ -11,7 +11,7 @@ exe=build/app/giantbubble
 [ -x "$exe" ] || { echo "gpu-figures: no $exe: build first" >&2; exit 2; }
 out=$(mktemp -d)
 # The median of stats.csv's frame_ms (each frame's step, rules between steps and contact search; the statistics
-# apart): the steady rate, without the first frames' one-off costs (the contact search growing its room) that a short
+# apart): the steady rate, without the first frames' one-off costs and the frames with a topology event that a short
 # run's mean holds.
 median_frame() {
   [ -f "$1" ] || return 0

@@ -112,9 +112,9 @@ TEST(Renderer, KnownSceneMatchesReference) {
   // may round the half-float targets and the transcendental functions differently (a level or two) and move a
   // few triangle-edge or droplet pixels. A mean over 1 level, or more than 1% of pixels off by over 8 levels, is a
   // changed picture: an NVIDIA H100 moves 0.50% of the pixels by over 8 levels (mean 0.32 levels), lavapipe 0.11%.
-  // The largest difference is bounded at 64 levels over 3x3 averages, so that moved edges and droplets pass (the
-  // H100 draws the droplets a pixel over or split across two: 185 levels pixel for pixel, 48.6 averaged) while a
-  // wrong colour over any patch of the film does not hide among them.
+  // The largest difference is bounded at 64 levels over 3x3 averages, so that moved edges and droplets pass (on
+  // lavapipe and on the H100 alike they differ by up to 185 levels pixel for pixel, 48.6 averaged) while a wrong
+  // colour over any patch of the film does not hide among them.
   EXPECT_LT(e.mean, 1.0);
   EXPECT_LT(e.fractionOver8, 0.01);
   EXPECT_LE(averagedMax, 64.0);

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # The Vulkan backend's figures on a machine with a GPU (docs/performance.md, the GPU rows): whole frames of the
 # default film with 2 CPU threads and with all of them, 100,000 and 1,000,000 particles with 2 threads, the state
-# read back, and the default performance on the wall clock at 1920x1080 with a 100,000-particle film. Each command
-# has a time limit, and its summary lines are printed as it finishes, so that a short loan of the machine still
-# leaves figures. Needs a Release build in build/ (cmake -S . -B build && cmake --build build -j).
+# read back, and the default performance on the wall clock at 1920x1080 with a 100,000-particle film; then, where
+# the tests are built, the Vulkan tests on that GPU. Each command has a time limit, and its summary lines are printed
+# as it finishes, so that a run cut short still leaves figures. Needs a Release build in build/ (cmake -S . -B build
+# && cmake --build build -j).
 #   bash scripts/gpu-figures.sh [seconds per command, default 120]
 set -u
 limit=${1:-120}
@@ -32,9 +33,15 @@ nproc=$(nproc)
 run "default film, whole frames" 2 --no-render
 run "default film, whole frames" "$nproc" --no-render
 run "100,000 particles, whole frames" 2 --particles 100000 --duration 1 --no-render
-run "1,000,000 particles, whole frames" 2 --particles 1000000 --duration 0.2 --no-render
+run "1,000,000 particles, whole frames" 2 --particles 1000000 --duration 0.6 --no-render
 run "1,000,000 particles, the work between steps on the CPU" 2 --particles 1000000 --duration 0.2 --no-render \
   --between-steps cpu
 run "on the wall clock at 1920x1080, 100,000 particles" 2 --particles 100000 --realtime --render --width 1920 \
   --height 1080 --video ''
 rm -rf "$out"
+tests=build/tests/gb_tests
+if [ -x "$tests" ]; then
+  echo "== the Vulkan tests on this GPU"
+  CI=true timeout "$limit" "$tests" --gtest_filter='VulkanEquivalence.*:VulkanReadback.*:DeviceContacts.*:DeviceStatistics.*:DeviceFilmChecks.*:Scenes/*:Renderer.*:RenderOutput.*:ThinFilm.*:FilmChecks.*' 2>&1 |
+    grep -E "^\[  (PASSED|FAILED) |against the reference|timed out" || echo "(no summary)"
+fi

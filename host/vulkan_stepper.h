@@ -25,7 +25,7 @@ enum class WorkPlace {
 
 struct VulkanStepperOptions {
   // The self-collision search: on the device (findContacts), where the sweeps read the list, or the CPU's, handed
-  // over (updateContacts). A CPU driver searches 13 to 25 times slower than the CPU's own search.
+  // over (updateContacts). A CPU driver searches 13 to 36 times slower than the CPU's own search.
   WorkPlace contactSearch = WorkPlace::Automatic;
   // The frame's statistics, the film checks of the rules between steps and the yield of stretched springs: on the
   // device (probeFilm, a few floats read back; yieldStretchedSprings), or by the caller from the state read back.

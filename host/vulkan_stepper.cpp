@@ -286,16 +286,31 @@ struct VulkanStepper::Impl {
     copiedToHost.bytes += bytes;
   }
   void readThroughReadback(const DeviceBuffer& from, void* to, vk::DeviceSize bytes, vk::DeviceSize offset) {
-    if (readback.size() < bytes) readback = DeviceBuffer(*ctx, bytes, DeviceBuffer::Placement::Readback);
+    copyIntoReadback(std::array{DevicePart{&from, offset, bytes}});
+    readback.read(to, bytes);
+  }
+  // A range of a device buffer.
+  struct DevicePart {
+    const DeviceBuffer* from;
+    vk::DeviceSize offset, bytes;
+  };
+  // Copies the parts one after the other into `readback` (grown to fit) in one submission, and waits for it.
+  void copyIntoReadback(std::span<const DevicePart> parts) {
+    vk::DeviceSize total = 0;
+    for (const DevicePart& part : parts) total += part.bytes;
+    if (readback.size() < total) readback = DeviceBuffer(*ctx, total, DeviceBuffer::Placement::Readback);
     const vk::raii::CommandBuffer& cb = commands;
     cb.reset();
     cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
     computeToTransferBarrier(cb);
-    readback.recordCopyFrom(cb, from, offset, bytes, 0);
+    vk::DeviceSize at = 0;
+    for (const DevicePart& part : parts) {
+      readback.recordCopyFrom(cb, *part.from, part.offset, part.bytes, at);
+      at += part.bytes;
+    }
     transferToHostBarrier(cb);
     cb.end();
     ctx->submitAndWait(cb);
-    readback.read(to, bytes);
   }
 
   [[nodiscard]] VelocityBudget readVelocityBudget() {
@@ -935,33 +950,15 @@ void VulkanStepper::storeArrays(Film& film, Chosen&& chosen) {
   // The arrays to bring back: where each lies on the device, in the table's order (device_data.h), one after the
   // other in the host-cached copy.
   const vk::DeviceSize blockBytes = s.size() * sizeof(float);
-  struct Part {
-    const DeviceBuffer* from;
-    vk::DeviceSize offset, bytes;
-  };
-  std::vector<Part> parts;
+  std::vector<Impl::DevicePart> parts;
   forEachParticleArray(s, [&](const auto& array, const ParticleArrayInfo& info) {
     if (chosen(&array, info))
       parts.push_back({&m.holding(info.binding), static_cast<vk::DeviceSize>(info.block) * blockBytes,
                        static_cast<vk::DeviceSize>(info.components) * blockBytes});
   });
-  vk::DeviceSize total = 0;
-  for (const Part& part : parts) total += part.bytes;
-  if (m.readback.size() < total) m.readback = DeviceBuffer(*m.ctx, total, DeviceBuffer::Placement::Readback);
-  const vk::raii::CommandBuffer& cb = m.commands;
-  cb.reset();
-  cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
-  computeToTransferBarrier(cb);
-  vk::DeviceSize at = 0;
-  for (const Part& part : parts) {
-    m.readback.recordCopyFrom(cb, *part.from, part.offset, part.bytes, at);
-    at += part.bytes;
-  }
-  transferToHostBarrier(cb);
-  cb.end();
-  m.ctx->submitAndWait(cb);
+  m.copyIntoReadback(parts);
   // The same arrays in the same order, out of the copy.
-  at = 0;
+  vk::DeviceSize at = 0;
   forEachParticleArray(s, [&](auto& array, const ParticleArrayInfo& info) {
     if (!chosen(&array, info)) return;
     forEachComponent(array, [&](auto& values, int) {

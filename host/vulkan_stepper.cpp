@@ -26,7 +26,7 @@ using enum gpu::Binding;
 // gives the same declarations.
 static_assert(sizeof(StepUniformsBlock) == 176 && offsetof(StepUniformsBlock, dt) == 128 &&
               offsetof(StepUniformsBlock, wireKind) == 156 && offsetof(StepUniformsBlock, closed) == 160);
-static_assert(sizeof(PushBlock) == 32);
+static_assert(sizeof(PushBlock) == 36);
 static_assert(alignof(Params) == 4 && sizeof(Params) % 4 == 0,
               "Params must stay a block of 4-byte scalars, whose std430 layout is the C layout");
 
@@ -335,9 +335,9 @@ struct VulkanStepper::Impl {
 
   // The self-collision contacts, found anew every frame (by the CPU here; by the device in findContacts).
   void writeContacts(const Topology& t) {
+    deviceListEntries = 0;  // replaced by this one
     ensureContactRoom(partnerEntriesOf(t.contacts), 0);
     writeVector(buffer(GB_BINDING_CONTACTS), t.contacts);
-    deviceListEntries = 0;
   }
 
   // The partner entries of a packed list for the loaded particles (Topology::contacts): N + 1 offsets, then two
@@ -356,7 +356,7 @@ struct VulkanStepper::Impl {
   }
 
   // Room for `entries` partner entries in the list and, searching on the device, a previous list of `previousUints`,
-  // grown geometrically when short (contacts come and go). A new buffer keeps nothing of the old one.
+  // grown geometrically when short (contacts come and go). A new buffer keeps the list the device left at the start.
   void ensureContactRoom(size_t entries, size_t previousUints) {
     if (entries > contactEntryCapacity)
       contactEntryCapacity = static_cast<uint32_t>(std::max<size_t>(entries, 2 * size_t{contactEntryCapacity}));
@@ -367,9 +367,25 @@ struct VulkanStepper::Impl {
     contactRecord.entryCapacity = contactEntryCapacity;
     const size_t bytes = contactBufferUints() * sizeof(uint32_t);
     if (bytes <= buffer(GB_BINDING_CONTACTS).size()) return;
-    buffer(GB_BINDING_CONTACTS) = DeviceBuffer(*ctx, bytes);
-    deviceListEntries = 0;
+    DeviceBuffer grown(*ctx, bytes);
+    copyContactUints(buffer(GB_BINDING_CONTACTS), 0, grown, 0, deviceListEntries);  // the device's list stays
+    buffer(GB_BINDING_CONTACTS) = std::move(grown);
     writeDescriptorSets();
+  }
+
+  // A copy of `uints` from `fromUint` in one contacts buffer to `toUint` in another (or the same, the two ranges
+  // apart), on the device, between the searches' compute work.
+  void copyContactUints(const DeviceBuffer& from, size_t fromUint, const DeviceBuffer& to, size_t toUint,
+                        size_t uints) {
+    if (uints == 0) return;
+    const vk::raii::CommandBuffer& cb = commands;
+    cb.reset();
+    cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    computeToTransferBarrier(cb);
+    to.recordCopyFrom(cb, from, fromUint * sizeof(uint32_t), uints * sizeof(uint32_t), toUint * sizeof(uint32_t));
+    transferToComputeBarrier(cb);
+    cb.end();
+    ctx->submitAndWait(cb);
   }
 
   void writeDescriptorSets() {
@@ -391,15 +407,15 @@ struct VulkanStepper::Impl {
 
   // One invocation per element of `count`.
   void dispatch(const vk::raii::CommandBuffer& cb, Kernel kernel, uint32_t count, uint32_t stepIndex,
-                uint32_t flags = 0, uint32_t first = 0) {
-    dispatchGroups(cb, kernel, ceilDiv(count, workgroup), count, stepIndex, flags, first);
+                uint32_t flags = 0, uint32_t first = 0, float ruleShare = 0.0f) {
+    dispatchGroups(cb, kernel, ceilDiv(count, workgroup), count, stepIndex, flags, first, ruleShare);
   }
   void dispatchGroups(const vk::raii::CommandBuffer& cb, Kernel kernel, uint32_t groups, uint32_t count,
-                      uint32_t stepIndex, uint32_t flags = 0, uint32_t first = 0) {
+                      uint32_t stepIndex, uint32_t flags = 0, uint32_t first = 0, float ruleShare = 0.0f) {
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipelines[static_cast<size_t>(kernel)]);
     const vk::DescriptorSet set = *sets[static_cast<size_t>(airParity)];
     cb.bindDescriptorSets(vk::PipelineBindPoint::eCompute, *pipelineLayout, 0, set, {});
-    const PushBlock push{count, particles, stepIndex, flags, triangles, first, patches, solverParticles};
+    const PushBlock push{count, particles, stepIndex, flags, triangles, first, patches, solverParticles, ruleShare};
     cb.pushConstants<PushBlock>(*pipelineLayout, vk::ShaderStageFlagBits::eCompute, 0, push);
     cb.dispatch(groups, 1, 1);
   }
@@ -627,10 +643,11 @@ struct VulkanStepper::Impl {
   }
 
   // Whether the last search's rows and list had room for every partner; if not, grows them to what it found or
-  // twice what they had, says so on stderr, and the list at the buffer's start is no longer the last one. The list
-  // the search read as its history, where that was the device's own (history.onDevice), comes back into `history`
-  // first: the grown buffer keeps nothing of it.
-  bool contactSearchHadRoom(ContactHistory& history) {
+  // twice what they had and says so on stderr. The search has written over the list at the buffer's start: where it
+  // read the device's own list as its history (history.onDevice), that list goes back there from the copy the search
+  // read, on the device (the grown buffer keeps it, and the search again copies it as its history); otherwise the
+  // list there is no longer the last one.
+  bool contactSearchHadRoom(const ContactHistory& history) {
     std::array<uint32_t, GB_CONTACT_HEADER> h{};
     readFrom(buffer(GB_BINDING_CONTACTS), h.data(), sizeof h, vk::DeviceSize{contactHeader()} * sizeof(uint32_t));
     const uint32_t most = h[GB_CONTACT_MOST_PARTNERS], entries = h[GB_CONTACT_PARTNER_ENTRIES];
@@ -639,13 +656,12 @@ struct VulkanStepper::Impl {
                  "vulkan: the contact search found %u partners of one particle and %u in all, with room for %u and "
                  "%u: searching again with more room\n",
                  most, entries, contactRowCapacity, contactEntryCapacity);
+    if (history.onDevice && deviceListEntries > 0)  // from where the search's layout put it: the old room's
+      copyContactUints(buffer(GB_BINDING_CONTACTS), contactLayout().previous, buffer(GB_BINDING_CONTACTS), 0,
+                       deviceListEntries);
+    else
+      deviceListEntries = 0;
     if (most > contactRowCapacity) contactRowCapacity = std::max(most, 2 * contactRowCapacity);  // a film crumples on
-    if (history.onDevice && deviceListEntries > 0) {
-      history = {std::vector<uint32_t>(deviceListEntries), particles, false};
-      readFrom(buffer(GB_BINDING_CONTACTS), history.contacts.data(), deviceListEntries * sizeof(uint32_t),
-               vk::DeviceSize{contactLayout().previous} * sizeof(uint32_t));
-    }
-    deviceListEntries = 0;
     ensureContactRoom(entries, 0);
     ++contactRecord.regrown;
     return false;
@@ -710,14 +726,14 @@ struct VulkanStepper::Impl {
   }
 
   // A rest-length rule between steps (film_rest_lengths, GB_RULE_*) on the device, where the statistics are reduced.
-  bool runSpringRule(uint32_t rule) {
+  bool runSpringRule(uint32_t rule, float share = 0.0f) {
     if (!statisticsOnDevice) return false;
     if (sets.empty()) throw std::logic_error("VulkanStepper: no film loaded");
     const vk::raii::CommandBuffer& cb = commands;
     cb.reset();
     cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
     computeToComputeBarrier(cb);
-    dispatch(cb, Kernel::FilmRestLengths, particles, 0, rule);
+    dispatch(cb, Kernel::FilmRestLengths, particles, 0, rule, 0, share);
     computeToHostBarrier(cb);  // storeRestLengths reads them through the buffer's mapping
     cb.end();
     ctx->submitAndWait(cb);
@@ -773,6 +789,7 @@ void VulkanStepper::load(const Params& params, Film& film) {
   make(GB_BINDING_TRIANGLE_OFFSET, t.triangleOffset.size() * sizeof(uint32_t));
   make(GB_BINDING_TRIANGLE_CORNER, t.triangleCorner.size() * sizeof(uint32_t));
   m.contactPreviousCapacity = 0;  // the contacts buffer is kept as grown, and grown for these particles below
+  m.deviceListEntries = 0;        // the old film's list: the film's own is written below
   const size_t startingEntries = m.contactEntryCapacity > 0 ? 0 : n;  // the room grown for an earlier film is kept
   m.ensureContactRoom(std::max(startingEntries, m.partnerEntriesOf(t.contacts)), 0);
   make(GB_BINDING_TRIANGLE_NORMAL, 3 * t.triangleCount() * sizeof(float));
@@ -877,11 +894,10 @@ bool VulkanStepper::findContactsOnDevice(const Params& params, float frameTime, 
       params.collisionStiffness != m.params.collisionStiffness)
     throw std::logic_error("VulkanStepper::findContacts: not the loaded film");
   // A search short of room lists nothing reliable: it runs once more with the room it found it needed.
-  ContactHistory kept = history;
-  m.searchContacts(frameTime, slack, kept);
-  if (!m.contactSearchHadRoom(kept)) {
-    m.searchContacts(frameTime, slack, kept);
-    if (!m.contactSearchHadRoom(kept)) throw std::logic_error("VulkanStepper::findContacts: no room after growing");
+  m.searchContacts(frameTime, slack, history);
+  if (!m.contactSearchHadRoom(history)) {
+    m.searchContacts(frameTime, slack, history);
+    if (!m.contactSearchHadRoom(history)) throw std::logic_error("VulkanStepper::findContacts: no room after growing");
   }
   m.countContactList();
   return true;
@@ -997,6 +1013,8 @@ bool VulkanStepper::probeFilm(const FilmProbe& probe, FilmSums& sums, FilmChecks
   checks.yielding = t[GB_STAT_YIELDING];
   checks.slack = t[GB_STAT_SLACK];
   checks.crowded = t[GB_STAT_CROWDED];
+  checks.contractionQuadratic = t[GB_STAT_CONTRACTION_QUADRATIC];
+  checks.contractionLinear = t[GB_STAT_CONTRACTION_LINEAR];
   checks.rungsPastGrowth = t[GB_STAT_RUNGS_PAST_GROWTH];
   checks.rungs = t[GB_STAT_RUNG_COUNT];
   checks.rungRest = t[GB_STAT_RUNG_REST];
@@ -1008,6 +1026,8 @@ bool VulkanStepper::probeFilm(const FilmProbe& probe, FilmSums& sums, FilmChecks
 bool VulkanStepper::yieldStretchedSprings() { return impl_->runSpringRule(GB_RULE_YIELD); }
 
 bool VulkanStepper::payOutFilmAtWire() { return impl_->runSpringRule(GB_RULE_PAYOUT); }
+
+bool VulkanStepper::contractSlackSprings(float share) { return impl_->runSpringRule(GB_RULE_CONTRACT, share); }
 
 void VulkanStepper::storeRestLengths(Film& film) {
   Impl& m = *impl_;

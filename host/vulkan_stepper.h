@@ -72,6 +72,7 @@ class VulkanStepper final : public Stepper {
   // On the device (film_rest_lengths) where options.statistics says so.
   bool yieldStretchedSprings() override;
   bool payOutFilmAtWire() override;
+  bool contractSlackSprings(float share) override;
   void storeRestLengths(Film& film) override;
   // On the device (film_statistics_terms, film_statistics_tree) where options.statistics says so.
   bool probeFilm(const FilmProbe& probe, FilmSums& sums, FilmChecks& checks) override;

@@ -48,6 +48,12 @@ void springTerms(uint i, vec3 x, inout float terms[GB_STATISTICS_TERMS]) {
       if (springYields(len * kMore, rest, thinner * kMore, params.yieldStretch, params.yieldThickness))
         terms[GB_STAT_YIELDING] += 0.5;
       if (springContracts(len * kLess, rest, thicker * kLess, dipThickness)) terms[GB_STAT_SLACK] += 0.5;
+      if (params.tensionModel == 0 && springContracts(len, rest, thicker, dipThickness)) {
+        const float stiffness = 0.5 * (elasticity[i] + elasticity[j]);
+        const float taut = tautRestLengthOf(len, rest, params.springPrestrain, params.energyNeutralContraction);
+        terms[GB_STAT_CONTRACTION_QUADRATIC] += 0.5 * contractionQuadraticOf(stiffness, rest, taut);
+        terms[GB_STAT_CONTRACTION_LINEAR] += 0.5 * contractionLinearOf(stiffness, len, rest, taut);
+      }
     }
     if (springCrowded(len * kLess, rest, thicker * kMore, dipThickness)) terms[GB_STAT_CROWDED] += 0.5;
   }

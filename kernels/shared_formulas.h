@@ -2,7 +2,9 @@
 // compiled as C++ (namespace gb) and as GLSL (common.glsl includes it). Each says where it is used.
 #ifdef __cplusplus
 #pragma once
+#include <cmath>
 namespace gb {
+using std::sqrt;
 #define GB_CONST inline constexpr
 #define GB_FORMULA inline constexpr
 #define GB_REAL_FORMULA \
@@ -119,6 +121,35 @@ GB_FORMULA bool springYields(float length, float rest, float thinnerEnd, float y
 // Contraction (contractSlackSprings): a slack spring whose ends are both thinner than the dip contracts.
 GB_FORMULA bool springContracts(float length, float rest, float thickerEnd, float dipThickness) {
   return length < rest && thickerEnd < dipThickness;
+}
+// The rest length a contracting spring of `length` goes to (contractSlackSprings): as taut as new film
+// (springPrestrain), or with energyNeutralContraction stretched only as far as it was compressed.
+GB_FORMULA float tautRestLengthOf(float length, float rest, float springPrestrain, int energyNeutralContraction) {
+  if (energyNeutralContraction == 0) return length * (1.0f - springPrestrain);
+  const float slack = rest - length, most = springPrestrain * length;
+  return length - (slack < most ? slack : most);  // length - std::min(slack, most)
+}
+// The contraction (contractSlackSprings) takes every slack spring the same share s of the way from its rest length
+// to its taut one. A spring of stiffness k compressed by a = rest - length, going c = rest - taut, then holds
+// k/2 (s c - a)^2 instead of k/2 a^2: its energy grows by s^2 k/2 c^2 - s k a c. Summed over the springs, s^2 Q - s L
+// with Q the sum of these quadratic terms and L of the linear ones.
+GB_FORMULA float contractionQuadraticOf(float stiffness, float rest, float taut) {
+  return 0.5f * stiffness * (rest - taut) * (rest - taut);
+}
+GB_FORMULA float contractionLinearOf(float stiffness, float length, float rest, float taut) {
+  return stiffness * (rest - length) * (rest - taut);
+}
+// The share of the way the contraction takes every slack spring: all of it where the energy that adds, Q - L, is
+// within the allowance, else the root of s^2 Q - s L = allowance (at least L / Q, where the springs' energy is what
+// it was: the first part of the way relieves their compression).
+GB_FORMULA float contractionShareOf(float quadratic, float linear, float allowance) {
+  if (!(quadratic - linear > allowance)) return 1.0f;
+  const float paid = allowance > 0.0f ? allowance : 0.0f;
+  return (linear + sqrt(linear * linear + 4.0f * quadratic * paid)) / (2.0f * quadratic);
+}
+// A contracting spring's new rest length, `share` of the way from `rest` to `taut` (exactly `taut` all the way).
+GB_FORMULA float contractedRestLengthOf(float rest, float taut, float share) {
+  return share == 1.0f ? taut : rest + share * (taut - rest);
 }
 // Crowding (mergeCrowdedParticles): a slack spring with an end at least as thick as the dip may merge its ends (if
 // it is also short against the film's median spring).

@@ -97,8 +97,10 @@ struct Params {
   int energyNeutralContraction GB_DEFAULT(0);  // a free bubble's slack spring contracts: 0 to as taut as new film
                                                // (springPrestrain: the bubble rounds up, its spring energy grows);
                                                // 1 only as far as it was slack (the energy stays; docs/model.md)
-  int airTransfer GB_DEFAULT(1);  // 1: air flow transfer, Eqs. (7)-(8) (the paper); 0: each particle feels only
-                                  // the inflow of Eq. (5) where it arrives (Figure 12a's comparison)
+  int mergeInterval GB_DEFAULT(8);  // a free bubble's crowded particles may merge on every this many frames (a merge
+                                    // remakes the mesh and reloads the stepper; docs/model.md); 1: every frame
+  int airTransfer GB_DEFAULT(1);    // 1: air flow transfer, Eqs. (7)-(8) (the paper); 0: each particle feels only
+                                    // the inflow of Eq. (5) where it arrives (Figure 12a's comparison)
 
   // --- Physical surface tension (docs/model.md, "Tension models") ---
   int tensionModel GB_DEFAULT(0);           // 0: the paper's springs, Eq. (3); 1: physical, 2 gamma times the area

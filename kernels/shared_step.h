@@ -37,7 +37,7 @@ struct StepUniformsBlock {
   float frameTime;        // the frame's length (s): the film checks' impact test (film_statistics_terms)
 };
 
-// Push constants of every stage (32 bytes of the 128 guaranteed).
+// Push constants of every stage (36 bytes of the 128 guaranteed).
 struct PushBlock {
   uint count;            // elements of the dispatch: particles, triangles, reduction inputs, or a colour's particles
   uint particles;        // particle count, the stride between the x, y and z blocks of a vector attribute
@@ -48,6 +48,7 @@ struct PushBlock {
                          // stages: where the energy terms start in the reduce buffer (reduceEnergyTermsAt)
   uint patches;          // coarse correction: the patch count P (Topology::patchOffset)
   uint solverParticles;  // the solver's particle count M (Topology::colourOrder), where the patch lists start
+  float ruleShare;       // film_rest_lengths with GB_RULE_CONTRACT: the share of the way each spring contracts
 };
 
 #ifdef __cplusplus
@@ -63,6 +64,7 @@ struct PushBlock {
 #define GB_REDUCE_STATISTICS_IN_A 32u  // film_statistics_tree: half A holds the level it reads (else half B)
 #define GB_RULE_YIELD 64u              // film_rest_lengths: the yield of stretched springs
 #define GB_RULE_PAYOUT 128u            // film_rest_lengths: the wire's payout
+#define GB_RULE_CONTRACT 1024u         // film_rest_lengths: the contraction of slack springs, PushBlock::ruleShare
 #define GB_REACH_FASTEST 256u          // contact_reach: the runs' fastest speeds (its second pass; else their sums)
 #define GB_REACH_FINAL 512u            // contact_reach: the reach from the runs' fastest speeds (its third pass)
 
@@ -108,23 +110,25 @@ struct PushBlock {
 #define GB_STAT_AREA 7       // a third of each of its triangles' area (m^2)
 #define GB_STAT_VOLUME 8     // a third of each of its triangles' cone volume to the frame's origin (m^3)
 #define GB_STAT_SPEED 9      // |v| (m/s): the largest is kept
-#define GB_STAT_WINDING_LEFT 10       // a third of each of its triangles' solid angle about the left tip over 4 pi
-#define GB_STAT_WINDING_RIGHT 11      // the same about the right tip
-#define GB_STAT_YIELDING 12           // half of each of its springs the yield rule would lengthen
-#define GB_STAT_SLACK 13              // half of each of its springs the contraction would take
-#define GB_STAT_CROWDED 14            // half of each of its slack springs with a thick end
-#define GB_STAT_RUNGS_PAST_GROWTH 15  // half of each of its rungs past growthStretch
-#define GB_STAT_WIRE_EDGES 16         // half the length of each of its springs along the wire (m)
-#define GB_STAT_WIRE_EDGE_COUNT 17    // half of each of its springs along the wire
-#define GB_STAT_RUNG_REST 18          // half the rest length of each of its rungs (m)
-#define GB_STAT_RUNG_COUNT 19         // half of each of its rungs
-#define GB_STAT_UNSTABLE 20           // 1 for a living particle not finite or faster than kUnstableSpeed: largest kept
-#define GB_STAT_DEPTH 21              // -y of a living particle (m): largest kept, the lowest particle
-#define GB_STAT_NEAR_LEFT 22          // -|x - left tip| of a living particle (m): largest kept, the nearest
-#define GB_STAT_NEAR_RIGHT 23         // -|x - right tip| (m): largest kept
-#define GB_STAT_THIN 24               // -e of a living particle with area (m): largest kept, the thinnest
-#define GB_STAT_IMPACT 25             // impact number of its hardest contact closing within the frame: largest kept
-#define GB_STATISTICS_TERMS 26
+#define GB_STAT_WINDING_LEFT 10           // a third of each of its triangles' solid angle about the left tip over 4 pi
+#define GB_STAT_WINDING_RIGHT 11          // the same about the right tip
+#define GB_STAT_YIELDING 12               // half of each of its springs the yield rule would lengthen
+#define GB_STAT_SLACK 13                  // half of each of its springs the contraction would take
+#define GB_STAT_CROWDED 14                // half of each of its slack springs with a thick end
+#define GB_STAT_RUNGS_PAST_GROWTH 15      // half of each of its rungs past growthStretch
+#define GB_STAT_WIRE_EDGES 16             // half the length of each of its springs along the wire (m)
+#define GB_STAT_WIRE_EDGE_COUNT 17        // half of each of its springs along the wire
+#define GB_STAT_RUNG_REST 18              // half the rest length of each of its rungs (m)
+#define GB_STAT_RUNG_COUNT 19             // half of each of its rungs
+#define GB_STAT_CONTRACTION_QUADRATIC 20  // half of contractionQuadraticOf of each of its springs the contraction takes
+#define GB_STAT_CONTRACTION_LINEAR 21     // half of contractionLinearOf of each of them
+#define GB_STAT_UNSTABLE 22    // 1 for a living particle not finite or faster than kUnstableSpeed: largest kept
+#define GB_STAT_DEPTH 23       // -y of a living particle (m): largest kept, the lowest particle
+#define GB_STAT_NEAR_LEFT 24   // -|x - left tip| of a living particle (m): largest kept, the nearest
+#define GB_STAT_NEAR_RIGHT 25  // -|x - right tip| (m): largest kept
+#define GB_STAT_THIN 26        // -e of a living particle with area (m): largest kept, the thinnest
+#define GB_STAT_IMPACT 27      // impact number of its hardest contact closing within the frame: largest kept
+#define GB_STATISTICS_TERMS 28
 #define GB_STAT_KEEPS_LARGEST(c) ((c) == GB_STAT_SPEED || (c) >= GB_STAT_UNSTABLE)
 
 #ifdef __cplusplus

@@ -195,6 +195,43 @@ TEST(DeviceContacts, ASearchShortOfRoomGrowsItSaysSoAndListsEveryPair) {
   }
 }
 
+// The most partners of one particle in a packed list of n particles.
+uint32_t mostPartners(const std::vector<uint32_t>& list, size_t n) {
+  uint32_t most = 0;
+  for (size_t i = 0; i < n; ++i) most = std::max(most, list[i + 1] - list[i]);
+  return most;
+}
+
+TEST(DeviceContacts, ASearchThatOutgrowsItsRowsKeepsTheHistoryItLeftOnTheDevice) {
+  // The crumpled default film searched with a small margin into rows and a list that just hold it, the list left on
+  // the device; then searched with a wider margin, which finds more than they hold, with its own list as
+  // the history (as Simulation passes it). The history comes back from where the first search's layout put it
+  // before the rows grow, on the device: the pairs' rest distances are the CPU's, which searches with the first list as
+  // the history.
+  GB_REQUIRE_VULKAN(device);
+  const Params p;
+  Film cpu = crumpledFilm(p, 3), gpu = cpu;
+  findContacts(p, 0.0f, 0.002f, cpu);
+  VulkanStepperOptions options = test::everythingOnDevice();
+  options.contactRowCapacity = mostPartners(cpu.topology.contacts, cpu.state.size());
+  options.contactEntryCapacity = cpu.topology.contacts[cpu.state.size()];
+  VulkanStepper stepper(device, options);
+  stepper.load(p, gpu);
+  ASSERT_TRUE(stepper.findContactsOnDevice(p, 0.0f, 0.002f, {}));
+  ASSERT_EQ(stepper.contactRecord().regrown, 0u) << "the first search fits its rows";
+  findContacts(p, 0.0f, 0.03f, cpu, {cpu.topology.contacts, cpu.state.size()});
+  const uint64_t readBefore = stepper.readback().bytes;
+  ASSERT_TRUE(stepper.findContactsOnDevice(p, 0.0f, 0.03f, {{}, gpu.state.size(), true}));
+  EXPECT_EQ(stepper.contactRecord().regrown, 1u) << "the wider search must outgrow the rows (room for "
+                                                 << options.contactRowCapacity << ") for the test to mean something";
+  // The two searches' headers and the list's size come back, a few hundred bytes; the history (1.1 MB) does not.
+  EXPECT_LT(stepper.readback().bytes - readBefore, 1024u) << "the history stayed on the device";
+  stepper.storeContacts(gpu);
+  EXPECT_GT(expectSameContacts(cpu.topology.contacts, gpu.topology.contacts, cpu.state.size(),
+                               "the crumpled film searched wider, the device's list as the history"),
+            1000u);
+}
+
 TEST(DeviceContacts, TheDefaultPerformanceOnTheDeviceListsWhatTheCpuWould) {
   // The default performance on the Vulkan backend, whose frames search on the device with the last frame's list as
   // the history: after each of these frames the CPU's search on the same film and history lists the same pairs.

@@ -9,10 +9,12 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <string>
 
 #include "cpu_stepper.h"
 #include "default_performance_on_device.h"
+#include "film_growth.h"
 #include "scene_file.h"
 #include "simulation.h"
 #include "vulkan_stepper.h"
@@ -151,6 +153,9 @@ void expectSameChecks(const FilmChecks& device, const Params& p, const Film& fil
   between(device.slack, exact.slack, loose.slack, "slack");
   between(device.crowded, exact.crowded, loose.crowded, "crowded");
   between(device.rungsPastGrowth, exact.rungsPastGrowth, loose.rungsPastGrowth, "rungs past growth");
+  // The contraction's energy sums: float over the particles on the device, double over the springs on the CPU.
+  EXPECT_NEAR(device.contractionQuadratic, exact.contractionQuadratic, 1e-4f * exact.contractionQuadratic) << name;
+  EXPECT_NEAR(device.contractionLinear, exact.contractionLinear, 1e-4f * exact.contractionLinear) << name;
   EXPECT_EQ(device.rungs, exact.rungs) << name;
   EXPECT_EQ(device.wireEdges, exact.wireEdges) << name;
   EXPECT_NEAR(device.rungRest, exact.rungRest, 1e-5f * exact.rungRest) << name;
@@ -182,6 +187,51 @@ TEST(DeviceFilmChecks, TheDevicesChecksAreTheCpus) {
   });
 }
 
+TEST(DeviceFilmChecks, TheDeviceContractsSlackSpringsAsTheCpuDoes) {
+  // A closed film whose springs are slack by 1-5% of their length or taut, thinner than the dip: the contraction on
+  // the device (film_rest_lengths, the share from the device's sums) against contractSlackSprings, with the allowance
+  // unbounded and with a third of what all the way needs. Rest lengths within 1e-5 relative: each is
+  // rest + s (taut - rest), and the device's share s comes from float sums of the particles' halves (1e-4 of the
+  // way, itself about a tenth of the rest length).
+  GB_REQUIRE_VULKAN(device);
+  const Params p;
+  Film slack = generateSphere(p, Vec3(0.0f, 1.0f, 0.0f), 0.5f, 3);
+  Topology& topo = slack.topology;
+  for (size_t k = 0; k < topo.springCount(); ++k) {
+    const float length =
+        (slack.state.position.get(topo.springEnds[2 * k]) - slack.state.position.get(topo.springEnds[2 * k + 1]))
+            .norm();
+    topo.restLength[k] = (k % 2 ? 0.95f : 1.01f + 0.04f * static_cast<float>(k % 7) / 6.0f) * length;
+  }
+  for (float& e : slack.state.thickness) e = 0.5f * initialThickness(p);
+  const ContractionEnergy energy = contractionEnergy(p, slack);
+  const float allTheWay = energy.quadratic - energy.linear;
+  ASSERT_GT(allTheWay, 0.0f) << "the springs must gain energy contracting for the allowance to bind";
+  for (const float allowance : {std::numeric_limits<float>::infinity(), allTheWay / 3.0f}) {
+    Film cpu = slack, gpu = slack;
+    SpringEnergyAllowance left{allowance};
+    const size_t contracted = contractSlackSprings(p, cpu, left);
+    ASSERT_GT(contracted, 100u);
+    VulkanStepper stepper(device, test::everythingOnDevice());
+    stepper.load(p, gpu);
+    FilmProbe probe;
+    probe.atPresentPositions = false;
+    FilmSums sums;
+    FilmChecks checks;
+    ASSERT_TRUE(stepper.probeFilm(probe, sums, checks));
+    const float share = contractionShareOf(checks.contractionQuadratic, checks.contractionLinear, allowance);
+    ASSERT_TRUE(stepper.contractSlackSprings(share));
+    stepper.storeRestLengths(gpu);
+    float worst = 0.0f;
+    for (size_t k = 0; k < topo.springCount(); ++k)
+      worst = std::max(worst,
+                       std::abs(gpu.topology.restLength[k] - cpu.topology.restLength[k]) / cpu.topology.restLength[k]);
+    std::printf("allowance %.3g J: %zu springs contracted, share %.6f on the device, rest lengths %.3g apart\n",
+                allowance, contracted, share, worst);
+    EXPECT_LT(worst, 1e-5f) << "allowance " << allowance;
+  }
+}
+
 TEST(DeviceFilmChecks, TheStateStaysOnTheDeviceWhereNoRuleActs) {
   // The default performance to the free bubble on the Vulkan backend twice: with the state brought back after every
   // step, and left on the device where the checks let a frame pass. The device steps the same film either way and
@@ -206,14 +256,20 @@ TEST(DeviceFilmChecks, TheStateStaysOnTheDeviceWhereNoRuleActs) {
   EXPECT_EQ(all.framesPassed, 0);
   EXPECT_EQ(some.stateReadbacks + static_cast<size_t>(some.framesPassed), all.stateReadbacks)
       << "a frame the checks pass brings nothing back";
-  // Every frame the checks held names the rule that may act on it; the free bubble's slack springs hold most.
+  // Every frame the checks held names the rule that may act on it. The free bubble's slack springs contract on the
+  // device; its crowded particles hold a frame every mergeInterval frames at most.
   long held = 0;
   for (const auto& [rule, frames] : some.framesHeldByRule) {
     std::printf("held by %s: %ld frames\n", rule.c_str(), frames);
     held += frames;
   }
   EXPECT_EQ(held + some.framesPassed, some.frames);
-  EXPECT_GT(some.framesHeldByRule.count("contraction"), 0u);
+  EXPECT_EQ(some.framesHeldByRule.count("contraction"), 0u);
+  const int freeFrames = 110 - 93;  // pinched off at frame 93 (1.86 s)
+  EXPECT_GT(some.framesHeldByRule.count("merge"), 0u);
+  if (some.framesHeldByRule.count("merge")) {
+    EXPECT_LE(some.framesHeldByRule.at("merge"), freeFrames / scene.run.params.mergeInterval);
+  }
   EXPECT_TRUE(all.framesHeldByRule.empty()) << "read back every frame, the checks were not asked";
 }
 

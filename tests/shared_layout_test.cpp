@@ -93,13 +93,14 @@ TEST(SharedLayout, StepUniformsAndPushConstantsMatchTheCppOffsets) {
     EXPECT_EQ(m.offset, expected.at(m.name)) << m.name;
   }
   const auto push = structLayout(kernels::spirv(kernels::Kernel::TreeSum), "PushBlock");
-  ASSERT_EQ(push.size(), 8u);
+  ASSERT_EQ(push.size(), 9u);
   EXPECT_EQ(push[0].name, "count");
   EXPECT_EQ(push[3].offset, offsetof(gpu::PushBlock, reduceFlags));
   EXPECT_EQ(push[4].offset, offsetof(gpu::PushBlock, triangles));
   EXPECT_EQ(push[5].offset, offsetof(gpu::PushBlock, first));
   EXPECT_EQ(push[6].offset, offsetof(gpu::PushBlock, patches));
   EXPECT_EQ(push[7].offset, offsetof(gpu::PushBlock, solverParticles));
+  EXPECT_EQ(push[8].offset, offsetof(gpu::PushBlock, ruleShare));
 }
 
 }  // namespace

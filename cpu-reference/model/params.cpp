@@ -78,6 +78,7 @@ constexpr std::array kFields = {GB_REAL(frameTime, 1e-5, 0.1, " s"),
                                 GB_REAL(yieldStretch, 0.0, 100.0, ""),
                                 GB_REAL(yieldThickness, 0.0, 1e-3, " m"),
                                 GB_INTEGER(energyNeutralContraction, 0, 1),
+                                GB_INTEGER(mergeInterval, 1, 1000),
                                 GB_INTEGER(airTransfer, 0, 1),
                                 GB_INTEGER(tensionModel, 0, 1),
                                 GB_REAL(gibbsElasticity, 0.0, 1.0, " N/m")};

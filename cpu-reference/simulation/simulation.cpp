@@ -125,6 +125,18 @@ double millisecondsBetween(Clock::time_point from, Clock::time_point to) {
   return std::chrono::duration<double, std::milli>(to - from).count();
 }
 
+// The merges of a frame on which they are due: up to one round for each frame since the last (a round merges no two
+// particles of one one-ring), so that they keep up with the film as when they run every frame.
+size_t mergeCrowdedParticlesInRounds(const Params& params, Film& film, SpringEnergyAllowance& allowance) {
+  size_t merged = 0;
+  for (int round = 0; round < params.mergeInterval; ++round) {
+    const size_t more = mergeCrowdedParticles(params, film, allowance);
+    if (more == 0) break;
+    merged += more;
+  }
+  return merged;
+}
+
 }  // namespace
 
 Simulation::Simulation(const Params& params, const WandTool& tool, const WandState& wands,
@@ -250,6 +262,7 @@ void Simulation::advanceFrame(const WandState& next) {
     budgetRecord_.largestShift = std::max(budgetRecord_.largestShift, budget.shift.norm());
   }
   stepCount_ += substeps_;
+  framesSinceMerge_ = film_.topology.isClosed() ? framesSinceMerge_ + 1 : 0;
   wands_ = next;
   film_.loopHang = hangNext;
   time_ += params_.frameTime;
@@ -262,6 +275,7 @@ void Simulation::advanceFrame(const WandState& next) {
     ++readbackRecord_.framesPassed;
   else
     applyRulesBetweenSteps(next, wandSpeed);
+  if (mergeDue()) framesSinceMerge_ = 0;  // its turn taken, on whichever path the frame went
   const auto changed = Clock::now();
   updateContacts();
   phases_ = {millisecondsBetween(started, stepped), millisecondsBetween(stepped, changed),
@@ -277,11 +291,16 @@ bool Simulation::passesOnDevice(const WandState& next, float wandSpeed) {
     // The rest-length rules the device runs itself may still act: there. The payout widens the wire's band, which
     // the checks then measure again for a new ring (growFilmAtWire looks for one after its payout).
     const bool yielded = checks->yielding > 0 && yieldApplies() && stepper_->yieldStretchedSprings();
+    const bool contracted =
+        checks->slack > 0 && contractionApplies() &&
+        stepper_->contractSlackSprings(contractionShareOf(checks->contractionQuadratic, checks->contractionLinear,
+                                                          stepper_->lastBudget().released));
     const bool paidOut = checks->rungsPastGrowth > 0 && payoutApplies(wandSpeed) && stepper_->payOutFilmAtWire();
     if (paidOut) checks = checksOnDevice(false);
     if (yielded) checks->yielding = 0;  // its springs now at the yield stretch, within the checks' margin
+    if (contracted) checks->slack = 0;  // taken as far as the allowance pays
     if (paidOut) checks->rungsPastGrowth = 0;
-    restLengthsOnDevice_ = restLengthsOnDevice_ || yielded || paidOut;
+    restLengthsOnDevice_ = restLengthsOnDevice_ || yielded || contracted || paidOut;
   }
   if (const char* rule = ruleThatMayAct(*checks, next, wandSpeed, true)) {
     ++readbackRecord_.framesHeldByRule[rule];
@@ -311,11 +330,11 @@ void Simulation::applyRulesBetweenSteps(const WandState& next, float wandSpeed) 
       else if (yieldStretchedSprings(params_, film_) > 0)
         stepper_->updateRestLengths(film_);
     }
-    // What contraction and merging add to the springs, the step's dissipation pays (SpringEnergyAllowance).
+    // What contraction and merging add to the springs, the step's dissipation pays (SpringEnergyAllowance). The
+    // merges, which remake the mesh and reload the stepper, run every mergeInterval frames.
     SpringEnergyAllowance allowance{stepper_->lastBudget().released};
-    if (film_.topology.isClosed() && contractSlackSprings(params_, film_, allowance) > 0)
-      stepper_->updateRestLengths(film_);
-    if (mergeCrowdedParticles(params_, film_, allowance) > 0) reloadFilm();
+    if (contractionApplies()) contractSlackSpringsWhereTheyLie(allowance);
+    if (mergeDue() && mergeCrowdedParticlesInRounds(params_, film_, allowance) > 0) reloadFilm();
     growFilm(next, wandSpeed);
   }
   const bool tipsTogether =
@@ -329,7 +348,8 @@ void Simulation::recordReadback(long loadsBefore) {
   const DeviceReadback before = std::exchange(readbackRecorded_, stepper_->readback());
   const DeviceReadback& now = readbackRecorded_;
   const uint64_t bytes = now.bytes - before.bytes;
-  const bool topologyEvent = burst_.active() || events_.started || events_.finished || events_.particlesRemoved > 0 ||
+  const bool burstScheduled = burst_.cause != nullptr && burst_.finished < 0;  // a crack to come, or one opening
+  const bool topologyEvent = burstScheduled || events_.started || events_.finished || events_.particlesRemoved > 0 ||
                              events_.pinchedOff || events_.particlesAdded > 0 || loads_ != loadsBefore;
   ReadbackRecord& r = readbackRecord_;
   ++r.frames;
@@ -351,6 +371,26 @@ std::optional<FilmChecks> Simulation::checksOnDevice(bool atPresentPositions) {
   if (!stepper_->probeFilm(probe, sums, checks)) return std::nullopt;
   return checks;
 }
+
+void Simulation::contractSlackSpringsWhereTheyLie(SpringEnergyAllowance& allowance) {
+  // Where the stepper checks the film on its device, the contraction runs there with the share its sums give, as on
+  // the frames that pass the checks: a frame ends with the same film whichever way it went.
+  if (const std::optional<FilmChecks> checks = checksOnDevice(false); checks && checks->slack > 0) {
+    const float quadratic = checks->contractionQuadratic, linear = checks->contractionLinear;
+    const float share = contractionShareOf(quadratic, linear, allowance.joules);
+    if (stepper_->contractSlackSprings(share)) {
+      allowance.joules -= share * share * quadratic - share * linear;
+      restLengthsOnDevice_ = true;
+      pullState();  // the rest lengths, for the merges
+      return;
+    }
+  }
+  if (contractSlackSprings(params_, film_, allowance) > 0) stepper_->updateRestLengths(film_);
+}
+
+bool Simulation::contractionApplies() const { return film_.topology.isClosed() && params_.tensionModel == 0; }
+
+bool Simulation::mergeDue() const { return film_.topology.isClosed() && framesSinceMerge_ >= params_.mergeInterval; }
 
 bool Simulation::yieldApplies() const {
   return !film_.topology.isClosed() && params_.tensionModel == 0 && params_.yieldStretch > 1.0f;
@@ -375,8 +415,10 @@ const char* Simulation::ruleThatMayAct(const FilmChecks& c, const WandState& nex
     }
   }
   if (deviceRules && yieldApplies() && c.yielding > 0) return "yield";
-  if (topo.isClosed() && p.tensionModel == 0 && c.slack > 0) return "contraction";
-  if (topo.isClosed() && p.tensionModel == 0 && c.crowded > 0) return "merge";
+  // The merges before the contraction, which the CPU runs first: a frame they hold is named by them, as the one
+  // rule of the two that the device cannot run.
+  if (mergeDue() && p.tensionModel == 0 && c.crowded > 0) return "merge";
+  if (deviceRules && contractionApplies() && c.slack > 0) return "contraction";
   // growFilm: the payout, and a new ring once the band is wide enough.
   if (deviceRules && wandSpeed >= kDrawingSpeed && film_.wireLiquid > 0.0f && c.rungsPastGrowth > 0) return "payout";
   if (wireBandWidthOf(c.rungRest, c.rungs, c.wireEdgeLength, c.wireEdges) >= kRingInsertionWidth * (1.0f - m))

@@ -13,6 +13,7 @@
 #include "collision.h"
 #include "cpu_stepper.h"
 #include "film.h"
+#include "film_growth.h"
 #include "pinch_off.h"
 #include "stepper.h"
 
@@ -188,6 +189,13 @@ class Simulation {
                                            bool deviceRules) const;
   // Whether the yield of stretched springs applies to the film: an open film of the spring model with yieldStretch.
   [[nodiscard]] bool yieldApplies() const;
+  // Whether the contraction of slack springs applies to the film: a closed film of the spring model.
+  [[nodiscard]] bool contractionApplies() const;
+  // The contraction (contractSlackSprings) on the film in host memory, or on the stepper's device where it checks the
+  // film there; either way within `allowance`, which it spends.
+  void contractSlackSpringsWhereTheyLie(SpringEnergyAllowance& allowance);
+  // Whether a free bubble's crowded particles merge this frame: every Params::mergeInterval frames of a closed film.
+  [[nodiscard]] bool mergeDue() const;
   // Whether the wire pays out film now: its tips draw (kDrawingSpeed), it holds solution, its loop is intact.
   [[nodiscard]] bool payoutApplies(float wandSpeed) const;
   // Brings the state and the contact list back from the stepper's device where they stayed (film(), every rule).
@@ -222,6 +230,7 @@ class Simulation {
   ContactSearch contactSearch_;
   long stepCount_ = 0;
   BudgetRecord budgetRecord_;
+  int framesSinceMerge_ = 0;  // a closed film's frames since its crowded particles last could merge
   ReadbackRecord readbackRecord_;
   DeviceReadback readbackRecorded_;  // the stepper's copies counted up to the last frame's record
   long loads_ = 0;                   // reloadFilm calls: a merge's or a growth's new film on the stepper

@@ -146,6 +146,9 @@ class Stepper {
   // lengths with updateRestLengths).
   virtual bool yieldStretchedSprings() { return false; }
   virtual bool payOutFilmAtWire() { return false; }
+  // The same for the contraction of a closed film's slack springs (contractSlackSprings), each `share` of the way
+  // (contractionShareOf: the caller weighs the checks' contractionEnergy against the allowance).
+  virtual bool contractSlackSprings(float /*share*/) { return false; }
   virtual void storeRestLengths(Film&) {}
   [[nodiscard]] virtual DeviceReadback readback() const { return {}; }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "collision.h"
+#include "film_growth.h"
 
 namespace gb {
 
@@ -59,6 +60,9 @@ FilmChecks checkFilm(const Params& params, const Film& film, const FilmProbe& pr
   }
   checks.hardestImpact = hardestImpact(params, probe.frameTime, film).number;
   countSprings(params, film, margin, checks);
+  const ContractionEnergy contraction = contractionEnergy(params, film);
+  checks.contractionQuadratic = contraction.quadratic;
+  checks.contractionLinear = contraction.linear;
   return checks;
 }
 

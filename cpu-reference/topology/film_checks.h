@@ -31,10 +31,13 @@ struct FilmChecks {
   std::array<float, 2> nearestTip{kInfinity, kInfinity};  // distance from each tip to the nearest living particle (m)
   std::array<float, 2> winding{0.0f, 0.0f};               // the film's winding number about each tip (windingNumber)
   float thinnest = kInfinity;                             // thickness of the thinnest living particle with area (m)
-  float hardestImpact = 0.0f;    // impact number of the hardest contact pair closing within the frame (hardestImpact)
-  float yielding = 0.0f;         // springs the yield rule would lengthen (yieldStretchedSprings, on an open film)
-  float slack = 0.0f;            // springs the contraction would take (contractSlackSprings, on a closed film)
-  float crowded = 0.0f;          // slack springs with a thick end (mergeCrowdedParticles' candidates)
+  float hardestImpact = 0.0f;  // impact number of the hardest contact pair closing within the frame (hardestImpact)
+  float yielding = 0.0f;       // springs the yield rule would lengthen (yieldStretchedSprings, on an open film)
+  float slack = 0.0f;          // springs the contraction would take (contractSlackSprings, on a closed film)
+  float crowded = 0.0f;        // slack springs with a thick end (mergeCrowdedParticles' candidates)
+  // The spring energy the contraction adds taking its springs the share s of the way, s^2 contractionQuadratic -
+  // s contractionLinear (contractionEnergy, J): exact, not loosened.
+  float contractionQuadratic = 0.0f, contractionLinear = 0.0f;
   float rungsPastGrowth = 0.0f;  // rungs past growthStretch (payOutFilmAtWire)
   // The wire's band (wireBandWidth): the rungs, their summed rest length (m), the springs along the wire and their
   // summed length (m).

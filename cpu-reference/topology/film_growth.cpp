@@ -239,38 +239,37 @@ size_t contractSlackSprings(const Params& params, Film& film) {
   return contractSlackSprings(params, film, unbounded);
 }
 
+ContractionEnergy contractionEnergy(const Params& params, const Film& film) {
+  if (params.tensionModel != 0) return {};
+  const std::vector<float>& rest = film.topology.restLength;
+  const State& s = film.state;
+  const float dipThickness = initialThickness(params);
+  double quadratic = 0.0, linear = 0.0;
+  forEachSpringOffTheWire(film, [&](size_t k, uint32_t a, uint32_t b, float length) {
+    if (!springContracts(length, rest[k], std::max(s.thickness[a], s.thickness[b]), dipThickness)) return;
+    const float taut = tautRestLengthOf(length, rest[k], params.springPrestrain, params.energyNeutralContraction);
+    const float stiffness = springStiffness(s, a, b);
+    quadratic += contractionQuadraticOf(stiffness, rest[k], taut);
+    linear += contractionLinearOf(stiffness, length, rest[k], taut);
+  });
+  return {static_cast<float>(quadratic), static_cast<float>(linear)};
+}
+
 size_t contractSlackSprings(const Params& params, Film& film, SpringEnergyAllowance& allowance) {
   // The physical model's tension does not use rest lengths (tensionModel 1).
   if (params.tensionModel != 0) return 0;
-  Topology& topo = film.topology;
-  const State& s = film.state;
+  const ContractionEnergy energy = contractionEnergy(params, film);
+  const float share = contractionShareOf(energy.quadratic, energy.linear, allowance.joules);
+  if (share == 0.0f) return 0;
+  allowance.joules -= share * share * energy.quadratic - share * energy.linear;
+  const std::vector<float>& rest = film.topology.restLength;
+  const std::vector<float>& thickness = film.state.thickness;
   const float dipThickness = initialThickness(params);
-  struct Contraction {
-    float slack;  // compression over length: the slackest contract first
-    size_t spring;
-    float rest, energy;  // the new rest length, and the spring energy it adds (J)
-  };
-  std::vector<Contraction> candidates;
-  forEachSpringOffTheWire(film, [&](size_t k, uint32_t a, uint32_t b, float length) {
-    const float rest = topo.restLength[k];
-    if (!springContracts(length, rest, std::max(s.thickness[a], s.thickness[b]), dipThickness)) return;
-    const float taut =
-        params.energyNeutralContraction
-            ? length - std::min(rest - length, params.springPrestrain * length)  // stretched as compressed
-            : length * (1.0f - params.springPrestrain);                          // as taut as new film
-    candidates.push_back(
-        {(rest - length) / length, k, taut, springEnergy(s, a, b, length, taut) - springEnergy(s, a, b, length, rest)});
+  return reshapeSpringsOffTheWire(film, [&](size_t k, uint32_t a, uint32_t b, float length) -> std::optional<float> {
+    if (!springContracts(length, rest[k], std::max(thickness[a], thickness[b]), dipThickness)) return std::nullopt;
+    const float taut = tautRestLengthOf(length, rest[k], params.springPrestrain, params.energyNeutralContraction);
+    return contractedRestLengthOf(rest[k], taut, share);
   });
-  std::sort(candidates.begin(), candidates.end(), [](const Contraction& x, const Contraction& y) {
-    return x.slack != y.slack ? x.slack > y.slack : x.spring < y.spring;
-  });
-  size_t contracted = 0;
-  for (const Contraction& c : candidates) {
-    if (!allowance.pays(c.energy)) continue;
-    topo.restLength[c.spring] = c.rest;
-    ++contracted;
-  }
-  return contracted;
 }
 
 namespace {

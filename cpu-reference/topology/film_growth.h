@@ -69,10 +69,18 @@ struct SpringEnergyAllowance {
 // spring energy (docs/model.md "Energy budget"). Otherwise the springs it contracts put back no more spring energy
 // than `allowance` holds, the energy the last step released below its energy budget (VelocityBudget::released): the
 // film's tension stands in for a surface energy the springs do not hold, and it rounds the bubble no faster than
-// the bubble's motion dissipates, so the film never gains energy from it. The slackest springs contract first; a
-// spring compressed by more than the prestrain gives energy back. Returns how many springs contracted.
+// the bubble's motion dissipates, so the film never gains energy from it. Where the allowance does not pay for all
+// of them, every slack spring goes the share of the way that spends it exactly (contractionShareOf): a rule of each
+// spring by itself once the share is known, which the Vulkan stepper runs on its device (film_rest_lengths.comp).
+// Returns how many springs contracted.
 size_t contractSlackSprings(const Params& params, Film& film, SpringEnergyAllowance& allowance);
 size_t contractSlackSprings(const Params& params, Film& film);  // no bound
+// The spring energy contractSlackSprings adds taking every slack spring the share s of the way, s^2 quadratic -
+// s linear (J; contractionQuadraticOf and contractionLinearOf), summed in double in the springs' order.
+struct ContractionEnergy {
+  float quadratic = 0.0f, linear = 0.0f;
+};
+ContractionEnergy contractionEnergy(const Params& params, const Film& film);
 
 // Where a closed film stays pushed together because it is too thick to contract (above), its particles merge:
 // a spring between two particles of which one is at least as thick as the dip, shorter than its rest length and

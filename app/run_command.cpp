@@ -235,7 +235,7 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
   if (o.burstAt >= 0 && poke == 0)
     std::printf("note: no poke at %.2f s: the input is not a script (--burst-at pokes any input)\n", o.burstAt);
   std::printf("giantbubble run: %zu particles, %zu triangles, %d substeps of %.3g ms per %.3g s frame, %ld frames\n",
-              sim.film().state.size(), sim.film().topology.triangleCount(), sim.substepsPerFrame(),
+              sim.particleCount(), sim.triangleCount(), sim.substepsPerFrame(),
               1e3 * o.params.frameTime / sim.substepsPerFrame(), o.params.frameTime, frames);
 
   StatsWriter stats(o.outDir / "stats.csv");

@@ -100,6 +100,9 @@ class Simulation {
     pullState();
     return film_;
   }
+  // The film's particles (living or not) and triangles, always current in host memory: nothing is brought back.
+  [[nodiscard]] size_t particleCount() const { return film_.state.size(); }
+  [[nodiscard]] size_t triangleCount() const { return film_.topology.triangleCount(); }
   // The film as far as where it is: its topology, which particles live and their positions, the positions brought
   // back alone from the device where the state stayed there (Stepper::storePositions, a tenth of the state). The
   // rest of its state is as it was last brought back: read that through film(). For the renderer's framing and hole

@@ -139,11 +139,15 @@ GB_FORMULA float contractionQuadraticOf(float stiffness, float rest, float taut)
 GB_FORMULA float contractionLinearOf(float stiffness, float length, float rest, float taut) {
   return stiffness * (rest - length) * (rest - taut);
 }
+// The spring energy the contraction adds taking its springs `share` of the way: s^2 Q - s L.
+GB_FORMULA float contractionEnergyOf(float share, float quadratic, float linear) {
+  return share * share * quadratic - share * linear;
+}
 // The share of the way the contraction takes every slack spring: all of it where the energy that adds, Q - L, is
 // within the allowance, else the root of s^2 Q - s L = allowance (at least L / Q, where the springs' energy is what
 // it was: the first part of the way relieves their compression).
 GB_FORMULA float contractionShareOf(float quadratic, float linear, float allowance) {
-  if (!(quadratic - linear > allowance)) return 1.0f;
+  if (!(quadratic > 0.0f) || !(quadratic - linear > allowance)) return 1.0f;  // Q = 0: no spring has a way to go
   const float paid = allowance > 0.0f ? allowance : 0.0f;
   return (linear + sqrt(linear * linear + 4.0f * quadratic * paid)) / (2.0f * quadratic);
 }

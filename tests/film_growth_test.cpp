@@ -102,6 +102,19 @@ TEST(FilmGrowth, SlackSpringsContractToANewFilmsTautnessAndTheWireTautAndThickOn
   EXPECT_EQ(contractSlackSprings(p, film), 0u);
 }
 
+// The share of the way the contraction goes, the root of s^2 Q - s L = allowance where all the way (Q - L) costs
+// more, by hand: Q = 2 J, L = 1 J; an allowance of 0.5 J gives (1 + sqrt(5)) / 4, none gives 1/2 (the energy back
+// where it started), 10 J or an unbounded one all the way; no way to go (Q = 0) all the way whatever the allowance.
+TEST(FilmGrowth, TheContractionsShareSpendsTheAllowanceExactly) {
+  EXPECT_FLOAT_EQ(contractionShareOf(2.0f, 1.0f, 0.5f), (1.0f + std::sqrt(5.0f)) / 4.0f);
+  EXPECT_FLOAT_EQ(contractionShareOf(2.0f, 1.0f, 0.0f), 0.5f);
+  EXPECT_EQ(contractionShareOf(2.0f, 1.0f, 10.0f), 1.0f);
+  EXPECT_EQ(contractionShareOf(2.0f, 1.0f, std::numeric_limits<float>::infinity()), 1.0f);
+  EXPECT_EQ(contractionShareOf(0.0f, 0.0f, -1e-9f), 1.0f);
+  const float s = contractionShareOf(2.0f, 1.0f, 0.5f);
+  EXPECT_NEAR(contractionEnergyOf(s, 2.0f, 1.0f), 0.5f, 1e-6f) << "spent exactly, within float rounding";
+}
+
 // Contraction within an allowance, the energy the step before released (VelocityBudget::released): springs slack by
 // 1-5% of their length, which as taut as new film (10%) gain spring energy. With the allowance unbounded every one
 // goes all the way; with less, every one goes the same share of the way, the share whose spring energy sum

@@ -379,7 +379,7 @@ void Simulation::contractSlackSpringsWhereTheyLie(SpringEnergyAllowance& allowan
     const float quadratic = checks->contractionQuadratic, linear = checks->contractionLinear;
     const float share = contractionShareOf(quadratic, linear, allowance.joules);
     if (stepper_->contractSlackSprings(share)) {
-      allowance.joules -= share * share * quadratic - share * linear;
+      allowance.joules -= contractionEnergyOf(share, quadratic, linear);
       restLengthsOnDevice_ = true;
       pullState();  // the rest lengths, for the merges
       return;

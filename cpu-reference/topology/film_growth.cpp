@@ -261,7 +261,7 @@ size_t contractSlackSprings(const Params& params, Film& film, SpringEnergyAllowa
   const ContractionEnergy energy = contractionEnergy(params, film);
   const float share = contractionShareOf(energy.quadratic, energy.linear, allowance.joules);
   if (share == 0.0f) return 0;
-  allowance.joules -= share * share * energy.quadratic - share * energy.linear;
+  allowance.joules -= contractionEnergyOf(share, energy.quadratic, energy.linear);
   const std::vector<float>& rest = film.topology.restLength;
   const std::vector<float>& thickness = film.state.thickness;
   const float dipThickness = initialThickness(params);

@@ -415,8 +415,8 @@ const char* Simulation::ruleThatMayAct(const FilmChecks& c, const WandState& nex
     }
   }
   if (deviceRules && yieldApplies() && c.yielding > 0) return "yield";
-  // The merges before the contraction, which the CPU runs first: a frame they hold is named by them, as the one
-  // rule of the two that the device cannot run.
+  // The merges are asked before the contraction, although the CPU runs the contraction first: a frame they hold is
+  // named by them, the one rule of the two that the device cannot run.
   if (mergeDue() && p.tensionModel == 0 && c.crowded > 0) return "merge";
   if (deviceRules && contractionApplies() && c.slack > 0) return "contraction";
   // growFilm: the payout, and a new ring once the band is wide enough.

@@ -20,6 +20,7 @@
 #include "run_output.h"
 #include "simulation.h"
 #include "thickness_image.h"
+#include "thread_policy.h"
 #include "wand_log.h"
 
 namespace gb {
@@ -238,6 +239,7 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
               sim.particleCount(), sim.triangleCount(), sim.substepsPerFrame(),
               1e3 * o.params.frameTime / sim.substepsPerFrame(), o.params.frameTime, frames);
 
+  SimulationThreads threads;  // one fewer for each core another process keeps busy (thread_policy.h)
   StatsWriter stats(o.outDir / "stats.csv");
   const FrameStats first = sim.stats();
   // A performer waited for: the film is made when both hands are found, and the run's time 0 is then.
@@ -286,6 +288,7 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
     const auto frameStart = std::chrono::steady_clock::now();
     std::string events;
     if (frame == poke && pokeTop(sim)) events += "poked ";  // nothing to poke once the film is gone
+    threads.update();
     try {
       sim.advanceFrame(wands.wands);
     } catch (const SimulationUnstable& e) {

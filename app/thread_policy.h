@@ -23,4 +23,33 @@ inline constexpr const char* kOpenMpSpinCount = "2000";
 // on with libgomp's default, which is slower, never wrong).
 void setOpenMpWaiting(char** argv);
 
+// How many OpenMP threads the simulation runs: all of them, or one fewer for each core other processes keep busy. A
+// barrier waits for its slowest thread, and a thread that shares its core with another busy process is slow: the
+// default film on two cores beside one busy process runs at 60 frames/s on two threads and 72 on one (quiet, 106 and
+// 75; docs/performance.md "Threads"). The results do not depend on the count (ThreadPolicy.* checks it).
+// The rule, pure: `current` threads of at most `most`, where other processes keep `othersLoad` cores busy. It gives
+// one more core away when the load exceeds the cores given away by 0.6, and takes one back when it falls 0.6 below
+// them (a core, 0.4 past them), so that a load between does not make it flap; one thread a sample at most.
+int threadsBesideLoad(int most, int current, double othersLoad);
+
+// The simulation's threads, updated from the machine's load: call update() before each frame. It samples the load
+// of other processes every half second, the busy time of the cores this process may run on (/proc/stat, its
+// affinity) less this process's own (getrusage), and sets omp_set_num_threads when threadsBesideLoad changes its mind.
+// Off where OMP_NUM_THREADS is set (whoever sets it gets what they set) or the machine's load cannot be read: all
+// threads, always.
+class SimulationThreads {
+ public:
+  SimulationThreads();
+  int update();  // the threads now in use
+
+ private:
+  struct Sample {
+    double wall = 0, machineBusy = 0, own = 0;  // s
+  };
+  [[nodiscard]] static bool sample(Sample& s);
+  int most_ = 1, current_ = 1;
+  bool on_ = false;
+  Sample last_;
+};
+
 }  // namespace gb

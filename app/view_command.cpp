@@ -19,6 +19,7 @@
 #include "realtime_pacer.h"
 #include "run_output.h"
 #include "scripted_gestures.h"
+#include "thread_policy.h"
 #include "video_stream.h"
 #include "vulkan_stepper.h"
 #include "window.h"
@@ -454,6 +455,7 @@ int runView(ViewOptions o) try {
     show.hands(calibration.toCamera(left.cast<double>()), calibration.toCamera(right.cast<double>()));
   };
   auto lastReopen = std::chrono::steady_clock::now();
+  SimulationThreads threads;  // one fewer for each core another process keeps busy (thread_policy.h)
   const auto start = std::chrono::steady_clock::now();
   pacer.emplace(PacerOptions{run.params.frameTime, sim->solverSweeps(), o.minSweeps, 4,
                              o.fixedStep ? 1.0 : renderScaleFloor(floorScale, image.width, image.height)},
@@ -618,6 +620,7 @@ int runView(ViewOptions o) try {
       }
       try {
         sim->setFrameTime(run.params.frameTime * static_cast<float>(frames));
+        threads.update();
         sim->advanceFrame(wands);
         const FrameStats stats = sim->stats();
         std::string events = describeEvents(sim->lastEvents());

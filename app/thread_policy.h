@@ -1,7 +1,7 @@
 #pragma once
-// How the simulation's OpenMP threads wait. A frame of the default film starts about 28 parallel regions (the
-// solver's sweeps, the flow's passes, the contact search, the statistics) and passes about 65 barriers in them, at
-// each of which the thread that finishes first waits for the other:
+// How the simulation's OpenMP threads wait, and how many run. A frame of the default film starts about 28 parallel
+// regions (the solver's sweeps, the flow's passes, the contact search, the statistics) and passes about 65 barriers
+// in them, at each of which the thread that finishes first waits for the other:
 // - A thread that sleeps at once (OMP_WAIT_POLICY=PASSIVE) must be woken by a system call for the next loop: on
 //   the default film on two cores that costs about 2.4 ms of an 11.5 ms frame.
 // - A thread that spins long (libgomp's OMP_WAIT_POLICY=ACTIVE, or its 300,000-iteration spin) takes the core a

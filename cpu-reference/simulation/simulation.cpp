@@ -256,6 +256,7 @@ void Simulation::advanceFrame(const WandState& next) {
   stateOnDevice_ = positionsOnDevice_ = true;  // the step's state is the stepper's until brought back
   refreshOnPull_ = false;
   checksForNextFrame_.reset();
+  heldChecks_.reset();
   if (const VelocityBudget& budget = stepper_->lastBudget(); budget.acted()) {
     ++budgetRecord_.frames;
     budgetRecord_.smallestScale = std::min(budgetRecord_.smallestScale, budget.scale);
@@ -287,7 +288,9 @@ void Simulation::advanceFrame(const WandState& next) {
 bool Simulation::passesOnDevice(const WandState& next, float wandSpeed) {
   std::optional<FilmChecks> checks = checksOnDevice(false);
   if (!checks) return false;
-  if (!ruleThatMayAct(*checks, next, wandSpeed, false)) {
+  if (ruleThatMayAct(*checks, next, wandSpeed, false)) {
+    heldChecks_ = checks;  // of the film as the step left it, for the rules on the CPU (the contraction's sums)
+  } else {
     // The rest-length rules the device runs itself may still act: there. The payout widens the wire's band, which
     // the checks then measure again for a new ring (growFilmAtWire looks for one after its payout).
     const bool yielded = checks->yielding > 0 && yieldApplies() && stepper_->yieldStretchedSprings();
@@ -374,8 +377,11 @@ std::optional<FilmChecks> Simulation::checksOnDevice(bool atPresentPositions) {
 
 void Simulation::contractSlackSpringsWhereTheyLie(SpringEnergyAllowance& allowance) {
   // Where the stepper checks the film on its device, the contraction runs there with the share its sums give, as on
-  // the frames that pass the checks: a frame ends with the same film whichever way it went.
-  if (const std::optional<FilmChecks> checks = checksOnDevice(false); checks && checks->slack > 0) {
+  // the frames that pass the checks: a frame ends with the same film whichever way it went. The checks that held
+  // the frame describe the film still, unless the burst took particles since.
+  std::optional<FilmChecks> checks = events_.particlesRemoved == 0 ? heldChecks_ : std::nullopt;
+  if (!checks) checks = checksOnDevice(false);
+  if (checks && checks->slack > 0) {
     const float quadratic = checks->contractionQuadratic, linear = checks->contractionLinear;
     const float share = contractionShareOf(quadratic, linear, allowance.joules);
     if (stepper_->contractSlackSprings(share)) {

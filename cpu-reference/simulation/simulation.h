@@ -216,6 +216,8 @@ class Simulation {
   bool stateStaysOnDevice_ = true;
   // The checks stats() made of the film the next frame starts from (its impact test), reset by each step.
   std::optional<FilmChecks> checksForNextFrame_;
+  // The checks that held this frame for the rules on the CPU (passesOnDevice), of the film as the step left it.
+  std::optional<FilmChecks> heldChecks_;
   std::unique_ptr<Stepper> stepper_;
   BurstFront burst_;
   Aerosol aerosol_;

@@ -51,8 +51,10 @@ inline float particleMass(const Params& p, float voronoiArea, float liquid) {
 // liquid it holds now: a film that drains thins without pulling harder.
 inline float surfactantLiquid(const Params& p, float mass) { return mass / p.liquidDensity; }
 
-// Gives particles [first, n) the material of a new film (mass, liquid, thickness, elasticity, at rest),
-// after updating the geometry of the whole film: new particles stitched to an existing film.
+// Gives particles [first, n) the material of a new film (mass, liquid, thickness, elasticity, at rest) from the
+// Voronoi areas the state holds: the caller has updated the geometry around them.
+void giveNewFilmMaterial(const Params& params, State& s, size_t first);
+// The same after updating the geometry of the whole film: new particles stitched to an existing film.
 void initialiseNewParticles(const Params& params, Film& film, size_t first);
 
 // A film spanning the tool's wire frame (Sections 3 and 7): round(solution x particlesAtFullSolution)

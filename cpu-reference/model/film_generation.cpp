@@ -218,9 +218,12 @@ void fillWire(const Params& params, const PlanarLayout& layout, Film& film) {
 }  // namespace
 
 void initialiseNewParticles(const Params& params, Film& film, size_t first) {
-  State& s = film.state;
+  computeGeometry(film.topology, film.state);
+  giveNewFilmMaterial(params, film.state, first);
+}
+
+void giveNewFilmMaterial(const Params& params, State& s, size_t first) {
   const float e0 = initialThickness(params);
-  computeGeometry(film.topology, s);
   for (size_t i = first; i < s.size(); ++i) {
     s.liquid[i] = e0 * s.voronoiArea[i];
     s.mass[i] = particleMass(params, s.voronoiArea[i], s.liquid[i]);

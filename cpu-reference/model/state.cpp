@@ -1,6 +1,7 @@
 #include "state.h"
 
 #include <algorithm>
+#include <initializer_list>
 #include <optional>
 #include <stdexcept>
 #include <utility>
@@ -27,6 +28,12 @@ void State::append(size_t count) {
   const size_t n = size() + count;
   forEachParticleArray(*this, [n](auto& array, const ParticleArrayInfo& info) {
     forEachComponent(array, [&](auto& values, int) { values.resize(n, createdValue(values, info)); });
+  });
+}
+
+void State::removeFrom(size_t first) {
+  forEachParticleArray(*this, [first](auto& array, const ParticleArrayInfo&) {
+    forEachComponent(array, [&](auto& values, int) { values.resize(std::min(first, values.size())); });
   });
 }
 
@@ -156,6 +163,118 @@ Topology rebuildTopology(const Topology& previous, std::vector<uint32_t> triangl
     if (!rest && made) made->push_back(k);
   }
   return topo;
+}
+
+namespace {
+
+// Grows a CSR array's rows to `rows` (new rows empty), then row i by extra[i] entries at its end, left for the caller
+// to fill; each column (the arrays the offsets index) moves with its rows. Returns where each row's new entries start.
+std::vector<uint32_t> growRows(std::vector<uint32_t>& offset, std::initializer_list<std::vector<uint32_t>*> columns,
+                               const std::vector<uint32_t>& extra) {
+  const size_t rows = extra.size(), oldRows = offset.size() - 1;
+  offset.resize(rows + 1, offset[oldRows]);
+  std::vector<uint32_t> newOffset(rows + 1, 0);
+  for (size_t i = 0; i < rows; ++i) newOffset[i + 1] = newOffset[i] + (offset[i + 1] - offset[i]) + extra[i];
+  for (std::vector<uint32_t>* column : columns) {
+    column->resize(newOffset[rows]);
+    // From the last row to the first, each run of rows that moves by the same distance in one move: a row only moves
+    // up, past where the rows before it lie.
+    size_t end = rows;
+    while (end > 0) {
+      size_t begin = end - 1;
+      const uint32_t shift = newOffset[begin] - offset[begin];
+      while (begin > 0 && extra[begin - 1] == 0) --begin;  // a row's extra entries move the rows after it
+      if (shift > 0)
+        std::copy_backward(column->begin() + offset[begin], column->begin() + offset[end],
+                           column->begin() + offset[end] + shift);
+      end = begin;
+    }
+  }
+  std::vector<uint32_t> next(rows);
+  for (size_t i = 0; i < rows; ++i) next[i] = newOffset[i] + (offset[i + 1] - offset[i]);
+  offset = std::move(newOffset);
+  return next;
+}
+
+}  // namespace
+
+void appendTriangles(Topology& topo, size_t particleCount, const std::vector<uint32_t>& added,
+                     const Vec3Array& positions, float prestrain) {
+  const size_t oldCount = topo.particleCount();
+  if (particleCount < oldCount) throw std::logic_error("appendTriangles: a mesh only grows");
+  for (uint32_t v : added)
+    if (v >= particleCount) throw std::runtime_error("triangle refers to a particle that does not exist");
+  // The springs the mesh has, and how many of its triangles use each: found in their lower end's rows.
+  const auto oldSpring = [&](uint32_t a, uint32_t b) -> std::optional<uint32_t> {
+    if (b >= oldCount) return std::nullopt;
+    for (uint32_t k = topo.springOffset[a]; k < topo.springOffset[a + 1]; ++k)
+      if (topo.springNeighbour[k] == b) return topo.springIndex[k];
+    return std::nullopt;
+  };
+  const auto trianglesOn = [&](uint32_t a, uint32_t b) {
+    int uses = 0;
+    for (uint32_t k = topo.triangleOffset[a]; k < topo.triangleOffset[a + 1]; ++k) {
+      const uint32_t* tri = topo.triangleOf(topo.triangleCorner[k]);
+      uses += tri[0] == b || tri[1] == b || tri[2] == b;
+    }
+    return uses;
+  };
+  // The added triangles' edges, each once, in (lower, upper) order, with their uses.
+  std::vector<Edge> edges;
+  edges.reserve(added.size());
+  for (size_t t = 0; t + 2 < added.size(); t += 3)
+    for (int c = 0; c < 3; ++c) edges.push_back(undirected(added[t + c], added[t + (c + 1) % 3]));
+  std::sort(edges.begin(), edges.end());
+  std::vector<Edge> newSprings;
+  for (auto run = edges.begin(); run != edges.end();) {
+    const auto next = std::upper_bound(run, edges.end(), *run);
+    const auto [a, b] = *run;
+    const bool had = oldSpring(a, b).has_value();
+    if ((next - run) + (had ? trianglesOn(a, b) : 0) > 2)
+      throw std::runtime_error("non-manifold mesh: an edge is shared by more than two triangles");
+    if (!had) newSprings.push_back({a, b});
+    run = next;
+  }
+
+  // Nothing below throws: the mesh changes.
+  const auto firstSpring = static_cast<uint32_t>(topo.springCount());
+  const auto firstCorner = static_cast<uint32_t>(topo.triangles.size());
+  topo.triangles.insert(topo.triangles.end(), added.begin(), added.end());
+  for (const auto& [a, b] : newSprings) {
+    topo.springEnds.push_back(a);
+    topo.springEnds.push_back(b);
+    topo.restLength.push_back((positions.get(a) - positions.get(b)).norm() * (1.0f - prestrain));
+  }
+  std::vector<uint32_t> extra(particleCount, 0);
+  for (const auto& [a, b] : newSprings) ++extra[a], ++extra[b];
+  std::vector<uint32_t> at = growRows(topo.springOffset, {&topo.springIndex, &topo.springNeighbour}, extra);
+  for (uint32_t s = firstSpring; s < topo.springCount(); ++s) {
+    const uint32_t a = topo.springEnds[2 * s], b = topo.springEnds[2 * s + 1];
+    topo.springIndex[at[a]] = s;
+    topo.springNeighbour[at[a]++] = b;
+    topo.springIndex[at[b]] = s;
+    topo.springNeighbour[at[b]++] = a;
+  }
+  std::fill(extra.begin(), extra.end(), 0u);
+  for (uint32_t v : added) ++extra[v];
+  at = growRows(topo.triangleOffset, {&topo.triangleCorner}, extra);
+  for (auto corner = firstCorner; corner < topo.triangles.size(); ++corner)
+    topo.triangleCorner[at[topo.triangles[corner]]++] = corner;
+
+  // The touched particles' flags from their edges now; the others' edges did not change.
+  topo.boundary.resize(particleCount, 0u);
+  for (uint32_t p : added) {
+    bool onEdge = false;
+    for (uint32_t k = topo.springOffset[p]; k < topo.springOffset[p + 1] && !onEdge; ++k)
+      onEdge = trianglesOn(p, topo.springNeighbour[k]) == 1;
+    topo.boundary[p] = onEdge ? 1u : 0u;
+  }
+  topo.closed = topo.springCount() > 0 &&
+                std::none_of(topo.boundary.begin(), topo.boundary.end(), [](uint32_t b) { return b != 0; });
+  topo.colourOffset.clear();
+  topo.colourOrder.clear();
+  topo.patchOffset.clear();
+  topo.contacts.assign(particleCount + 1, 0u);
 }
 
 }  // namespace gb

@@ -98,6 +98,16 @@ void computeGeometry(const Topology& topo, State& s) {
   for (size_t i = 0; i < s.size(); ++i) vertexGeometry(topo, s, i);
 }
 
+void computeGeometryAround(const Topology& topo, State& s, std::span<const uint32_t> particles) {
+  for (std::vector<float>* axis : {&s.triangleNormal.x, &s.triangleNormal.y, &s.triangleNormal.z})
+    axis->resize(topo.triangleCount(), 0.0f);  // keeping the other triangles' (Vec3Array::resize clears)
+  s.cornerArea.resize(3 * topo.triangleCount(), 0.0f);
+  for (uint32_t i : particles)  // a triangle with several of them is computed again, to the same values
+    for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k)
+      triangleGeometry(topo, s, topo.triangleCorner[k] / 3);
+  for (uint32_t i : particles) vertexGeometry(topo, s, i);
+}
+
 float coneVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& origin) {
   return (a - origin).dot((b - origin).cross(c - origin)) / 6.0f;
 }

@@ -6,6 +6,8 @@
 // Gather, never scatter: every per-particle result is summed by the particle itself over its CSR one-ring,
 // in CSR order. Propagation (air transfer) is a Jacobi pass from a front buffer into a back buffer.
 
+#include <span>
+
 #include "params.h"
 #include "state.h"
 #include "wire_frame.h"
@@ -41,6 +43,9 @@ void triangleGeometry(const Topology& topo, State& s, size_t t);
 void vertexGeometry(const Topology& topo, State& s, size_t i);
 // Both passes over the whole film, serially: for code outside the step (film creation, pinch-off, tests).
 void computeGeometry(const Topology& topo, State& s);
+// Both passes for the triangles around `particles` and for the particles themselves, after the mesh grew there (a
+// strip at the wire): the rest of the film keeps the geometry it had, and the per-triangle arrays grow to fit.
+void computeGeometryAround(const Topology& topo, State& s, std::span<const uint32_t> particles);
 // Sizes the per-triangle arrays for the topology.
 void fitTriangleArrays(const Topology& topo, State& s);
 // A 64-bit hash of everything the geometry depends on (the positions, the triangles, the counts): equal keys mean

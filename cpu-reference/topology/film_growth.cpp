@@ -100,14 +100,11 @@ void restLikeNewFilm(const Params& params, const std::vector<uint32_t>& released
   Topology& topo = film.topology;
   std::vector<char> isReleased(film.state.size(), 0);
   for (uint32_t i : released) isReleased[i] = 1;
-  for (size_t k = 0; k < topo.springCount(); ++k) {
-    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
-    const bool toFilm = (isReleased[a] && !isReleased[b] && !topo.boundary[b]) ||
-                        (isReleased[b] && !isReleased[a] && !topo.boundary[a]);
-    if (toFilm)
-      topo.restLength[k] =
-          (film.state.position.get(a) - film.state.position.get(b)).norm() * (1.0f - params.springPrestrain);
-  }
+  for (uint32_t a : released)  // each such spring from its released end
+    for (uint32_t k = topo.springOffset[a]; k < topo.springOffset[a + 1]; ++k)
+      if (const uint32_t b = topo.springNeighbour[k]; !isReleased[b] && !topo.boundary[b])
+        topo.restLength[topo.springIndex[k]] =
+            (film.state.position.get(a) - film.state.position.get(b)).norm() * (1.0f - params.springPrestrain);
 }
 
 // The strip's liquid, a new film's thickness times its area, shared among the corners of its triangles (a
@@ -441,14 +438,16 @@ GrowthEvent growFilmAtWire(const Params& params, const WireFrame& frame, float w
   const float spacing = film.wireSpacing * std::min(2.0f, std::sqrt(params.solution / solution));
   const std::vector<float> newU = wireParameters(frame, spacing);
 
-  Film grown = film;
-  State& s = grown.state;
+  // The film grows in place (copying it cost as much as the rest at 100,000 particles); until its mesh has taken the
+  // strip, what changed in the state is undone where that fails.
+  State& s = film.state;
   const size_t first = s.size();
   constexpr float fraction = 0.5f;  // halfway: the two bands come out alike, about 0.8 spacing wide
   std::vector<float> oldU;
-  std::vector<Vec3> released;
+  std::vector<Vec3> held, released;
   for (uint32_t i : loop) {
     oldU.push_back(s.wireParam[i]);
+    held.push_back(s.position.get(i));
     released.push_back(releasedPosition(film, frame, i, fraction));
   }
   for (size_t k = 0; k < loop.size(); ++k) s.position.set(loop[k], released[k]);
@@ -463,17 +462,23 @@ GrowthEvent growFilmAtWire(const Params& params, const WireFrame& frame, float w
 
   std::vector<uint32_t> strip = triangulateStrip(WireUnrolling(frame), loop, oldU, newRing, newU, spacing);
   orientAgainstLoop(loop, strip);
+  try {
+    appendTriangles(film.topology, s.size(), strip, s.position, params.springPrestrain);
+  } catch (...) {
+    s.removeFrom(first);
+    for (size_t k = 0; k < loop.size(); ++k) s.position.set(loop[k], held[k]);
+    throw;
+  }
   event.trianglesAdded = strip.size() / 3;
-  std::vector<uint32_t> triangles = grown.topology.triangles;
-  triangles.insert(triangles.end(), strip.begin(), strip.end());
-  grown.topology = rebuildTopology(film.topology, std::move(triangles), s.position, params.springPrestrain);
-  restLikeNewFilm(params, loop, grown);
-  if (intactWireLoop(grown).size() != newRing.size())
+  restLikeNewFilm(params, loop, film);
+  if (intactWireLoop(film).size() != newRing.size())
     throw std::logic_error("film growth: the new strip does not leave the new ring as the film's only edge");
-  initialiseNewParticles(params, grown, first);
-  event.liquidUsed = shareStripMaterial(params, strip, first, grown.wireLiquid, s);
-  grown.wireLiquid = std::max(0.0f, grown.wireLiquid - event.liquidUsed);
-  film = std::move(grown);
+  std::vector<uint32_t> around = loop;  // the strip's particles: the geometry changed around them alone
+  around.insert(around.end(), newRing.begin(), newRing.end());
+  computeGeometryAround(film.topology, s, around);
+  giveNewFilmMaterial(params, s, first);
+  event.liquidUsed = shareStripMaterial(params, strip, first, film.wireLiquid, s);
+  film.wireLiquid = std::max(0.0f, film.wireLiquid - event.liquidUsed);
   event.particlesAdded = newRing.size();
   return event;
 }

@@ -1,0 +1,95 @@
+// The mesh's topology: springs, one-rings and boundary flags made from triangles (state.h).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "state.h"
+
+namespace gb {
+namespace {
+
+// A strip of `rows` x `columns` particles, row r at height r with a little depth so no two edges have one length,
+// and the triangles between rows [from, to): a band of film, open at both ends.
+struct Grid {
+  size_t rows, columns;
+  [[nodiscard]] uint32_t at(size_t r, size_t c) const { return static_cast<uint32_t>(r * columns + c); }
+  [[nodiscard]] Vec3Array positions() const {
+    Vec3Array x;
+    x.resize(rows * columns);
+    for (size_t r = 0; r < rows; ++r)
+      for (size_t c = 0; c < columns; ++c)
+        x.set(at(r, c), Vec3(static_cast<float>(c), static_cast<float>(r), 0.1f * std::sin(float(r * 7 + c * 3))));
+    return x;
+  }
+  [[nodiscard]] std::vector<uint32_t> triangles(size_t from, size_t to) const {
+    std::vector<uint32_t> t;
+    for (size_t r = from; r < to; ++r)
+      for (size_t c = 0; c + 1 < columns; ++c)
+        t.insert(t.end(), {at(r, c), at(r, c + 1), at(r + 1, c), at(r, c + 1), at(r + 1, c + 1), at(r + 1, c)});
+    return t;
+  }
+};
+
+std::vector<uint32_t> row(const std::vector<uint32_t>& offset, const std::vector<uint32_t>& entries, size_t i) {
+  return {entries.begin() + offset[i], entries.begin() + offset[i + 1]};
+}
+
+TEST(Topology, TrianglesAppendedAtTheEdgeGiveTheOneRingsARebuildGivesAndKeepTheOldSprings) {
+  const Grid grid{7, 9};
+  const Vec3Array x = grid.positions();
+  const size_t oldParticles = 3 * grid.columns;  // rows 0-2; the appended bands reach rows 3-6
+  Topology topo = buildTopology(oldParticles, grid.triangles(0, 2), x);
+  for (size_t k = 0; k < topo.springCount(); ++k) topo.restLength[k] = 100.0f + static_cast<float>(k);
+  const Topology before = topo;
+  constexpr float prestrain = 0.1f;
+  appendTriangles(topo, x.size(), grid.triangles(2, 6), x, prestrain);
+  const Topology rebuilt = buildTopology(x.size(), grid.triangles(0, 6), x);
+
+  EXPECT_EQ(topo.triangles, rebuilt.triangles);
+  EXPECT_EQ(topo.boundary, rebuilt.boundary);  // rows 0 and 6 and the two ends; row 2 is inside now
+  EXPECT_FALSE(topo.closed);
+  ASSERT_EQ(topo.springCount(), rebuilt.springCount());
+  for (size_t i = 0; i < x.size(); ++i) {
+    EXPECT_EQ(row(topo.springOffset, topo.springNeighbour, i), row(rebuilt.springOffset, rebuilt.springNeighbour, i))
+        << "particle " << i;
+    EXPECT_EQ(row(topo.triangleOffset, topo.triangleCorner, i), row(rebuilt.triangleOffset, rebuilt.triangleCorner, i))
+        << "particle " << i;
+    for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {  // each entry names its spring
+      const uint32_t s = topo.springIndex[k], j = topo.springNeighbour[k];
+      const uint32_t a = topo.springEnds[2 * s], b = topo.springEnds[2 * s + 1];
+      EXPECT_TRUE((a == i && b == j) || (a == j && b == i)) << "particle " << i << ", spring " << s;
+    }
+  }
+  for (size_t k = 0; k < before.springCount(); ++k) {  // the old springs: same index, ends and rest length
+    EXPECT_EQ(topo.springEnds[2 * k], before.springEnds[2 * k]);
+    EXPECT_EQ(topo.springEnds[2 * k + 1], before.springEnds[2 * k + 1]);
+    EXPECT_EQ(topo.restLength[k], before.restLength[k]);
+  }
+  for (size_t k = before.springCount(); k < topo.springCount(); ++k) {  // the new: prestrained at their length
+    const float length = (x.get(topo.springEnds[2 * k]) - x.get(topo.springEnds[2 * k + 1])).norm();
+    EXPECT_FLOAT_EQ(topo.restLength[k], length * (1.0f - prestrain));  // one multiplication's rounding
+  }
+  EXPECT_TRUE(topo.colourOrder.empty());
+  EXPECT_EQ(topo.contacts, std::vector<uint32_t>(x.size() + 1, 0u));
+}
+
+TEST(Topology, ATriangleOnAnEdgeTwoTrianglesShareIsRefusedAndTheMeshStays) {
+  const Grid grid{4, 5};
+  const Vec3Array x = grid.positions();
+  Topology topo = buildTopology(x.size(), grid.triangles(0, 3), x);
+  const Topology before = topo;
+  // Row 1's first edge lies between bands 0 and 1: a third triangle on it is not a manifold.
+  const std::vector<uint32_t> third = {grid.at(1, 0), grid.at(1, 1), grid.at(3, 4)};
+  EXPECT_THROW(appendTriangles(topo, x.size(), third, x, 0.0f), std::runtime_error);
+  EXPECT_EQ(topo.triangles, before.triangles);
+  EXPECT_EQ(topo.springEnds, before.springEnds);
+  EXPECT_EQ(topo.springOffset, before.springOffset);
+  EXPECT_EQ(topo.boundary, before.boundary);
+  EXPECT_THROW(appendTriangles(topo, x.size(), {grid.at(3, 3), grid.at(3, 4), 999u}, x, 0.0f), std::runtime_error);
+  EXPECT_EQ(topo.triangles, before.triangles);
+}
+
+}  // namespace
+}  // namespace gb

@@ -91,5 +91,51 @@ TEST(Topology, ATriangleOnAnEdgeTwoTrianglesShareIsRefusedAndTheMeshStays) {
   EXPECT_EQ(topo.triangles, before.triangles);
 }
 
+// A torus of `rows` x `columns` particles (both directions wrap round): a closed mesh.
+std::vector<uint32_t> torusTriangles(const Grid& grid) {
+  std::vector<uint32_t> t;
+  const auto at = [&](size_t r, size_t c) { return grid.at(r % grid.rows, c % grid.columns); };
+  for (size_t r = 0; r < grid.rows; ++r)
+    for (size_t c = 0; c < grid.columns; ++c)
+      t.insert(t.end(), {at(r, c), at(r, c + 1), at(r + 1, c), at(r, c + 1), at(r + 1, c + 1), at(r + 1, c)});
+  return t;
+}
+
+TEST(Topology, CollapsedEdgesGiveTheTopologyARebuildGives) {
+  const Grid grid{12, 16};
+  const Vec3Array x = grid.positions();
+  Topology before = buildTopology(x.size(), torusTriangles(grid), x);
+  ASSERT_TRUE(before.isClosed());
+  for (size_t k = 0; k < before.springCount(); ++k) before.restLength[k] = 100.0f + static_cast<float>(k);
+  // Edges four apart along both directions collapse, each to its lower end: no two share a triangle.
+  std::vector<uint32_t> into(x.size());
+  for (uint32_t i = 0; i < into.size(); ++i) into[i] = i;
+  for (size_t r = 1; r < grid.rows; r += 4)
+    for (size_t c = 1; c + 1 < grid.columns; c += 4) into[grid.at(r, c + 1)] = grid.at(r, c);
+  std::vector<uint32_t> triangles;
+  for (size_t t = 0; t < before.triangleCount(); ++t) {
+    const uint32_t a = into[before.triangles[3 * t]], b = into[before.triangles[3 * t + 1]],
+                   c = into[before.triangles[3 * t + 2]];
+    if (a != b && b != c && a != c) triangles.insert(triangles.end(), {a, b, c});
+  }
+  constexpr float prestrain = 0.1f;
+  std::vector<size_t> made, madeByRebuild;
+  const Topology collapsed = collapsedTopology(before, triangles, into, x, prestrain, &made);
+  const Topology rebuilt = rebuildTopology(before, triangles, x, prestrain, &madeByRebuild);
+  EXPECT_EQ(collapsed.triangles, rebuilt.triangles);
+  EXPECT_EQ(collapsed.springEnds, rebuilt.springEnds);
+  EXPECT_EQ(collapsed.restLength, rebuilt.restLength);  // the same float operations: equal to the bit
+  EXPECT_EQ(made, madeByRebuild);
+  EXPECT_GT(made.size(), 0u);
+  EXPECT_EQ(collapsed.springOffset, rebuilt.springOffset);
+  EXPECT_EQ(collapsed.springIndex, rebuilt.springIndex);
+  EXPECT_EQ(collapsed.springNeighbour, rebuilt.springNeighbour);
+  EXPECT_EQ(collapsed.triangleOffset, rebuilt.triangleOffset);
+  EXPECT_EQ(collapsed.triangleCorner, rebuilt.triangleCorner);
+  EXPECT_EQ(collapsed.boundary, rebuilt.boundary);
+  EXPECT_EQ(collapsed.isClosed(), rebuilt.isClosed());
+  EXPECT_TRUE(collapsed.isClosed());
+}
+
 }  // namespace
 }  // namespace gb

@@ -165,6 +165,60 @@ Topology rebuildTopology(const Topology& previous, std::vector<uint32_t> triangl
   return topo;
 }
 
+Topology collapsedTopology(const Topology& previous, std::vector<uint32_t> triangles, const std::vector<uint32_t>& into,
+                           const Vec3Array& positions, float prestrain, std::vector<size_t>* made) {
+  const size_t springs = previous.springCount();
+  const auto endsOf = [&](size_t k) { return Edge{previous.springEnds[2 * k], previous.springEnds[2 * k + 1]}; };
+  bool ordered = true;
+  for (size_t k = 0; k < springs && ordered; ++k)
+    ordered = endsOf(k).first < endsOf(k).second && (k == 0 || endsOf(k - 1) < endsOf(k));
+  if (!previous.isClosed() || !ordered)
+    return rebuildTopology(previous, std::move(triangles), positions, prestrain, made);
+  const auto had = [&](uint32_t a, uint32_t b) {
+    for (uint32_t k = previous.springOffset[a]; k < previous.springOffset[a + 1]; ++k)
+      if (previous.springNeighbour[k] == b) return true;
+    return false;
+  };
+  const auto stays = [&](size_t k) {
+    return into[endsOf(k).first] == endsOf(k).first && into[endsOf(k).second] == endsOf(k).second;
+  };
+  // The springs whose end moved, where they now lie: the collapsed edge itself vanishes, and one that ends where the
+  // survivor already had a spring is that spring.
+  std::vector<Edge> moved;
+  for (size_t k = 0; k < springs; ++k) {
+    if (stays(k)) continue;
+    const uint32_t a = into[endsOf(k).first], b = into[endsOf(k).second];
+    if (a != b && !had(a, b)) moved.push_back(undirected(a, b));
+  }
+  std::sort(moved.begin(), moved.end());
+  moved.erase(std::unique(moved.begin(), moved.end()), moved.end());
+
+  Topology topo;
+  topo.triangles = std::move(triangles);
+  topo.boundary.assign(previous.particleCount(), 0u);  // closed before, and collapsing edges keeps it so
+  topo.springEnds.reserve(2 * (springs + moved.size()));
+  topo.restLength.reserve(springs + moved.size());
+  const auto add = [&](Edge e, float rest) {
+    topo.springEnds.push_back(e.first);
+    topo.springEnds.push_back(e.second);
+    topo.restLength.push_back(rest);
+  };
+  const auto addMoved = [&](Edge e) {
+    if (made) made->push_back(topo.springCount());
+    add(e, (positions.get(e.first) - positions.get(e.second)).norm() * (1.0f - prestrain));
+  };
+  auto next = moved.begin();
+  for (size_t k = 0; k < springs; ++k) {  // both in (lower, upper) order: merged as they come
+    if (!stays(k)) continue;
+    for (; next != moved.end() && *next < endsOf(k); ++next) addMoved(*next);
+    add(endsOf(k), previous.restLength[k]);
+  }
+  for (; next != moved.end(); ++next) addMoved(*next);
+  buildAdjacencyArrays(topo);
+  topo.closed = true;
+  return topo;
+}
+
 namespace {
 
 // Grows a CSR array's rows to `rows` (new rows empty), then row i by extra[i] entries at its end, left for the caller

@@ -410,6 +410,11 @@ struct VulkanStepper::Impl {
                 uint32_t flags = 0, uint32_t first = 0, float ruleShare = 0.0f) {
     dispatchGroups(cb, kernel, ceilDiv(count, workgroup), count, stepIndex, flags, first, ruleShare);
   }
+  // One pass of a tree sum over n values: an invocation for each 2^GB_TREE_PASS_LEVELS of them.
+  void dispatchTreePass(const vk::raii::CommandBuffer& cb, Kernel kernel, uint32_t n, uint32_t stepIndex,
+                        uint32_t flags, uint32_t first = 0) {
+    dispatchGroups(cb, kernel, ceilDiv(gpu::treePassOutputs(n), workgroup), n, stepIndex, flags, first);
+  }
   void dispatchGroups(const vk::raii::CommandBuffer& cb, Kernel kernel, uint32_t groups, uint32_t count,
                       uint32_t stepIndex, uint32_t flags = 0, uint32_t first = 0, float ruleShare = 0.0f) {
     cb.bindPipeline(vk::PipelineBindPoint::eCompute, *pipelines[static_cast<size_t>(kernel)]);
@@ -429,8 +434,8 @@ struct VulkanStepper::Impl {
     dispatch(cb, Kernel::TriangleVolume, triangles, stepIndex, atStepStart ? GB_REDUCE_AT_STEP_START : 0u);
     computeToComputeBarrier(cb);
     bool fromA = true;
-    for (uint32_t n = triangles; n > 1; n = (n + 1) / 2) {  // the levels of treeSum
-      dispatch(cb, Kernel::TreeSum, n, stepIndex, fromA ? GB_REDUCE_VOLUME_IN_A : 0u);
+    for (uint32_t n = triangles; n > 1; n = gpu::treePassOutputs(n)) {  // the passes of treeSum
+      dispatchTreePass(cb, Kernel::TreeSum, n, stepIndex, fromA ? GB_REDUCE_VOLUME_IN_A : 0u);
       computeToComputeBarrier(cb);
       fromA = !fromA;
     }
@@ -441,8 +446,9 @@ struct VulkanStepper::Impl {
   // with a barrier. Returns whether the sums are in half A.
   bool recordEnergyTreeSum(const vk::raii::CommandBuffer& cb, uint32_t stepIndex, uint32_t flags) {
     bool fromA = true;
-    for (uint32_t n = particles; n > 1; n = (n + 1) / 2) {
-      dispatch(cb, Kernel::EnergyTreeSum, n, stepIndex, (fromA ? GB_REDUCE_ENERGY_IN_A : 0u) | flags, energyBase);
+    for (uint32_t n = particles; n > 1; n = gpu::treePassOutputs(n)) {
+      dispatchTreePass(cb, Kernel::EnergyTreeSum, n, stepIndex, (fromA ? GB_REDUCE_ENERGY_IN_A : 0u) | flags,
+                       energyBase);
       computeToComputeBarrier(cb);
       fromA = !fromA;
     }
@@ -704,8 +710,8 @@ struct VulkanStepper::Impl {
     dispatch(cb, Kernel::FilmStatisticsTerms, particles, 0, 0, at);
     computeToComputeBarrier(cb);
     bool inA = true;
-    for (uint32_t n = particles; n > 1; n = (n + 1) / 2) {  // the levels of the tree
-      dispatch(cb, Kernel::FilmStatisticsTree, n, 0, inA ? GB_REDUCE_STATISTICS_IN_A : 0u, at);
+    for (uint32_t n = particles; n > 1; n = gpu::treePassOutputs(n)) {  // the passes of the tree
+      dispatchTreePass(cb, Kernel::FilmStatisticsTree, n, 0, inA ? GB_REDUCE_STATISTICS_IN_A : 0u, at);
       computeToComputeBarrier(cb);
       inA = !inA;
     }

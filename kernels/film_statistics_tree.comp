@@ -1,25 +1,28 @@
 #version 450
-// The frame's statistics, pass 2: one level of the tree over every term's block at once (treeSum of
-// cpu-reference/stages/stages.cpp), out[k] = in[2k] + in[2k+1] (or in[2k] alone for the odd last element), and
-// max instead of + for the terms of which the largest is kept (GB_STAT_KEEPS_LARGEST). GB_REDUCE_STATISTICS_IN_A: the
-// level reads half A and writes half B.
+// The frame's statistics, pass 2: one pass of the tree (treeSum of cpu-reference/stages/stages.cpp) over every
+// term's block at once, GB_TREE_PASS_LEVELS levels (GB_TREE_PASS), with max instead of + for the terms of which the
+// largest is kept (GB_STAT_KEEPS_LARGEST). GB_REDUCE_STATISTICS_IN_A: the pass reads half A and writes half B.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
-float combined(uint c, float a, float b) { return GB_STAT_KEEPS_LARGEST(c) ? max(a, b) : a + b; }
+uint term;  // the term being summed, for combined()
+
+float combined(float a, float b) { return GB_STAT_KEEPS_LARGEST(term) ? max(a, b) : a + b; }
 
 void main() {
   const uint k = gl_GlobalInvocationID.x;
   const uint n = pc.count;
-  if (k >= (n + 1u) / 2u) return;
-  const bool pair = 2u * k + 1u < n;
-  for (uint c = 0u; c < STATISTICS_TERMS; ++c) {
+  if (k >= treePassOutputs(n)) return;
+#define TERM_A(i) STATISTICS_A(term, i)
+#define TERM_B(i) STATISTICS_B(term, i)
+  for (term = 0u; term < STATISTICS_TERMS; ++term) {
+    float total = 0.0;
     if ((pc.reduceFlags & GB_REDUCE_STATISTICS_IN_A) != 0u) {
-      STATISTICS_B(c, k) =
-          pair ? combined(c, STATISTICS_A(c, 2u * k), STATISTICS_A(c, 2u * k + 1u)) : STATISTICS_A(c, 2u * k);
+      GB_TREE_PASS(total, n, TERM_A, combined);
+      STATISTICS_B(term, k) = total;
     } else {
-      STATISTICS_A(c, k) =
-          pair ? combined(c, STATISTICS_B(c, 2u * k), STATISTICS_B(c, 2u * k + 1u)) : STATISTICS_B(c, 2u * k);
+      GB_TREE_PASS(total, n, TERM_B, combined);
+      STATISTICS_A(term, k) = total;
     }
   }
 }

@@ -1,16 +1,21 @@
 #version 450
-// One level of treeSum (cpu-reference/stages/stages.cpp): out[k] = in[2k] + in[2k+1] (or in[2k] alone for the
-// odd last element), for k < ceil(n/2). The host dispatches levels until one value is left.
+// One pass of treeSum (cpu-reference/stages/stages.cpp) over the volume's n = pc.count values: GB_TREE_PASS_LEVELS
+// levels, out[k] the tree of in[k 2^levels ...] (GB_TREE_PASS). The host dispatches passes until one value is left.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
+
+float sum(float a, float b) { return a + b; }
 
 void main() {
   const uint k = gl_GlobalInvocationID.x;
   const uint n = pc.count;
-  if (k >= (n + 1u) / 2u) return;
+  if (k >= treePassOutputs(n)) return;
+  float total = 0.0;
   if ((pc.reduceFlags & GB_REDUCE_VOLUME_IN_A) != 0u) {
-    REDUCE_B(k) = 2u * k + 1u < n ? REDUCE_A(2u * k) + REDUCE_A(2u * k + 1u) : REDUCE_A(2u * k);
+    GB_TREE_PASS(total, n, REDUCE_A, sum);
+    REDUCE_B(k) = total;
   } else {
-    REDUCE_A(k) = 2u * k + 1u < n ? REDUCE_B(2u * k) + REDUCE_B(2u * k + 1u) : REDUCE_B(2u * k);
+    GB_TREE_PASS(total, n, REDUCE_B, sum);
+    REDUCE_A(k) = total;
   }
 }

@@ -536,6 +536,31 @@ TEST(VulkanEquivalence, VolumeReductionAndBubblePressureMatch) {
   EXPECT_EQ(device->validationErrors(), 0u);
 }
 
+// The tree sums take eight levels a pass (GB_TREE_PASS): a sphere of 327,680 triangles needs three passes (327,680
+// -> 1,280 -> 5 -> 1), the last two over blocks that are not full. The volume as the CPU's treeSum gives it, within
+// the stage tolerance (the triangles' cone volumes differ by rounding; a block summed twice or left out would be
+// off by a thousandth at least).
+TEST(VulkanEquivalence, ALargeBubblesVolumeSumsInThreePasses) {
+  GB_REQUIRE_VULKAN(device);
+  Params p;
+  const Vec3 centre(0.2f, 1.0f, -0.1f);
+  Film film = generateSphere(p, centre, 0.5f, 7);
+  ASSERT_EQ(film.topology.triangleCount(), 327680u);
+  Simulation reference(p, film, WandState{});
+  Film cpuFilm = reference.film(), gpuFilm = reference.film();
+  const StepUniforms u = reference.uniformsFor(WandState{}, WandState{}, 1e-4f);
+  CpuStepper cpu;
+  VulkanStepper gpu(device);
+  cpu.load(p, cpuFilm);
+  gpu.load(p, gpuFilm);
+  cpu.runStage(Stage::Geometry, u);
+  gpu.runStage(Stage::Geometry, u);
+  const float cpuVolume = cpu.runStage(Stage::Volume, u), gpuVolume = gpu.runStage(Stage::Volume, u);
+  EXPECT_NEAR(gpuVolume, cpuVolume, kStageTolerance * cpuVolume);
+  EXPECT_NEAR(cpuVolume, 4.0f / 3.0f * 3.14159265f * 0.125f, 0.01f * cpuVolume);  // a sphere of radius 0.5 m
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
 struct SceneCase {
   const char* name;
   bool bubble;

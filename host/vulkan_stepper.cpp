@@ -410,10 +410,10 @@ struct VulkanStepper::Impl {
                 uint32_t flags = 0, uint32_t first = 0, float ruleShare = 0.0f) {
     dispatchGroups(cb, kernel, ceilDiv(count, workgroup), count, stepIndex, flags, first, ruleShare);
   }
-  // One pass of a tree sum over n values: an invocation for each 2^GB_TREE_PASS_LEVELS of them.
+  // One pass of a tree sum over n values: a workgroup for each 2^GB_TREE_PASS_LEVELS of them (tree_pass.glsl).
   void dispatchTreePass(const vk::raii::CommandBuffer& cb, Kernel kernel, uint32_t n, uint32_t stepIndex,
                         uint32_t flags, uint32_t first = 0) {
-    dispatchGroups(cb, kernel, ceilDiv(gpu::treePassOutputs(n), workgroup), n, stepIndex, flags, first);
+    dispatchGroups(cb, kernel, gpu::treePassOutputs(n), n, stepIndex, flags, first);
   }
   void dispatchGroups(const vk::raii::CommandBuffer& cb, Kernel kernel, uint32_t groups, uint32_t count,
                       uint32_t stepIndex, uint32_t flags = 0, uint32_t first = 0, float ruleShare = 0.0f) {

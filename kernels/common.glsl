@@ -21,31 +21,6 @@ layout(push_constant) uniform Push { PushBlock pc; };
 #undef GB_PARTICLE_ARRAY
 #undef GB_PARTICLE_BLOCK
 
-// One pass of a tree sum (shared_step.h, GB_TREE_PASS_LEVELS): into `result`, the pairwise tree of treeSum
-// (cpu-reference/stages/stages.cpp) over VALUE(i) for the block of 2^levels values of invocation
-// gl_GlobalInvocationID.x among n, COMBINE(left, right) joining two. A binary counter of partial sums: partial[l] sums
-// the last complete run of 2^l values and joins its right neighbour run as soon as that completes; at the end the runs
-// left join from the smallest up, as the levels carry an odd last value. Equal to the level-by-level tree to the bit:
-// every block starts at a multiple of 2^levels, where the levels' pairs start too.
-#define GB_TREE_PASS(result, n, VALUE, COMBINE)                                \
-  {                                                                            \
-    float partial_[GB_TREE_PASS_LEVELS + 1u];                                  \
-    const uint first_ = gl_GlobalInvocationID.x << GB_TREE_PASS_LEVELS;        \
-    const uint count_ = min(n, first_ + (1u << GB_TREE_PASS_LEVELS)) - first_; \
-    for (uint i_ = 0u; i_ < count_; ++i_) {                                    \
-      float v_ = VALUE(first_ + i_);                                           \
-      uint l_ = 0u;                                                            \
-      for (; (i_ & (1u << l_)) != 0u; ++l_) v_ = COMBINE(partial_[l_], v_);    \
-      partial_[l_] = v_;                                                       \
-    }                                                                          \
-    bool have_ = false;                                                        \
-    for (uint l_ = 0u; l_ <= GB_TREE_PASS_LEVELS; ++l_)                        \
-      if ((count_ & (1u << l_)) != 0u) {                                       \
-        result = have_ ? COMBINE(partial_[l_], result) : partial_[l_];         \
-        have_ = true;                                                          \
-      }                                                                        \
-  }
-
 // The reduce buffer's regions (shared_step.h). The volume's tree sum, halves A and B:
 #define REDUCE_A(k) reduce[(k)]
 #define REDUCE_B(k) reduce[reduceHalfB(pc.triangles) + (k)]

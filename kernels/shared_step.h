@@ -140,9 +140,9 @@ GB_REGION uint maxOf(uint a, uint b) { return a > b ? a : b; }
 uint maxOf(uint a, uint b) { return max(a, b); }
 #endif
 // The tree sums (tree_sum, energy_tree_sum, film_statistics_tree) take GB_TREE_PASS_LEVELS levels of treeSum in one
-// pass, each invocation summing 2^levels consecutive values in registers: a dispatch and a barrier a pass instead of
-// a level (a volume's 15 levels in 2 passes), which on a real GPU are most of a small film's step. A pass over n
-// values leaves treePassOutputs(n).
+// pass, a workgroup summing 2^levels consecutive values (tree_pass.glsl): a dispatch and a barrier a pass instead of a
+// level (a volume's 15 levels in 2 passes), which on a real GPU are a large part of a small film's step. A pass over
+// n values leaves treePassOutputs(n).
 #define GB_TREE_PASS_LEVELS 8u
 GB_REGION uint treePassOutputs(uint n) { return (n + (1u << GB_TREE_PASS_LEVELS) - 1u) >> GB_TREE_PASS_LEVELS; }
 GB_REGION uint reduceHalfB(uint triangleCount) { return maxOf(triangleCount, 1u); }

@@ -298,7 +298,9 @@ struct VulkanStepper::Impl {
   void copyIntoReadback(std::span<const DevicePart> parts) {
     vk::DeviceSize total = 0;
     for (const DevicePart& part : parts) total += part.bytes;
-    if (readback.size() < total) readback = DeviceBuffer(*ctx, total, DeviceBuffer::Placement::Readback);
+    // Grown with room to spare: a film growing at its wire brings back a little more each time, and a new
+    // allocation of host memory for each cost milliseconds at 100,000 particles.
+    if (readback.size() < total) readback = DeviceBuffer(*ctx, total + total / 2, DeviceBuffer::Placement::Readback);
     const vk::raii::CommandBuffer& cb = commands;
     cb.reset();
     cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});

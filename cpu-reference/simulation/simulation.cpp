@@ -234,6 +234,7 @@ void Simulation::setFrameTime(float h) {
 }
 
 void Simulation::advanceFrame(const WandState& next) {
+  geometryFresh_ = false;
   burstOnHardImpact();  // judged on the contacts found after the last frame, before this one moves them
   const float dt = params_.frameTime / static_cast<float>(substeps_);
   const float wandSpeed =
@@ -518,6 +519,7 @@ void Simulation::reloadFilm() {
   checksForNextFrame_.reset();  // of the film before it changed
   ++loads_;
   CpuStepper::refreshGeometry(params_, film_);
+  geometryFresh_ = true;
   chooseSubsteps();
   stepper_->load(params_, film_);
 }
@@ -629,13 +631,13 @@ FrameStats Simulation::stats() {
     // The device refreshed its geometry: so does the film in host memory, now or when it comes back.
     if (stateOnDevice_)
       refreshOnPull_ = true;
-    else
+    else if (!geometryFresh_)
       CpuStepper::refreshGeometry(params_, film_);
   } else {
     // The film's geometry as it stands after the step, for the sums on the CPU and for what reads the film after
     // them (the outputs, the renderer).
     pullState();
-    CpuStepper::refreshGeometry(params_, film_);
+    if (!geometryFresh_) CpuStepper::refreshGeometry(params_, film_);
     sums = sumFilm(params_, film_, topo.isClosed() ? centroid(film_.state) : frameCentre);
   }
   st.particles = sums.particles;

@@ -98,6 +98,7 @@ class Simulation {
   }
   [[nodiscard]] Film& film() {
     pullState();
+    geometryFresh_ = false;  // the caller may move it
     return film_;
   }
   // The film's particles (living or not) and triangles, always current in host memory: nothing is brought back.
@@ -213,6 +214,9 @@ class Simulation {
   mutable bool contactsOnDevice_ = false;     // film_.topology.contacts is behind the device's
   mutable bool restLengthsOnDevice_ = false;  // film_.topology.restLength is behind the device's (its yield)
   mutable bool refreshOnPull_ = false;        // the statistics refreshed the device's geometry: so does a pull
+  // The film in host memory has the geometry of its present positions: reloadFilm made it, and no step has run since.
+  // stats() then does not make it again (a growth frame's 7 ms at 100,000 particles).
+  bool geometryFresh_ = false;
   bool stateStaysOnDevice_ = true;
   // The checks stats() made of the film the next frame starts from (its impact test), reset by each step.
   std::optional<FilmChecks> checksForNextFrame_;

@@ -19,25 +19,23 @@ uint treeBlockCount(uint n) { return min(n, treeBlockFirst() + (1u << GB_TREE_PA
 // Into `result`, the tree of VALUE(i) over this invocation's run of the block of n values: a binary counter of partial
 // sums, partial[l] the sum of the last complete run of 2^l values, joined to its right neighbour as soon as that
 // completes; the runs left at the end join from the smallest up, as the levels carry an odd last value.
-#define GB_TREE_RUN(result, n, VALUE, largest)                                                   \
-  {                                                                                              \
-    float partial_[GB_TREE_PASS_LEVELS + 1u];                                                    \
-    const uint from_ = treeBlockFirst() + gl_LocalInvocationID.x * treeRun();                    \
-    const uint count_ = gl_LocalInvocationID.x < treeLanes() && from_ < (n)                      \
-                            ? min(n, from_ + treeRun()) - from_                                  \
-                            : 0u;                                                                \
-    for (uint i_ = 0u; i_ < count_; ++i_) {                                                      \
-      float v_ = VALUE(from_ + i_);                                                              \
-      uint l_ = 0u;                                                                              \
-      for (; (i_ & (1u << l_)) != 0u; ++l_) v_ = treeCombined(partial_[l_], v_, largest);      \
-      partial_[l_] = v_;                                                                         \
-    }                                                                                            \
-    bool have_ = false;                                                                          \
-    for (uint l_ = 0u; l_ <= GB_TREE_PASS_LEVELS; ++l_)                                          \
-      if ((count_ & (1u << l_)) != 0u) {                                                         \
-        result = have_ ? treeCombined(partial_[l_], result, largest) : partial_[l_];             \
-        have_ = true;                                                                            \
-      }                                                                                          \
+#define GB_TREE_RUN(result, n, VALUE, largest)                                                                        \
+  {                                                                                                                   \
+    float partial_[GB_TREE_PASS_LEVELS + 1u];                                                                         \
+    const uint from_ = treeBlockFirst() + gl_LocalInvocationID.x * treeRun();                                         \
+    const uint count_ = gl_LocalInvocationID.x < treeLanes() && from_ < (n) ? min(n, from_ + treeRun()) - from_ : 0u; \
+    for (uint i_ = 0u; i_ < count_; ++i_) {                                                                           \
+      float v_ = VALUE(from_ + i_);                                                                                   \
+      uint l_ = 0u;                                                                                                   \
+      for (; (i_ & (1u << l_)) != 0u; ++l_) v_ = treeCombined(partial_[l_], v_, largest);                             \
+      partial_[l_] = v_;                                                                                              \
+    }                                                                                                                 \
+    bool have_ = false;                                                                                               \
+    for (uint l_ = 0u; l_ <= GB_TREE_PASS_LEVELS; ++l_)                                                               \
+      if ((count_ & (1u << l_)) != 0u) {                                                                              \
+        result = have_ ? treeCombined(partial_[l_], result, largest) : partial_[l_];                                  \
+        have_ = true;                                                                                                 \
+      }                                                                                                               \
   }
 
 // The workgroup's sum: each invocation's run sum `mine` (anything where it has no run) joined level by level, the
@@ -50,7 +48,8 @@ float treeOfRuns(float mine, uint n, bool largest) {
     barrier();
     float v = 0.0;
     const bool joins = t < (m + 1u) / 2u;
-    if (joins) v = 2u * t + 1u < m ? treeCombined(treePartial[2u * t], treePartial[2u * t + 1u], largest) : treePartial[2u * t];
+    if (joins)
+      v = 2u * t + 1u < m ? treeCombined(treePartial[2u * t], treePartial[2u * t + 1u], largest) : treePartial[2u * t];
     barrier();
     if (joins) treePartial[t] = v;
   }

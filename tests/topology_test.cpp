@@ -88,6 +88,7 @@ TEST(Topology, ATriangleOnAnEdgeTwoTrianglesShareIsRefusedAndTheMeshStays) {
   EXPECT_EQ(topo.springOffset, before.springOffset);
   EXPECT_EQ(topo.boundary, before.boundary);
   EXPECT_THROW(appendTriangles(topo, x.size(), {grid.at(3, 3), grid.at(3, 4), 999u}, x, 0.0f), std::runtime_error);
+  EXPECT_THROW(appendTriangles(topo, x.size(), {grid.at(3, 3), grid.at(3, 4)}, x, 0.0f), std::runtime_error);
   EXPECT_EQ(topo.triangles, before.triangles);
 }
 

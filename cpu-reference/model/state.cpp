@@ -225,8 +225,10 @@ namespace {
 // to fill; each column (the arrays the offsets index) moves with its rows. Returns where each row's new entries start.
 std::vector<uint32_t> growRows(std::vector<uint32_t>& offset, std::initializer_list<std::vector<uint32_t>*> columns,
                                const std::vector<uint32_t>& extra) {
-  const size_t rows = extra.size(), oldRows = offset.size() - 1;
-  offset.resize(rows + 1, offset[oldRows]);
+  if (offset.empty()) offset.push_back(0);  // a mesh of no particles yet
+  const size_t rows = extra.size();
+  const uint32_t entries = offset.back();
+  offset.resize(rows + 1, entries);
   std::vector<uint32_t> newOffset(rows + 1, 0);
   for (size_t i = 0; i < rows; ++i) newOffset[i + 1] = newOffset[i] + (offset[i + 1] - offset[i]) + extra[i];
   for (std::vector<uint32_t>* column : columns) {
@@ -256,6 +258,7 @@ void appendTriangles(Topology& topo, size_t particleCount, const std::vector<uin
                      const Vec3Array& positions, float prestrain) {
   const size_t oldCount = topo.particleCount();
   if (particleCount < oldCount) throw std::logic_error("appendTriangles: a mesh only grows");
+  if (added.size() % 3 != 0) throw std::runtime_error("appendTriangles: triangles come as three corners each");
   for (uint32_t v : added)
     if (v >= particleCount) throw std::runtime_error("triangle refers to a particle that does not exist");
   // The springs the mesh has, and how many of its triangles use each: found in their lower end's rows.
@@ -276,7 +279,7 @@ void appendTriangles(Topology& topo, size_t particleCount, const std::vector<uin
   // The added triangles' edges, each once, in (lower, upper) order, with their uses.
   std::vector<Edge> edges;
   edges.reserve(added.size());
-  for (size_t t = 0; t + 2 < added.size(); t += 3)
+  for (size_t t = 0; t < added.size(); t += 3)
     for (int c = 0; c < 3; ++c) edges.push_back(undirected(added[t + c], added[t + (c + 1) % 3]));
   std::sort(edges.begin(), edges.end());
   std::vector<Edge> newSprings;

@@ -3,8 +3,8 @@
 # default film with 2 CPU threads and with all of them, 100,000 and 1,000,000 particles with 2 threads, the state
 # read back, and the default performance on the wall clock at 1920x1080 with a 100,000-particle film; then, where
 # the tests are built, the Vulkan tests on that GPU. Each command has a time limit, and its summary lines are printed
-# as it finishes, so that a run cut short still leaves figures. Needs a Release build in build/ (cmake -S . -B build
-# && cmake --build build -j).
+# as it finishes, so that a run cut short still leaves figures; where the benchmarks are built, the step's GPU time by
+# stage. Needs a Release build in build/ (cmake -S . -B build && cmake --build build -j).
 #   bash scripts/gpu-figures.sh [seconds per command, default 120]
 set -u
 limit=${1:-120}
@@ -39,6 +39,12 @@ run "1,000,000 particles, the work between steps on the CPU" 2 --particles 10000
 run "on the wall clock at 1920x1080, 100,000 particles" 2 --particles 100000 --realtime --render --width 1920 \
   --height 1080 --video ''
 rm -rf "$out"
+stages=build/bench/gb_stage_bench
+if [ -x "$stages" ]; then
+  echo "== the step's GPU time by stage (us a substep), 10,000 and 100,000 particles"
+  OMP_NUM_THREADS=2 timeout "$limit" "$stages" --benchmark_filter='BM_VulkanStages/(10000|100000)/' 2>&1 |
+    grep -E "^BM_|timed out" || echo "(no summary)"
+fi
 tests=build/tests/gb_tests
 if [ -x "$tests" ]; then
   echo "== the Vulkan tests on this GPU"

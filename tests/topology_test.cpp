@@ -5,6 +5,8 @@
 #include <stdexcept>
 #include <vector>
 
+#include "coarse_correction.h"
+#include "colouring.h"
 #include "state.h"
 
 namespace gb {
@@ -108,6 +110,10 @@ TEST(Topology, CollapsedEdgesGiveTheTopologyARebuildGives) {
   Topology before = buildTopology(x.size(), torusTriangles(grid), x);
   ASSERT_TRUE(before.isClosed());
   for (size_t k = 0; k < before.springCount(); ++k) before.restLength[k] = 100.0f + static_cast<float>(k);
+  const std::vector<uint32_t> alive(x.size(), 1u);
+  ensureColouring(alive, before);  // the solver's lists of the old mesh, which the new one must not keep
+  ensurePatches(alive, 2, before);
+  ASSERT_FALSE(before.patchOf.empty());
   // Edges four apart along both directions collapse, each to its lower end: no two share a triangle.
   std::vector<uint32_t> into(x.size());
   for (uint32_t i = 0; i < into.size(); ++i) into[i] = i;
@@ -136,6 +142,11 @@ TEST(Topology, CollapsedEdgesGiveTheTopologyARebuildGives) {
   EXPECT_EQ(collapsed.boundary, rebuilt.boundary);
   EXPECT_EQ(collapsed.isClosed(), rebuilt.isClosed());
   EXPECT_TRUE(collapsed.isClosed());
+  EXPECT_EQ(collapsed.contacts, rebuilt.contacts);
+  for (const auto* lists : {&collapsed.colourOffset, &collapsed.colourOrder, &collapsed.patchOf, &collapsed.patchOffset,
+                            &collapsed.patchMembers, &collapsed.patchRowOffset, &collapsed.patchRow})
+    EXPECT_TRUE(lists->empty());
+  EXPECT_EQ(collapsed.patchRings, 0);
 }
 
 }  // namespace

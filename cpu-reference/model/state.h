@@ -195,8 +195,8 @@ Topology rebuildTopology(const Topology& previous, std::vector<uint32_t> triangl
 // same topology rebuildTopology gives, made from the previous springs instead of from every triangle's edges (at a
 // third of the cost, which a merge pays in each of its rounds): a spring whose ends stay keeps its index order and
 // rest length, one whose end moved is new unless the survivor had it. A mesh that is open, or whose springs are not
-// in (lower, upper) order, is rebuilt.
-Topology collapsedTopology(const Topology& previous, std::vector<uint32_t> triangles, const std::vector<uint32_t>& into,
+// in (lower, upper) order, is rebuilt. The previous topology's arrays are reused (taken by value: move it in).
+Topology collapsedTopology(Topology previous, std::vector<uint32_t> triangles, const std::vector<uint32_t>& into,
                            const Vec3Array& positions, float prestrain, std::vector<size_t>* made = nullptr);
 
 // Adds triangles to a mesh in place, without remaking what it had (the film growing a strip at its wire: a remade

@@ -380,7 +380,7 @@ size_t mergeCrowdedParticles(const Params& params, Film& film, SpringEnergyAllow
     triangles.insert(triangles.end(), tri.begin(), tri.end());
   }
   std::vector<size_t> made;
-  topo = collapsedTopology(topo, std::move(triangles), into, s.position, params.springPrestrain, &made);
+  topo = collapsedTopology(std::move(topo), std::move(triangles), into, s.position, params.springPrestrain, &made);
   for (size_t k : made) {  // as taut as new film while the allowance pays, else at their length
     const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
     const float length = (s.position.get(a) - s.position.get(b)).norm();

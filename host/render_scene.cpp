@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <vector>
 
 #include "procedural_noise.h"
 #include "render_shared.h"
@@ -133,22 +134,32 @@ float FilmFraming::framingDistance(const OrbitCamera& base, const State& s, cons
   // The outline's extent on the image at distance d, as fractions of the image's height and width: each particle
   // at (x, y) across and z towards the camera from the centre is seen at tan = x / (d - z).
   const float tanHalfY = std::tan(0.5f * base.fovY), tanHalfX = options_.aspect * tanHalfY;
+  // The living particles about the centre, gathered once for the forty-odd passes of the bisection below, each of
+  // them over every particle (14 ms a frame at 100,000 particles read from the film's arrays on one thread). Minima
+  // and maxima are the same in any order, so the threads do not change the framing.
+  std::vector<Vec3> offsets;
+  offsets.reserve(s.size());
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.alive[i]) offsets.push_back(s.position.get(i) - centre);
+  const auto count = static_cast<long>(offsets.size());
+  constexpr long kParallelFrom = 16384;  // particles: below this a pass is shorter than waking the threads
   // The bisection starts just beyond the nearest particle, so that every particle is in front of the camera. Where
   // the pitch changes with the distance, nearest in any direction.
   const Vec3 farBack = backAt(1e4f);
   float nearest = 0.0f, radius = 0.0f;
-  for (size_t i = 0; i < s.size(); ++i)
-    if (s.alive[i]) {
-      nearest = std::max(nearest, (s.position.get(i) - centre).dot(farBack));
-      radius = std::max(radius, (s.position.get(i) - centre).norm());
-    }
+#pragma omp parallel for reduction(max : nearest, radius) if (count >= kParallelFrom)
+  for (long i = 0; i < count; ++i) {
+    const Vec3& p = offsets[static_cast<size_t>(i)];
+    nearest = std::max(nearest, p.dot(farBack));
+    radius = std::max(radius, p.norm());
+  }
   if (pitchAbove(base, centre, nearest + 0.05f) > base.pitch) nearest = radius;
   const auto tooLarge = [&](float d) {
     const Vec3 back = backAt(d), up = back.cross(right);
     float loX = 0, hiX = 0, loY = 0, hiY = 0;
-    for (size_t i = 0; i < s.size(); ++i) {
-      if (!s.alive[i]) continue;
-      const Vec3 p = s.position.get(i) - centre;
+#pragma omp parallel for reduction(min : loX, loY) reduction(max : hiX, hiY) if (count >= kParallelFrom)
+    for (long i = 0; i < count; ++i) {
+      const Vec3& p = offsets[static_cast<size_t>(i)];
       const float depth = d - p.dot(back);
       loX = std::min(loX, p.dot(right) / depth);
       hiX = std::max(hiX, p.dot(right) / depth);

@@ -135,7 +135,7 @@ float FilmFraming::framingDistance(const OrbitCamera& base, const State& s, cons
   // at (x, y) across and z towards the camera from the centre is seen at tan = x / (d - z).
   const float tanHalfY = std::tan(0.5f * base.fovY), tanHalfX = options_.aspect * tanHalfY;
   // The living particles about the centre, gathered once for the forty-odd passes of the bisection below, each of
-  // them over every particle (14 ms a frame at 100,000 particles read from the film's arrays on one thread). Minima
+  // them over every particle (8.4 ms at 100,000 particles read from the film's arrays on one thread). Minima
   // and maxima are the same in any order, so the threads do not change the framing.
   std::vector<Vec3> offsets;
   offsets.reserve(s.size());

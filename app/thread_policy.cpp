@@ -15,6 +15,14 @@
 
 namespace gb {
 
+namespace {
+
+double steadySeconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
 void setOpenMpWaiting(char** argv) {
   if (std::getenv("OMP_WAIT_POLICY") || std::getenv("GOMP_SPINCOUNT")) return;
   if (setenv("GOMP_SPINCOUNT", kOpenMpSpinCount, 0) != 0) return;
@@ -59,7 +67,7 @@ bool SimulationThreads::sample(Sample& s) {
   const auto seconds = [](const timeval& t) {
     return static_cast<double>(t.tv_sec) + 1e-6 * static_cast<double>(t.tv_usec);
   };
-  s.wall = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  s.wall = steadySeconds();
   s.machineBusy = busyTicks / tick;
   s.own = seconds(own.ru_utime) + seconds(own.ru_stime);
   return true;
@@ -67,8 +75,7 @@ bool SimulationThreads::sample(Sample& s) {
 
 int SimulationThreads::update() {
   if (!on_) return current_;
-  const double now = std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-  if (now - last_.wall < 0.5) return current_;
+  if (steadySeconds() - last_.wall < 0.5) return current_;
   Sample next;
   if (!sample(next)) return current_;
   const double othersLoad =

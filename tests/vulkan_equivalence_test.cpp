@@ -510,7 +510,7 @@ TEST(VulkanEquivalence, VolumeReductionAndBubblePressureMatch) {
   GB_REQUIRE_VULKAN(device);
   Params p;
   const Vec3 centre(0.2f, 1.0f, -0.1f);
-  Film sphere = generateSphere(p, centre, 0.5f, 4);  // 5120 triangles: 13 tree levels
+  Film sphere = generateSphere(p, centre, 0.5f, 4);  // 5120 triangles: two passes of the tree
   Simulation reference(p, sphere, WandState{});      // fixes V_0 and the volume origin
   Film film = reference.film();
   for (size_t i = 0; i < film.state.size(); ++i)  // squeeze it so that Boyle's pressure acts
@@ -543,19 +543,15 @@ TEST(VulkanEquivalence, VolumeReductionAndBubblePressureMatch) {
 TEST(VulkanEquivalence, ALargeBubblesVolumeSumsInThreePasses) {
   GB_REQUIRE_VULKAN(device);
   Params p;
-  const Vec3 centre(0.2f, 1.0f, -0.1f);
-  Film film = generateSphere(p, centre, 0.5f, 7);
+  Film film = generateSphere(p, Vec3(0.2f, 1.0f, -0.1f), 0.5f, 7);
   ASSERT_EQ(film.topology.triangleCount(), 327680u);
-  Simulation reference(p, film, WandState{});
-  Film cpuFilm = reference.film(), gpuFilm = reference.film();
+  Simulation reference(p, film, WandState{});  // fixes the volume origin
   const StepUniforms u = reference.uniformsFor(WandState{}, WandState{}, 1e-4f);
-  CpuStepper cpu;
+  Film gpuFilm = reference.film();
   VulkanStepper gpu(device);
-  cpu.load(p, cpuFilm);
   gpu.load(p, gpuFilm);
-  cpu.runStage(Stage::Geometry, u);
-  gpu.runStage(Stage::Geometry, u);
-  const float cpuVolume = cpu.runStage(Stage::Volume, u), gpuVolume = gpu.runStage(Stage::Volume, u);
+  const float gpuVolume = gpu.runStage(Stage::Volume, u);  // the cone volumes need the positions alone
+  const float cpuVolume = CpuStepper().volume(reference.film(), u.volumeOrigin);
   EXPECT_NEAR(gpuVolume, cpuVolume, kStageTolerance * cpuVolume);
   EXPECT_NEAR(cpuVolume, 4.0f / 3.0f * 3.14159265f * 0.125f, 0.01f * cpuVolume);  // a sphere of radius 0.5 m
   EXPECT_EQ(device->validationErrors(), 0u);

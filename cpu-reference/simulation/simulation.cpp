@@ -295,16 +295,14 @@ bool Simulation::passesOnDevice(const WandState& next, float wandSpeed) {
     // The rest-length rules the device runs itself may still act: there. The payout widens the wire's band, which
     // the checks then measure again for a new ring (growFilmAtWire looks for one after its payout).
     const bool yielded = checks->yielding > 0 && yieldApplies() && stepper_->yieldStretchedSprings();
-    const bool contracted =
-        checks->slack > 0 && contractionApplies() &&
-        stepper_->contractSlackSprings(contractionShareOf(checks->contractionQuadratic, checks->contractionLinear,
-                                                          stepper_->lastBudget().released));
+    SpringEnergyAllowance allowance{stepper_->lastBudget().released};
+    const bool contracted = checks->slack > 0 && contractionApplies() && contractOnDevice(*checks, allowance);
     const bool paidOut = checks->rungsPastGrowth > 0 && payoutApplies(wandSpeed) && stepper_->payOutFilmAtWire();
     if (paidOut) checks = checksOnDevice(false);
     if (yielded) checks->yielding = 0;  // its springs now at the yield stretch, within the checks' margin
     if (contracted) checks->slack = 0;  // taken as far as the allowance pays
     if (paidOut) checks->rungsPastGrowth = 0;
-    restLengthsOnDevice_ = restLengthsOnDevice_ || yielded || contracted || paidOut;
+    restLengthsOnDevice_ = restLengthsOnDevice_ || yielded || paidOut;
   }
   if (const char* rule = ruleThatMayAct(*checks, next, wandSpeed, true)) {
     ++readbackRecord_.framesHeldByRule[rule];
@@ -382,17 +380,20 @@ void Simulation::contractSlackSpringsWhereTheyLie(SpringEnergyAllowance& allowan
   // the frame describe the film still, unless the burst took particles since.
   std::optional<FilmChecks> checks = events_.particlesRemoved == 0 ? heldChecks_ : std::nullopt;
   if (!checks) checks = checksOnDevice(false);
-  if (checks && checks->slack > 0) {
-    const float quadratic = checks->contractionQuadratic, linear = checks->contractionLinear;
-    const float share = contractionShareOf(quadratic, linear, allowance.joules);
-    if (stepper_->contractSlackSprings(share)) {
-      allowance.joules -= contractionEnergyOf(share, quadratic, linear);
-      restLengthsOnDevice_ = true;
-      pullState();  // the rest lengths, for the merges
-      return;
-    }
+  if (checks && checks->slack > 0 && contractOnDevice(*checks, allowance)) {
+    pullState();  // the rest lengths, for the merges
+    return;
   }
   if (contractSlackSprings(params_, film_, allowance) > 0) stepper_->updateRestLengths(film_);
+}
+
+bool Simulation::contractOnDevice(const FilmChecks& checks, SpringEnergyAllowance& allowance) {
+  const float quadratic = checks.contractionQuadratic, linear = checks.contractionLinear;
+  const float share = contractionShareOf(quadratic, linear, allowance.joules);
+  if (!stepper_->contractSlackSprings(share)) return false;
+  allowance.joules -= contractionEnergyOf(share, quadratic, linear);
+  restLengthsOnDevice_ = true;
+  return true;
 }
 
 bool Simulation::contractionApplies() const { return film_.topology.isClosed() && params_.tensionModel == 0; }

@@ -198,6 +198,9 @@ class Simulation {
   // The contraction (contractSlackSprings) on the film in host memory, or on the stepper's device where it checks the
   // film there; either way within `allowance`, which it spends.
   void contractSlackSpringsWhereTheyLie(SpringEnergyAllowance& allowance);
+  // The contraction on the stepper's device, each slack spring the share of the way that the checks' sums give
+  // against `allowance`, which it spends; false where the stepper does not run it there.
+  bool contractOnDevice(const FilmChecks& checks, SpringEnergyAllowance& allowance);
   // Whether a free bubble's crowded particles merge this frame: every Params::mergeInterval frames of a closed film.
   [[nodiscard]] bool mergeDue() const;
   // Whether the wire pays out film now: its tips draw (kDrawingSpeed), it holds solution, its loop is intact.

@@ -43,8 +43,8 @@ void addTube(std::vector<float>& mesh, const std::vector<Vec3>& path, float radi
   }
 }
 
-// The ground: a neutral dark grey square (asphalt, against which a film's reflections show as they do in
-// photographs of giant bubbles) 160 m across (its edge near the far plane). Beyond it the environment's ground
+// The ground: a neutral grey square (sunlit concrete paving, groundAlbedo) 160 m across (its edge near the far
+// plane). Beyond it the environment's ground
 // shows: the default sky paints it as this floor is lit, other environments hide the edge in haze
 // (EnvironmentImage::hazeDistance).
 void addFloor(std::vector<float>& mesh) {
@@ -453,7 +453,7 @@ Vec3 horizonRadiance(const EnvironmentImage& env) {
   return count > 0 ? Vec3((sum / count).cast<float>()) : Vec3(Vec3::Zero());
 }
 
-Vec3 groundAlbedo() { return {0.16f, 0.16f, 0.155f}; }
+Vec3 groundAlbedo() { return {0.30f, 0.30f, 0.29f}; }
 
 EnvironmentImage skyEnvironment(int width) {
   const OutdoorSky sky;

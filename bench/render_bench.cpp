@@ -6,7 +6,9 @@
 // BM_FrameSimulationAndRender: a whole frame as `giantbubble run --render` does it, minus the file output.
 // BM_RenderMainJob/F: the README's main job's render of its frame F (60: the bag being drawn; 200: the free
 //                      bubble), 960x540, one sample, pixels read back: the main job's own per-frame render.
-// BM_PropsMesh, BM_FilmSwirls: the renderer's CPU work per frame, what bounds it on a real GPU.
+// BM_PropsMesh, BM_FilmSwirls, BM_FollowCamera/L/Y: the renderer's CPU work per frame, what bounds it on a real GPU
+//                      (the follow camera on a bubble of 10 x 4^L + 2 particles centred Y cm above the floor: at
+//                      120 the default pitch holds, at 60 the camera is pitched down to keep above the floor).
 #include <benchmark/benchmark.h>
 #include <sys/resource.h>
 
@@ -187,6 +189,15 @@ void BM_FilmSwirls(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(swirls.update(sim->film().state).data());
 }
 BENCHMARK(BM_FilmSwirls)->Unit(benchmark::kMillisecond);
+
+void BM_FollowCamera(benchmark::State& state) {
+  const float height = 0.01f * static_cast<float>(state.range(1));
+  const Film bubble = generateSphere(Params{}, Vec3(0.0f, height, 0.0f), 0.5f, static_cast<int>(state.range(0)));
+  FilmFraming framing;
+  for (auto _ : state) benchmark::DoNotOptimize(framing.update(OrbitCamera{}, bubble.state, 0.02f).distance);
+  state.counters["particles"] = static_cast<double>(bubble.state.size());
+}
+BENCHMARK(BM_FollowCamera)->Args({5, 120})->Args({7, 120})->Args({7, 60})->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace gb

@@ -134,9 +134,8 @@ float FilmFraming::framingDistance(const OrbitCamera& base, const State& s, cons
   // The outline's extent on the image at distance d, as fractions of the image's height and width: each particle
   // at (x, y) across and z towards the camera from the centre is seen at tan = x / (d - z).
   const float tanHalfY = std::tan(0.5f * base.fovY), tanHalfX = options_.aspect * tanHalfY;
-  // The living particles about the centre, gathered once for the forty-odd passes of the bisection below, each of
-  // them over every particle (8.4 ms at 100,000 particles read from the film's arrays on one thread). Minima
-  // and maxima are the same in any order, so the threads do not change the framing.
+  // The living particles about the centre, gathered once for the passes of the root finder below, each of them
+  // over every particle. Minima and maxima are the same in any order, so the threads do not change the framing.
   std::vector<Vec3> offsets;
   offsets.reserve(s.size());
   for (size_t i = 0; i < s.size(); ++i)
@@ -154,7 +153,10 @@ float FilmFraming::framingDistance(const OrbitCamera& base, const State& s, cons
     radius = std::max(radius, p.norm());
   }
   if (pitchAbove(base, centre, nearest + 0.05f) > base.pitch) nearest = radius;
-  const auto tooLarge = [&](float d) {
+  // How well the outline fits at distance d: 1 / (its largest extent as a share of what the options allow) - 1, so
+  // negative where it is too large. Nearly linear in d (each particle is seen at x / (d - z)), which the root
+  // finder below makes use of.
+  const auto fit = [&](float d) {
     const Vec3 back = backAt(d), up = back.cross(right);
     float loX = 0, hiX = 0, loY = 0, hiY = 0;
 #pragma omp parallel for reduction(min : loX, loY) reduction(max : hiX, hiY) if (count >= kParallelFrom)
@@ -166,13 +168,35 @@ float FilmFraming::framingDistance(const OrbitCamera& base, const State& s, cons
       loY = std::min(loY, p.dot(up) / depth);
       hiY = std::max(hiY, p.dot(up) / depth);
     }
-    return (hiY - loY) / (2.0f * tanHalfY) > options_.heightFraction ||
-           (hiX - loX) / (2.0f * tanHalfX) > options_.widthFraction;
+    const float share = std::max((hiY - loY) / (2.0f * tanHalfY * options_.heightFraction),
+                                 (hiX - loX) / (2.0f * tanHalfX * options_.widthFraction));
+    return share > 0.0f ? 1.0f / share - 1.0f : std::numeric_limits<float>::infinity();
   };
-  // The extent shrinks as the camera backs away: bisect between just beyond the nearest particle and far enough.
+  // The extent shrinks as the camera backs away: bracket the distance between just beyond the nearest particle
+  // and far enough, then close the bracket by regula falsi with the Illinois rule (the end that stays has its
+  // value halved, so that both ends converge) to 0.01% of the distance: about 7 passes over the particles on the
+  // default performance and on a bubble, where bisection to the same precision takes 14.
   float lo = nearest + 0.05f, hi = std::max(2.0f * lo, options_.minDistance);
-  while (tooLarge(hi) && hi < 1e4f) hi *= 2.0f;
-  for (int k = 0; k < 30; ++k) (tooLarge(0.5f * (lo + hi)) ? lo : hi) = 0.5f * (lo + hi);
+  float fitLo = fit(lo), fitHi = fit(hi);
+  while (fitHi < 0.0f && hi < 1e4f) {
+    lo = hi, fitLo = fitHi;
+    hi *= 2.0f, fitHi = fit(hi);
+  }
+  int kept = 0;  // the end the last step moved, +1 the far one and -1 the near one: twice the same halves the other
+  for (int k = 0; k < 60 && fitLo < 0.0f && hi - lo > 1e-4f * hi; ++k) {
+    float d = std::isfinite(fitHi) ? (lo * fitHi - hi * fitLo) / (fitHi - fitLo) : 0.5f * (lo + hi);
+    if (!(d > lo && d < hi)) d = 0.5f * (lo + hi);
+    const float f = fit(d);
+    if (f >= 0.0f) {
+      hi = d, fitHi = f;
+      if (kept == 1) fitLo *= 0.5f;
+      kept = 1;
+    } else {
+      lo = d, fitLo = f;
+      if (kept == -1) fitHi *= 0.5f;
+      kept = -1;
+    }
+  }
   return std::max(options_.minDistance, hi);
 }
 

@@ -32,9 +32,9 @@ TEST(FilmFraming, KeepsABubbleAtAboutHalfTheImageHeightAndFollowsItSmoothly) {
   FilmFraming framing;
   const OrbitCamera base;
   OrbitCamera camera = framing.update(base, film.state, 0.02f);
-  // The outline spans heightFraction (0.55) of the image height: the distance is bisected on the particles'
-  // projections, so within 0.01 (the bisection and the centre being the bounding box's, not the outline's).
-  EXPECT_NEAR(heightFractionOnScreen(camera, film.state), 0.55f, 0.01f);
+  // The outline spans heightFraction (0.55) of the image height: the distance is found to 0.01% on the particles'
+  // projections, so within 1e-4 (measured within 1e-5).
+  EXPECT_NEAR(heightFractionOnScreen(camera, film.state), 0.55f, 1e-4f);
   EXPECT_FLOAT_EQ(camera.yaw, base.yaw) << "the framing keeps the camera's direction";
   EXPECT_NEAR((camera.target - Vec3(0.0f, 1.2f, 0.0f)).norm(), 0.0f, 0.02f);
 
@@ -46,6 +46,7 @@ TEST(FilmFraming, KeepsABubbleAtAboutHalfTheImageHeightAndFollowsItSmoothly) {
   EXPECT_LT(camera.target.x(), 0.1f);
   for (int f = 0; f < 150; ++f) camera = framing.update(base, film.state, 0.02f);
   EXPECT_NEAR(camera.target.x(), 1.0f, 0.01f);
+  // Eased for 3 s, the distance is within 0.01 of the framing (measured 0.0008 over it).
   EXPECT_NEAR(heightFractionOnScreen(camera, film.state), 0.55f, 0.01f);
 
   // A burst film (nothing alive) leaves the camera where it was.
@@ -74,7 +75,7 @@ TEST(FilmFraming, KeepsADriftingBubbleCentred) {
 
 TEST(FilmFraming, KeepsALongBagWithinTheImageWidth) {
   // A bag 4 m long and 1 m high seen side-on: framed by its length, the outline spans at most widthFraction (0.8)
-  // of a 16:9 image's width (within 0.01: the bisection), and so less than half the height.
+  // of a 16:9 image's width (within 1e-4: the distance is found to 0.01%), and so less than half the height.
   Film film = generateSphere(Params{}, Vec3(0.0f, 1.2f, 0.0f), 0.5f, 3);
   for (size_t i = 0; i < film.state.size(); ++i) {
     const Vec3 p = film.state.position.get(i) - Vec3(0.0f, 1.2f, 0.0f);
@@ -92,7 +93,7 @@ TEST(FilmFraming, KeepsALongBagWithinTheImageWidth) {
     lo = std::min(lo, clip.x() / clip.w());
     hi = std::max(hi, clip.x() / clip.w());
   }
-  EXPECT_NEAR(0.5f * (hi - lo), 0.8f, 0.01f);
+  EXPECT_NEAR(0.5f * (hi - lo), 0.8f, 1e-4f);
   EXPECT_LT(heightFractionOnScreen(camera, film.state), 0.5f);
 }
 

@@ -4,7 +4,7 @@
 # read back, and the default performance on the wall clock at 1920x1080 with a 100,000-particle film; then, where
 # the tests are built, the Vulkan tests on that GPU. Each command has a time limit, and its summary lines are printed
 # as it finishes, so that a run cut short still leaves figures; where the benchmarks are built, the step's GPU time by
-# stage. Needs a Release build in build/ (cmake -S . -B build && cmake --build build -j).
+# stage and the follow camera's framing. Needs a Release build in build/ (cmake -S . -B build && cmake --build build -j).
 #   bash scripts/gpu-figures.sh [seconds per command, default 120]
 set -u
 limit=${1:-120}
@@ -43,6 +43,12 @@ stages=build/bench/gb_stage_bench
 if [ -x "$stages" ]; then
   echo "== the step's GPU time by stage (us a substep), 10,000 and 100,000 particles"
   OMP_NUM_THREADS=2 timeout "$limit" "$stages" --benchmark_filter='BM_VulkanStages/(10000|100000)/' 2>&1 |
+    grep -E "^BM_|timed out" || echo "(no summary)"
+fi
+render=build/bench/gb_render_bench
+if [ -x "$render" ]; then
+  echo "== the follow camera's framing, CPU time a frame (2 threads)"
+  OMP_NUM_THREADS=2 timeout "$limit" "$render" --benchmark_filter='BM_FollowCamera' 2>&1 |
     grep -E "^BM_|timed out" || echo "(no summary)"
 fi
 tests=build/tests/gb_tests

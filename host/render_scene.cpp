@@ -178,12 +178,13 @@ float FilmFraming::framingDistance(const OrbitCamera& base, const State& s, cons
   // default performance and on a bubble, where bisection to the same precision takes 14.
   float lo = nearest + 0.05f, hi = std::max(2.0f * lo, options_.minDistance);
   float fitLo = fit(lo), fitHi = fit(hi);
+  if (fitLo >= 0.0f) return std::max(options_.minDistance, lo);  // a film that fits even there (seen end-on)
   while (fitHi < 0.0f && hi < 1e4f) {
     lo = hi, fitLo = fitHi;
     hi *= 2.0f, fitHi = fit(hi);
   }
   int kept = 0;  // the end the last step moved, +1 the far one and -1 the near one: twice the same halves the other
-  for (int k = 0; k < 60 && fitLo < 0.0f && hi - lo > 1e-4f * hi; ++k) {
+  for (int k = 0; k < 60 && hi - lo > 1e-4f * hi; ++k) {
     float d = std::isfinite(fitHi) ? (lo * fitHi - hi * fitLo) / (fitHi - fitLo) : 0.5f * (lo + hi);
     if (!(d > lo && d < hi)) d = 0.5f * (lo + hi);
     const float f = fit(d);

@@ -73,6 +73,24 @@ TEST(FilmFraming, KeepsADriftingBubbleCentred) {
   EXPECT_LT((camera.target - centre).norm(), 0.05f) << "target " << camera.target.transpose();
 }
 
+TEST(FilmFraming, AFilmWithNoExtentOnTheImageIsFramedFromTheNearestDistance) {
+  // One living particle, or a film along the camera's axis, fits the picture from any distance: the camera comes
+  // to minDistance (1 m), not into the film and not away to the bracket's far end.
+  Film film = generateSphere(Params{}, Vec3(0.0f, 1.2f, 0.0f), 0.5f, 2);
+  std::fill(film.state.alive.begin() + 1, film.state.alive.end(), 0u);
+  FilmFraming framing;
+  EXPECT_FLOAT_EQ(framing.update(OrbitCamera{}, film.state, 0.02f).distance, FilmFraming::Options{}.minDistance);
+  // Two particles 0.6 m before and behind the centre on the camera's axis: the nearest distance that keeps them
+  // in front of the camera is 0.65 m, under minDistance.
+  const OrbitCamera base;
+  const Vec3 axis = (base.position() - base.target).normalized();
+  film.state.alive[1] = 1u;
+  film.state.position.set(0, Vec3(0.0f, 1.2f, 0.0f) + 0.6f * axis);
+  film.state.position.set(1, Vec3(0.0f, 1.2f, 0.0f) - 0.6f * axis);
+  FilmFraming endOn;
+  EXPECT_FLOAT_EQ(endOn.update(base, film.state, 0.02f).distance, FilmFraming::Options{}.minDistance);
+}
+
 TEST(FilmFraming, KeepsALongBagWithinTheImageWidth) {
   // A bag 4 m long and 1 m high seen side-on: framed by its length, the outline spans at most widthFraction (0.8)
   // of a 16:9 image's width (within 1e-4: the distance is found to 0.01%), and so less than half the height.

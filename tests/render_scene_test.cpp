@@ -224,8 +224,8 @@ float luminanceToward(const EnvironmentImage& env, const Vec3& d) {
 
 TEST(SkyEnvironment, AWoodStandsBehindTheStageDarkerThanTheSunlitGround) {
   // Ahead of the default camera, up to 20 degrees (where the film is seen from it), the wood: at most half as bright
-  // as the sunlit ground below the horizon (a canopy reflects about 4% of visible light, the ground 16%; measured
-  // 0.05-0.25 of it, printed: sunlit clumps, shaded gaps, the understory darker near the ground); above it, at 45
+  // as the sunlit ground below the horizon (a canopy reflects about 4% of visible light, the ground 30%; measured
+  // 0.03-0.15 of it, printed: sunlit clumps, shaded gaps, the understory darker near the ground); above it, at 45
   // degrees, the blue sky again, brighter than the ground; behind the camera no wood: sky and distant hills, more
   // than twice as bright as the wood.
   const EnvironmentImage sky = skyEnvironment(1024);

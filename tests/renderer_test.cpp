@@ -573,12 +573,11 @@ TEST(Renderer, DefaultPerformancesFilmIsColourfulMidStroke) {
   // mostly B. The default camera stands low (pitch -0.15: its eye 0.8 m above the ground mid-stroke, looking up at
   // the film) and sees the film against the dark edge of the wood behind the stage, as giant bubbles are usually
   // photographed (docs/rendering.md, "Colour mid-stroke"). Measured (printed below): behind the film's pixels a
-  // luminance of 0.041 (0.194 for sunlit ground seen from a camera looking down at 0.3 rad), with the film 0.073;
-  // the film reflects 0.303, 58% of it the ground; drawn thickness 0.59 / 1.18 / 2.57 um (10th percentile, median,
-  // 90th); mean saturation 0.127 on 22% of the image. The bound is 0.1: the margin is far beyond what another Mesa
-  // or LLVM version moves (a level or two on a few pixels, under 0.005 here), and a change that puts sunlit ground or
-  // sky back behind the film (0.055 with this wood and a camera 0.3 rad down) or greys the film's reflection fails
-  // it.
+  // luminance of 0.046, with the film 0.095; the film reflects 0.398, 58% of it the ground; drawn thickness 0.45 /
+  // 0.69 / 1.32 um (10th percentile, median, 90th); mean saturation 0.222 on 24% of the image. The bound is 0.1: the
+  // margin is far beyond what another Mesa or LLVM version moves (a level or two on a few pixels, under 0.005 here),
+  // and a change that puts sunlit ground or sky back behind the film (0.055 over asphalt with a camera 0.3 rad down)
+  // or greys the film's reflection fails it.
   GB_REQUIRE_VULKAN(device);
   const DefaultPerformanceFrames& frames = defaultPerformanceFrames();
   RenderOptions o = smallImage();

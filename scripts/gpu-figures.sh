@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The Vulkan backend's figures on a machine with a GPU (docs/performance.md, the GPU rows): whole frames of the
 # default film with 2 CPU threads and with all of them, 100,000 and 1,000,000 particles with 2 threads, the state
-# read back, and the default performance on the wall clock at 1920x1080 with a 100,000-particle film; then, where
+# read back, and the default performance on the wall clock at 1920x1080 with a 100,000-particle film (and the
+# render phase of its first 3 s with the follow camera and with a fixed one); then, where
 # the tests are built, the Vulkan tests on that GPU. Each command has a time limit, and its summary lines are printed
 # as it finishes, so that a run cut short still leaves figures; where the benchmarks are built, the step's GPU time by
 # stage and the follow camera's framing. Needs a Release build in build/ (cmake -S . -B build && cmake --build build -j).
@@ -38,6 +39,11 @@ run "1,000,000 particles, the work between steps on the CPU" 2 --particles 10000
   --between-steps cpu
 run "on the wall clock at 1920x1080, 100,000 particles" 2 --particles 100000 --realtime --render --width 1920 \
   --height 1080 --video ''
+# Where that run's render phase goes: the follow camera's framing against the scene's fixed camera, no PNG written.
+for camera in follow fixed; do
+  run "1920x1080, 100,000 particles, the first 3 s, camera $camera, no PNG" 2 --particles 100000 --duration 3 \
+    --render --width 1920 --height 1080 --video '' --render-every 0 --camera "$camera"
+done
 rm -rf "$out"
 stages=build/bench/gb_stage_bench
 if [ -x "$stages" ]; then

@@ -44,9 +44,8 @@ void addTube(std::vector<float>& mesh, const std::vector<Vec3>& path, float radi
 }
 
 // The ground: a neutral grey square (sunlit concrete paving, groundAlbedo) 160 m across (its edge near the far
-// plane). Beyond it the environment's ground
-// shows: the default sky paints it as this floor is lit, other environments hide the edge in haze
-// (EnvironmentImage::hazeDistance).
+// plane). Beyond it the environment's ground shows: the default sky paints it as this floor is lit, other
+// environments hide the edge in haze (EnvironmentImage::hazeDistance).
 void addFloor(std::vector<float>& mesh) {
   constexpr float half = 80.0f;
   const Vec3 corners[4] = {{-half, 0, -half}, {half, 0, -half}, {half, 0, half}, {-half, 0, half}};

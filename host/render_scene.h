@@ -107,7 +107,7 @@ struct EnvironmentImage {
 // Albedo of the ground prop: weathered concrete paving, 0.30 (concrete 0.10-0.35 in Oke, "Boundary Layer
 // Climates", 1987, Table 1.1). Seen from the default camera, which looks up at the film, most of what a film
 // reflects is the ground behind the camera, so the floor sets how bright its interference colours are: over
-// asphalt (0.16) the bag's most colourful frame had 0.041 of the image in vivid colour, over this floor 0.060
+// asphalt (0.16) the bag's most colourful frame has 0.041 of the image in vivid colour, over this floor 0.060
 // (docs/rendering.md, "Ground").
 Vec3 groundAlbedo();
 

@@ -112,15 +112,20 @@ BucketSheet summariseSheet(const std::vector<Vec3>& position, const std::vector<
 // outside the bucket: in its own cell of a nearly flat sheet (H of micrometres) a particle's partners can only be
 // its closest neighbours or none. H carries 10 um for the float rounding of heights of particles metres from the
 // origin, which also keeps sqrt(1/2) |d| - |n_j . d| >= 10 um beyond the radius, far above the float error of the
-// search's own across test on a separation of centimetres.
-float partnerRadius(const BucketSheet& b, const Vec3& x, const Vec3& n) {
-  const float tilt =
-      std::max(b.normalSpread, std::sqrt(std::min((n - b.normal).squaredNorm(), (n + b.normal).squaredNorm())));
-  if (!(tilt < kAcrossCosine)) return std::numeric_limits<float>::infinity();
-  const float height = b.normal.dot(x);
+// search's own across test on a separation of centimetres. Four particles at a time, coordinates by axis.
+Float4 partnerRadius(const BucketSheet& b, const std::array<Float4, 3>& x, const std::array<Float4, 3>& n) {
+  Float4 towards(0.0f), away(0.0f), height(0.0f);  // |n - m|^2, |n + m|^2, m . x
+  for (int a = 0; a < 3; ++a) {
+    const Float4 m(b.normal[a]);
+    towards = towards + (n[a] - m) * (n[a] - m);
+    away = away + (n[a] + m) * (n[a] + m);
+    height = height + m * x[a];
+  }
+  const Float4 tilt = max(Float4(b.normalSpread), sqrt(min(towards, away)));
   constexpr float kRounding = 1e-5f;
-  const float offPlane = std::max(b.heightMax - height, height - b.heightMin) + kRounding;
-  return offPlane / (kAcrossCosine - tilt);
+  const Float4 offPlane = max(Float4(b.heightMax) - height, height - Float4(b.heightMin)) + Float4(kRounding);
+  const Float4 across(kAcrossCosine);
+  return select(tilt < across, offPlane / (across - tilt), Float4(std::numeric_limits<float>::infinity()));
 }
 
 // Particles bucketed by a hash of their grid cell, counting-sorted into one flat array: the same lookups as a
@@ -256,7 +261,7 @@ bool searchedFrom(const CellTable& table, uint32_t home, uint32_t b) {
   return radiusB < radiusHome || (radiusB == radiusHome && b > home);
 }
 
-// Applies PartnerRule::listPartnersIn's first two tests (a particle farther from bucket b's box than the reach, or
+// Applies PartnerRule::listRunPartnersIn's first two tests (a particle farther from bucket b's box than the reach, or
 // than the partner radius b's sheet allows it, lists nothing there) to all of bucket `home`'s particles at once:
 // false when every one of them would fail them. Their distance to b's box is at least the gap between the two
 // boxes, and partnerRadius is at most its bound over home's box (heights along b's normal) and normals (home's mean
@@ -267,7 +272,7 @@ bool bucketMayHold(const CellTable& table, uint32_t home, uint32_t b, float reac
   const BucketSheet& from = table.sheet[table.sheetIndex[home]];
   const BucketSheet& sheet = table.sheet[table.sheetIndex[b]];
   const float gapSquared = (sheet.lower - from.upper).cwiseMax(from.lower - sheet.upper).cwiseMax(0.0f).squaredNorm();
-  auto widened = [](float r) { return r * 1.001f + 1e-5f; };       // as listPartnersIn's
+  auto widened = [](float r) { return r * 1.001f + 1e-5f; };       // as PartnerRule::widened
   if (gapSquared > widened(reach) * widened(reach)) return false;  // a NaN gap compares false: searched
   const Vec3& m = sheet.normal;
   const float turn = std::sqrt(std::min((from.normal - m).squaredNorm(), (from.normal + m).squaredNorm()));
@@ -308,26 +313,56 @@ struct PartnerRule {
   const Topology& topo;
   float frameTime, slack, reach;
 
-  // Appends to `partners` the partners of table entry `at` (in bucket `home`) among bucket b's particles that it
-  // lists: each pair is listed once, within a bucket by its first entry in the table, between two buckets by the
-  // particles of the one whose neighbour is the flatter (searchedFrom, applied by bucketsAround), where the partner
-  // radius reads less.
-  void listPartnersIn(const CellTable& table, uint32_t home, uint32_t b, size_t at,
-                      std::vector<uint32_t>& partners) const {
+  // A thousandth and 10 um more than the reach and the partner radius for the float rounding of the coordinates
+  // compared with them.
+  static float widened(float r) { return r * 1.001f + 1e-5f; }
+  static Float4 widened(Float4 r) { return r * Float4(1.001f) + Float4(1e-5f); }
+
+  // Appends to `pairs` the pairs (particle, partner) that table entries [first, last), a run of one cell in bucket
+  // `home`, list with bucket b's particles: each pair is listed once, within a bucket by its first entry in the
+  // table, between two buckets by the particles of the one whose neighbour is the flatter (searchedFrom, applied by
+  // bucketsAround), where the partner radius reads less. A particle farther from b's box than the reach, or than
+  // the partner radius b's sheet allows it (partnerRadius), lists nothing there: four entries at a time take these
+  // tests, the bulk of the search on a film whose buckets are pieces of smooth sheet; the rest search their slab.
+  void listRunPartnersIn(const CellTable& table, uint32_t home, uint32_t b, size_t first, size_t last,
+                         std::vector<uint32_t>& pairs) const {
+    const BucketSheet& sheet = table.sheet[table.sheetIndex[b]];
+    const std::array<Float4, 3> lower{sheet.lower.x(), sheet.lower.y(), sheet.lower.z()},
+        upper{sheet.upper.x(), sheet.upper.y(), sheet.upper.z()};
+    const Float4 zero(0.0f), reachSquared = widened(Float4(reach)) * widened(Float4(reach));
+    for (size_t at = first; at < last; at += 4) {
+      // Entries past the run repeat its last one, and their lanes are dropped.
+      const auto lanes = [&](const std::vector<float>& axis) {
+        const auto entry = [&](size_t l) { return axis[std::min(at + l, last - 1)]; };
+        return Float4::of(entry(0), entry(1), entry(2), entry(3));
+      };
+      const std::array<Float4, 3> x{lanes(table.x[0]), lanes(table.x[1]), lanes(table.x[2])};
+      const std::array<Float4, 3> n{lanes(table.n[0]), lanes(table.n[1]), lanes(table.n[2])};
+      Float4 outsideSquared(0.0f);  // from b's box
+      for (int a = 0; a < 3; ++a) {
+        const Float4 outside = max(max(lower[a] - x[a], x[a] - upper[a]), zero);
+        outsideSquared = outsideSquared + outside * outside;
+      }
+      const Float4 radius = widened(min(Float4(reach), partnerRadius(sheet, x, n)));
+      const unsigned inRun = last - at >= 4 ? 0xfu : (1u << (last - at)) - 1u;
+      const unsigned tooFar = laneBits(outsideSquared > reachSquared || outsideSquared > radius * radius);
+      for (unsigned near = inRun & ~tooFar; near; near &= near - 1) {
+        const auto l = std::countr_zero(near);
+        listPartnersInSlab(table, home, b, at + static_cast<size_t>(l), radius.lane(l), pairs);
+      }
+    }
+  }
+
+  // The rest of listRunPartnersIn for table entry `at`: the partners among bucket b's particles within `radius`.
+  void listPartnersInSlab(const CellTable& table, uint32_t home, uint32_t b, size_t at, float radius,
+                          std::vector<uint32_t>& pairs) const {
     const size_t begin = b == home ? at + 1 : table.offset[b], end = table.offset[b + 1];
     if (begin >= end) return;
     const uint32_t i = table.particle[at];
     const Vec3 xi = table.position[at], ni = table.normal[at];
     const BucketSheet& sheet = table.sheet[table.sheetIndex[b]];
-    const Vec3 outside = (sheet.lower - xi).cwiseMax(xi - sheet.upper).cwiseMax(0.0f);
-    // A thousandth and 10 um more than the reach and the partner radius for the float rounding of the
-    // coordinates compared below.
-    auto widened = [](float r) { return r * 1.001f + 1e-5f; };
-    if (outside.squaredNorm() > widened(reach) * widened(reach)) return;
-    const float radius = widened(std::min(reach, partnerRadius(sheet, xi, ni)));
-    if (outside.squaredNorm() > radius * radius) return;
     // |u . d| <= |d| for the unit sort direction u: every partner lies in the slab 2 radius wide about xi. The
-    // table's arrays and the rule's figures are read into locals: the appends to `partners` could otherwise
+    // table's arrays and the rule's figures are read into locals: the appends to `pairs` could otherwise
     // alias them and force a reload per candidate.
     const float* along = table.along.data();
     const Vec3* position = table.position.data();
@@ -351,7 +386,7 @@ struct PartnerRule {
       if (!(lengthSquared < pairReach * pairReach)) return;
       const float alongI = ni.dot(d), alongJ = normal[k].dot(d);
       if (liesAcross(alongI, alongJ, lengthSquared) && !isOneRingNeighbour(topo, i, table.particle[k]))
-        partners.push_back(table.particle[k]);
+        pairs.insert(pairs.end(), {i, table.particle[k]});
     };
     const float highest = centre + radius;
     size_t k = first;
@@ -451,26 +486,23 @@ size_t ContactSearch::find(const Params& p, float frameTime, float slack, Film& 
     bucketParticles(film, reach, memory_->table);
     const CellTable& table = memory_->table;
     const PartnerRule rule{p, topo, frameTime, slack, reach};
-    // Each particle lists the partners it owns (each pair once, half the distance tests; listPartnersIn) from the
+    // Each particle lists the partners it owns (each pair once, half the distance tests; listRunPartnersIn) from the
     // read-only table: parallel over the buckets, each thread into its own array, and the same rows in any order
     // once they are sorted below. The particles of a cell share the buckets about it, looked up once per run of
     // particles of one cell.
 #pragma omp parallel
     {
       std::vector<uint32_t>& pairs = pairsByThread[static_cast<size_t>(omp_get_thread_num())];
-      std::vector<uint32_t> partners;
 #pragma omp for schedule(dynamic, 1)
       for (size_t o = 0; o < table.occupied.size(); ++o) {
         const uint32_t b = table.occupied[o];
         std::array<uint32_t, 27> around{};
-        size_t count = 0;
-        Cell cell{};
-        for (size_t k = table.offset[b]; k < table.offset[b + 1]; ++k) {
-          const Cell c = cellOf(table.position[k], reach);
-          if (k == table.offset[b] || c != cell) count = bucketsAround(table, b, cell = c, reach, around);
-          partners.clear();
-          for (size_t a = 0; a < count; ++a) rule.listPartnersIn(table, b, around[a], k, partners);
-          for (uint32_t j : partners) pairs.insert(pairs.end(), {table.particle[k], j});
+        for (size_t first = table.offset[b], last = first; first < table.offset[b + 1]; first = last) {
+          const Cell cell = cellOf(table.position[first], reach);
+          while (++last < table.offset[b + 1] && cellOf(table.position[last], reach) == cell) {
+          }
+          const size_t count = bucketsAround(table, b, cell, reach, around);
+          for (size_t a = 0; a < count; ++a) rule.listRunPartnersIn(table, b, around[a], first, last, pairs);
         }
       }
     }

@@ -261,6 +261,13 @@ bool searchedFrom(const CellTable& table, uint32_t home, uint32_t b) {
   return radiusB < radiusHome || (radiusB == radiusHome && b > home);
 }
 
+// A thousandth and 10 um more than a reach or a partner radius, for the float rounding of the coordinates compared
+// with it.
+template <class F>
+F widened(F r) {
+  return r * F(1.001f) + F(1e-5f);
+}
+
 // Applies PartnerRule::listRunPartnersIn's first two tests (a particle farther from bucket b's box than the reach, or
 // than the partner radius b's sheet allows it, lists nothing there) to all of bucket `home`'s particles at once:
 // false when every one of them would fail them. Their distance to b's box is at least the gap between the two
@@ -272,7 +279,6 @@ bool bucketMayHold(const CellTable& table, uint32_t home, uint32_t b, float reac
   const BucketSheet& from = table.sheet[table.sheetIndex[home]];
   const BucketSheet& sheet = table.sheet[table.sheetIndex[b]];
   const float gapSquared = (sheet.lower - from.upper).cwiseMax(from.lower - sheet.upper).cwiseMax(0.0f).squaredNorm();
-  auto widened = [](float r) { return r * 1.001f + 1e-5f; };       // as PartnerRule::widened
   if (gapSquared > widened(reach) * widened(reach)) return false;  // a NaN gap compares false: searched
   const Vec3& m = sheet.normal;
   const float turn = std::sqrt(std::min((from.normal - m).squaredNorm(), (from.normal + m).squaredNorm()));
@@ -312,11 +318,6 @@ struct PartnerRule {
   const Params& p;
   const Topology& topo;
   float frameTime, slack, reach;
-
-  // A thousandth and 10 um more than the reach and the partner radius for the float rounding of the coordinates
-  // compared with them.
-  static float widened(float r) { return r * 1.001f + 1e-5f; }
-  static Float4 widened(Float4 r) { return r * Float4(1.001f) + Float4(1e-5f); }
 
   // Appends to `pairs` the pairs (particle, partner) that table entries [first, last), a run of one cell in bucket
   // `home`, list with bucket b's particles: each pair is listed once, within a bucket by its first entry in the

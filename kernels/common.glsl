@@ -132,16 +132,19 @@ float logSurfactantRatio(float surfactantJ, float thicknessJ, float surfactantI,
   return abs(x) < 0.01 ? x * (1.0 - x * (0.5 - x / 3.0)) : log(a / b);
 }
 
-// filmFlowSweptArea of cpu-reference/stages/stages.cpp: flowSweptArea of i towards j, i's new velocity.
-float areaShare(uint i) {
+// flowAreaShare of cpu-reference/stages/stages.cpp: A_i / k_i, particle i's area per spring.
+float flowAreaShare(uint i) {
   const uint springs = springOffset[i + 1u] - springOffset[i];
   return springs > 0u ? voronoiArea[i] / float(springs) : 0.0;
 }
+// filmFlowSweptArea of cpu-reference/stages/stages.cpp: flowSweptArea of i towards j, i's new velocity, the shares
+// pass 1 stored.
 float filmFlowSweptArea(float dt, uint i, uint j) {
   const vec3 d = LOAD3(position, j) - LOAD3(position, i);
   const float d2 = dot(d, d);
   if (!(d2 > 0.0)) return 0.0;
-  return flowSweptArea(dt, areaShare(i), areaShare(j), dot(loadFlow3(flowVelocityNextBlock, i), d), d2);
+  return flowSweptArea(dt, FLOW(flowAreaShareBlock, i), FLOW(flowAreaShareBlock, j),
+                       dot(loadFlow3(flowVelocityNextBlock, i), d), d2);
 }
 
 // filmFlowSent of cpu-reference/stages/stages.cpp: the liquid i sends to j in dt, its swept area times e_i and its

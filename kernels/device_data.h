@@ -62,6 +62,9 @@ GB_PARTICLE_BLOCK(DRAINAGE, 5, surfactant, 1, ReadBack, 1)
 GB_PARTICLE_BLOCK(DRAINAGE, 6, flowVelocityNext, 3, UploadOnly, 0)
 GB_PARTICLE_BLOCK(DRAINAGE, 9, flowLimit, 1, UploadOnly, 0)
 GB_PARTICLE_BLOCK(DRAINAGE, 10, surfactantBefore, 1, UploadOnly, 0)
+// The particle's area per spring, A_i / k_i (pass 1), which every swept area of passes 2 and 3 reads
+// (filmFlowSweptArea).
+GB_PARTICLE_BLOCK(DRAINAGE, 11, flowAreaShare, 1, UploadOnly, 0)
 // Per triangle, written by the geometry stage's first pass and gathered by its second (State::triangleNormal,
 // State::cornerArea): (x1 - x0) x (x2 - x0) as x, y and z blocks of `triangles` floats; each corner's Voronoi area.
 GB_BUFFER(27, TRIANGLE_NORMAL, float, triangleNormal[], GB_WRITABLE)

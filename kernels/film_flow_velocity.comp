@@ -9,6 +9,7 @@ vec3 tangential(vec3 v, vec3 n) { return v - dot(v, n) * n; }
 void main() {
   const uint i = gl_GlobalInvocationID.x;
   if (i >= pc.count) return;
+  FLOW(flowAreaShareBlock, i) = flowAreaShare(i);  // once here, not in each of the ring's swept areas after
   if (alive[i] == 0u || boundary[i] != 0u) {
     storeFlow3(flowVelocityNextBlock, i, vec3(0.0));
     return;

@@ -203,18 +203,21 @@ FilmFlowTerms filmFlowTerms(const Params& p, const StepUniforms& u, const Topolo
 // ln(Gamma_j / Gamma_i) = ln(s_j e_j / (s_i e_i)), s the surfactant per liquid, e the thickness: the log of the
 // ratio, not the difference of two logs, which would cancel to a few ulps of ln(1e-6) on a nearly even film.
 float logSurfactantRatio(float surfactantJ, float thicknessJ, float surfactantI, float thicknessI);
-// flowSweptArea of particle i towards neighbour j, with i's new velocity (flowVelocityNext).
-float filmFlowSweptArea(float dt, const Topology& topo, const State& s, uint32_t i, uint32_t j);
+// A_i / k_i: particle i's area per spring, its share of the dual edges (flowSweptArea); 0 without springs.
+float flowAreaShare(const Topology& topo, const State& s, size_t i);
+// flowSweptArea of particle i towards neighbour j, with i's new velocity (flowVelocityNext) and the two particles'
+// flowAreaShare as pass 1 stored them.
+float filmFlowSweptArea(float dt, const State& s, uint32_t i, uint32_t j);
 // The liquid particle i sends to neighbour j in dt (m^3): what i's velocity sweeps times e_i and i's limit.
-float filmFlowSent(float dt, const Topology& topo, const State& s, uint32_t i, uint32_t j);
+float filmFlowSent(float dt, const State& s, uint32_t i, uint32_t j);
 // The liquid the edge from i to j carries from i to j in dt (m^3, negative: from j to i): what i sends less what j
 // sends. Exactly the negative of filmFlowEdgeFlux(j, i).
-float filmFlowEdgeFlux(float dt, const Topology& topo, const State& s, uint32_t i, uint32_t j);
+float filmFlowEdgeFlux(float dt, const State& s, uint32_t i, uint32_t j);
 
 // Pass 1: u_i's new value, (u + dt (g_t + c marangoni + airRate w_t + viscosityPull)) / (1 + dt (airRate + wallRate +
 // viscosityRate)), projected on the tangent plane; 0 on the wire (the liquid sticks to it) and for a dead particle.
 // c <= 1 caps the Marangoni diffusivity D = E_M / (rho e) dt / (1 + dt rates) at D dt = kMarangoniCourant spacing^2.
-// Writes flowVelocityNext[i].
+// Writes flowVelocityNext[i], and flowAreaShare[i] for the passes after it.
 void filmFlowVelocity(const Params& p, const StepUniforms& u, const Topology& topo, State& s, size_t i);
 // Pass 2: the share of its outflow particle i can give, min(1, kLargestOutflowShare (w_i - e_b A_i) / outflow_i), e_b
 // the black film's thickness (the disjoining pressure stops drainage there); keeps its surfactant as

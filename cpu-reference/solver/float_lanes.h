@@ -31,6 +31,7 @@ struct Float4 {
   explicit Float4(__m128 a) : v(a) {}
   static Float4 of(float a, float b, float c, float d) { return Float4(_mm_setr_ps(a, b, c, d)); }
   static Float4 load(const float* a) { return Float4(_mm_loadu_ps(a)); }  // a[0] .. a[3]
+  void store(float* a) const { _mm_storeu_ps(a, v); }                     // into a[0] .. a[3]
   [[nodiscard]] float lane(int l) const {
     alignas(16) float out[4];
     _mm_store_ps(out, v);
@@ -83,6 +84,7 @@ struct Float4 {
     return r;
   }
   static Float4 load(const float* a) { return of(a[0], a[1], a[2], a[3]); }
+  void store(float* a) const { std::copy(v.begin(), v.end(), a); }
   [[nodiscard]] float lane(int l) const { return v[l]; }
 };
 struct Mask4 {

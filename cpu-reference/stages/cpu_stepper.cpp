@@ -1,5 +1,6 @@
 #include "cpu_stepper.h"
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 #include <utility>
@@ -31,7 +32,7 @@ std::array<float, N> treeSumsOf(std::array<std::vector<float>, N>& scratch, size
     for (size_t c = 0; c < N; ++c) scratch[c][i] = t[c];
   });
   std::array<float, N> sums{};
-  for (size_t c = 0; c < N; ++c) sums[c] = treeSum(scratch[c]);
+  for (size_t c = 0; c < N; ++c) sums[c] = treeSumInPlace(scratch[c]);
   return sums;
 }
 
@@ -55,16 +56,16 @@ void CpuStepper::load(const Params& params, Film& film) {
   if (params.coarseIterations > 0) ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
 }
 
-float CpuStepper::volume(const Film& film, const Vec3& origin) {
-  return sumOverTriangles(film.topology.triangleCount(),
-                          [&](size_t t) { return triangleVolume(film.topology, film.state, t, origin); });
-}
+float CpuStepper::volume(const Film& film, const Vec3& origin) { return volumeOf(film, origin, false); }
 
-template <class Leaf>
-float CpuStepper::sumOverTriangles(size_t triangles, Leaf leaf) {
+float CpuStepper::volumeOf(const Film& film, const Vec3& origin, bool atStepStart) {
+  const size_t triangles = film.topology.triangleCount();
   triangleVolumes_.resize(triangles);
-  forEach(triangles, [&](size_t t) { triangleVolumes_[t] = leaf(t); });
-  return treeSum(triangleVolumes_);
+  forEach((triangles + 3) / 4, [&](size_t g) {
+    triangleVolumes(film.topology, film.state, origin, atStepStart, 4 * g, std::min(triangles, 4 * g + 4),
+                    triangleVolumes_.data());
+  });
+  return treeSumInPlace(triangleVolumes_);
 }
 
 void CpuStepper::refreshGeometry(const Params& params, Film& film) {
@@ -170,8 +171,9 @@ void CpuStepper::runSweeps(const StepUniforms& u, int from, int to) {
   const Topology& topo = film_->topology;
   const SweepRuns& runs = sweepRuns_;
   Bubble bubble;
-  const auto triangles = static_cast<long>(topo.triangleCount());
-  if (u.closed) triangleVolumes_.resize(topo.triangleCount());
+  const size_t triangles = topo.triangleCount();
+  const auto groups = static_cast<long>((triangles + 3) / 4);  // of four triangles, volumeOf's
+  if (u.closed) triangleVolumes_.resize(triangles);
     // One parallel region for the sweeps: the colours still wait for each other (the barrier closing each
     // omp for), but the threads are woken once, not once per colour and sweep.
 #pragma omp parallel
@@ -179,11 +181,13 @@ void CpuStepper::runSweeps(const StepUniforms& u, int from, int to) {
     if (u.closed) {  // Boyle's pressure at this iterate's volume, as volume() takes it: the triangles on every
                      // thread, their sum on one, in the fixed order both backends add in
 #pragma omp for schedule(static)
-      for (long t = 0; t < triangles; ++t)
-        triangleVolumes_[t] = triangleVolume(topo, s, static_cast<size_t>(t), u.volumeOrigin);
+      for (long g = 0; g < groups; ++g) {
+        const auto first = static_cast<size_t>(4 * g);
+        triangleVolumes(topo, s, u.volumeOrigin, false, first, std::min(triangles, first + 4), triangleVolumes_.data());
+      }
 #pragma omp single
       {
-        lastVolume_ = treeSum(triangleVolumes_);  // first: Boyle's pressure reads it
+        lastVolume_ = treeSumInPlace(triangleVolumes_);  // first: Boyle's pressure reads it
         bubble = bubbleOf(lastVolume_, currentPressure(u));
       }
     }
@@ -223,8 +227,7 @@ VelocityBudget CpuStepper::budgetEnergy(const StepUniforms& u) {
   });
   float gas = 0.0f;
   if (u.closed) {  // the volumes before and after the step, as the volume stage sums them
-    const float before = sumOverTriangles(topo.triangleCount(),
-                                          [&](size_t t) { return triangleVolumeAtStart(topo, s, t, u.volumeOrigin); });
+    const float before = volumeOf(*film_, u.volumeOrigin, true);
     lastVolume_ = volume(*film_, u.volumeOrigin);
     gas = boyleEnergyChange(params_, u.referenceVolume, before, lastVolume_);
   }

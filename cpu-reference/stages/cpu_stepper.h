@@ -39,9 +39,9 @@ class CpuStepper final : public Stepper {
   VelocityBudget budgetEnergy(const StepUniforms& u);
   // Stage external_drift: every particle's externalDrift summed in the fixed tree order, the film's drift.
   Vec3 filmDrift();
-  // The tree sum (treeSum) of leaf(t) over the triangles, each computed in parallel: the volume's reduction.
-  template <class Leaf>
-  float sumOverTriangles(size_t triangles, Leaf leaf);
+  // The tree sum (treeSum) of the triangles' volumes (triangleVolumes, at the step's start with atStepStart), four
+  // triangles at a time in parallel: the volume's reduction.
+  float volumeOf(const Film& film, const Vec3& origin, bool atStepStart);
   // Boyle's pressure of a closed film at the last volume (Eq. 11), P_0 for an open film.
   [[nodiscard]] float currentPressure(const StepUniforms& u) const;
   template <class Body>

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 
+#include "energy_budget.h"
 #include "film.h"
 #include "float_lanes.h"
 
@@ -109,8 +110,42 @@ void computeGeometryAround(const Topology& topo, State& s, std::span<const uint3
   for (uint32_t i : particles) vertexGeometry(topo, s, i);
 }
 
+namespace {
+
+template <class F>
+F coneVolumeOf(const Vec3Of<F>& a, const Vec3Of<F>& b, const Vec3Of<F>& c, const Vec3Of<F>& origin) {
+  return dot(a - origin, cross(b - origin, c - origin)) / F(6.0f);
+}
+
+Vec3Of<float> lanesOf(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+
+}  // namespace
+
 float coneVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& origin) {
-  return (a - origin).dot((b - origin).cross(c - origin)) / 6.0f;
+  return coneVolumeOf(lanesOf(a), lanesOf(b), lanesOf(c), lanesOf(origin));
+}
+
+void triangleVolumes(const Topology& topo, const State& s, const Vec3& origin, bool atStepStart, size_t first,
+                     size_t last, float* volumes) {
+  const auto corner = [&](size_t t, int c) {
+    const uint32_t i = topo.triangles[3 * t + static_cast<size_t>(c)];
+    return atStepStart ? positionAtStepStart(topo, s, i) : s.position.get(i);
+  };
+  size_t t = first;
+  for (; t + 4 <= last; t += 4) {
+    std::array<Vec3Of<Float4>, 3> corners;
+    for (int c = 0; c < 3; ++c) {
+      const Vec3 p0 = corner(t, c), p1 = corner(t + 1, c), p2 = corner(t + 2, c), p3 = corner(t + 3, c);
+      corners[static_cast<size_t>(c)] = {Float4::of(p0.x(), p1.x(), p2.x(), p3.x()),
+                                         Float4::of(p0.y(), p1.y(), p2.y(), p3.y()),
+                                         Float4::of(p0.z(), p1.z(), p2.z(), p3.z())};
+    }
+    const Float4 v = coneVolumeOf(corners[0], corners[1], corners[2],
+                                  Vec3Of<Float4>{Float4(origin.x()), Float4(origin.y()), Float4(origin.z())});
+    v.store(volumes + t);
+  }
+  for (; t < last; ++t)
+    volumes[t] = atStepStart ? triangleVolumeAtStart(topo, s, t, origin) : triangleVolume(topo, s, t, origin);
 }
 
 float triangleVolume(const Topology& topo, const State& s, size_t t, const Vec3& origin) {
@@ -118,7 +153,9 @@ float triangleVolume(const Topology& topo, const State& s, size_t t, const Vec3&
   return coneVolume(s.position.get(tri[0]), s.position.get(tri[1]), s.position.get(tri[2]), origin);
 }
 
-float treeSum(std::vector<float> v) {
+float treeSum(std::vector<float> v) { return treeSumInPlace(v); }
+
+float treeSumInPlace(std::span<float> v) {
   if (v.empty()) return 0.0f;
   size_t n = v.size();
   while (n > 1) {

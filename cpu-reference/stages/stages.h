@@ -61,10 +61,17 @@ float triangleVolume(const Topology& topo, const State& s, size_t t, const Vec3&
 // The signed volume of the cone from `origin` to the triangle (a, b, c), the one formula of triangleVolume and
 // of the energy budget's triangleVolumeAtStart.
 float coneVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& origin);
+// triangleVolume of the triangles [first, last) into volumes[first, last), or with atStepStart the energy budget's
+// triangleVolumeAtStart: four triangles at a time in the lanes of float_lanes.h, the same floats as one at a time.
+// A closed film's volume is summed on every sweep of a step, and the triangles' corners are most of the work.
+void triangleVolumes(const Topology& topo, const State& s, const Vec3& origin, bool atStepStart, size_t first,
+                     size_t last, float* volumes);
 
 // Pairwise sum with a fixed tree shape (level by level, a[k] = a[2k] + a[2k+1]): the reduction both
 // backends use for the volume, so that they add in the same order.
 float treeSum(std::vector<float> values);
+// treeSum adding within `values`, which it leaves changed: for scratch arrays, which it then need not copy.
+float treeSumInPlace(std::span<float> values);
 
 // ---- Stage 3: film state (Section 5.1) ---------------------------------------------------------------
 // Eq. (4): elasticity from thickness e (m) and lifetime (s). Marangoni while young, Gibbs after, the Gibbs

@@ -22,6 +22,13 @@ void forEach(size_t n, Body&& body) {
   for (long i = 0; i < count; ++i) body(static_cast<size_t>(i));
 }
 
+// Runs body(first, last) over the triangles [0, triangles) four at a time, the groups in parallel: for the stages that
+// compute four triangles in the lanes of float_lanes.h.
+template <class Body>
+void forEachTriangleFour(size_t triangles, Body&& body) {
+  forEach((triangles + 3) / 4, [&](size_t g) { body(4 * g, std::min(triangles, 4 * g + 4)); });
+}
+
 // Each particle's N terms (terms(i), computed in parallel into `scratch`), each summed over the particles in the
 // fixed tree order (treeSum) that the GPU's tree sums follow.
 template <size_t N, class Terms>
@@ -61,9 +68,8 @@ float CpuStepper::volume(const Film& film, const Vec3& origin) { return volumeOf
 float CpuStepper::volumeOf(const Film& film, const Vec3& origin, bool atStepStart) {
   const size_t triangles = film.topology.triangleCount();
   triangleVolumes_.resize(triangles);
-  forEach((triangles + 3) / 4, [&](size_t g) {
-    triangleVolumes(film.topology, film.state, origin, atStepStart, 4 * g, std::min(triangles, 4 * g + 4),
-                    triangleVolumes_.data());
+  forEachTriangleFour(triangles, [&](size_t first, size_t last) {
+    triangleVolumes(film.topology, film.state, origin, atStepStart, first, last, triangleVolumes_.data());
   });
   return treeSumInPlace(triangleVolumes_);
 }
@@ -71,7 +77,8 @@ float CpuStepper::volumeOf(const Film& film, const Vec3& origin, bool atStepStar
 void CpuStepper::refreshGeometry(const Params& params, Film& film) {
   State& s = film.state;
   fitTriangleArrays(film.topology, s);
-  forEach(film.topology.triangleCount(), [&](size_t t) { triangleGeometry(film.topology, s, t); });
+  forEachTriangleFour(film.topology.triangleCount(),
+                      [&](size_t first, size_t last) { triangleGeometries(film.topology, s, first, last); });
   forEach(s.size(), [&](size_t i) {
     vertexGeometry(film.topology, s, i);
     filmState(params, 0.0f, s, i);
@@ -91,7 +98,8 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
         const uint64_t key = geometryKey(topo, s);
         if (key == film_->geometryKey && s.cornerArea.size() == 3 * topo.triangleCount()) break;  // computed
         fitTriangleArrays(topo, s);
-        forEach(topo.triangleCount(), [&](size_t t) { triangleGeometry(topo, s, t); });
+        forEachTriangleFour(topo.triangleCount(),
+                            [&](size_t first, size_t last) { triangleGeometries(topo, s, first, last); });
         forEach(n, [&](size_t i) { vertexGeometry(topo, s, i); });
         film_->geometryKey = key;
         break;

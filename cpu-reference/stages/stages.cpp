@@ -21,26 +21,64 @@ namespace {
 // Fig. 4): the Voronoi region for a non-obtuse triangle, else half or a quarter of the triangle so that the
 // areas still tile it. The cotangents of Meyer's formula share the denominator |cross| = 2 area, so
 // A_i = (|e_ij|^2 cot k + |e_ik|^2 cot j) / 8 = (|e_ij|^2 dot_k + |e_ik|^2 dot_j) / (16 area).
-float mixedVoronoiCorner(const Vec3& xi, const Vec3& xj, const Vec3& xk, float area) {
-  const Vec3 eij = xj - xi, eik = xk - xi, ejk = xk - xj;
+// Written once for one float and for four lanes (float_lanes.h: the same floats in each lane): every case is
+// computed and the one that applies selected.
+template <class F>
+F mixedVoronoiCorner(const Vec3Of<F>& xi, const Vec3Of<F>& xj, const Vec3Of<F>& xk, F area) {
+  const Vec3Of<F> eij = xj - xi, eik = xk - xi, ejk = xk - xj;
+  const F ij2 = dot(eij, eij), ik2 = dot(eik, eik);
+  const F dotI = dot(eij, eik), dotJ = F(-1.0f) * dot(eij, ejk), dotK = dot(eik, ejk);  // cosines times lengths
+  const F zero(0.0f);
+  F corner = select(dotJ < zero || dotK < zero, F(0.25f) * area, (ij2 * dotK + ik2 * dotJ) / (F(16.0f) * area));
+  corner = select(dotI < zero, F(0.5f) * area, corner);
   // A collapsed triangle (area below 1e-6 of its edges' squares, e.g. torn film folding at a hole's rim)
   // has no meaningful angles: its corners share its vanishing area equally instead of dividing by it.
-  if (!(area > 1e-6f * (eij.squaredNorm() + eik.squaredNorm()))) return area / 3.0f;
-  const float dotI = eij.dot(eik), dotJ = -eij.dot(ejk), dotK = eik.dot(ejk);  // cosines times lengths
-  if (dotI < 0) return 0.5f * area;
-  if (dotJ < 0 || dotK < 0) return 0.25f * area;
-  return (eij.squaredNorm() * dotK + eik.squaredNorm() * dotJ) / (16.0f * area);
+  return select(area > F(1e-6f) * (ij2 + ik2), corner, area / F(3.0f));
 }
+
+// A triangle's (x1 - x0) x (x2 - x0) and its corners' mixed Voronoi areas.
+template <class F>
+void triangleGeometryOf(const std::array<Vec3Of<F>, 3>& x, Vec3Of<F>& doubleAreaNormal, std::array<F, 3>& corners) {
+  doubleAreaNormal = cross(x[1] - x[0], x[2] - x[0]);
+  const F area = F(0.5f) * norm(doubleAreaNormal);
+  for (size_t c = 0; c < 3; ++c) corners[c] = mixedVoronoiCorner(x[c], x[(c + 1) % 3], x[(c + 2) % 3], area);
+}
+
+Vec3Of<float> lanesOf(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 }  // namespace
 
 void triangleGeometry(const Topology& topo, State& s, size_t t) {
   const uint32_t* tri = &topo.triangles[3 * t];
-  const Vec3 x[3] = {s.position.get(tri[0]), s.position.get(tri[1]), s.position.get(tri[2])};
-  const Vec3 doubleAreaNormal = (x[1] - x[0]).cross(x[2] - x[0]);
-  s.triangleNormal.set(t, doubleAreaNormal);
-  const float area = 0.5f * doubleAreaNormal.norm();
-  for (int c = 0; c < 3; ++c) s.cornerArea[3 * t + c] = mixedVoronoiCorner(x[c], x[(c + 1) % 3], x[(c + 2) % 3], area);
+  Vec3Of<float> normal{};
+  std::array<float, 3> corners{};
+  triangleGeometryOf<float>(
+      {lanesOf(s.position.get(tri[0])), lanesOf(s.position.get(tri[1])), lanesOf(s.position.get(tri[2]))}, normal,
+      corners);
+  s.triangleNormal.set(t, Vec3(normal.x, normal.y, normal.z));
+  for (size_t c = 0; c < 3; ++c) s.cornerArea[3 * t + c] = corners[c];
+}
+
+void triangleGeometries(const Topology& topo, State& s, size_t first, size_t last) {
+  size_t t = first;
+  for (; t + 4 <= last; t += 4) {
+    std::array<Vec3Of<Float4>, 3> x;
+    for (size_t c = 0; c < 3; ++c) {
+      const auto corner = [&](size_t l) { return s.position.get(topo.triangles[3 * (t + l) + c]); };
+      const Vec3 p0 = corner(0), p1 = corner(1), p2 = corner(2), p3 = corner(3);
+      x[c] = {Float4::of(p0.x(), p1.x(), p2.x(), p3.x()), Float4::of(p0.y(), p1.y(), p2.y(), p3.y()),
+              Float4::of(p0.z(), p1.z(), p2.z(), p3.z())};
+    }
+    Vec3Of<Float4> normal;
+    std::array<Float4, 3> corners;
+    triangleGeometryOf(x, normal, corners);
+    normal.x.store(&s.triangleNormal.x[t]);
+    normal.y.store(&s.triangleNormal.y[t]);
+    normal.z.store(&s.triangleNormal.z[t]);
+    for (int l = 0; l < 4; ++l)
+      for (size_t c = 0; c < 3; ++c) s.cornerArea[3 * (t + static_cast<size_t>(l)) + c] = corners[c].lane(l);
+  }
+  for (; t < last; ++t) triangleGeometry(topo, s, t);
 }
 
 void vertexGeometry(const Topology& topo, State& s, size_t i) {
@@ -116,8 +154,6 @@ template <class F>
 F coneVolumeOf(const Vec3Of<F>& a, const Vec3Of<F>& b, const Vec3Of<F>& c, const Vec3Of<F>& origin) {
   return dot(a - origin, cross(b - origin, c - origin)) / F(6.0f);
 }
-
-Vec3Of<float> lanesOf(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
 
 }  // namespace
 

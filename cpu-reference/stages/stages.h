@@ -38,6 +38,8 @@ struct StepUniforms {
 // Pass 1, per triangle t: its area-weighted normal and the mixed Voronoi area (Meyer et al. 2003) of each of
 // its corners. Each triangle is computed once instead of once per corner.
 void triangleGeometry(const Topology& topo, State& s, size_t t);
+// triangleGeometry of the triangles [first, last), four at a time in the lanes of float_lanes.h: the same floats.
+void triangleGeometries(const Topology& topo, State& s, size_t first, size_t last);
 // Pass 2, per particle i: unit vertex normal (sum of its triangles' area-weighted normals) and mixed Voronoi
 // area (sum of its corners' areas), gathered in CSR order.
 void vertexGeometry(const Topology& topo, State& s, size_t i);

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <random>
 
+#include "energy_budget.h"
 #include "test_films.h"
 
 namespace gb {
@@ -84,6 +86,49 @@ TEST(Geometry, MixedVoronoiAreasTileRightAndObtuseTriangles) {
   EXPECT_NEAR(obtuse.state.voronoiArea[0], area / 2, kFormulaTolerance);
   EXPECT_NEAR(obtuse.state.voronoiArea[1], area / 4, kFormulaTolerance);
   EXPECT_NEAR(obtuse.state.voronoiArea[2], area / 4, kFormulaTolerance);
+}
+
+TEST(Geometry, FourTrianglesAtATimeAreTheSameFloatsAsOneAtATime) {
+  // triangleGeometries and triangleVolumes take four triangles in the SSE lanes: each lane must give exactly what
+  // triangleGeometry, triangleVolume and triangleVolumeAtStart give, in every case of the mixed Voronoi area (acute,
+  // obtuse at any corner, collapsed), on a film jittered by up to 60% of its springs in every direction.
+  const Params p;
+  Film film = test::makeFreeDisc(p);
+  State& s = film.state;
+  const Topology& topo = film.topology;
+  const float spacing = topo.restLength[0];
+  std::mt19937 random(7);
+  std::uniform_real_distribution<float> jitter(-0.6f * spacing, 0.6f * spacing);
+  for (size_t i = 0; i < s.size(); ++i) {
+    s.previousPosition.set(i, s.position.get(i));
+    s.position.set(i, s.position.get(i) + Vec3(jitter(random), jitter(random), jitter(random)));
+    film.topology.boundary[i] = i % 7 == 0 ? 1u : 0u;  // at the step's start where the wire put them: now
+  }
+  const uint32_t* collapsed = &topo.triangles[3 * 9];
+  s.position.set(collapsed[1], s.position.get(collapsed[0]));  // a triangle of no area
+  fitTriangleArrays(topo, s);
+  const size_t triangles = topo.triangleCount();
+  ASSERT_NE(triangles % 4, 0u);  // the tail after the last four is done one at a time
+  State lanes = s;
+  triangleGeometries(topo, lanes, 0, triangles);
+  std::vector<float> volumes(triangles), startVolumes(triangles);
+  const Vec3 origin(0.1f, 1.2f, -0.3f);
+  triangleVolumes(topo, s, origin, false, 0, triangles, volumes.data());
+  triangleVolumes(topo, s, origin, true, 0, triangles, startVolumes.data());
+  int obtuse = 0;
+  for (size_t t = 0; t < triangles; ++t) {
+    triangleGeometry(topo, s, t);
+    EXPECT_EQ(lanes.triangleNormal.get(t), s.triangleNormal.get(t)) << "triangle " << t;
+    for (size_t c = 0; c < 3; ++c) {
+      EXPECT_EQ(lanes.cornerArea[3 * t + c], s.cornerArea[3 * t + c]) << "triangle " << t << ", corner " << c;
+      const float area = 0.5f * s.triangleNormal.get(t).norm();
+      obtuse += area > 0 && s.cornerArea[3 * t + c] == 0.5f * area;
+    }
+    EXPECT_EQ(volumes[t], triangleVolume(topo, s, t, origin)) << "triangle " << t;
+    EXPECT_EQ(startVolumes[t], triangleVolumeAtStart(topo, s, t, origin)) << "triangle " << t;
+  }
+  EXPECT_GT(obtuse, 100);                // the jitter made many obtuse triangles
+  EXPECT_EQ(s.cornerArea[3 * 9], 0.0f);  // the collapsed one shares its zero area
 }
 
 TEST(AirInflow, Eq5FallsOffWithDistanceAndOpposesTheWands) {

@@ -50,10 +50,6 @@ HeldShares heldShares(const Params& p, const Topology& topo, const State& s, uin
 
 }  // namespace
 
-Vec3 positionAtStepStart(const Topology& topo, const State& s, size_t i) {
-  return topo.boundary[i] ? s.position.get(i) : s.previousPosition.get(i);
-}
-
 float triangleAreaAtStart(const Topology& topo, const State& s, const uint32_t* corners) {
   const Vec3 a0 = positionAtStepStart(topo, s, corners[0]);
   return 0.5f *

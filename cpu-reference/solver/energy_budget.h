@@ -29,7 +29,9 @@ inline constexpr float kEnergyBudgetTolerance = static_cast<float>(GB_ENERGY_BUD
 
 // Where particle i was at the step's start, as the budget counts it: x_t, or for a wire particle the place the
 // wire put it at the step's end (the wands' work is done before the step).
-Vec3 positionAtStepStart(const Topology& topo, const State& s, size_t i);
+inline Vec3 positionAtStepStart(const Topology& topo, const State& s, size_t i) {
+  return topo.boundary[i] ? s.position.get(i) : s.previousPosition.get(i);
+}
 
 // triangleVolume (stages.h) at the step's start: the leaves of a closed bubble's volume before the step.
 float triangleVolumeAtStart(const Topology& topo, const State& s, size_t t, const Vec3& origin);

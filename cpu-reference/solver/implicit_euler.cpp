@@ -146,8 +146,6 @@ F transverseStiffnessOf(F stiffness, F rest, F length) {
 
 }  // namespace
 
-float springStiffness(const State& s, size_t i, size_t j) { return 0.5f * (s.elasticity[i] + s.elasticity[j]); }
-
 float springEnergy(const State& s, size_t i, size_t j, float length, float rest) {
   return springEnergyOf(springStiffness(s, i, j), length - rest);
 }

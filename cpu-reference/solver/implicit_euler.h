@@ -50,7 +50,7 @@ float breathingStiffness(const Bubble& bubble, float area);
 // the paper's spring between i and j has stiffness (E_i + E_j) / 2 (N/m), and its Hessian k dir dir^T +
 // k (1 - l0/len) (I - dir dir^T) keeps the transverse part only while stretched (projected onto the positive
 // semi-definite cone); a triangle of the physical model pulls with the mean 2 gamma of its corners (N/m).
-float springStiffness(const State& s, size_t i, size_t j);
+inline float springStiffness(const State& s, size_t i, size_t j) { return 0.5f * (s.elasticity[i] + s.elasticity[j]); }
 // The energy k/2 (length - rest)^2 of the spring between i and j (Eq. 3, k = springStiffness) at this length.
 float springEnergy(const State& s, size_t i, size_t j, float length, float rest);
 float transverseStiffness(float stiffness, float rest, float length);

@@ -195,9 +195,10 @@ float treeSumInPlace(std::span<float> v) {
   if (v.empty()) return 0.0f;
   size_t n = v.size();
   while (n > 1) {
-    const size_t half = (n + 1) / 2;
-    for (size_t k = 0; k < half; ++k) v[k] = 2 * k + 1 < n ? v[2 * k] + v[2 * k + 1] : v[2 * k];
-    n = half;
+    const size_t pairs = n / 2;  // the pairs' sums, then an odd count's last element as it is
+    for (size_t k = 0; k < pairs; ++k) v[k] = v[2 * k] + v[2 * k + 1];
+    if (n % 2 == 1) v[pairs] = v[n - 1];
+    n = pairs + n % 2;
   }
   return v[0];
 }

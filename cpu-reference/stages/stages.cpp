@@ -45,6 +45,11 @@ void triangleGeometryOf(const std::array<Vec3Of<F>, 3>& x, Vec3Of<F>& doubleArea
 }
 
 Vec3Of<float> lanesOf(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
+// Four 3-vectors, one per lane.
+Vec3Of<Float4> lanesOf(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
+  return {Float4::of(a.x(), b.x(), c.x(), d.x()), Float4::of(a.y(), b.y(), c.y(), d.y()),
+          Float4::of(a.z(), b.z(), c.z(), d.z())};
+}
 
 }  // namespace
 
@@ -65,9 +70,7 @@ void triangleGeometries(const Topology& topo, State& s, size_t first, size_t las
     std::array<Vec3Of<Float4>, 3> x;
     for (size_t c = 0; c < 3; ++c) {
       const auto corner = [&](size_t l) { return s.position.get(topo.triangles[3 * (t + l) + c]); };
-      const Vec3 p0 = corner(0), p1 = corner(1), p2 = corner(2), p3 = corner(3);
-      x[c] = {Float4::of(p0.x(), p1.x(), p2.x(), p3.x()), Float4::of(p0.y(), p1.y(), p2.y(), p3.y()),
-              Float4::of(p0.z(), p1.z(), p2.z(), p3.z())};
+      x[c] = lanesOf(corner(0), corner(1), corner(2), corner(3));
     }
     Vec3Of<Float4> normal;
     std::array<Float4, 3> corners;
@@ -170,14 +173,9 @@ void triangleVolumes(const Topology& topo, const State& s, const Vec3& origin, b
   size_t t = first;
   for (; t + 4 <= last; t += 4) {
     std::array<Vec3Of<Float4>, 3> corners;
-    for (int c = 0; c < 3; ++c) {
-      const Vec3 p0 = corner(t, c), p1 = corner(t + 1, c), p2 = corner(t + 2, c), p3 = corner(t + 3, c);
-      corners[static_cast<size_t>(c)] = {Float4::of(p0.x(), p1.x(), p2.x(), p3.x()),
-                                         Float4::of(p0.y(), p1.y(), p2.y(), p3.y()),
-                                         Float4::of(p0.z(), p1.z(), p2.z(), p3.z())};
-    }
-    const Float4 v = coneVolumeOf(corners[0], corners[1], corners[2],
-                                  Vec3Of<Float4>{Float4(origin.x()), Float4(origin.y()), Float4(origin.z())});
+    for (int c = 0; c < 3; ++c)
+      corners[static_cast<size_t>(c)] = lanesOf(corner(t, c), corner(t + 1, c), corner(t + 2, c), corner(t + 3, c));
+    const Float4 v = coneVolumeOf(corners[0], corners[1], corners[2], lanesOf(origin, origin, origin, origin));
     v.store(volumes + t);
   }
   for (; t < last; ++t)

@@ -17,6 +17,7 @@ void main() {
   for (uint k = springOffset[i]; k < springOffset[i + 1u]; ++k) {
     const uint j = springNeighbour[k];
     const vec3 airJ = LOAD3(airFlow, j);
+    if (airJ == vec3(0.0)) continue;  // sends nothing (a free bubble's air everywhere): no square roots spent
     const vec3 toI = xi - LOAD3(position, j);
     const float norms = length(toI) * length(airJ);
     if (norms <= 0.0) continue;

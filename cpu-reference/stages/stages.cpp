@@ -259,6 +259,7 @@ void airTransfer(const Params& p, const Topology& topo, State& s, size_t i) {
   for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
     const uint32_t j = topo.springNeighbour[k];
     const Vec3 airJ = s.airFlow.get(j);
+    if (airJ == Vec3::Zero()) continue;  // sends nothing (a free bubble's air everywhere): no square roots spent
     const Vec3 toI = xi - s.position.get(j);
     const float norms = toI.norm() * airJ.norm();
     if (norms <= 0) continue;

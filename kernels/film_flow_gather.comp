@@ -1,6 +1,8 @@
 #version 450
 // filmFlowGather (cpu-reference/stages/stages.cpp): film flow pass 3, particle j's liquid and surfactant after its
-// edges' fluxes, each the exact negative of its neighbour's (the flow conserves liquid), less what evaporated.
+// edges' fluxes, each the exact negative of its neighbour's (the flow conserves liquid), less what evaporated. Each
+// edge's two swept areas are computed here again, where the CPU keeps them from pass 2 (a value per edge, for which
+// the device has no binding to spare): the same floats.
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 

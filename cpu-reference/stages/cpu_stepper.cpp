@@ -154,8 +154,9 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
         break;
       case Stage::FilmFlow:  // three Jacobi passes: new velocities, then every limit, then the gathers
         forEach(n, [&](size_t i) { filmFlowVelocity(params_, u, topo, s, i); });
-        forEach(n, [&](size_t i) { filmFlowLimit(params_, u.drainageDt, topo, s, i); });
-        forEach(n, [&](size_t i) { filmFlowGather(params_, u.drainageDt, topo, s, i); });
+        flowSwept_.resize(topo.springNeighbour.size());
+        forEach(n, [&](size_t i) { filmFlowLimit(params_, u.drainageDt, topo, s, i, flowSwept_); });
+        forEach(n, [&](size_t i) { filmFlowGather(params_, u.drainageDt, topo, s, i, flowSwept_); });
         break;
       case Stage::Count:
         break;

@@ -50,6 +50,7 @@ class CpuStepper final : public Stepper {
   Params params_;
   Film* film_ = nullptr;
   std::vector<float> triangleVolumes_;  // scratch for the volume reduction, reused every step
+  std::vector<float> flowSwept_;        // the film flow's swept area of each ring slot (filmFlowLimit)
   float lastVolume_ = 0.0f;             // result of the last Volume stage, read by Forces
   SweepRuns sweepRuns_;                 // the implicit step's one-rings, laid out again every step
   CoarseSystem coarse_;                 // the implicit step's patch system, assembled again every step

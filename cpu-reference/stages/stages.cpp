@@ -511,40 +511,56 @@ float filmFlowSweptArea(float dt, const State& s, uint32_t i, uint32_t j) {
   return flowSweptArea(dt, s.flowAreaShare[i], s.flowAreaShare[j], s.flowVelocityNext.get(i).dot(d), d2);
 }
 
+namespace {
+
+// The liquid particle i sends across an edge of which its velocity sweeps `swept` (m^3): filmFlowSent.
+float sentOver(float swept, const State& s, uint32_t i) { return swept * s.thickness[i] * s.flowLimit[i]; }
+
+// The slot of j in i's ring (Topology::springOffset): the spring from i to j.
+uint32_t ringSlotOf(const Topology& topo, uint32_t i, uint32_t j) {
+  uint32_t k = topo.springOffset[i];
+  while (topo.springNeighbour[k] != j) ++k;  // springs join both ends' rings
+  return k;
+}
+
+}  // namespace
+
 float filmFlowSent(float dt, const State& s, uint32_t i, uint32_t j) {
-  return filmFlowSweptArea(dt, s, i, j) * s.thickness[i] * s.flowLimit[i];
+  return sentOver(filmFlowSweptArea(dt, s, i, j), s, i);
 }
 
 float filmFlowEdgeFlux(float dt, const State& s, uint32_t i, uint32_t j) {
   return filmFlowSent(dt, s, i, j) - filmFlowSent(dt, s, j, i);
 }
 
-void filmFlowLimit(const Params& p, float dt, const Topology& topo, State& s, size_t i) {
+void filmFlowLimit(const Params& p, float dt, const Topology& topo, State& s, size_t i, std::span<float> swept) {
   s.surfactantBefore[i] = s.surfactant[i];
   if (!s.alive[i]) {
     s.flowLimit[i] = 0.0f;
     return;
   }
-  float swept = 0.0f;
+  float sweptInAll = 0.0f;
   for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
     const uint32_t j = topo.springNeighbour[k];
     if (!s.alive[j]) continue;
-    swept += filmFlowSweptArea(dt, s, static_cast<uint32_t>(i), j);
+    swept[k] = filmFlowSweptArea(dt, s, static_cast<uint32_t>(i), j);
+    sweptInAll += swept[k];
   }
   const float black = p.blackFilmThickness * s.voronoiArea[i];  // drainage stops at black film
-  const float outflow = swept * s.thickness[i], allowed = kLargestOutflowShare * std::max(s.liquid[i] - black, 0.0f);
+  const float outflow = sweptInAll * s.thickness[i],
+              allowed = kLargestOutflowShare * std::max(s.liquid[i] - black, 0.0f);
   s.flowLimit[i] = outflow > allowed ? allowed / outflow : 1.0f;
 }
 
-void filmFlowGather(const Params& p, float dt, const Topology& topo, State& s, size_t j) {
+void filmFlowGather(const Params& p, float dt, const Topology& topo, State& s, size_t j, std::span<const float> swept) {
   s.flowVelocity.set(j, s.flowVelocityNext.get(j));
   if (!s.alive[j]) return;
   float liquidOut = 0.0f, surfactantOut = 0.0f;
   for (uint32_t k = topo.springOffset[j]; k < topo.springOffset[j + 1]; ++k) {
     const uint32_t i = topo.springNeighbour[k];
     if (!s.alive[i]) continue;
-    const float sent = filmFlowSent(dt, s, static_cast<uint32_t>(j), i);
-    const float received = filmFlowSent(dt, s, i, static_cast<uint32_t>(j));
+    const float sent = sentOver(swept[k], s, static_cast<uint32_t>(j));
+    const float received = sentOver(swept[ringSlotOf(topo, i, static_cast<uint32_t>(j))], s, i);
     liquidOut += sent - received;
     surfactantOut += sent * s.surfactantBefore[j] - received * s.surfactantBefore[i];
   }

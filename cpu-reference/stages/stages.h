@@ -231,11 +231,15 @@ void filmFlowVelocity(const Params& p, const StepUniforms& u, const Topology& to
 // Pass 2: the share of its outflow particle i can give, min(1, kLargestOutflowShare (w_i - e_b A_i) / outflow_i), e_b
 // the black film's thickness (the disjoining pressure stops drainage there); keeps its surfactant as
 // surfactantBefore for pass 3.
-void filmFlowLimit(const Params& p, float dt, const Topology& topo, State& s, size_t i);
+// swept[k] keeps the swept area (filmFlowSweptArea) of i's ring slot k (Topology::springOffset) for pass 3: on the CPU
+// a value per edge spares the gathers computing every edge's two areas again (the shader, whose device has no binding
+// to spare for it, computes them again, to the same floats).
+void filmFlowLimit(const Params& p, float dt, const Topology& topo, State& s, size_t i, std::span<float> swept);
 // Pass 3, a gather: particle j's liquid and surfactant after its edges' fluxes (what each end sends, filmFlowSent,
 // its surfactant with it), less what evaporates (evaporatedLiquid; its surfactant stays); u becomes the new
 // velocity.
-void filmFlowGather(const Params& p, float dt, const Topology& topo, State& s, size_t j);
+// Reads the swept areas pass 2 kept: j's own to i from j's slot, i's to j from the slot of j in i's ring.
+void filmFlowGather(const Params& p, float dt, const Topology& topo, State& s, size_t j, std::span<const float> swept);
 
 // ---- Stability -----------------------------------------------------------------------------------------
 // Largest elasticity Eq. (4) can give the film: the Gibbs peak 0.5 w_E, or the Marangoni value of a young

@@ -437,7 +437,7 @@ void drainageGather(const Params& p, const Topology& topo, State& s, size_t j) {
 
 namespace {
 
-Vec3 tangential(const Vec3& v, const Vec3& n) { return v - v.dot(n) * n; }
+inline Vec3 tangential(const Vec3& v, const Vec3& n) { return v - v.dot(n) * n; }
 
 }  // namespace
 

@@ -384,7 +384,7 @@ Vec<F> solveSymmetric(const BlockSum<F>& b) {
 
 // Moves particle i by -step (then onto the floor); a non-finite step is left unapplied for the stability check
 // to report.
-void applyStep(State& s, size_t i, const Vec3& step) {
+inline void applyStep(State& s, size_t i, const Vec3& step) {
   if (!step.allFinite()) return;
   s.position.set(i, aboveFloor(s.position.get(i) - step));
 }

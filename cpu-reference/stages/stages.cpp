@@ -516,11 +516,13 @@ namespace {
 // The liquid particle i sends across an edge of which its velocity sweeps `swept` (m^3): filmFlowSent.
 float sentOver(float swept, const State& s, uint32_t i) { return swept * s.thickness[i] * s.flowLimit[i]; }
 
-// The slot of j in i's ring (Topology::springOffset): the spring from i to j.
-uint32_t ringSlotOf(const Topology& topo, uint32_t i, uint32_t j) {
-  uint32_t k = topo.springOffset[i];
-  while (topo.springNeighbour[k] != j) ++k;  // springs join both ends' rings
-  return k;
+// filmFlowSweptArea of i towards j as pass 2 kept it in i's ring (a spring is in both ends' rings; were it not, the
+// area is computed).
+float keptSweptArea(float dt, const Topology& topo, const State& s, std::span<const float> swept, uint32_t i,
+                    uint32_t j) {
+  for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k)
+    if (topo.springNeighbour[k] == j) return swept[k];
+  return filmFlowSweptArea(dt, s, i, j);
 }
 
 }  // namespace
@@ -560,7 +562,7 @@ void filmFlowGather(const Params& p, float dt, const Topology& topo, State& s, s
     const uint32_t i = topo.springNeighbour[k];
     if (!s.alive[i]) continue;
     const float sent = sentOver(swept[k], s, static_cast<uint32_t>(j));
-    const float received = sentOver(swept[ringSlotOf(topo, i, static_cast<uint32_t>(j))], s, i);
+    const float received = sentOver(keptSweptArea(dt, topo, s, swept, i, static_cast<uint32_t>(j)), s, i);
     liquidOut += sent - received;
     surfactantOut += sent * s.surfactantBefore[j] - received * s.surfactantBefore[i];
   }

@@ -141,7 +141,7 @@ float FilmFraming::framingDistance(const OrbitCamera& base, const State& s, cons
     if (s.alive[i]) offsets.push_back(s.position.get(i) - centre);
   const auto count = static_cast<long>(offsets.size());
   constexpr long kParallelFrom = 16384;  // particles: below this a pass is shorter than waking the threads
-  // The bisection starts just beyond the nearest particle, so that every particle is in front of the camera. Where
+  // The search starts just beyond the nearest particle, so that every particle is in front of the camera. Where
   // the pitch changes with the distance, nearest in any direction.
   const Vec3 farBack = backAt(1e4f);
   float nearest = 0.0f, radius = 0.0f;

@@ -6,7 +6,7 @@
 #include <numeric>
 
 #include "energy_budget.h"
-#include "float_lanes.h"
+#include "particle_lanes.h"
 
 namespace gb {
 
@@ -21,15 +21,6 @@ template <class F>
 using Vec = Vec3Of<F>;
 template <class F>
 using Particles = std::array<uint32_t, kLanes<F>>;  // the particle of each lane
-
-Vec<float> lanesOf(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
-Vec3 eigenOf(const Vec<float>& v) { return {v.x, v.y, v.z}; }
-
-template <class F, class Index>
-inline Vec<F> gatherVec(const Vec3Array& a, const Index& i) {
-  return {fromLanes<F>([&](int l) { return a.x[i[l]]; }), fromLanes<F>([&](int l) { return a.y[i[l]]; }),
-          fromLanes<F>([&](int l) { return a.z[i[l]]; })};
-}
 
 // A block while its terms are summed: the symmetric Hessian as its six distinct entries in locals, so that the
 // sum stays in registers. (Summing 3x3 matrices built per term goes through the stack, and reading those

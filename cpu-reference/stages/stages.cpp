@@ -9,7 +9,7 @@
 
 #include "energy_budget.h"
 #include "film.h"
-#include "float_lanes.h"
+#include "particle_lanes.h"
 
 namespace gb {
 
@@ -44,13 +44,6 @@ void triangleGeometryOf(const std::array<Vec3Of<F>, 3>& x, Vec3Of<F>& doubleArea
   for (size_t c = 0; c < 3; ++c) corners[c] = mixedVoronoiCorner(x[c], x[(c + 1) % 3], x[(c + 2) % 3], area);
 }
 
-Vec3Of<float> lanesOf(const Vec3& v) { return {v.x(), v.y(), v.z()}; }
-// Four 3-vectors, one per lane.
-Vec3Of<Float4> lanesOf(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& d) {
-  return {Float4::of(a.x(), b.x(), c.x(), d.x()), Float4::of(a.y(), b.y(), c.y(), d.y()),
-          Float4::of(a.z(), b.z(), c.z(), d.z())};
-}
-
 }  // namespace
 
 void triangleGeometry(const Topology& topo, State& s, size_t t) {
@@ -69,8 +62,9 @@ void triangleGeometries(const Topology& topo, State& s, size_t first, size_t las
   for (; t + 4 <= last; t += 4) {
     std::array<Vec3Of<Float4>, 3> x;
     for (size_t c = 0; c < 3; ++c) {
-      const auto corner = [&](size_t l) { return s.position.get(topo.triangles[3 * (t + l) + c]); };
-      x[c] = lanesOf(corner(0), corner(1), corner(2), corner(3));
+      const std::array<uint32_t, 4> corner{topo.triangles[3 * t + c], topo.triangles[3 * (t + 1) + c],
+                                           topo.triangles[3 * (t + 2) + c], topo.triangles[3 * (t + 3) + c]};
+      x[c] = gatherVec<Float4>(s.position, corner);
     }
     Vec3Of<Float4> normal;
     std::array<Float4, 3> corners;

@@ -140,8 +140,10 @@ struct CellTable {
   std::vector<Vec3> position;
   std::vector<Vec3> normal;
   // The positions and normals again, and the velocities, one array per axis for the search's four-wide test.
+  // These and `along` hold kLoadPast entries more than the table, so that four entries may be loaded from any one.
   std::array<std::vector<float>, 3> x, n, v;
   std::vector<float> along;  // the coordinate along the bucket's sort direction, ascending within each bucket
+  static constexpr size_t kLoadPast = 3;
   // The occupied buckets in ascending order, and each one's sheet: bucket occupied[o]'s is sheet[o], and
   // bucket b's is sheet[sheetIndex[b]] (a bucket holds a cell of tens to thousands of particles).
   std::vector<uint32_t> occupied;
@@ -219,23 +221,24 @@ void bucketParticles(const Film& film, float cellSize, CellTable& table) {
   const size_t buckets = bucketCount(film, cellSize);
   table.mask = buckets - 1;
   std::vector<uint32_t>& bucket = table.bucket;
-  bucket.assign(n, 0u);
+  constexpr uint32_t kNotInFilm = std::numeric_limits<uint32_t>::max();
+  bucket.assign(n, kNotInFilm);
 #pragma omp parallel for schedule(static) if (n >= kParallelPass)
   for (size_t i = 0; i < n; ++i)
     if (inFilm(film, static_cast<uint32_t>(i))) bucket[i] = table.bucketOf(cellOf(s.position.get(i), cellSize));
   table.offset.assign(buckets + 1, 0u);
   for (uint32_t i = 0; i < n; ++i)
-    if (inFilm(film, i)) ++table.offset[bucket[i] + 1];
+    if (bucket[i] != kNotInFilm) ++table.offset[bucket[i] + 1];
   for (size_t b = 0; b < buckets; ++b) table.offset[b + 1] += table.offset[b];
   table.particle.resize(table.offset[buckets]);
   std::vector<uint32_t> fill(table.offset.begin(), table.offset.end() - 1);
   for (uint32_t i = 0; i < n; ++i)
-    if (inFilm(film, i)) table.particle[fill[bucket[i]]++] = i;
+    if (bucket[i] != kNotInFilm) table.particle[fill[bucket[i]]++] = i;
   table.position.resize(table.particle.size());
   table.normal.resize(table.particle.size());
   for (auto* arrays : {&table.x, &table.n, &table.v})
-    for (std::vector<float>& axis : *arrays) axis.resize(table.particle.size());
-  table.along.resize(table.particle.size());
+    for (std::vector<float>& axis : *arrays) axis.resize(table.particle.size() + CellTable::kLoadPast);
+  table.along.resize(table.particle.size() + CellTable::kLoadPast);
   table.sheetIndex.assign(buckets, 0u);
   table.occupied.clear();
   for (uint32_t b = 0; b < buckets; ++b) {
@@ -268,7 +271,7 @@ F widened(F r) {
   return r * F(1.001f) + F(1e-5f);
 }
 
-// Applies PartnerRule::listRunPartnersIn's first two tests (a particle farther from bucket b's box than the reach, or
+// Applies PartnerRule::listRunPartners's first two tests (a particle farther from bucket b's box than the reach, or
 // than the partner radius b's sheet allows it, lists nothing there) to all of bucket `home`'s particles at once:
 // false when every one of them would fail them. Their distance to b's box is at least the gap between the two
 // boxes, and partnerRadius is at most its bound over home's box (heights along b's normal) and normals (home's mean
@@ -320,41 +323,48 @@ struct PartnerRule {
   float frameTime, slack, reach;
 
   // Appends to `pairs` the pairs (particle, partner) that table entries [first, last), a run of one cell in bucket
-  // `home`, list with bucket b's particles: each pair is listed once, within a bucket by its first entry in the
-  // table, between two buckets by the particles of the one whose neighbour is the flatter (searchedFrom, applied by
-  // bucketsAround), where the partner radius reads less. A particle farther from b's box than the reach, or than
-  // the partner radius b's sheet allows it (partnerRadius), lists nothing there: four entries at a time take these
-  // tests, the bulk of the search on a film whose buckets are pieces of smooth sheet; the rest search their slab.
-  void listRunPartnersIn(const CellTable& table, uint32_t home, uint32_t b, size_t first, size_t last,
-                         std::vector<uint32_t>& pairs) const {
-    const BucketSheet& sheet = table.sheet[table.sheetIndex[b]];
-    const std::array<Float4, 3> lower{sheet.lower.x(), sheet.lower.y(), sheet.lower.z()},
-        upper{sheet.upper.x(), sheet.upper.y(), sheet.upper.z()};
+  // `home`, list with the particles of buckets around[0 .. count): each pair is listed once, within a bucket by its
+  // first entry in the table, between two buckets by the particles of the one whose neighbour is the flatter
+  // (searchedFrom, applied by bucketsAround), where the partner radius reads less. A particle farther from a bucket's
+  // box than the reach, or than the partner radius its sheet allows it (partnerRadius), lists nothing there: four
+  // entries at a time take these tests, each four read once for all the buckets, the bulk of the search on a film
+  // whose buckets are pieces of smooth sheet; the rest search their slab.
+  void listRunPartners(const CellTable& table, uint32_t home, const std::array<uint32_t, 27>& around, size_t count,
+                       size_t first, size_t last, std::vector<uint32_t>& pairs) const {
+    struct Box {
+      std::array<Float4, 3> lower, upper;
+    };
+    std::array<Box, 27> box;
+    for (size_t a = 0; a < count; ++a) {
+      const BucketSheet& sheet = table.sheet[table.sheetIndex[around[a]]];
+      box[a] = {{sheet.lower.x(), sheet.lower.y(), sheet.lower.z()},
+                {sheet.upper.x(), sheet.upper.y(), sheet.upper.z()}};
+    }
     const Float4 zero(0.0f), reachSquared = widened(Float4(reach)) * widened(Float4(reach));
     for (size_t at = first; at < last; at += 4) {
-      // Entries past the run repeat its last one, and their lanes are dropped.
-      const auto lanes = [&](const std::vector<float>& axis) {
-        const auto entry = [&](size_t l) { return axis[std::min(at + l, last - 1)]; };
-        return Float4::of(entry(0), entry(1), entry(2), entry(3));
-      };
+      // The lanes of entries past the run are dropped.
+      const auto lanes = [&](const std::vector<float>& axis) { return Float4::load(axis.data() + at); };
       const std::array<Float4, 3> x{lanes(table.x[0]), lanes(table.x[1]), lanes(table.x[2])};
       const std::array<Float4, 3> n{lanes(table.n[0]), lanes(table.n[1]), lanes(table.n[2])};
-      Float4 outsideSquared(0.0f);  // from b's box
-      for (int a = 0; a < 3; ++a) {
-        const Float4 outside = max(max(lower[a] - x[a], x[a] - upper[a]), zero);
-        outsideSquared = outsideSquared + outside * outside;
-      }
-      const Float4 radius = widened(min(Float4(reach), partnerRadius(sheet, x, n)));
       const unsigned inRun = last - at >= 4 ? 0xfu : (1u << (last - at)) - 1u;
-      const unsigned tooFar = laneBits(outsideSquared > reachSquared || outsideSquared > radius * radius);
-      for (unsigned near = inRun & ~tooFar; near; near &= near - 1) {
-        const auto l = std::countr_zero(near);
-        listPartnersInSlab(table, home, b, at + static_cast<size_t>(l), radius.lane(l), pairs);
+      for (size_t a = 0; a < count; ++a) {
+        const uint32_t b = around[a];
+        Float4 outsideSquared(0.0f);  // from b's box
+        for (int axis = 0; axis < 3; ++axis) {
+          const Float4 outside = max(max(box[a].lower[axis] - x[axis], x[axis] - box[a].upper[axis]), zero);
+          outsideSquared = outsideSquared + outside * outside;
+        }
+        const Float4 radius = widened(min(Float4(reach), partnerRadius(table.sheet[table.sheetIndex[b]], x, n)));
+        const unsigned tooFar = laneBits(outsideSquared > reachSquared || outsideSquared > radius * radius);
+        for (unsigned near = inRun & ~tooFar; near; near &= near - 1) {
+          const auto l = std::countr_zero(near);
+          listPartnersInSlab(table, home, b, at + static_cast<size_t>(l), radius.lane(l), pairs);
+        }
       }
     }
   }
 
-  // The rest of listRunPartnersIn for table entry `at`: the partners among bucket b's particles within `radius`.
+  // The rest of listRunPartners for table entry `at`: the partners among bucket b's particles within `radius`.
   void listPartnersInSlab(const CellTable& table, uint32_t home, uint32_t b, size_t at, float radius,
                           std::vector<uint32_t>& pairs) const {
     const size_t begin = b == home ? at + 1 : table.offset[b], end = table.offset[b + 1];
@@ -375,10 +385,13 @@ struct PartnerRule {
     const float reachSquared = reach * reach, distance = p.collisionDistance, time = frameTime, extra = slack;
     // No search where the slab starts before the bucket (always after `at` in its own bucket, and in most buckets
     // of a curved or folded sheet, whose radius is the reach).
-    const float lowest = centre - radius;
+    const float lowest = centre - radius, highest = centre + radius;
     const size_t first = along[begin] >= lowest
                              ? begin
                              : static_cast<size_t>(std::lower_bound(along + begin, along + end, lowest) - along);
+    // The slab is empty when its first candidate lies past it: on a smooth sheet, whose partner radius is far below
+    // the particles' spacing, most searches end here.
+    if (first == end || along[first] > highest) return;
     auto consider = [&](size_t k) {
       const Vec3 d = position[k] - xi;
       const float lengthSquared = d.squaredNorm();
@@ -389,7 +402,6 @@ struct PartnerRule {
       if (liesAcross(alongI, alongJ, lengthSquared) && !isOneRingNeighbour(topo, i, table.particle[k]))
         pairs.insert(pairs.end(), {i, table.particle[k]});
     };
-    const float highest = centre + radius;
     size_t k = first;
     // Four candidates at a time from the table's arrays per axis: the same tests as consider()'s, but each a
     // thousandth looser for the order in which the lanes sum, so that consider() alone decides and the list is the
@@ -399,8 +411,9 @@ struct PartnerRule {
     const Float4 highest4(highest), distance4(distance), time4(time), extra4(extra), cap4(kMaxContactMargin),
         loose(1.001f), acrossLoose(kAcrossCosineSquared * 0.999f);
     auto load = [&](const std::array<std::vector<float>, 3>& axes, int a) { return Float4::load(axes[a].data() + k); };
-    for (; k + 4 <= end; k += 4) {
-      const Mask4 inSlab = Float4::load(along + k) <= highest4;
+    for (; k < end; k += 4) {
+      const unsigned inBucket = end - k >= 4 ? 0xfu : (1u << (end - k)) - 1u;
+      const unsigned inSlab = laneBits(Float4::load(along + k) <= highest4) & inBucket;
       const std::array<Float4, 3> d{load(table.x, 0) - x4[0], load(table.x, 1) - x4[1], load(table.x, 2) - x4[2]};
       const std::array<Float4, 3> w{load(table.v, 0) - v4[0], load(table.v, 1) - v4[1], load(table.v, 2) - v4[2]};
       const Float4 lengthSquared = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
@@ -409,13 +422,12 @@ struct PartnerRule {
       const Float4 alongI = n4[0] * d[0] + n4[1] * d[1] + n4[2] * d[2];
       const Float4 alongJ = load(table.n, 0) * d[0] + load(table.n, 1) * d[1] + load(table.n, 2) * d[2];
       const Float4 acrossBound = acrossLoose * lengthSquared;
-      const Mask4 candidate = inSlab && lengthSquared < pairReach * pairReach * loose &&
+      const Mask4 candidate = lengthSquared < pairReach * pairReach * loose &&
                               (alongI * alongI > acrossBound || alongJ * alongJ > acrossBound);
-      for (unsigned near = laneBits(candidate); near; near &= near - 1)
+      for (unsigned near = laneBits(candidate) & inSlab; near; near &= near - 1)
         consider(k + static_cast<size_t>(std::countr_zero(near)));
-      if (laneBits(inSlab) != 0xfu) return;  // the slab ends within these four
+      if (inSlab != 0xfu) return;  // the slab or the bucket ends within these four
     }
-    for (; k < end && along[k] <= highest; ++k) consider(k);
   }
 };
 
@@ -487,7 +499,7 @@ size_t ContactSearch::find(const Params& p, float frameTime, float slack, Film& 
     bucketParticles(film, reach, memory_->table);
     const CellTable& table = memory_->table;
     const PartnerRule rule{p, topo, frameTime, slack, reach};
-    // Each particle lists the partners it owns (each pair once, half the distance tests; listRunPartnersIn) from the
+    // Each particle lists the partners it owns (each pair once, half the distance tests; listRunPartners) from the
     // read-only table: parallel over the buckets, each thread into its own array, and the same rows in any order
     // once they are sorted below. The particles of a cell share the buckets about it, looked up once per run of
     // particles of one cell.
@@ -503,7 +515,7 @@ size_t ContactSearch::find(const Params& p, float frameTime, float slack, Film& 
           while (++last < table.offset[b + 1] && cellOf(table.position[last], reach) == cell) {
           }
           const size_t count = bucketsAround(table, b, cell, reach, around);
-          for (size_t a = 0; a < count; ++a) rule.listRunPartnersIn(table, b, around[a], first, last, pairs);
+          rule.listRunPartners(table, b, around, count, first, last, pairs);
         }
       }
     }

@@ -186,14 +186,16 @@ size_t bucketCount(const Film& film, float cellSize) {
 }
 
 // Fills the table's entries [begin, end) of one bucket: their positions, normals and velocities, the bucket's sheet,
-// and the order along its sort direction (ties by id keep the table the same on every run).
-void sortBucketAlongItsSheet(const State& s, size_t begin, size_t end, BucketSheet& sheet, CellTable& table) {
+// and the order along its sort direction (ties by id keep the table the same on every run). `order` is scratch
+// memory, kept by the caller from one bucket to the next.
+void sortBucketAlongItsSheet(const State& s, size_t begin, size_t end, BucketSheet& sheet, CellTable& table,
+                             std::vector<std::pair<float, uint32_t>>& order) {
   for (size_t k = begin; k < end; ++k) {
     table.position[k] = s.position.get(table.particle[k]);
     table.normal[k] = s.normal.get(table.particle[k]);
   }
   sheet = summariseSheet(table.position, table.normal, begin, end);
-  std::vector<std::pair<float, uint32_t>> order(end - begin);
+  order.resize(end - begin);
   for (size_t k = begin; k < end; ++k) {
     // A particle at NaN (no one's partner) sorts last: NaN keys would break the sort's ordering.
     const float along = sheet.sortDirection.dot(table.position[k]);
@@ -247,10 +249,14 @@ void bucketParticles(const Film& film, float cellSize, CellTable& table) {
     table.occupied.push_back(b);
   }
   table.sheet.resize(table.occupied.size());
-#pragma omp parallel for schedule(dynamic, 1) if (n >= kParallelPass)
-  for (size_t o = 0; o < table.occupied.size(); ++o) {
-    const uint32_t b = table.occupied[o];
-    sortBucketAlongItsSheet(s, table.offset[b], table.offset[b + 1], table.sheet[o], table);
+#pragma omp parallel if (n >= kParallelPass)
+  {
+    std::vector<std::pair<float, uint32_t>> order;
+#pragma omp for schedule(dynamic, 1)
+    for (size_t o = 0; o < table.occupied.size(); ++o) {
+      const uint32_t b = table.occupied[o];
+      sortBucketAlongItsSheet(s, table.offset[b], table.offset[b + 1], table.sheet[o], table, order);
+    }
   }
 }
 

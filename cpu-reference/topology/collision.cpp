@@ -395,8 +395,8 @@ struct PartnerRule {
     const size_t first = along[begin] >= lowest
                              ? begin
                              : static_cast<size_t>(std::lower_bound(along + begin, along + end, lowest) - along);
-    // The slab is empty when its first candidate lies past it: on a smooth sheet, whose partner radius is far below
-    // the particles' spacing, most searches end here.
+    // The slab is empty when its first candidate lies past it: on a smooth sheet, whose partner radius is often below
+    // the particles' spacing along the sort direction, about a quarter of the searches end here.
     if (first == end || along[first] > highest) return;
     auto consider = [&](size_t k) {
       const Vec3 d = position[k] - xi;

@@ -337,14 +337,16 @@ struct PartnerRule {
   // whose buckets are pieces of smooth sheet; the rest search their slab.
   void listRunPartners(const CellTable& table, uint32_t home, const std::array<uint32_t, 27>& around, size_t count,
                        size_t first, size_t last, std::vector<uint32_t>& pairs) const {
-    struct Box {
+    struct Neighbour {  // a bucket around the run: its sheet, and its box in lanes
+      const BucketSheet* sheet;
       std::array<Float4, 3> lower, upper;
     };
-    std::array<Box, 27> box;
+    std::array<Neighbour, 27> neighbour;
     for (size_t a = 0; a < count; ++a) {
       const BucketSheet& sheet = table.sheet[table.sheetIndex[around[a]]];
-      box[a] = {{sheet.lower.x(), sheet.lower.y(), sheet.lower.z()},
-                {sheet.upper.x(), sheet.upper.y(), sheet.upper.z()}};
+      neighbour[a] = {&sheet,
+                      {sheet.lower.x(), sheet.lower.y(), sheet.lower.z()},
+                      {sheet.upper.x(), sheet.upper.y(), sheet.upper.z()}};
     }
     const Float4 zero(0.0f), reachSquared = widened(Float4(reach)) * widened(Float4(reach));
     for (size_t at = first; at < last; at += 4) {
@@ -354,17 +356,17 @@ struct PartnerRule {
       const std::array<Float4, 3> n{lanes(table.n[0]), lanes(table.n[1]), lanes(table.n[2])};
       const unsigned inRun = last - at >= 4 ? 0xfu : (1u << (last - at)) - 1u;
       for (size_t a = 0; a < count; ++a) {
-        const uint32_t b = around[a];
+        const Neighbour& b = neighbour[a];
         Float4 outsideSquared(0.0f);  // from b's box
         for (int axis = 0; axis < 3; ++axis) {
-          const Float4 outside = max(max(box[a].lower[axis] - x[axis], x[axis] - box[a].upper[axis]), zero);
+          const Float4 outside = max(max(b.lower[axis] - x[axis], x[axis] - b.upper[axis]), zero);
           outsideSquared = outsideSquared + outside * outside;
         }
-        const Float4 radius = widened(min(Float4(reach), partnerRadius(table.sheet[table.sheetIndex[b]], x, n)));
+        const Float4 radius = widened(min(Float4(reach), partnerRadius(*b.sheet, x, n)));
         const unsigned tooFar = laneBits(outsideSquared > reachSquared || outsideSquared > radius * radius);
         for (unsigned near = inRun & ~tooFar; near; near &= near - 1) {
           const auto l = std::countr_zero(near);
-          listPartnersInSlab(table, home, b, at + static_cast<size_t>(l), radius.lane(l), pairs);
+          listPartnersInSlab(table, home, around[a], at + static_cast<size_t>(l), radius.lane(l), pairs);
         }
       }
     }

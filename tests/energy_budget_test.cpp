@@ -35,6 +35,50 @@ TEST(EnergyBudget, TheGasChangeIsTheDifferenceOfBoylesEnergy) {
   EXPECT_EQ(boyleEnergyChange(p, 0.3f, 0.0f, 0.3f), 0.0f) << "no volume: no gas to count";
 }
 
+TEST(EnergyBudget, EachPieceIsWhatEveryParticleOfItHolds) {
+  // heldPieces computes each spring's (four at a time in the SSE lanes) or triangle's share of E once, and every
+  // particle of it adds that one float: it must be, bit for bit, the share each of them computes from its own side
+  // of the one-ring (i to j and j to i), on a jittered film with wire particles (placed at the step's end) and uneven
+  // elasticities, through the springs' last partial four.
+  for (int model : {0, 1}) {
+    Params p;
+    p.tensionModel = model;
+    Film film = test::makeFreeDisc(p);
+    State& s = film.state;
+    Topology& topo = film.topology;
+    test::jitterWithWireParticles(film, 0.3f, 5);
+    for (size_t i = 0; i < s.size(); ++i) s.elasticity[i] *= 1.0f + 0.1f * static_cast<float>(i % 5);
+    const size_t count = heldPieceCount(p, topo);
+    ASSERT_EQ(count, model == 1 ? topo.triangleCount() : topo.springCount());
+    HeldPieces pieces;
+    pieces.start.resize(count);
+    pieces.end.resize(count);
+    heldPieces(p, topo, s, 0, count, pieces);
+    if (model == 0) {
+      ASSERT_NE(count % 4, 0u) << "the springs after the last four are done one at a time";
+      for (uint32_t i = 0; i < s.size(); ++i)
+        for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
+          const uint32_t j = topo.springNeighbour[k], spring = topo.springIndex[k];
+          const float stiffness = springStiffness(s, i, j), rest = topo.restLength[spring];
+          const float stretch0 = (positionAtStepStart(topo, s, j) - positionAtStepStart(topo, s, i)).norm() - rest;
+          const float stretch = (s.position.get(j) - s.position.get(i)).norm() - rest;
+          ASSERT_EQ(pieces.start[spring], 0.5f * springEnergyOf(stiffness, stretch0)) << i << " to " << j;
+          ASSERT_EQ(pieces.end[spring], 0.5f * springEnergyOf(stiffness, stretch)) << i << " to " << j;
+        }
+    } else {
+      for (uint32_t t = 0; t < topo.triangleCount(); ++t) {
+        const uint32_t* tri = &topo.triangles[3 * t];
+        const float tension = triangleTension(s, tri), area0 = triangleAreaAtStart(topo, s, tri);
+        const Vec3 a = s.position.get(tri[0]);
+        const float area = 0.5f * (s.position.get(tri[1]) - a).cross(s.position.get(tri[2]) - a).norm();
+        ASSERT_EQ(pieces.start[t], tension * area0 / 3.0f) << "triangle " << t;
+        ASSERT_EQ(pieces.end[t], static_cast<float>(triangleTensionEnergy(p, tension, area0, area)) / 3.0f)
+            << "triangle " << t;
+      }
+    }
+  }
+}
+
 TEST(EnergyBudget, TakesTheExcessFromTheMotionAboutTheCentreOfMass) {
   // Three particles of different masses drifting together and apart, their drift the one they had before the step:
   // the budget must end at exactly the budget (to float rounding, 1e-5), keep the momentum, and leave velocities

@@ -282,6 +282,37 @@ TEST(FilmFlow, ConservesLiquidToFloatRounding) {
   }
 }
 
+TEST(FilmFlow, TheGatherSendsWhatEachEndsSweptAreaSends) {
+  // Pass 3 reads each edge's two swept areas as pass 2 kept them, by spring and end: every particle's new liquid must
+  // be, bit for bit, its liquid less what it sends (filmFlowSent, the swept area computed again) plus what each
+  // neighbour sends it, in its ring's order, on a flowing film in saturated air.
+  Params p;
+  p.particlesAtFullSolution = 1500;
+  p.evaporationRate = 0.0f;
+  Film film = ringFilmInAMovingAir(p);
+  flow(p, film, 20, 0.02f);  // the liquid under way, the thickness no longer uniform
+  State& s = film.state;
+  const Topology& topo = film.topology;
+  StepUniforms u;
+  u.dt = u.drainageDt = 0.02f;
+  std::vector<float> swept(2 * topo.springCount());
+  for (size_t i = 0; i < s.size(); ++i) filmFlowVelocity(p, u, topo, s, i);
+  for (size_t i = 0; i < s.size(); ++i) filmFlowLimit(p, u.drainageDt, topo, s, i, swept);
+  const State before = s;
+  for (size_t j = 0; j < s.size(); ++j) filmFlowGather(p, u.drainageDt, topo, s, j, swept);
+  int flowing = 0;
+  for (uint32_t j = 0; j < s.size(); ++j) {
+    float out = 0.0f;
+    for (uint32_t k = topo.springOffset[j]; k < topo.springOffset[j + 1]; ++k) {
+      const uint32_t i = topo.springNeighbour[k];
+      out += filmFlowSent(u.drainageDt, before, j, i) - filmFlowSent(u.drainageDt, before, i, j);
+    }
+    ASSERT_EQ(s.liquid[j], before.liquid[j] - out) << "particle " << j;
+    flowing += out != 0.0f;
+  }
+  EXPECT_GT(flowing, static_cast<int>(s.size()) / 2) << "most particles send or receive liquid";
+}
+
 TEST(FilmFlow, EvaporationTakesItsRateTimesTheAreaWhileTheFlowMovesTheRest) {
   // The same ring film flowing in dry air (the default evaporation), 2 s, no particle near black film (where
   // evaporation stops): what is lost is exactly rate x time x area, the flow moves the rest, and evaporation

@@ -96,14 +96,7 @@ TEST(Geometry, FourTrianglesAtATimeAreTheSameFloatsAsOneAtATime) {
   Film film = test::makeFreeDisc(p);
   State& s = film.state;
   const Topology& topo = film.topology;
-  const float spacing = topo.restLength[0];
-  std::mt19937 random(7);
-  std::uniform_real_distribution<float> jitter(-0.6f * spacing, 0.6f * spacing);
-  for (size_t i = 0; i < s.size(); ++i) {
-    s.previousPosition.set(i, s.position.get(i));
-    s.position.set(i, s.position.get(i) + Vec3(jitter(random), jitter(random), jitter(random)));
-    film.topology.boundary[i] = i % 7 == 0 ? 1u : 0u;  // at the step's start where the wire put them: now
-  }
+  test::jitterWithWireParticles(film, 0.6f, 7);  // the wire's particles at the step's start where it put them: now
   const uint32_t* collapsed = &topo.triangles[3 * 9];
   s.position.set(collapsed[1], s.position.get(collapsed[0]));  // a triangle of no area
   fitTriangleArrays(topo, s);
@@ -273,6 +266,25 @@ TEST(Reduction, TreeSumHasAFixedPairwiseShape) {
   EXPECT_FLOAT_EQ(treeSum({1, 2, 3, 4, 5}), 15.0f);
   // ((1e8 + 1) + (-1e8 + 1)) loses both ones in float; a left-to-right sum would keep one of them.
   EXPECT_FLOAT_EQ(treeSum({1e8f, 1.0f, -1e8f, 1.0f}), 0.0f);
+}
+
+TEST(Reduction, TreeSumAddsFourPairsAtATimeAsOneAtATime) {
+  // treeSumInPlace adds eight elements into four sums at once: every level must hold what the pairwise sums one at a
+  // time give, bit for bit, for every length's tail of pairs and odd last element.
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> value(-1.0f, 1.0f);
+  for (size_t n : {1, 2, 3, 7, 8, 9, 15, 16, 17, 31, 33, 100, 1001, 24013}) {
+    std::vector<float> v(n);
+    for (float& x : v) x = value(random) * std::exp2(value(random) * 20.0f);  // magnitudes over 12 decades
+    std::vector<float> level = v;
+    while (level.size() > 1) {
+      std::vector<float> next;
+      for (size_t k = 0; k + 1 < level.size(); k += 2) next.push_back(level[k] + level[k + 1]);
+      if (level.size() % 2 == 1) next.push_back(level.back());
+      level = next;
+    }
+    EXPECT_EQ(treeSumInPlace(v), level[0]) << n << " elements";
+  }
 }
 
 }  // namespace

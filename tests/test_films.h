@@ -62,6 +62,21 @@ inline Film makeFreeDisc(const Params& params) {
   return film;
 }
 
+// Moves every particle by up to `fraction` of the film's first spring in every direction (random, from `seed`), keeps
+// where it was as the step's start (previousPosition), and makes every seventh one a wire particle (which the
+// energy budget places at its end position): a film on which every case of the one-ring formulas occurs.
+inline void jitterWithWireParticles(Film& film, float fraction, unsigned seed) {
+  State& s = film.state;
+  const float spacing = film.topology.restLength[0];
+  std::mt19937 random(seed);
+  std::uniform_real_distribution<float> jitter(-fraction * spacing, fraction * spacing);
+  for (size_t i = 0; i < s.size(); ++i) {
+    s.previousPosition.set(i, s.position.get(i));
+    s.position.set(i, s.position.get(i) + Vec3(jitter(random), jitter(random), jitter(random)));
+    film.topology.boundary[i] = i % 7 == 0 ? 1u : 0u;
+  }
+}
+
 // Gives every particle the velocity of a rigid spin at `rate` (rad/s) about `axis` through the film's centroid.
 inline void spin(Film& film, const Vec3& axis, float rate) {
   State& s = film.state;

@@ -24,6 +24,12 @@ struct Vec3Array {
     y.assign(n, value);
     z.assign(n, value);
   }
+  // n elements, those it had kept: for scratch that is written in full before it is read.
+  void fit(size_t n) {
+    x.resize(n);
+    y.resize(n);
+    z.resize(n);
+  }
   [[nodiscard]] Vec3 get(size_t i) const { return {x[i], y[i], z[i]}; }
   void set(size_t i, const Vec3& v) {
     x[i] = v.x();

@@ -1,42 +1,38 @@
 #include "energy_budget.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "implicit_euler.h"
+#include "particle_lanes.h"
 
 namespace gb {
 
 namespace {
 
 // Particle i's share of the internal energy E, at the step's start and at its end, in one pass over its one-ring:
-// half of each of its springs (k/2 (len - l0)^2) or a third of each of its triangles (triangleTensionEnergy), and half
-// of each contact's penalty (k_c/2 (d_c - len)^2 inside its rest distance d_c).
+// its springs' or triangles' pieces (heldPiece) and half of each contact's penalty (k_c/2 (d_c - len)^2 inside its
+// rest distance d_c).
 struct HeldShares {
   float start = 0.0f, end = 0.0f;
 };
-HeldShares heldShares(const Params& p, const Topology& topo, const State& s, uint32_t i) {
-  const Vec3 xi = s.position.get(i), xi0 = positionAtStepStart(topo, s, i);
+HeldShares heldShares(const Params& p, const Topology& topo, const State& s, const HeldPieces& pieces, uint32_t i) {
   HeldShares h;
   if (p.tensionModel == 1) {
     for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k) {
-      const uint32_t* tri = topo.triangleOf(topo.triangleCorner[k]);
-      const float tension = triangleTension(s, tri), area0 = triangleAreaAtStart(topo, s, tri);
-      const Vec3 a = s.position.get(tri[0]);
-      const float area = 0.5f * (s.position.get(tri[1]) - a).cross(s.position.get(tri[2]) - a).norm();
-      h.start += tension * area0 / 3.0f;
-      h.end += static_cast<float>(triangleTensionEnergy(p, tension, area0, area)) / 3.0f;
+      const uint32_t t = topo.triangleCorner[k] / 3;
+      h.start += pieces.start[t];
+      h.end += pieces.end[t];
     }
   } else {
     for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
-      const uint32_t j = topo.springNeighbour[k];
-      const float stiffness = springStiffness(s, i, j), rest = topo.restLength[topo.springIndex[k]];
-      const float stretch0 = (positionAtStepStart(topo, s, j) - xi0).norm() - rest;
-      const float stretch = (s.position.get(j) - xi).norm() - rest;
-      h.start += 0.5f * springEnergyOf(stiffness, stretch0);  // each end's half
-      h.end += 0.5f * springEnergyOf(stiffness, stretch);
+      const uint32_t spring = topo.springIndex[k];
+      h.start += pieces.start[spring];
+      h.end += pieces.end[spring];
     }
   }
+  const Vec3 xi = s.position.get(i), xi0 = positionAtStepStart(topo, s, i);
   const uint32_t base = static_cast<uint32_t>(s.size()) + 1;
   for (uint32_t k = topo.contacts[i]; k < topo.contacts[i + 1]; ++k) {
     const uint32_t j = topo.contacts[base + k];
@@ -50,6 +46,62 @@ HeldShares heldShares(const Params& p, const Topology& topo, const State& s, uin
 
 }  // namespace
 
+size_t heldPieceCount(const Params& p, const Topology& topo) {
+  return p.tensionModel == 1 ? topo.triangleCount() : topo.springCount();
+}
+
+namespace {
+
+void trianglePiece(const Params& p, const Topology& topo, const State& s, size_t t, HeldPieces& pieces) {
+  const uint32_t* tri = &topo.triangles[3 * t];
+  const float tension = triangleTension(s, tri), area0 = triangleAreaAtStart(topo, s, tri);
+  const Vec3 a = s.position.get(tri[0]);
+  const float area = 0.5f * (s.position.get(tri[1]) - a).cross(s.position.get(tri[2]) - a).norm();
+  pieces.start[t] = tension * area0 / 3.0f;
+  pieces.end[t] = static_cast<float>(triangleTensionEnergy(p, tension, area0, area)) / 3.0f;
+}
+
+// The pieces of the springs from `first` on, one in each lane of F: the float operations of Eigen's norm and of
+// springEnergyOf in each lane, the same floats for one spring and for four.
+template <class F>
+void springPieces(const Topology& topo, const State& s, size_t first, HeldPieces& pieces) {
+  constexpr int kCount = kLanes<F>;
+  std::array<Vec3, kCount> a, b, a0, b0;  // the ends now and at the step's start
+  std::array<float, kCount> stiffness, rest;
+  for (int l = 0; l < kCount; ++l) {
+    const size_t spring = first + static_cast<size_t>(l);
+    const uint32_t i = topo.springEnds[2 * spring], j = topo.springEnds[2 * spring + 1];
+    a[l] = s.position.get(i), b[l] = s.position.get(j);
+    a0[l] = positionAtStepStart(topo, s, i), b0[l] = positionAtStepStart(topo, s, j);
+    stiffness[l] = springStiffness(s, i, j), rest[l] = topo.restLength[spring];
+  }
+  const auto lanes = [](const std::array<Vec3, kCount>& v) {
+    return Vec3Of<F>{fromLanes<F>([&](int l) { return v[l].x(); }), fromLanes<F>([&](int l) { return v[l].y(); }),
+                     fromLanes<F>([&](int l) { return v[l].z(); })};
+  };
+  const F k = fromLanes<F>([&](int l) { return stiffness[l]; }), l0 = fromLanes<F>([&](int l) { return rest[l]; });
+  const F stretch0 = norm(lanes(b0) - lanes(a0)) - l0, stretch = norm(lanes(b) - lanes(a)) - l0;
+  const F start = F(0.5f) * springEnergyOf(k, stretch0), end = F(0.5f) * springEnergyOf(k, stretch);  // each end's half
+  if constexpr (kCount == 1) {
+    pieces.start[first] = start, pieces.end[first] = end;
+  } else {
+    start.store(&pieces.start[first]);
+    end.store(&pieces.end[first]);
+  }
+}
+
+}  // namespace
+
+void heldPieces(const Params& p, const Topology& topo, const State& s, size_t first, size_t last, HeldPieces& pieces) {
+  if (p.tensionModel == 1) {
+    for (size_t t = first; t < last; ++t) trianglePiece(p, topo, s, t, pieces);
+    return;
+  }
+  size_t spring = first;
+  for (; spring + 4 <= last; spring += 4) springPieces<Float4>(topo, s, spring, pieces);
+  for (; spring < last; ++spring) springPieces<float>(topo, s, spring, pieces);
+}
+
 float triangleAreaAtStart(const Topology& topo, const State& s, const uint32_t* corners) {
   const Vec3 a0 = positionAtStepStart(topo, s, corners[0]);
   return 0.5f *
@@ -62,11 +114,12 @@ float triangleVolumeAtStart(const Topology& topo, const State& s, size_t t, cons
                     positionAtStepStart(topo, s, tri[2]), origin);
 }
 
-ParticleEnergy energyTerms(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, size_t i) {
+ParticleEnergy energyTerms(const Params& p, const StepUniforms& u, const Topology& topo, const State& s,
+                           const HeldPieces& pieces, size_t i) {
   if (!s.alive[i]) return {};
   const auto index = static_cast<uint32_t>(i);
   ParticleEnergy e;
-  const HeldShares held = heldShares(p, topo, s, index);
+  const HeldShares held = heldShares(p, topo, s, pieces, index);
   e.start = held.start;
   e.held = held.end;
   if (topo.boundary[i]) return e;  // the wire's particles are prescribed: their motion is the wands' work

@@ -15,6 +15,7 @@
 // holds ends at rest, and the next steps take the rest out as it turns into motion.
 
 #include <limits>
+#include <vector>
 
 #include "shared_step.h"
 #include "stages.h"
@@ -51,7 +52,19 @@ struct ParticleEnergy {
   Vec3 momentum = Vec3::Zero();  // m v (kg m/s)
   Vec3 expected = Vec3::Zero();  // m v_t + h f (kg m/s)
 };
-ParticleEnergy energyTerms(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, size_t i);
+// The internal energy E in pieces: each spring's (tension model 0) or triangle's (model 1) share of E held by each
+// particle it joins, at the step's start and at its end: half of a spring's k/2 (len - l0)^2, a third of a triangle's
+// triangleTensionEnergy. Computed once per piece (heldPieces), each piece is added by all of its particles; the device
+// computes a particle's pieces in its own thread, to the same floats.
+struct HeldPieces {
+  std::vector<float> start, end;  // by spring or by triangle (heldPieceCount)
+};
+size_t heldPieceCount(const Params& p, const Topology& topo);
+// Pieces [first, last) (springs four at a time), into `pieces`, whose arrays hold heldPieceCount.
+void heldPieces(const Params& p, const Topology& topo, const State& s, size_t first, size_t last, HeldPieces& pieces);
+
+ParticleEnergy energyTerms(const Params& p, const StepUniforms& u, const Topology& topo, const State& s,
+                           const HeldPieces& pieces, size_t i);
 
 // The isothermal gas's energy change P0 (V0 ln(V0 / V) + V - V0) from volume `before` to `after` (J), taken
 // as a difference so that float keeps it: its first-order term is the excess pressure's work, tiny next to P0 V.

@@ -71,6 +71,11 @@ inline Float4 masked(Mask4 m, Float4 a) { return Float4(_mm_and_ps(m.v, a.v)); }
 inline Float4 select(Mask4 m, Float4 a, Float4 b) {
   return Float4(_mm_or_ps(_mm_and_ps(m.v, a.v), _mm_andnot_ps(m.v, b.v)));
 }
+// The sums of neighbouring lanes: (a0 + a1, a2 + a3, b0 + b1, b2 + b3).
+inline Float4 pairSums(Float4 a, Float4 b) {
+  return Float4(
+      _mm_add_ps(_mm_shuffle_ps(a.v, b.v, _MM_SHUFFLE(2, 0, 2, 0)), _mm_shuffle_ps(a.v, b.v, _MM_SHUFFLE(3, 1, 3, 1))));
+}
 
 #else  // four plain floats, lane by lane
 
@@ -159,6 +164,9 @@ inline Float4 select(Mask4 m, Float4 a, Float4 b) {
   return r;
 }
 inline Float4 masked(Mask4 m, Float4 a) { return select(m, a, Float4(0.0f)); }
+inline Float4 pairSums(Float4 a, Float4 b) {
+  return Float4::of(a.v[0] + a.v[1], a.v[2] + a.v[3], b.v[0] + b.v[1], b.v[2] + b.v[3]);
+}
 #endif
 
 // The natural logarithm of a positive normal float (or four), by the same float operations for one float and in

@@ -526,7 +526,7 @@ void layOutSweepRuns(const Params& p, const StepUniforms& u, const Topology& top
   }
   const auto count = static_cast<long>(first.size());
   for (auto* v : {&runs.particle, &runs.solved, &runs.springCount, &runs.triangleCount}) v->resize(4 * first.size());
-  for (auto* v : {&runs.target, &runs.start, &runs.normal, &runs.volumeGradient}) v->resize(4 * first.size());
+  for (auto* v : {&runs.target, &runs.start, &runs.normal, &runs.volumeGradient}) v->fit(4 * first.size());
   for (auto* v : {&runs.inertia, &runs.drag, &runs.airCoupling, &runs.area}) v->resize(4 * first.size());
   runs.springSlot.resize(first.size() + 1);
   runs.triangleSlot.resize(first.size() + 1);

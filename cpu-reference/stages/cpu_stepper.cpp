@@ -22,11 +22,11 @@ void forEach(size_t n, Body&& body) {
   for (long i = 0; i < count; ++i) body(static_cast<size_t>(i));
 }
 
-// Runs body(first, last) over the triangles [0, triangles) four at a time, the groups in parallel: for the stages that
-// compute four triangles in the lanes of float_lanes.h.
+// Runs body(first, last) over [0, count) four at a time, the groups in parallel: for the stages that compute four
+// triangles or springs in the lanes of float_lanes.h.
 template <class Body>
-void forEachTriangleFour(size_t triangles, Body&& body) {
-  forEach((triangles + 3) / 4, [&](size_t g) { body(4 * g, std::min(triangles, 4 * g + 4)); });
+void forEachFour(size_t count, Body&& body) {
+  forEach((count + 3) / 4, [&](size_t g) { body(4 * g, std::min(count, 4 * g + 4)); });
 }
 
 // Each particle's N terms (terms(i), computed in parallel into `scratch`), each summed over the particles in the
@@ -41,6 +41,11 @@ std::array<float, N> treeSumsOf(std::array<std::vector<float>, N>& scratch, size
   std::array<float, N> sums{};
   for (size_t c = 0; c < N; ++c) sums[c] = treeSumInPlace(scratch[c]);
   return sums;
+}
+
+// Whether any particle is held by the wire (or pinned): the energy budget places those at their end position.
+bool hasBoundary(const Topology& topo) {
+  return std::any_of(topo.boundary.begin(), topo.boundary.end(), [](uint32_t b) { return b != 0; });
 }
 
 }  // namespace
@@ -68,7 +73,7 @@ float CpuStepper::volume(const Film& film, const Vec3& origin) { return volumeOf
 float CpuStepper::volumeOf(const Film& film, const Vec3& origin, bool atStepStart) {
   const size_t triangles = film.topology.triangleCount();
   triangleVolumes_.resize(triangles);
-  forEachTriangleFour(triangles, [&](size_t first, size_t last) {
+  forEachFour(triangles, [&](size_t first, size_t last) {
     triangleVolumes(film.topology, film.state, origin, atStepStart, first, last, triangleVolumes_.data());
   });
   return treeSumInPlace(triangleVolumes_);
@@ -77,8 +82,8 @@ float CpuStepper::volumeOf(const Film& film, const Vec3& origin, bool atStepStar
 void CpuStepper::refreshGeometry(const Params& params, Film& film) {
   State& s = film.state;
   fitTriangleArrays(film.topology, s);
-  forEachTriangleFour(film.topology.triangleCount(),
-                      [&](size_t first, size_t last) { triangleGeometries(film.topology, s, first, last); });
+  forEachFour(film.topology.triangleCount(),
+              [&](size_t first, size_t last) { triangleGeometries(film.topology, s, first, last); });
   forEach(s.size(), [&](size_t i) {
     vertexGeometry(film.topology, s, i);
     filmState(params, 0.0f, s, i);
@@ -98,8 +103,7 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
         const uint64_t key = geometryKey(topo, s);
         if (key == film_->geometryKey && s.cornerArea.size() == 3 * topo.triangleCount()) break;  // computed
         fitTriangleArrays(topo, s);
-        forEachTriangleFour(topo.triangleCount(),
-                            [&](size_t first, size_t last) { triangleGeometries(topo, s, first, last); });
+        forEachFour(topo.triangleCount(), [&](size_t first, size_t last) { triangleGeometries(topo, s, first, last); });
         forEach(n, [&](size_t i) { vertexGeometry(topo, s, i); });
         film_->geometryKey = key;
         break;
@@ -154,7 +158,7 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
         break;
       case Stage::FilmFlow:  // three Jacobi passes: new velocities, then every limit, then the gathers
         forEach(n, [&](size_t i) { filmFlowVelocity(params_, u, topo, s, i); });
-        flowSwept_.resize(topo.springNeighbour.size());
+        flowSwept_.resize(2 * topo.springCount());
         forEach(n, [&](size_t i) { filmFlowLimit(params_, u.drainageDt, topo, s, i, flowSwept_); });
         forEach(n, [&](size_t i) { filmFlowGather(params_, u.drainageDt, topo, s, i, flowSwept_); });
         break;
@@ -162,7 +166,10 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
         break;
     }
   });
-  if (stage == Stage::Volume) lastVolume_ = result;
+  if (stage == Stage::Volume) {
+    lastVolume_ = result;
+    if (stepping_) stepStartVolume_ = result;
+  }
   return result;
 }
 
@@ -228,15 +235,20 @@ void CpuStepper::correctCoarsely(const StepUniforms& u) {
 VelocityBudget CpuStepper::budgetEnergy(const StepUniforms& u) {
   const State& s = film_->state;
   const Topology& topo = film_->topology;
+  const size_t pieces = heldPieceCount(params_, topo);
+  heldPieces_.start.resize(pieces);
+  heldPieces_.end.resize(pieces);
+  forEachFour(pieces, [&](size_t first, size_t last) { heldPieces(params_, topo, s, first, last, heldPieces_); });
   const std::array<float, GB_ENERGY_TERMS> sums = treeSumsOf(energyTerms_, s.size(), [&](size_t i) {
-    const ParticleEnergy e = energyTerms(params_, u, topo, s, i);
+    const ParticleEnergy e = energyTerms(params_, u, topo, s, heldPieces_, i);
     return std::array<float, GB_ENERGY_TERMS>{e.start,        e.kinetic,      e.held,         e.mass,
                                               e.momentum.x(), e.momentum.y(), e.momentum.z(), e.expected.x(),
                                               e.expected.y(), e.expected.z()};
   });
   float gas = 0.0f;
   if (u.closed) {  // the volumes before and after the step, as the volume stage sums them
-    const float before = volumeOf(*film_, u.volumeOrigin, true);
+    const float before =
+        stepStartVolume_ && !hasBoundary(topo) ? *stepStartVolume_ : volumeOf(*film_, u.volumeOrigin, true);
     lastVolume_ = volume(*film_, u.volumeOrigin);
     gas = boyleEnergyChange(params_, u.referenceVolume, before, lastVolume_);
   }
@@ -255,8 +267,12 @@ float CpuStepper::currentPressure(const StepUniforms& u) const {
 
 float CpuStepper::step(const StepUniforms& u) {
   lastBudget_ = {};  // the energy budget's stage sets it where it runs; implicit_velocity applies it
+  stepping_ = true;
+  stepStartVolume_.reset();
   for (const StageSpec& spec : stepStages())
     if (spec.runs(params_, u)) runStage(spec.stage, u);
+  stepping_ = false;
+  stepStartVolume_.reset();
   return currentPressure(u);
 }
 

@@ -3,6 +3,7 @@
 // (OpenMP), on the host film in place. The Vulkan stepper records the same table as dispatches.
 
 #include <array>
+#include <optional>
 #include <vector>
 
 #include "coarse_correction.h"
@@ -50,10 +51,15 @@ class CpuStepper final : public Stepper {
   Params params_;
   Film* film_ = nullptr;
   std::vector<float> triangleVolumes_;  // scratch for the volume reduction, reused every step
-  std::vector<float> flowSwept_;        // the film flow's swept area of each ring slot (filmFlowLimit)
+  std::vector<float> flowSwept_;        // the film flow's swept area of each spring from each end (filmFlowLimit)
   float lastVolume_ = 0.0f;             // result of the last Volume stage, read by Forces
-  SweepRuns sweepRuns_;                 // the implicit step's one-rings, laid out again every step
-  CoarseSystem coarse_;                 // the implicit step's patch system, assembled again every step
+  // The volume stage's result within step(): the volume at the step's start, which the energy budget of a film
+  // without wire particles takes again (its positions at the step's start are the same x_t, to the same floats).
+  std::optional<float> stepStartVolume_;
+  bool stepping_ = false;  // within step(): the stages run in their order
+  SweepRuns sweepRuns_;    // the implicit step's one-rings, laid out again every step
+  CoarseSystem coarse_;    // the implicit step's patch system, assembled again every step
+  HeldPieces heldPieces_;  // energy_budget's springs' or triangles' shares of E, before the particles gather them
   std::array<std::vector<float>, GB_ENERGY_TERMS> energyTerms_;  // energy_budget's per-particle terms (ParticleEnergy)
   std::array<std::vector<float>, kDriftTerms> driftTerms_;       // external_drift's per-particle terms (externalDrift)
   Vec3 drift_ = Vec3::Zero();  // a closed film's drift (external_drift), read by implicit_predict

@@ -188,7 +188,11 @@ float treeSumInPlace(std::span<float> v) {
   size_t n = v.size();
   while (n > 1) {
     const size_t pairs = n / 2;  // the pairs' sums, then an odd count's last element as it is
-    for (size_t k = 0; k < pairs; ++k) v[k] = v[2 * k] + v[2 * k + 1];
+    size_t k = 0;
+    // Four sums from eight elements at a time, loaded before the sums overwrite the first four of them: the
+    // elements a later four reads, from 2 k on, lie past those an earlier one wrote.
+    for (; k + 4 <= pairs; k += 4) pairSums(Float4::load(&v[2 * k]), Float4::load(&v[2 * k + 4])).store(&v[k]);
+    for (; k < pairs; ++k) v[k] = v[2 * k] + v[2 * k + 1];
     if (n % 2 == 1) v[pairs] = v[n - 1];
     n = pairs + n % 2;
   }
@@ -510,15 +514,6 @@ namespace {
 // The liquid particle i sends across an edge of which its velocity sweeps `swept` (m^3): filmFlowSent.
 float sentOver(float swept, const State& s, uint32_t i) { return swept * s.thickness[i] * s.flowLimit[i]; }
 
-// filmFlowSweptArea of i towards j as pass 2 kept it in i's ring (a spring is in both ends' rings; were it not, the
-// area is computed).
-float keptSweptArea(float dt, const Topology& topo, const State& s, std::span<const float> swept, uint32_t i,
-                    uint32_t j) {
-  for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k)
-    if (topo.springNeighbour[k] == j) return swept[k];
-  return filmFlowSweptArea(dt, s, i, j);
-}
-
 }  // namespace
 
 float filmFlowSent(float dt, const State& s, uint32_t i, uint32_t j) {
@@ -539,8 +534,9 @@ void filmFlowLimit(const Params& p, float dt, const Topology& topo, State& s, si
   for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
     const uint32_t j = topo.springNeighbour[k];
     if (!s.alive[j]) continue;
-    swept[k] = filmFlowSweptArea(dt, s, static_cast<uint32_t>(i), j);
-    sweptInAll += swept[k];
+    const float area = filmFlowSweptArea(dt, s, static_cast<uint32_t>(i), j);
+    swept[flowSweptSlot(topo, topo.springIndex[k], static_cast<uint32_t>(i))] = area;
+    sweptInAll += area;
   }
   const float black = p.blackFilmThickness * s.voronoiArea[i];  // drainage stops at black film
   const float outflow = sweptInAll * s.thickness[i],
@@ -555,8 +551,9 @@ void filmFlowGather(const Params& p, float dt, const Topology& topo, State& s, s
   for (uint32_t k = topo.springOffset[j]; k < topo.springOffset[j + 1]; ++k) {
     const uint32_t i = topo.springNeighbour[k];
     if (!s.alive[i]) continue;
-    const float sent = sentOver(swept[k], s, static_cast<uint32_t>(j));
-    const float received = sentOver(keptSweptArea(dt, topo, s, swept, i, static_cast<uint32_t>(j)), s, i);
+    const size_t own = flowSweptSlot(topo, topo.springIndex[k], static_cast<uint32_t>(j));
+    const float sent = sentOver(swept[own], s, static_cast<uint32_t>(j));
+    const float received = sentOver(swept[own ^ 1], s, i);
     liquidOut += sent - received;
     surfactantOut += sent * s.surfactantBefore[j] - received * s.surfactantBefore[i];
   }

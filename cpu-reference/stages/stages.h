@@ -231,14 +231,19 @@ void filmFlowVelocity(const Params& p, const StepUniforms& u, const Topology& to
 // Pass 2: the share of its outflow particle i can give, min(1, kLargestOutflowShare (w_i - e_b A_i) / outflow_i), e_b
 // the black film's thickness (the disjoining pressure stops drainage there); keeps its surfactant as
 // surfactantBefore for pass 3.
-// swept[k] keeps the swept area (filmFlowSweptArea) of i's ring slot k (Topology::springOffset) for pass 3: on the CPU
-// a value per edge spares the gathers computing every edge's two areas again (the shader, whose device has no binding
-// to spare for it, computes them again, to the same floats).
+// swept keeps the swept area (filmFlowSweptArea) of each spring from each of its ends for pass 3 (flowSweptSlot): on
+// the CPU a value per edge and direction spares the gathers computing every edge's two areas again (the shader, whose
+// device has no binding to spare for it, computes them again, to the same floats).
 void filmFlowLimit(const Params& p, float dt, const Topology& topo, State& s, size_t i, std::span<float> swept);
+// Where filmFlowLimit keeps the swept area of `spring` from its end `from`: 2 spring, or 2 spring + 1 from its second
+// end (Topology::springEnds). The two of a spring are neighbours: slot ^ 1 is the other end's.
+inline size_t flowSweptSlot(const Topology& topo, uint32_t spring, uint32_t from) {
+  return 2 * size_t{spring} + (topo.springEnds[2 * size_t{spring}] == from ? 0 : 1);
+}
 // Pass 3, a gather: particle j's liquid and surfactant after its edges' fluxes (what each end sends, filmFlowSent,
 // its surfactant with it), less what evaporates (evaporatedLiquid; its surfactant stays); u becomes the new
 // velocity.
-// Reads the swept areas pass 2 kept: j's own to i from j's slot, i's to j from the slot of j in i's ring.
+// Reads the swept areas pass 2 kept, j's own to i and i's to j, from their spring's two slots.
 void filmFlowGather(const Params& p, float dt, const Topology& topo, State& s, size_t j, std::span<const float> swept);
 
 // ---- Stability -----------------------------------------------------------------------------------------

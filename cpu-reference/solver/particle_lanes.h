@@ -16,9 +16,10 @@ inline Vec3Of<Float4> lanesOf(const Vec3& a, const Vec3& b, const Vec3& c, const
           Float4::of(a.z(), b.z(), c.z(), d.z())};
 }
 
-// Element i[l] of `a` in lane l (one float: i[0]).
+// Element i[l] of `a` in lane l (one float: i[0]). Always inlined: called, it would return through memory, and every
+// caller's sums held in vector registers (all of which a call may overwrite) would be stored and loaded around it.
 template <class F, class Index>
-Vec3Of<F> gatherVec(const Vec3Array& a, const Index& i) {
+[[gnu::always_inline]] inline Vec3Of<F> gatherVec(const Vec3Array& a, const Index& i) {
   return {fromLanes<F>([&](int l) { return a.x[i[l]]; }), fromLanes<F>([&](int l) { return a.y[i[l]]; }),
           fromLanes<F>([&](int l) { return a.z[i[l]]; })};
 }

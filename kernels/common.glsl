@@ -124,12 +124,10 @@ float boylePressure(float referenceVolume, float currentVolume) {
                              : params.pressureCoefficient;
 }
 
-// logSurfactantRatio of cpu-reference/stages/stages.cpp: ln(Gamma_j / Gamma_i).
-float logSurfactantRatio(float surfactantJ, float thicknessJ, float surfactantI, float thicknessI) {
-  const float a = max(surfactantJ, kLeastSurfactant) * max(thicknessJ, kThinnestFlowingFilm);
-  const float b = max(surfactantI, kLeastSurfactant) * max(thicknessI, kThinnestFlowingFilm);
-  const float x = (a - b) / b;
-  return abs(x) < 0.01 ? x * (1.0 - x * (0.5 - x / 3.0)) : log(a / b);
+// logSurfactant of cpu-reference/stages/stages.cpp: ln(Gamma / Gamma_0), of order one.
+float logSurfactant(float surfactant, float thickness) {
+  return log(max(surfactant, kLeastSurfactant) *
+             (max(thickness, kThinnestFlowingFilm) / initialThicknessOf(params.areaWeight)));
 }
 
 // flowAreaShare of cpu-reference/stages/stages.cpp: A_i / k_i, particle i's area per spring.

@@ -1,6 +1,7 @@
 #version 450
 // filmFlowVelocity (cpu-reference/stages/stages.cpp): film flow pass 1, the liquid's new velocity from its terms
-// (filmFlowTerms), Jacobi-implicit in their rates.
+// (filmFlowTerms), Jacobi-implicit in their rates. Each ln Gamma is computed where it is read (the CPU's pass 0,
+// filmFlowLogSurfactant, keeps one a particle).
 #extension GL_GOOGLE_include_directive : require
 #include "common.glsl"
 
@@ -17,6 +18,7 @@ void main() {
   const StepUniformsBlock u = steps[pc.stepIndex];
   const vec3 n = LOAD3(normal, i), xi = LOAD3(position, i);
   const float e = max(thickness[i], kThinnestFlowingFilm), rho = params.liquidDensity;
+  const float logSurfactantI = logSurfactant(FLOW(surfactantBlock, i), thickness[i]);
   vec3 gradient = vec3(0.0), pull = vec3(0.0);
   float weight = 0.0, neighbours = 0.0;
   for (uint k = springOffset[i]; k < springOffset[i + 1u]; ++k) {
@@ -25,8 +27,7 @@ void main() {
     const vec3 d = LOAD3(position, j) - xi;
     const float d2 = dot(d, d);
     if (!(d2 > 0.0)) continue;
-    gradient +=
-        logSurfactantRatio(FLOW(surfactantBlock, j), thickness[j], FLOW(surfactantBlock, i), thickness[i]) / d2 * d;
+    gradient += (logSurfactant(FLOW(surfactantBlock, j), thickness[j]) - logSurfactantI) / d2 * d;
     pull += loadFlow3(flowVelocityBlock, j) / d2;
     weight += 1.0 / d2;
     neighbours += 1.0;

@@ -100,7 +100,9 @@ TEST(FilmFlow, EachTermOfTheVelocityEquationAgainstHandValues) {
   s.velocity.set(0, Vec3(0.0f, 0.1f, 0.7f));
   StepUniforms u;
   u.wireArea = 2.0f;
-  const FilmFlowTerms t = filmFlowTerms(p, u, film.topology, s, 0);
+  std::vector<float> logSurfactant(s.size());
+  for (size_t i = 0; i < s.size(); ++i) filmFlowLogSurfactant(p, s, i, logSurfactant);
+  const FilmFlowTerms t = filmFlowTerms(p, u, film.topology, s, 0, logSurfactant);
   const float rho = p.liquidDensity, e = 2e-6f;
   // g_t: gravity less its normal part.
   EXPECT_NEAR((t.gravity - Vec3(0, -3, 0)).norm(), 0.0f, 1e-6f);
@@ -295,8 +297,9 @@ TEST(FilmFlow, TheGatherSendsWhatEachEndsSweptAreaSends) {
   const Topology& topo = film.topology;
   StepUniforms u;
   u.dt = u.drainageDt = 0.02f;
-  std::vector<float> swept(2 * topo.springCount());
-  for (size_t i = 0; i < s.size(); ++i) filmFlowVelocity(p, u, topo, s, i);
+  std::vector<float> logSurfactant(s.size()), swept(2 * topo.springCount());
+  for (size_t i = 0; i < s.size(); ++i) filmFlowLogSurfactant(p, s, i, logSurfactant);
+  for (size_t i = 0; i < s.size(); ++i) filmFlowVelocity(p, u, topo, s, i, logSurfactant);
   for (size_t i = 0; i < s.size(); ++i) filmFlowLimit(p, u.drainageDt, topo, s, i, swept);
   const State before = s;
   for (size_t j = 0; j < s.size(); ++j) filmFlowGather(p, u.drainageDt, topo, s, j, swept);

@@ -125,8 +125,9 @@ double forceTermMagnitude(const Params& p, const Film& film, size_t i) {
 
 // The magnitudes of the terms of particle i's new liquid velocity (filmFlowVelocity), before its division by the rates:
 // |u| + dt (|g_t| + |marangoni| + airRate |w_t| + |viscosityPull|).
-double flowTermMagnitude(const Params& p, const Film& film, const StepUniforms& u, size_t i) {
-  const FilmFlowTerms t = filmFlowTerms(p, u, film.topology, film.state, i);
+double flowTermMagnitude(const Params& p, const Film& film, const StepUniforms& u, size_t i,
+                         std::span<const float> logSurfactant) {
+  const FilmFlowTerms t = filmFlowTerms(p, u, film.topology, film.state, i, logSurfactant);
   return film.state.flowVelocity.get(i).norm() +
          u.drainageDt * (t.gravity.norm() + t.marangoni.norm() + t.airRate * t.air.norm() + t.viscosityPull.norm());
 }
@@ -209,8 +210,10 @@ TEST(VulkanEquivalence, EveryStageAloneMatchesTheCpuReference) {
   EXPECT_LT(velocityRatio, 1.0);
   const OnBothBackends flowed = afterStages(device, input, {Stage::FilmFlow});
   std::vector<double> flowScale(termScale.size());
+  std::vector<float> logSurfactant(flowScale.size());
+  for (size_t i = 0; i < flowScale.size(); ++i) filmFlowLogSurfactant(input.params, input.film.state, i, logSurfactant);
   for (size_t i = 0; i < flowScale.size(); ++i)
-    flowScale[i] = flowTermMagnitude(input.params, input.film, input.uniforms, i);
+    flowScale[i] = flowTermMagnitude(input.params, input.film, input.uniforms, i, logSurfactant);
   const double flowRatio = worstUlpRatio(flowed.cpu.state.flowVelocity, flowed.gpu.state.flowVelocity, flowScale, 16);
   std::printf("stage film_flow    flowVelocity worst error %.2f x (16 ulps of the terms)\n", flowRatio);
   EXPECT_LT(flowRatio, 1.0);

@@ -156,8 +156,10 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
         forEach(n, [&](size_t i) { drainageOutflow(params_, u.drainageDt, topo, s, i); });
         forEach(n, [&](size_t i) { drainageGather(params_, topo, s, i); });
         break;
-      case Stage::FilmFlow:  // three Jacobi passes: new velocities, then every limit, then the gathers
-        forEach(n, [&](size_t i) { filmFlowVelocity(params_, u, topo, s, i); });
+      case Stage::FilmFlow:  // Jacobi passes: the logs, new velocities, then every limit, then the gathers
+        flowLogSurfactant_.resize(n);
+        forEach(n, [&](size_t i) { filmFlowLogSurfactant(params_, s, i, flowLogSurfactant_); });
+        forEach(n, [&](size_t i) { filmFlowVelocity(params_, u, topo, s, i, flowLogSurfactant_); });
         flowSwept_.resize(2 * topo.springCount());
         forEach(n, [&](size_t i) { filmFlowLimit(params_, u.drainageDt, topo, s, i, flowSwept_); });
         forEach(n, [&](size_t i) { filmFlowGather(params_, u.drainageDt, topo, s, i, flowSwept_); });

@@ -50,9 +50,10 @@ class CpuStepper final : public Stepper {
 
   Params params_;
   Film* film_ = nullptr;
-  std::vector<float> triangleVolumes_;  // scratch for the volume reduction, reused every step
-  std::vector<float> flowSwept_;        // the film flow's swept area of each spring from each end (filmFlowLimit)
-  float lastVolume_ = 0.0f;             // result of the last Volume stage, read by Forces
+  std::vector<float> triangleVolumes_;    // scratch for the volume reduction, reused every step
+  std::vector<float> flowLogSurfactant_;  // the film flow's ln Gamma of each particle (filmFlowLogSurfactant)
+  std::vector<float> flowSwept_;          // the film flow's swept area of each spring from each end (filmFlowLimit)
+  float lastVolume_ = 0.0f;               // result of the last Volume stage, read by Forces
   // The volume stage's result within step(): the volume at the step's start, which the energy budget of a film
   // without wire particles takes again (its positions at the step's start are the same x_t, to the same floats).
   std::optional<float> stepStartVolume_;

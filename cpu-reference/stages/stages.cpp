@@ -444,15 +444,17 @@ float flowAreaShare(const Topology& topo, const State& s, size_t i) {
   return springs > 0 ? s.voronoiArea[i] / static_cast<float>(springs) : 0.0f;
 }
 
-float logSurfactantRatio(float surfactantJ, float thicknessJ, float surfactantI, float thicknessI) {
-  const float a = std::max(surfactantJ, kLeastSurfactant) * std::max(thicknessJ, kThinnestFlowingFilm);
-  const float b = std::max(surfactantI, kLeastSurfactant) * std::max(thicknessI, kThinnestFlowingFilm);
-  // Near 1, ln(1 + x) by its series: a GPU's log is accurate in absolute, not relative, terms there.
-  const float x = (a - b) / b;
-  return std::abs(x) < 0.01f ? x * (1.0f - x * (0.5f - x / 3.0f)) : std::log(a / b);
+float logSurfactant(const Params& p, float surfactant, float thickness) {
+  return std::log(std::max(surfactant, kLeastSurfactant) *
+                  (std::max(thickness, kThinnestFlowingFilm) / initialThickness(p)));
 }
 
-FilmFlowTerms filmFlowTerms(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, size_t i) {
+void filmFlowLogSurfactant(const Params& p, const State& s, size_t i, std::span<float> logSurfactant) {
+  logSurfactant[i] = gb::logSurfactant(p, s.surfactant[i], s.thickness[i]);
+}
+
+FilmFlowTerms filmFlowTerms(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, size_t i,
+                            std::span<const float> logSurfactant) {
   FilmFlowTerms t;
   const Vec3 n = s.normal.get(i), xi = s.position.get(i);
   const float e = std::max(s.thickness[i], kThinnestFlowingFilm), rho = p.liquidDensity;
@@ -464,7 +466,7 @@ FilmFlowTerms filmFlowTerms(const Params& p, const StepUniforms& u, const Topolo
     const Vec3 d = s.position.get(j) - xi;
     const float d2 = d.squaredNorm();
     if (!(d2 > 0.0f)) continue;
-    gradient += logSurfactantRatio(s.surfactant[j], s.thickness[j], s.surfactant[i], s.thickness[i]) / d2 * d;
+    gradient += (logSurfactant[j] - logSurfactant[i]) / d2 * d;
     // u_j / |d|^2 and 1 / |d|^2 in the four lanes of one division: the same quotients as four (float_lanes.h)
     const Float4 q = Float4::of(s.flowVelocity.x[j], s.flowVelocity.y[j], s.flowVelocity.z[j], 1.0f) / Float4(d2);
     pull += Vec3(q.lane(0), q.lane(1), q.lane(2));
@@ -485,14 +487,15 @@ FilmFlowTerms filmFlowTerms(const Params& p, const StepUniforms& u, const Topolo
   return t;
 }
 
-void filmFlowVelocity(const Params& p, const StepUniforms& u, const Topology& topo, State& s, size_t i) {
+void filmFlowVelocity(const Params& p, const StepUniforms& u, const Topology& topo, State& s, size_t i,
+                      std::span<const float> logSurfactant) {
   s.flowAreaShare[i] = flowAreaShare(topo, s, i);  // once here, not in each of the ring's swept areas after
   if (!s.alive[i] || topo.boundary[i]) {
     s.flowVelocityNext.set(i, Vec3::Zero());
     return;
   }
   const float dt = u.drainageDt;
-  const FilmFlowTerms t = filmFlowTerms(p, u, topo, s, i);
+  const FilmFlowTerms t = filmFlowTerms(p, u, topo, s, i, logSurfactant);
   const float held = 1.0f + dt * (t.airRate + t.wallRate + t.viscosityRate);
   const float diffused =
       p.marangoniElasticity / (p.liquidDensity * std::max(s.thickness[i], kThinnestFlowingFilm)) * dt / held * dt;

@@ -207,11 +207,14 @@ struct FilmFlowTerms {
   float spacingSquared = 0.0f;        // k / sum_j 1 / |d_ij|^2 (m^2): the ring's squared spacing (harmonic mean)
 };
 // grad f at particle i from its one-ring: (2 / k) sum_j (f_j - f_i) d_ij / |d_ij|^2 (exact for a linear f on a
-// regular ring); lap f: (4 / k) sum_j (f_j - f_i) / |d_ij|^2. Over the living neighbours (k of them).
-FilmFlowTerms filmFlowTerms(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, size_t i);
-// ln(Gamma_j / Gamma_i) = ln(s_j e_j / (s_i e_i)), s the surfactant per liquid, e the thickness: the log of the
-// ratio, not the difference of two logs, which would cancel to a few ulps of ln(1e-6) on a nearly even film.
-float logSurfactantRatio(float surfactantJ, float thicknessJ, float surfactantI, float thicknessI);
+// regular ring); lap f: (4 / k) sum_j (f_j - f_i) / |d_ij|^2. Over the living neighbours (k of them). f = ln Gamma
+// is read from logSurfactant, each particle's as pass 0 keeps it (filmFlowLogSurfactant).
+FilmFlowTerms filmFlowTerms(const Params& p, const StepUniforms& u, const Topology& topo, const State& s, size_t i,
+                            std::span<const float> logSurfactant);
+// ln(Gamma / Gamma_0) = ln(s e / e_0), s the surfactant per liquid (at least kLeastSurfactant), e the thickness (at
+// least kThinnestFlowingFilm), e_0 a new film's: of order one, so that the gradient's differences f_j - f_i keep a
+// float's precision near one (ln Gamma itself, about ln 1e-6, would cancel to ulps of 14 on a nearly even film).
+float logSurfactant(const Params& p, float surfactant, float thickness);
 // A_i / k_i: particle i's area per spring, its share of the dual edges (flowSweptArea); 0 without springs.
 float flowAreaShare(const Topology& topo, const State& s, size_t i);
 // flowSweptArea of particle i towards neighbour j, with i's new velocity (flowVelocityNext) and the two particles'
@@ -223,11 +226,15 @@ float filmFlowSent(float dt, const State& s, uint32_t i, uint32_t j);
 // sends. Exactly the negative of filmFlowEdgeFlux(j, i).
 float filmFlowEdgeFlux(float dt, const State& s, uint32_t i, uint32_t j);
 
+// Pass 0: particle i's logSurfactant into logSurfactant[i], for pass 1's gradients: one logarithm a particle, not one
+// an edge end (the shader computes each where it reads it).
+void filmFlowLogSurfactant(const Params& p, const State& s, size_t i, std::span<float> logSurfactant);
 // Pass 1: u_i's new value, (u + dt (g_t + c marangoni + airRate w_t + viscosityPull)) / (1 + dt (airRate + wallRate +
 // viscosityRate)), projected on the tangent plane; 0 on the wire (the liquid sticks to it) and for a dead particle.
 // c <= 1 caps the Marangoni diffusivity D = E_M / (rho e) dt / (1 + dt rates) at D dt = kMarangoniCourant spacing^2.
 // Writes flowVelocityNext[i], and flowAreaShare[i] for the passes after it.
-void filmFlowVelocity(const Params& p, const StepUniforms& u, const Topology& topo, State& s, size_t i);
+void filmFlowVelocity(const Params& p, const StepUniforms& u, const Topology& topo, State& s, size_t i,
+                      std::span<const float> logSurfactant);
 // Pass 2: the share of its outflow particle i can give, min(1, kLargestOutflowShare (w_i - e_b A_i) / outflow_i), e_b
 // the black film's thickness (the disjoining pressure stops drainage there); keeps its surfactant as
 // surfactantBefore for pass 3.

@@ -119,6 +119,25 @@ TEST(FilmFlow, EachTermOfTheVelocityEquationAgainstHandValues) {
   EXPECT_NEAR((t.viscosityPull - 4.0f * 0.002f * Vec3(0.1f, -0.2f, 0)).norm(), 0.0f, 1e-8f);
 }
 
+TEST(FilmFlow, TheGradientsLogDifferencesKeepAFloatsPrecisionOnANearlyEvenFilm) {
+  // ln Gamma is taken relative to a new film's (logSurfactant), of order one: the difference of two neighbours' is
+  // within a few ulps of 1 of the exact ln of their ratio, however close the two are. (Taken in metres, about
+  // ln 1e-6, each would round to half an ulp of 14, 4.8e-7, and a relative step of 1e-6 would be lost in it.)
+  // Tolerance: 4 ulps of 1 (4.8e-7): each log rounds to half an ulp of its value (below 2) and logf adds under one,
+  // and the product inside rounds by 2^-24 of the ratio.
+  const Params p;
+  const float e0 = initialThickness(p);
+  for (float surfactant : {0.4f, 1.0f, 1.7f})
+    for (float thickness : {0.3f * e0, e0, 2.5f * e0})
+      for (float step : {1e-6f, 1e-5f, 1e-4f, 1e-3f, 1e-1f}) {
+        const float thicker = thickness * (1.0f + step);
+        const double exact = std::log(static_cast<double>(thicker) / static_cast<double>(thickness));
+        const double difference = static_cast<double>(logSurfactant(p, surfactant, thicker)) -
+                                  static_cast<double>(logSurfactant(p, surfactant, thickness));
+        EXPECT_NEAR(difference, exact, 4.8e-7) << "surfactant " << surfactant << ", step " << step;
+      }
+}
+
 TEST(FilmFlow, AnEdgesFluxIsWhatEachEndSendsAndExactlyAntisymmetric) {
   // The hexagon: particle k = 1..6 at angle (k - 1) 60 degrees on the unit circle; u_k = (0.2 - 0.1 k, 0.05, 0),
   // thickness (1 + 0.1 k) um, particle 6 may send only half of what its velocity sweeps (its limit).

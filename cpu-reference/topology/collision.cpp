@@ -7,6 +7,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "float_lanes.h"
 
@@ -143,6 +144,7 @@ struct CellTable {
   // These and `along` hold kLoadPast entries more than the table, so that four entries may be loaded from any one.
   std::array<std::vector<float>, 3> x, n, v;
   std::vector<float> along;  // the coordinate along the bucket's sort direction, ascending within each bucket
+  std::vector<float> reach;  // how far from each entry a partner of it can lie (its particle's reach, find)
   static constexpr size_t kLoadPast = 3;
   // The occupied buckets in ascending order, and each one's sheet: bucket occupied[o]'s is sheet[o], and
   // bucket b's is sheet[sheetIndex[b]] (a bucket holds a cell of tens to thousands of particles).
@@ -157,25 +159,51 @@ struct CellTable {
   }
 };
 
-// Twice the number of cells the film can occupy (its particles, or the cells of its bounding box if fewer), as a
-// power of two: a table that stays in cache on a large flat film, with few cells sharing a bucket.
-size_t bucketCount(const Film& film, float cellSize) {
+// The living particles of the film: their bounding box, their number and their area.
+struct FilmExtent {
+  Vec3 lower, upper;
+  size_t living = 0;
+  double area = 0;
+};
+
+FilmExtent extentOf(const Film& film) {
   const State& s = film.state;
   constexpr float kInfinity = std::numeric_limits<float>::infinity();
   float lx = kInfinity, ly = kInfinity, lz = kInfinity, ux = -kInfinity, uy = -kInfinity, uz = -kInfinity;
   size_t living = 0;
+  double area = 0;
 #pragma omp parallel for schedule(static) if (s.size() >= kParallelPass) reduction(min : lx, ly, lz) \
-    reduction(max : ux, uy, uz) reduction(+ : living)
+    reduction(max : ux, uy, uz) reduction(+ : living, area)
   for (size_t i = 0; i < s.size(); ++i)
     if (inFilm(film, static_cast<uint32_t>(i))) {
       lx = std::min(lx, s.position.x[i]), ly = std::min(ly, s.position.y[i]), lz = std::min(lz, s.position.z[i]);
       ux = std::max(ux, s.position.x[i]), uy = std::max(uy, s.position.y[i]), uz = std::max(uz, s.position.z[i]);
       ++living;
+      area += s.voronoiArea[i];
     }
-  const Vec3 lower(lx, ly, lz), upper(ux, uy, uz);
-  double cells = static_cast<double>(living);
-  if (living) {
-    const Cell first = cellOf(lower, cellSize), last = cellOf(upper, cellSize);
+  return {Vec3(lx, ly, lz), Vec3(ux, uy, uz), living, area};
+}
+
+// The width of the search's cells: the reach, or kCellSpacings particle spacings (the square root of the mean area
+// a particle holds) where that is wider. Any width of at least the reach finds the same pairs, in the 27 cells about
+// a particle's own; the width sets the work. Each cell costs a look-up of its 27 neighbours, and each four of its
+// particles a test against every bucket they fill. A smooth sheet crosses a cell of c spacings in about c^2
+// particles: on the default run's free bubble, cells of one reach (3 cm, two spacings) hold about four, and the
+// per-cell costs are most of the search; at three spacings they hold about ten, and the search takes a fifth less
+// time. Wider cells cost more in slab searches than they save. A film whose reach is wider (a fast stroke) keeps it.
+float cellSizeFor(const FilmExtent& extent, float reach) {
+  constexpr float kCellSpacings = 3.0f;
+  if (extent.living == 0) return reach;
+  const auto spacing = static_cast<float>(std::sqrt(extent.area / static_cast<double>(extent.living)));
+  return std::max(reach, kCellSpacings * spacing);  // a NaN spacing keeps the reach
+}
+
+// Twice the number of cells the film can occupy (its particles, or the cells of its bounding box if fewer), as a
+// power of two: a table that stays in cache on a large flat film, with few cells sharing a bucket.
+size_t bucketCount(const FilmExtent& extent, float cellSize) {
+  double cells = static_cast<double>(extent.living);
+  if (extent.living) {
+    const Cell first = cellOf(extent.lower, cellSize), last = cellOf(extent.upper, cellSize);
     double boxCells = 1;
     for (int a = 0; a < 3; ++a) boxCells *= static_cast<double>(last[a]) - first[a] + 1;
     cells = std::min(cells, boxCells);
@@ -188,8 +216,8 @@ size_t bucketCount(const Film& film, float cellSize) {
 // Fills the table's entries [begin, end) of one bucket: their positions, normals and velocities, the bucket's sheet,
 // and the order along its sort direction (ties by id keep the table the same on every run). `order` is scratch
 // memory, kept by the caller from one bucket to the next.
-void sortBucketAlongItsSheet(const State& s, size_t begin, size_t end, BucketSheet& sheet, CellTable& table,
-                             std::vector<std::pair<float, uint32_t>>& order) {
+void sortBucketAlongItsSheet(const State& s, std::span<const float> particleReach, size_t begin, size_t end,
+                             BucketSheet& sheet, CellTable& table, std::vector<std::pair<float, uint32_t>>& order) {
   for (size_t k = begin; k < end; ++k) {
     table.position[k] = s.position.get(table.particle[k]);
     table.normal[k] = s.normal.get(table.particle[k]);
@@ -206,6 +234,7 @@ void sortBucketAlongItsSheet(const State& s, size_t begin, size_t end, BucketShe
     const uint32_t i = order[k - begin].second;
     table.particle[k] = i;
     table.along[k] = order[k - begin].first;
+    table.reach[k] = particleReach[i];
     table.position[k] = s.position.get(i);
     table.normal[k] = s.normal.get(i);
     for (int a = 0; a < 3; ++a) {
@@ -217,10 +246,11 @@ void sortBucketAlongItsSheet(const State& s, size_t begin, size_t end, BucketShe
 }
 
 // Fills `table` (its arrays keep their memory from the last time).
-void bucketParticles(const Film& film, float cellSize, CellTable& table) {
+void bucketParticles(const Film& film, std::span<const float> particleReach, const FilmExtent& extent, float cellSize,
+                     CellTable& table) {
   const State& s = film.state;
   const size_t n = s.size();
-  const size_t buckets = bucketCount(film, cellSize);
+  const size_t buckets = bucketCount(extent, cellSize);
   table.mask = buckets - 1;
   std::vector<uint32_t>& bucket = table.bucket;
   constexpr uint32_t kNotInFilm = std::numeric_limits<uint32_t>::max();
@@ -241,6 +271,7 @@ void bucketParticles(const Film& film, float cellSize, CellTable& table) {
   for (auto* arrays : {&table.x, &table.n, &table.v})
     for (std::vector<float>& axis : *arrays) axis.resize(table.particle.size() + CellTable::kLoadPast);
   table.along.resize(table.particle.size() + CellTable::kLoadPast);
+  table.reach.resize(table.particle.size() + CellTable::kLoadPast);
   table.sheetIndex.assign(buckets, 0u);
   table.occupied.clear();
   for (uint32_t b = 0; b < buckets; ++b) {
@@ -255,7 +286,7 @@ void bucketParticles(const Film& film, float cellSize, CellTable& table) {
 #pragma omp for schedule(dynamic, 1)
     for (size_t o = 0; o < table.occupied.size(); ++o) {
       const uint32_t b = table.occupied[o];
-      sortBucketAlongItsSheet(s, table.offset[b], table.offset[b + 1], table.sheet[o], table, order);
+      sortBucketAlongItsSheet(s, particleReach, table.offset[b], table.offset[b + 1], table.sheet[o], table, order);
     }
   }
 }
@@ -277,13 +308,13 @@ F widened(F r) {
   return r * F(1.001f) + F(1e-5f);
 }
 
-// Applies PartnerRule::listRunPartners's first two tests (a particle farther from bucket b's box than the reach, or
-// than the partner radius b's sheet allows it, lists nothing there) to all of bucket `home`'s particles at once:
-// false when every one of them would fail them. Their distance to b's box is at least the gap between the two
-// boxes, and partnerRadius is at most its bound over home's box (heights along b's normal) and normals (home's mean
-// normal and spread). The bound is widened by 1% and 20 um for the float rounding of the sums it is made of, which
-// round differently from the per-particle ones. On a film's flat stretches this drops 26 of the 27 cells' buckets
-// (all but home) without a test per particle.
+// Applies PartnerRule::listRunPartners's first two tests (a particle farther from bucket b's box than its reach, at
+// most the search's `reach`, or than the partner radius b's sheet allows it, lists nothing there) to all of bucket
+// `home`'s particles at once: false when every one of them would fail them. Their distance to b's box is at least the
+// gap between the two boxes, and partnerRadius is at most its bound over home's box (heights along b's normal) and
+// normals (home's mean normal and spread). The bound is widened by 1% and 20 um for the float rounding of the sums it
+// is made of, which round differently from the per-particle ones. On a film's flat stretches this drops 26 of the 27
+// cells' buckets (all but home) without a test per particle.
 bool bucketMayHold(const CellTable& table, uint32_t home, uint32_t b, float reach) {
   const BucketSheet& from = table.sheet[table.sheetIndex[home]];
   const BucketSheet& sheet = table.sheet[table.sheetIndex[b]];
@@ -332,7 +363,7 @@ struct PartnerRule {
   // `home`, list with the particles of buckets around[0 .. count): each pair is listed once, within a bucket by its
   // first entry in the table, between two buckets by the particles of the one whose neighbour is the flatter
   // (searchedFrom, applied by bucketsAround), where the partner radius reads less. A particle farther from a bucket's
-  // box than the reach, or than the partner radius its sheet allows it (partnerRadius), lists nothing there: four
+  // box than its own reach, or than the partner radius its sheet allows it (partnerRadius), lists nothing there: four
   // entries at a time take these tests, each four read once for all the buckets, the bulk of the search on a film
   // whose buckets are pieces of smooth sheet; the rest search their slab.
   void listRunPartners(const CellTable& table, uint32_t home, const std::array<uint32_t, 27>& around, size_t count,
@@ -348,12 +379,13 @@ struct PartnerRule {
                       {sheet.lower.x(), sheet.lower.y(), sheet.lower.z()},
                       {sheet.upper.x(), sheet.upper.y(), sheet.upper.z()}};
     }
-    const Float4 zero(0.0f), reachSquared = widened(Float4(reach)) * widened(Float4(reach));
+    const Float4 zero(0.0f);
     for (size_t at = first; at < last; at += 4) {
       // The lanes of entries past the run are dropped.
       const auto lanes = [&](const std::vector<float>& axis) { return Float4::load(axis.data() + at); };
       const std::array<Float4, 3> x{lanes(table.x[0]), lanes(table.x[1]), lanes(table.x[2])};
       const std::array<Float4, 3> n{lanes(table.n[0]), lanes(table.n[1]), lanes(table.n[2])};
+      const Float4 ownReach = lanes(table.reach);
       const unsigned inRun = last - at >= 4 ? 0xfu : (1u << (last - at)) - 1u;
       for (size_t a = 0; a < count; ++a) {
         const Neighbour& b = neighbour[a];
@@ -362,8 +394,8 @@ struct PartnerRule {
           const Float4 outside = max(max(b.lower[axis] - x[axis], x[axis] - b.upper[axis]), zero);
           outsideSquared = outsideSquared + outside * outside;
         }
-        const Float4 radius = widened(min(Float4(reach), partnerRadius(*b.sheet, x, n)));
-        const unsigned tooFar = laneBits(outsideSquared > reachSquared || outsideSquared > radius * radius);
+        const Float4 radius = widened(min(ownReach, partnerRadius(*b.sheet, x, n)));
+        const unsigned tooFar = laneBits(outsideSquared > radius * radius);
         for (unsigned near = inRun & ~tooFar; near; near &= near - 1) {
           const auto l = std::countr_zero(near);
           listPartnersInSlab(table, home, around[a], at + static_cast<size_t>(l), radius.lane(l), pairs);
@@ -495,16 +527,21 @@ size_t ContactSearch::find(const Params& p, float frameTime, float slack, Film& 
   Topology& topo = film.topology;
   const size_t n = s.size();
   // Two particles close at most by |v_i - v_j| in a frame: a bubble flying as a whole needs no wider search than
-  // one at rest, and each pair only its own reach. The cells are as wide as the largest reach, bounded by
-  // |v_i - v_j| <= |v_i - mean| + |v_j - mean| <= twice the fastest speed about the mean.
-  const std::vector<float> speed = speedsAboutTheMean(film);
-  const float fastest = n ? *std::max_element(speed.begin(), speed.end()) : 0.0f;
+  // one at rest, and each pair only its own reach. With |v_i - v_j| <= |v_i - mean| + |v_j - mean|, a particle's
+  // partners lie within its own reach, at its speed about the mean plus the fastest one's, and all pairs within the
+  // reach at twice the fastest speed, which bounds the cells (cellSizeFor). A slow particle of a film with a fast
+  // part searches a narrower slab than the fastest.
+  std::vector<float> particleReach = speedsAboutTheMean(film);
+  const float fastest = n ? *std::max_element(particleReach.begin(), particleReach.end()) : 0.0f;
   const float reach = p.collisionDistance + contactMargin(frameTime, slack, 2.0f * fastest);
+  for (float& r : particleReach) r = p.collisionDistance + contactMargin(frameTime, slack, r + fastest);
   std::vector<std::vector<uint32_t>>& pairsByThread = memory_->pairsByThread;
   pairsByThread.resize(static_cast<size_t>(std::max(omp_get_max_threads(), 1)));
   for (std::vector<uint32_t>& pairs : pairsByThread) pairs.clear();
   if (reach > 0 && p.collisionStiffness > 0) {
-    bucketParticles(film, reach, memory_->table);
+    const FilmExtent extent = extentOf(film);
+    const float cellSize = cellSizeFor(extent, reach);
+    bucketParticles(film, particleReach, extent, cellSize, memory_->table);
     const CellTable& table = memory_->table;
     const PartnerRule rule{p, topo, frameTime, slack, reach};
     // Each particle lists the partners it owns (each pair once, half the distance tests; listRunPartners) from the
@@ -519,8 +556,8 @@ size_t ContactSearch::find(const Params& p, float frameTime, float slack, Film& 
         const uint32_t b = table.occupied[o];
         std::array<uint32_t, 27> around{};
         for (size_t first = table.offset[b], last = first; first < table.offset[b + 1]; first = last) {
-          const Cell cell = cellOf(table.position[first], reach);
-          while (++last < table.offset[b + 1] && cellOf(table.position[last], reach) == cell) {
+          const Cell cell = cellOf(table.position[first], cellSize);
+          while (++last < table.offset[b + 1] && cellOf(table.position[last], cellSize) == cell) {
           }
           const size_t count = bucketsAround(table, b, cell, reach, around);
           rule.listRunPartners(table, b, around, count, first, last, pairs);

@@ -195,7 +195,8 @@ float cellSizeFor(const FilmExtent& extent, float reach) {
   constexpr float kCellSpacings = 3.0f;
   if (extent.living == 0) return reach;
   const auto spacing = static_cast<float>(std::sqrt(extent.area / static_cast<double>(extent.living)));
-  return std::max(reach, kCellSpacings * spacing);  // a NaN spacing keeps the reach
+  if (!std::isfinite(spacing)) return reach;  // the areas of a film gone wrong: no guide to its particles' density
+  return std::max(reach, kCellSpacings * spacing);
 }
 
 // Twice the number of cells the film can occupy (its particles, or the cells of its bounding box if fewer), as a

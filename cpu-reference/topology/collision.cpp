@@ -532,10 +532,12 @@ size_t ContactSearch::find(const Params& p, float frameTime, float slack, Film& 
   // partners lie within its own reach, at its speed about the mean plus the fastest one's, and all pairs within the
   // reach at twice the fastest speed, which bounds the cells (cellSizeFor). A slow particle of a film with a fast
   // part searches a narrower slab than the fastest.
-  std::vector<float> particleReach = speedsAboutTheMean(film);
-  const float fastest = n ? *std::max_element(particleReach.begin(), particleReach.end()) : 0.0f;
+  const std::vector<float> speed = speedsAboutTheMean(film);
+  const float fastest = n ? *std::max_element(speed.begin(), speed.end()) : 0.0f;
   const float reach = p.collisionDistance + contactMargin(frameTime, slack, 2.0f * fastest);
-  for (float& r : particleReach) r = p.collisionDistance + contactMargin(frameTime, slack, r + fastest);
+  std::vector<float> particleReach(n);
+  std::transform(speed.begin(), speed.end(), particleReach.begin(),
+                 [&](float v) { return p.collisionDistance + contactMargin(frameTime, slack, v + fastest); });
   std::vector<std::vector<uint32_t>>& pairsByThread = memory_->pairsByThread;
   pairsByThread.resize(static_cast<size_t>(std::max(omp_get_max_threads(), 1)));
   for (std::vector<uint32_t>& pairs : pairsByThread) pairs.clear();

@@ -217,6 +217,9 @@ struct ListedRing {
   [[nodiscard]] Particles<float> springNeighbour(uint32_t k) const {
     return {topo.springNeighbour[topo.springOffset[i] + k]};
   }
+  [[nodiscard]] Vec<float> springNeighbourStart(uint32_t k) const {
+    return gatherVec<float>(s.previousPosition, springNeighbour(k));
+  }
   [[nodiscard]] float springStiffness(uint32_t k) const { return gb::springStiffness(s, i, springNeighbour(k)[0]); }
   [[nodiscard]] float springRest(uint32_t k) const {
     return topo.restLength[topo.springIndex[topo.springOffset[i] + k]];
@@ -242,6 +245,11 @@ struct RunRing {
   [[nodiscard]] Mask4 hasSpring(uint32_t k) const { return Mask4::below(&runs.springCount[4 * run], k); }
   [[nodiscard]] const uint32_t* springNeighbour(uint32_t k) const {
     return &runs.springNeighbour[4 * (runs.springSlot[run] + k)];
+  }
+  [[nodiscard]] Vec<Float4> springNeighbourStart(uint32_t k) const {
+    const size_t slot = 4 * size_t{runs.springSlot[run] + k};
+    const Vec3Array& start = runs.springNeighbourStart;
+    return {Float4::load(&start.x[slot]), Float4::load(&start.y[slot]), Float4::load(&start.z[slot])};
   }
   [[nodiscard]] Float4 springStiffness(uint32_t k) const {
     return Float4::load(&runs.springStiffness[4 * (runs.springSlot[run] + k)]);
@@ -276,7 +284,7 @@ void addInternal(const Params& p, float h, const Topology& topo, const State& s,
     if (none(m)) continue;
     const Vec<F> dir = d / len;
     b.shortestSpring = select(m, min(b.shortestSpring, len), b.shortestSpring);
-    F along = addDampingGradient(m, F(p.springDamping), F(h), dir, dx - (xj - gatherVec<F>(s.previousPosition, j)), b);
+    F along = addDampingGradient(m, F(p.springDamping), F(h), dir, dx - (xj - ring.springNeighbourStart(k)), b);
     if (!physical) {
       // The spring of Eq. (3), energy k/2 (len - l0)^2; Hessian k dir dir^T + k (1 - l0/len) (I - dir dir^T),
       // projected onto the positive semi-definite cone by dropping the transverse term of a compressed spring.
@@ -487,6 +495,7 @@ void layOutSlots(const Params& p, const Topology& topo, const State& s, uint32_t
       const bool has = k < runs.springCount[4 * r + l];
       const uint32_t entry = topo.springOffset[i] + k, j = has ? topo.springNeighbour[entry] : filler;
       runs.springNeighbour[slot] = j;
+      runs.springNeighbourStart.set(slot, s.previousPosition.get(j));
       runs.springStiffness[slot] = has && !physical ? springStiffness(s, i, j) : 0.0f;
       runs.springRest[slot] = has && !physical ? topo.restLength[topo.springIndex[entry]] : 0.0f;
     }
@@ -549,6 +558,7 @@ void layOutSweepRuns(const Params& p, const StepUniforms& u, const Topology& top
   const size_t springSlots = 4 * size_t{runs.springSlot.back()}, triangleSlots = 4 * size_t{runs.triangleSlot.back()};
   for (auto* v : {&runs.springNeighbour, &runs.cornerNext, &runs.cornerLast})
     v->resize(v == &runs.springNeighbour ? springSlots : triangleSlots);
+  runs.springNeighbourStart.fit(springSlots);
   for (auto* v : {&runs.springStiffness, &runs.springRest, &runs.triangleTension, &runs.triangleStartArea})
     v->resize(v == &runs.triangleTension || v == &runs.triangleStartArea ? triangleSlots : springSlots);
 #pragma omp parallel for schedule(static)

@@ -131,6 +131,7 @@ struct SweepRuns {
   std::vector<uint32_t> springSlot, triangleSlot;  // run r's slots are [slot[r], slot[r + 1])
   // Four per slot; a lane without a spring (triangle) there holds lane 0's particle and zeros, masked off.
   std::vector<uint32_t> springNeighbour;
+  Vec3Array springNeighbourStart;                  // the neighbour's x_t, read by the spring's damping every sweep
   std::vector<float> springStiffness, springRest;  // springStiffness, restLength (springs model only)
   std::vector<uint32_t> cornerNext, cornerLast;    // the triangle's corners after i, counter-clockwise
   std::vector<float> triangleTension;              // triangleTension (physical model only)

@@ -22,11 +22,14 @@ void forEach(size_t n, Body&& body) {
   for (long i = 0; i < count; ++i) body(static_cast<size_t>(i));
 }
 
-// Runs body(first, last) over [0, count) four at a time, the groups in parallel: for the stages that compute four
-// triangles or springs in the lanes of float_lanes.h.
+// Runs body(first, last) over [0, count) in blocks of kFourBlock, the blocks in parallel: for the stages that
+// compute four triangles or springs at a time in the lanes of float_lanes.h. Every block starts at a multiple of
+// four, so its fours are those that a call per four would compute, the same floats, for a sixteenth of the calls.
+constexpr size_t kFourBlock = 64;
 template <class Body>
 void forEachFour(size_t count, Body&& body) {
-  forEach((count + 3) / 4, [&](size_t g) { body(4 * g, std::min(count, 4 * g + 4)); });
+  forEach((count + kFourBlock - 1) / kFourBlock,
+          [&](size_t b) { body(kFourBlock * b, std::min(count, kFourBlock * b + kFourBlock)); });
 }
 
 // Each particle's N terms (terms(i), computed in parallel into `scratch`), each summed over the particles in the
@@ -190,7 +193,7 @@ void CpuStepper::runSweeps(const StepUniforms& u, int from, int to) {
   const SweepRuns& runs = sweepRuns_;
   Bubble bubble;
   const size_t triangles = topo.triangleCount();
-  const auto groups = static_cast<long>((triangles + 3) / 4);  // of four triangles, volumeOf's
+  const auto blocks = static_cast<long>((triangles + kFourBlock - 1) / kFourBlock);  // forEachFour's
   if (u.closed) triangleVolumes_.resize(triangles);
     // One parallel region for the sweeps: the colours still wait for each other (the barrier closing each
     // omp for), but the threads are woken once, not once per colour and sweep.
@@ -199,9 +202,10 @@ void CpuStepper::runSweeps(const StepUniforms& u, int from, int to) {
     if (u.closed) {  // Boyle's pressure at this iterate's volume, as volume() takes it: the triangles on every
                      // thread, their sum on one, in the fixed order both backends add in
 #pragma omp for schedule(static)
-      for (long g = 0; g < groups; ++g) {
-        const auto first = static_cast<size_t>(4 * g);
-        triangleVolumes(topo, s, u.volumeOrigin, false, first, std::min(triangles, first + 4), triangleVolumes_.data());
+      for (long b = 0; b < blocks; ++b) {
+        const size_t first = kFourBlock * static_cast<size_t>(b);
+        triangleVolumes(topo, s, u.volumeOrigin, false, first, std::min(triangles, first + kFourBlock),
+                        triangleVolumes_.data());
       }
 #pragma omp single
       {

@@ -160,17 +160,19 @@ float coneVolume(const Vec3& a, const Vec3& b, const Vec3& c, const Vec3& origin
 
 void triangleVolumes(const Topology& topo, const State& s, const Vec3& origin, bool atStepStart, size_t first,
                      size_t last, float* volumes) {
-  const auto corner = [&](size_t t, int c) {
-    const uint32_t i = topo.triangles[3 * t + static_cast<size_t>(c)];
-    return atStepStart ? positionAtStepStart(topo, s, i) : s.position.get(i);
-  };
+  const Vec3Of<Float4> apex = lanesOf(origin, origin, origin, origin);
   size_t t = first;
   for (; t + 4 <= last; t += 4) {
-    std::array<Vec3Of<Float4>, 3> corners;
-    for (int c = 0; c < 3; ++c)
-      corners[static_cast<size_t>(c)] = lanesOf(corner(t, c), corner(t + 1, c), corner(t + 2, c), corner(t + 3, c));
-    const Float4 v = coneVolumeOf(corners[0], corners[1], corners[2], lanesOf(origin, origin, origin, origin));
-    v.store(volumes + t);
+    std::array<Vec3Of<Float4>, 3> x;
+    for (size_t c = 0; c < 3; ++c) {
+      const std::array<uint32_t, 4> corner{topo.triangles[3 * t + c], topo.triangles[3 * (t + 1) + c],
+                                           topo.triangles[3 * (t + 2) + c], topo.triangles[3 * (t + 3) + c]};
+      // The sweeps' volumes read the current positions: gathered straight into the lanes.
+      x[c] = atStepStart ? lanesOf(positionAtStepStart(topo, s, corner[0]), positionAtStepStart(topo, s, corner[1]),
+                                   positionAtStepStart(topo, s, corner[2]), positionAtStepStart(topo, s, corner[3]))
+                         : gatherVec<Float4>(s.position, corner);
+    }
+    coneVolumeOf(x[0], x[1], x[2], apex).store(volumes + t);
   }
   for (; t < last; ++t)
     volumes[t] = atStepStart ? triangleVolumeAtStart(topo, s, t, origin) : triangleVolume(topo, s, t, origin);

@@ -335,8 +335,7 @@ void appendTriangles(Topology& topo, size_t particleCount, const std::vector<uin
       onEdge = trianglesOn(p, topo.springNeighbour[k]) == 1;
     topo.boundary[p] = onEdge ? 1u : 0u;
   }
-  topo.closed = topo.springCount() > 0 &&
-                std::none_of(topo.boundary.begin(), topo.boundary.end(), [](uint32_t b) { return b != 0; });
+  topo.closed = topo.springCount() > 0 && !topo.hasBoundary();
   topo.colourOffset.clear();
   topo.colourOrder.clear();
   topo.patchOffset.clear();

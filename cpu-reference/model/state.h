@@ -3,6 +3,7 @@
 // mirrors with one storage buffer per attribute. float32 throughout (ARCHITECTURE.md).
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <bit>
 #include <cstdint>
 #include <vector>
@@ -148,6 +149,10 @@ struct Topology {
   [[nodiscard]] const uint32_t* triangleOf(uint32_t corner) const { return &triangles[corner - corner % 3]; }
   [[nodiscard]] size_t springCount() const { return restLength.size(); }
   [[nodiscard]] size_t particleCount() const { return boundary.size(); }
+  // Whether any particle is held by the wire (boundary): an open film's edge, or a particle pinned.
+  [[nodiscard]] bool hasBoundary() const {
+    return std::any_of(boundary.begin(), boundary.end(), [](uint32_t b) { return b != 0; });
+  }
   // Self-collision candidates of each particle for the current frame, as one packed array (collision.h):
   // contacts[i] .. contacts[i + 1] index the partners stored from contacts[n + 1] on, and after the last
   // partner (from contacts[n + 1 + contacts[n]] on) each pair's rest distance as float bits, in the same order.

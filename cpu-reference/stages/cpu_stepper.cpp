@@ -46,11 +46,6 @@ std::array<float, N> treeSumsOf(std::array<std::vector<float>, N>& scratch, size
   return sums;
 }
 
-// Whether any particle is held by the wire (or pinned): the energy budget places those at their end position.
-bool hasBoundary(const Topology& topo) {
-  return std::any_of(topo.boundary.begin(), topo.boundary.end(), [](uint32_t b) { return b != 0; });
-}
-
 }  // namespace
 
 template <class Body>
@@ -253,8 +248,10 @@ VelocityBudget CpuStepper::budgetEnergy(const StepUniforms& u) {
   });
   float gas = 0.0f;
   if (u.closed) {  // the volumes before and after the step, as the volume stage sums them
+    // The budget places particles on the wire at their end position (positionAtStepStart): the volume stage's sum
+    // at the step's start is the budget's "before" only where there are none.
     const float before =
-        stepStartVolume_ && !hasBoundary(topo) ? *stepStartVolume_ : volumeOf(*film_, u.volumeOrigin, true);
+        stepStartVolume_ && !topo.hasBoundary() ? *stepStartVolume_ : volumeOf(*film_, u.volumeOrigin, true);
     lastVolume_ = volume(*film_, u.volumeOrigin);
     gas = boyleEnergyChange(params_, u.referenceVolume, before, lastVolume_);
   }

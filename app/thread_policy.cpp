@@ -75,12 +75,15 @@ bool SimulationThreads::sample(Sample& s) {
 
 int SimulationThreads::update() {
   if (!on_) return current_;
-  if (steadySeconds() - last_.wall < 0.5) return current_;
+  // /proc/stat counts in ticks of 10 ms: over a fifth of a second, two cores read a load to about a tenth of a core,
+  // well inside the rule's margin of 0.4.
+  if (steadySeconds() - last_.wall < (sampled_ ? 0.5 : 0.2)) return current_;
   Sample next;
   if (!sample(next)) return current_;
   const double othersLoad =
       ((next.machineBusy - last_.machineBusy) - (next.own - last_.own)) / (next.wall - last_.wall);
   last_ = next;
+  sampled_ = true;
   const int threads = threadsBesideLoad(most_, current_, othersLoad);
   if (threads != current_) omp_set_num_threads(current_ = threads);
   return current_;

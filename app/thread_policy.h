@@ -33,7 +33,8 @@ void setOpenMpWaiting(char** argv);
 int threadsBesideLoad(int most, int current, double othersLoad);
 
 // The simulation's threads, updated from the machine's load: call update() before each frame. It samples the load
-// of other processes every half second, the busy time of the cores this process may run on (/proc/stat, its
+// of other processes every half second (the first time after a fifth of a second: beside a busy process the first
+// frames run on a thread too many until then), the busy time of the cores this process may run on (/proc/stat, its
 // affinity) less this process's own (getrusage), and sets omp_set_num_threads when threadsBesideLoad changes its mind.
 // Off where OMP_NUM_THREADS is set (whoever sets it gets what they set) or the machine's load cannot be read: all
 // threads, always.
@@ -48,7 +49,7 @@ class SimulationThreads {
   };
   [[nodiscard]] static bool sample(Sample& s);
   int most_ = 1, current_ = 1;
-  bool on_ = false;
+  bool on_ = false, sampled_ = false;  // sampled_: a load was read since the first sample
   Sample last_;
 };
 

@@ -129,7 +129,8 @@ struct SweepRuns {
   Vec3Array target, start, normal, volumeGradient;
   std::vector<float> inertia, drag, airCoupling, area;
   std::vector<uint32_t> springSlot, triangleSlot;  // run r's slots are [slot[r], slot[r + 1])
-  // Four per slot; a lane without a spring (triangle) there holds lane 0's particle and zeros, masked off.
+  // Four per slot; a lane without a spring (triangle) there holds lane 0's particle (its x_t in
+  // springNeighbourStart) and zeros, masked off.
   std::vector<uint32_t> springNeighbour;
   Vec3Array springNeighbourStart;                  // the neighbour's x_t, read by the spring's damping every sweep
   std::vector<float> springStiffness, springRest;  // springStiffness, restLength (springs model only)

@@ -26,10 +26,17 @@ void forEach(size_t n, Body&& body) {
 // compute four triangles or springs at a time in the lanes of float_lanes.h. Every block starts at a multiple of
 // four, so its fours are those that a call per four would compute, the same floats, for a sixteenth of the calls.
 constexpr size_t kFourBlock = 64;
+// The blocks [first(b), last(b)) of kFourBlock indices that [0, count) splits into.
+struct FourBlocks {
+  size_t count;
+  [[nodiscard]] size_t size() const { return (count + kFourBlock - 1) / kFourBlock; }
+  [[nodiscard]] static size_t first(size_t b) { return kFourBlock * b; }
+  [[nodiscard]] size_t last(size_t b) const { return std::min(count, kFourBlock * b + kFourBlock); }
+};
 template <class Body>
 void forEachFour(size_t count, Body&& body) {
-  forEach((count + kFourBlock - 1) / kFourBlock,
-          [&](size_t b) { body(kFourBlock * b, std::min(count, kFourBlock * b + kFourBlock)); });
+  const FourBlocks blocks{count};
+  forEach(blocks.size(), [&](size_t b) { body(FourBlocks::first(b), blocks.last(b)); });
 }
 
 // Each particle's N terms (terms(i), computed in parallel into `scratch`), each summed over the particles in the
@@ -187,9 +194,8 @@ void CpuStepper::runSweeps(const StepUniforms& u, int from, int to) {
   const Topology& topo = film_->topology;
   const SweepRuns& runs = sweepRuns_;
   Bubble bubble;
-  const size_t triangles = topo.triangleCount();
-  const auto blocks = static_cast<long>((triangles + kFourBlock - 1) / kFourBlock);  // forEachFour's
-  if (u.closed) triangleVolumes_.resize(triangles);
+  const FourBlocks blocks{topo.triangleCount()};  // forEachFour's, in the sweeps' own parallel region
+  if (u.closed) triangleVolumes_.resize(blocks.count);
     // One parallel region for the sweeps: the colours still wait for each other (the barrier closing each
     // omp for), but the threads are woken once, not once per colour and sweep.
 #pragma omp parallel
@@ -197,11 +203,9 @@ void CpuStepper::runSweeps(const StepUniforms& u, int from, int to) {
     if (u.closed) {  // Boyle's pressure at this iterate's volume, as volume() takes it: the triangles on every
                      // thread, their sum on one, in the fixed order both backends add in
 #pragma omp for schedule(static)
-      for (long b = 0; b < blocks; ++b) {
-        const size_t first = kFourBlock * static_cast<size_t>(b);
-        triangleVolumes(topo, s, u.volumeOrigin, false, first, std::min(triangles, first + kFourBlock),
-                        triangleVolumes_.data());
-      }
+      for (long b = 0; b < static_cast<long>(blocks.size()); ++b)
+        triangleVolumes(topo, s, u.volumeOrigin, false, FourBlocks::first(static_cast<size_t>(b)),
+                        blocks.last(static_cast<size_t>(b)), triangleVolumes_.data());
 #pragma omp single
       {
         lastVolume_ = treeSumInPlace(triangleVolumes_);  // first: Boyle's pressure reads it

@@ -472,7 +472,8 @@ struct PartnerRule {
   }
 };
 
-std::vector<float> speedsAboutTheMean(const Film& film) {
+// Each particle's speed about the film's mean velocity into `speed` (0 for a particle not in the film).
+void speedsAboutTheMean(const Film& film, std::vector<float>& speed) {
   const State& s = film.state;
   Vec3 sum = Vec3::Zero();
   size_t living = 0;
@@ -482,11 +483,10 @@ std::vector<float> speedsAboutTheMean(const Film& film) {
       ++living;
     }
   const Vec3 mean = living ? Vec3(sum / static_cast<float>(living)) : Vec3::Zero();
-  std::vector<float> speed(s.size(), 0.0f);
+  speed.assign(s.size(), 0.0f);
 #pragma omp parallel for schedule(static) if (s.size() >= kParallelPass)
   for (size_t i = 0; i < s.size(); ++i)
     if (inFilm(film, static_cast<uint32_t>(i))) speed[i] = (s.velocity.get(i) - mean).norm();
-  return speed;
 }
 
 // The rest distance pair (i, j) had in the last list, or 0 when it was not listed.
@@ -512,6 +512,7 @@ struct ContactSearch::Memory {
   // The pairs (i, j, i, j, ...) each thread listed: one growing array per thread, where one list per particle
   // cost a million empty lists cleared and read each frame on the largest films.
   std::vector<std::vector<uint32_t>> pairsByThread;
+  std::vector<float> speed, particleReach;  // find's, per particle
 };
 
 ContactSearch::ContactSearch() : memory_(std::make_unique<Memory>()) {}
@@ -532,10 +533,12 @@ size_t ContactSearch::find(const Params& p, float frameTime, float slack, Film& 
   // partners lie within its own reach, at its speed about the mean plus the fastest one's, and all pairs within the
   // reach at twice the fastest speed, which bounds the cells (cellSizeFor). A slow particle of a film with a fast
   // part searches a narrower slab than the fastest.
-  const std::vector<float> speed = speedsAboutTheMean(film);
+  std::vector<float>& speed = memory_->speed;
+  speedsAboutTheMean(film, speed);
   const float fastest = n ? *std::max_element(speed.begin(), speed.end()) : 0.0f;
   const float reach = p.collisionDistance + contactMargin(frameTime, slack, 2.0f * fastest);
-  std::vector<float> particleReach(n);
+  std::vector<float>& particleReach = memory_->particleReach;
+  particleReach.resize(n);
   std::transform(speed.begin(), speed.end(), particleReach.begin(),
                  [&](float v) { return p.collisionDistance + contactMargin(frameTime, slack, v + fastest); });
   std::vector<std::vector<uint32_t>>& pairsByThread = memory_->pairsByThread;

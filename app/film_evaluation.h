@@ -1,0 +1,54 @@
+#pragma once
+// How a film fares under a real performer's hands: `giantbubble evaluate --film` plays each depth recording's hands
+// (found in its depth by the hand finder, or its ground truth with --truth-hands) through the stabilizer and the
+// calibration into a run of a scene, as `giantbubble run --input fakenect:DIR` does but as fast as it runs, and
+// reports what the film did: how long it lived, whether it lived to the end or pinched off into a free bubble, how far
+// it grew, and how far the wands lag behind the hands (docs/capture.md, "Films under real hands").
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "depth_recording.h"
+#include "hand_finder.h"
+#include "run_command.h"
+
+namespace gb {
+
+// How one recording's film ended.
+struct FilmLife {
+  std::string recording;
+  double length = 0;          // s of the run: the recording from the frame with both hands found to its end
+  double life = 0;            // s until the film (or the free bubble it pinched off into) started to burst, else length
+  bool pinchedOff = false;    // it closed into a free bubble before any burst
+  std::string burstCause;     // the first burst's cause (bursting.h's names: "thinning", "impact", ...), else empty
+  double startArea = 0;       // m^2, the film as dipped
+  double peakArea = 0;        // m^2, the largest the film (or bubble) was
+  double lag = 0;             // s: the wands behind the input's hands (the hand that moved more)
+  double peakWandSpeed = 0;   // m/s, world space: the faster wand tip at its fastest
+  [[nodiscard]] bool survived() const { return pinchedOff || burstCause.empty(); }
+  [[nodiscard]] double lifeShare() const { return length > 0 ? life / length : 0.0; }
+  [[nodiscard]] double growth() const { return startArea > 0 ? peakArea / startArea : 0.0; }
+};
+
+struct FilmEvaluationOptions {
+  RunOptions run;              // the scene: parameters, tool, reach and stabilizer (run.input)
+  DetectionOptions detection;  // the hand finder, when the hands are found in the depth
+  TrackerOptions tracker;
+  bool truthHands = false;  // drive the wands by the recording's ground truth (hands.csv) instead
+};
+
+// Plays one recording. Throws HandSourceError when it has no hands to play (no ground truth with truthHands).
+FilmLife playFilmOnRecording(const DepthRecording& recording, const FilmEvaluationOptions& options);
+
+// The figures over many recordings.
+struct FilmLifeSummary {
+  size_t recordings = 0;
+  double survivedShare = 0;  // lived to the end, or pinched off
+  double medianLifeShare = 0;
+  double medianGrowth = 0;  // peak area / start area
+  double medianLag = 0;     // s
+};
+FilmLifeSummary summarize(const std::vector<FilmLife>& lives);
+
+}  // namespace gb

@@ -87,7 +87,8 @@ struct Params {
   // --- Soap solution control (Section 7) ---
   float solution GB_DEFAULT(1.0f);               // remaining soap solution, 1 = full dip (0, 1]
   int particlesAtFullSolution GB_DEFAULT(9500);  // particles of a film made at solution 1.0 (Table 1: 9-10k)
-  float solutionReserve GB_DEFAULT(1.0f);        // liquid a full dip leaves on the wire for new film, in films' worth
+  float solutionReserve GB_DEFAULT(5.0f);        // liquid a full dip leaves on the wire for new film, in films' worth
+                                                 // (a soaked rope holds several: docs/model.md)
   float growthStretch GB_DEFAULT(1.15f);         // new film is drawn off the wire when the springs joining the wire
                                                  // to the film are this many times their rest length (mean)
   float yieldStretch GB_DEFAULT(1.3f);  // a spring stretched past this x its rest length yields: its rest grows with

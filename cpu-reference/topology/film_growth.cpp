@@ -132,6 +132,40 @@ float shareStripMaterial(const Params& params, const std::vector<uint32_t>& stri
   return used;
 }
 
+// The band the payout drew off the wire since the last ring (payOutFilmAtWire lengthens rest lengths alone, so the
+// band widens without liquid): the released ring and the film's particles joined to it, whose Voronoi areas take the
+// band's two halves. A fast stroke widens the band by several spacings a frame; a ring and its neighbours then hold a
+// narrow strip's liquid over a wide band and thin a hundredfold within a few frames (real hands, docs/capture.md).
+std::vector<uint32_t> bandOf(const Topology& topo, const std::vector<uint32_t>& released) {
+  std::vector<char> in(topo.boundary.size(), 0);
+  std::vector<uint32_t> band = released;
+  for (uint32_t i : released) in[i] = 1;
+  for (uint32_t i : released)
+    for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k)
+      if (const uint32_t j = topo.springNeighbour[k]; !in[j] && !topo.boundary[j]) {
+        in[j] = 1;
+        band.push_back(j);
+      }
+  return band;
+}
+
+// The band's liquid comes from the wire too: each of its particles is brought up to a new film's thickness over its
+// Voronoi area where it is thinner, as far as the wire's `available` liquid goes (shared in proportion where it does
+// not). Returns the liquid used.
+float feedBandFromWire(const Params& params, const std::vector<uint32_t>& band, float available, State& s) {
+  const float dipThickness = initialThickness(params);
+  auto wanted = [&](uint32_t i) { return std::max(0.0f, dipThickness * s.voronoiArea[i] - s.liquid[i]); };
+  double total = 0;
+  for (uint32_t i : band) total += wanted(i);
+  if (!(total > 0) || !(available > 0)) return 0.0f;
+  const auto share = static_cast<float>(std::min(1.0, available / total));
+  for (uint32_t i : band) {
+    s.liquid[i] += share * wanted(i);
+    s.mass[i] = particleMass(params, s.voronoiArea[i], s.liquid[i]);
+  }
+  return static_cast<float>(std::min<double>(available, total));
+}
+
 // The film's single boundary loop, or empty when it has none or several (a torn or closed film).
 std::vector<uint32_t> intactWireLoop(const Film& film) {
   if (film.topology.isClosed()) return {};
@@ -473,12 +507,17 @@ GrowthEvent growFilmAtWire(const Params& params, const WireFrame& frame, float w
   restLikeNewFilm(params, loop, film);
   if (intactWireLoop(film).size() != newRing.size())
     throw std::logic_error("film growth: the new strip does not leave the new ring as the film's only edge");
-  std::vector<uint32_t> around = loop;  // the strip's particles: the geometry changed around them alone
+  // The strip's particles and the band inside it: the geometry changed around them alone.
+  const std::vector<uint32_t> band = bandOf(film.topology, loop);
+  std::vector<uint32_t> around = band;
   around.insert(around.end(), newRing.begin(), newRing.end());
   computeGeometryAround(film.topology, s, around);
   giveNewFilmMaterial(params, s, first);
-  event.liquidUsed = shareStripMaterial(params, strip, first, film.wireLiquid, s);
-  film.wireLiquid = std::max(0.0f, film.wireLiquid - event.liquidUsed);
+  const float stripLiquid = shareStripMaterial(params, strip, first, film.wireLiquid, s);
+  film.wireLiquid = std::max(0.0f, film.wireLiquid - stripLiquid);
+  const float bandLiquid = feedBandFromWire(params, band, film.wireLiquid, s);
+  film.wireLiquid = std::max(0.0f, film.wireLiquid - bandLiquid);
+  event.liquidUsed = stripLiquid + bandLiquid;
   event.particlesAdded = newRing.size();
   return event;
 }

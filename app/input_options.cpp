@@ -6,6 +6,7 @@
 
 #include "cli_checks.h"
 #include "interrupt.h"
+#include "threaded_hand_source.h"
 
 namespace gb {
 
@@ -37,12 +38,13 @@ void addInputOptions(CLI::App* command, InputOptions& o) {
   command->add_flag("--mirrored", o.mirrored, "the depth image is mirrored (the performer's left hand on its left)");
 }
 
+bool isCamera(const std::string& spec) { return spec == "kinect" || spec.rfind("fakenect:", 0) == 0; }
+
 Calibration calibrationOf(const InputOptions& o) {
   Calibration c;
   c.reach = o.reach;
   c.cameraPitch = o.cameraPitch;
-  const bool camera = o.spec() == "kinect" || o.spec().rfind("fakenect:", 0) == 0;
-  if (o.performer == "auto" || (o.performer.empty() && camera)) {
+  if (o.performer == "auto" || (o.performer.empty() && isCamera(o.spec()))) {
     c.autoPerformer = true;
     return c;
   }
@@ -93,7 +95,10 @@ std::unique_ptr<WandInput> makeWandInput(const InputOptions& o, const GestureOpt
   if (!wait.cancelled) wait.cancelled = [] { return InterruptCatcher::requested(); };  // Ctrl-C while waiting
   std::unique_ptr<HandSource> hands = makeHandSource(spec, source);
   if (wrap) hands = wrap(std::move(hands));
-  return std::make_unique<StabilizedWands>(std::move(hands), stabilizerOptionsOf(o), source.calibration, wait);
+  if (isCamera(spec)) hands = std::make_unique<ThreadedHandSource>(std::move(hands));
+  auto wands = std::make_unique<StabilizedWands>(std::move(hands), stabilizerOptionsOf(o), source.calibration, wait);
+  wands->followWallClock(o.wallClock);
+  return wands;
 }
 
 }  // namespace gb

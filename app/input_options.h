@@ -18,7 +18,8 @@ namespace gb {
 struct InputOptions {
   std::string input;                           // kinect, fakenect:DIR, trajectory:FILE or script:NAME
   std::string gesture;                         // --gesture NAME, kept as an alias of --input script:NAME
-  std::string stabilizer = "bspline";          // bspline (the paper) or one-euro
+  std::string stabilizer = "one-euro";         // one-euro (the default: less lag, docs/capture.md) or bspline (the
+                                               //   paper)
   std::string performer;                       // X,Y,Z (m) between the resting hands, or auto; empty: auto for
                                                //   camera inputs (kinect, fakenect:DIR), 0,0,2 for the others
   double reach = 2.0;                          // world metres per metre of hand motion
@@ -27,6 +28,8 @@ struct InputOptions {
   bool mirrored = false;                       // the depth image is mirrored
   double runSeconds = std::numeric_limits<double>::infinity();  // how long the run lasts once the performer is
                                                                 //   found: a trajectory file is read no further
+  bool wallClock = false;  // the frame loop keeps the wall clock (live, run --realtime): a camera's newest hands are
+                           //   used as they arrive, never waited for (StabilizedWands::followWallClock)
 
   [[nodiscard]] std::string spec() const;  // script:GESTURE, else --input, else script:straight
   [[nodiscard]] bool scripted() const { return spec().rfind("script:", 0) == 0; }
@@ -35,6 +38,7 @@ struct InputOptions {
 // Adds --input, --gesture, --stabilizer, --performer, --reach, --camera-pitch, --depth-band and --mirrored.
 void addInputOptions(CLI::App* command, InputOptions& options);
 
+bool isCamera(const std::string& spec);                  // kinect or fakenect:DIR: hands found in depth
 Calibration calibrationOf(const InputOptions& options);  // throws std::invalid_argument on a bad --performer
 SourceOptions sourceOptionsOf(const InputOptions& options, const GestureOptions& gesture);
 StabilizerOptions stabilizerOptionsOf(const InputOptions& options);
@@ -44,7 +48,8 @@ StabilizerOptions stabilizerOptionsOf(const InputOptions& options);
 // seen); `waiting` says where the wait's messages go and what ends it early (its `enabled` is decided here; by
 // default the messages go to stderr and Ctrl-C ends the wait). Throws HandSourceError when the input cannot be
 // opened. `wrap`, when given, is handed the hand source of an input that is not a script and returns the one the
-// wands follow (the live window keeps a camera's depth frames for its performer view).
+// wands follow (the live window keeps a camera's depth frames for its performer view). A camera (kinect,
+// fakenect:DIR) is read on a thread of its own (ThreadedHandSource): its hands are found beside the frame loop.
 using HandSourceWrapper = std::function<std::unique_ptr<HandSource>(std::unique_ptr<HandSource>)>;
 std::unique_ptr<WandInput> makeWandInput(const InputOptions& options, const GestureOptions& gesture,
                                          PerformerWait waiting = {}, const HandSourceWrapper& wrap = {});

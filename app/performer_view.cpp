@@ -10,22 +10,34 @@ ObservedHandSource::ObservedHandSource(std::unique_ptr<HandSource> source)
     : source_(std::move(source)), depth_(dynamic_cast<DepthHandSource*>(source_.get())) {
   if (depth_)
     depth_->onFrame([this](const kinect::DepthFrame& frame) {
+      const std::lock_guard lock(mutex_);
       frame_ = frame;
-      fresh_ = true;
+      newFrame_ = true;
     });
 }
 
 std::optional<HandSample> ObservedHandSource::next() {
   std::optional<HandSample> sample = source_->next();
+  const std::lock_guard lock(mutex_);
   if (sample) latest_ = *sample;
+  if (newFrame_ && sample) {  // the detection is the newest frame's: the source detects right after handing it over
+    detection_ = depth_->detection();
+    newFrame_ = false;
+    fresh_ = true;
+  }
   return sample;
 }
 
 std::optional<RgbImage> ObservedHandSource::takeView(int step) {
-  if (!depth_ || !fresh_) return std::nullopt;
+  if (!depth_) return std::nullopt;
+  std::unique_lock lock(mutex_);
+  if (!fresh_) return std::nullopt;
   fresh_ = false;
-  // The detection is the newest frame's: the source detects on each frame right after handing it over.
-  return drawDepthPlot(frame_, depth_->detection(), latest_, step);
+  const kinect::DepthFrame frame = frame_;
+  const Detection detection = detection_;
+  const HandSample latest = latest_;
+  lock.unlock();  // drawing takes a while: the reading thread goes on meanwhile
+  return drawDepthPlot(frame, detection, latest, step);
 }
 
 std::string PerformerView::toggle() {

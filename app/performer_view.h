@@ -5,6 +5,7 @@
 // (kinect, fakenect:DIR), so that whoever steps in sees where the camera looks.
 
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,8 +16,9 @@
 
 namespace gb {
 
-// A hand source passed through unchanged that keeps the newest depth frame and hand sample of a depth camera
-// (a DepthHandSource inside; any other source has no view).
+// A hand source passed through unchanged that keeps the newest depth frame, its detection and hand sample of a depth
+// camera (a DepthHandSource inside; any other source has no view). It may be read on a thread of its own
+// (ThreadedHandSource) while the window takes its view: what it keeps is copied under a lock.
 class ObservedHandSource : public HandSource {
  public:
   explicit ObservedHandSource(std::unique_ptr<HandSource> source);
@@ -34,8 +36,11 @@ class ObservedHandSource : public HandSource {
  private:
   std::unique_ptr<HandSource> source_;
   DepthHandSource* depth_ = nullptr;  // source_ when it is one
+  std::mutex mutex_;                  // guards what follows: the reading thread writes it, the window reads it
   kinect::DepthFrame frame_;
-  bool fresh_ = false;  // frame_ not drawn yet
+  Detection detection_;    // frame_'s
+  bool newFrame_ = false;  // frame_ came, its detection not taken yet
+  bool fresh_ = false;     // frame_ and detection_ not drawn yet
   HandSample latest_;
 };
 

@@ -201,6 +201,7 @@ OpenedRun openRun(const RunOptions& o) {
   OpenedRun run;
   InputOptions input = o.input;
   input.runSeconds = o.durationFromInput ? kMaxRunSeconds : o.duration;  // a file is read no further than the run
+  input.wallClock = o.realtime;
   run.input = makeWandInput(input, o.gestureOptions);
   std::printf("input: %s\n", run.input->describe().c_str());
   run.duration = runDuration(o, *run.input);

@@ -292,6 +292,7 @@ std::optional<KeyPress> parseKeyPress(const std::string& text, std::string& why)
 
 int runView(ViewOptions o) try {
   RunOptions& run = o.run;
+  run.input.wallClock = true;  // the show keeps the wall clock: a camera's hands are never waited for
   run.tool.kind = o.tool == "ring" ? ToolKind::Ring : ToolKind::TwoWands;
   ShowControl show(run.osc);
   std::unique_ptr<OscCueReceiver> cues;

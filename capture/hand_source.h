@@ -5,6 +5,7 @@
 // turns them into wands and the calibration carries the wands into the simulation's world.
 
 #include <Eigen/Dense>
+#include <chrono>
 #include <limits>
 #include <optional>
 #include <stdexcept>
@@ -58,6 +59,11 @@ class HandSource {
   virtual std::vector<std::string> takeMessages() { return {}; }
   // Why the newest sample has no hand, for the message shown while a performer is waited for.
   [[nodiscard]] virtual std::string whyNoHands() const { return "no hands in the input"; }
+  // Whether next() returns at once. A source read on a thread of its own (ThreadedHandSource) says whether a sample
+  // has arrived; the others answer true and take as long as reading takes.
+  [[nodiscard]] virtual bool ready() const { return true; }
+  // When the sample next() returned last arrived from its thread (steady clock); nothing for a source read in place.
+  [[nodiscard]] virtual std::optional<std::chrono::steady_clock::time_point> arrivedAt() const { return std::nullopt; }
 };
 
 // Hold and decay, the one definition every source uses for a hand it did not measure: the hand stays at its

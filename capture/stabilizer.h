@@ -45,6 +45,11 @@ struct StabilizerOptions {
   int outlierRun = 3;             // consecutive outliers taken as real motion
   double maxSpeed = 4.0;          // m/s: the wand never moves faster (camera space)
   double maxAcceleration = 40.0;  // m/s^2: nor changes its velocity faster
+  // The wand tips in the world (StabilizedWands lowers the two limits above to these over the calibration's reach):
+  // a film drawn by tips faster than a few metres a second tears at the wire or slams into itself, and a performer's
+  // hands, times the reach, reach 6-8 m/s (docs/capture.md, "Films under real hands").
+  double tipSpeed = 3.0;          // m/s
+  double tipAcceleration = 20.0;  // m/s^2
   double driftTime = 0.3;         // s: return to the smoothed trajectory after a limit acted
   double extrapolation = 0.1;     // s: how far past the newest knot at() carries a wand on by Eq. (1) (at least
                                   //   1.5 input periods, so that a slow input never stands still between samples)

@@ -1,6 +1,7 @@
 #include "wand_input.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 
@@ -59,10 +60,13 @@ StabilizedWands::StabilizedWands(std::unique_ptr<HandSource> source, const Stabi
   StabilizerOptions options = stabilizer;
   period_ = source_->period();
   options.period = period();  // at least kMinSamplePeriod: a 1 ns input must not set a 1 ns stabilizer step
+  options.maxSpeed = std::min(options.maxSpeed, options.tipSpeed / calibration_.reach);  // the tips' limits, in the
+  options.maxAcceleration = std::min(options.maxAcceleration, options.tipAcceleration / calibration_.reach);  // camera
   stabilizer_ =
       std::make_unique<Stabilizer>(options, calibration_.restHand(Hand::Left), calibration_.restHand(Hand::Right));
   lastMeasured_[0] = lastMeasured_[1] = start_;
   feed(ahead_.front());
+  newestSample_ = ahead_.front().time;
   ahead_.pop_front();
 }
 
@@ -171,30 +175,50 @@ void StabilizedWands::feed(const HandSample& sample) {
 
 double StabilizedWands::period() const { return std::max(source_->period(), kMinSamplePeriod); }
 
+void StabilizedWands::holdUntil(double until, double period) {
+  while (lastFed_ + period <= until) {
+    HandSample hold = latest_;
+    hold.time = lastFed_ + period;
+    for (HandObservation* o : {&hold.left, &hold.right}) {
+      o->measured = false;
+      o->confidence *= std::exp(-period / 0.5);
+    }
+    feed(hold);
+  }
+}
+
+void StabilizedWands::take(const HandSample& s, double period) {
+  if (s.time - lastFed_ < kMinSamplePeriod) return;  // denser than the guard (or older): thinned, not fed
+  observeInterval(s.time - lastFed_);
+  if (s.time - lastFed_ > 3.0 * period) holdUntil(s.time - period, period);  // a gap: the wands rest through it
+  feed(s);
+  newestSample_ = s.time;
+}
+
+double StabilizedWands::wallClockTime(double& age) {
+  const std::optional<std::chrono::steady_clock::time_point> arrived = source_->arrivedAt();
+  age = arrived ? std::chrono::duration<double>(std::chrono::steady_clock::now() - *arrived).count() : 0.0;
+  return newestSample_ + age;
+}
+
 WandFrame StabilizedWands::at(double t) {
   // The observed period, not the nominal one: a camera delivering 7.5 frames per second is slow, not absent.
-  const double T = start_ + t, period = std::max(period_, this->period()), gap = 3.0 * period;
-  // A hold: both hands where they were last measured, not measured now.
-  auto holdUntil = [&](double until) {
-    while (lastFed_ + period <= until) {
-      HandSample hold = latest_;
-      hold.time = lastFed_ + period;
-      for (HandObservation* o : {&hold.left, &hold.right}) {
-        o->measured = false;
-        o->confidence *= std::exp(-period / 0.5);
-      }
-      feed(hold);
+  const double period = std::max(period_, this->period());
+  double T = start_ + t, age = 0.0;
+  if (wallClock_ && source_->arrivedAt()) {
+    // Every sample that has arrived, none waited for; the wands are carried on to now.
+    while (!ahead_.empty() || (source_->ready() && fetch())) {
+      take(ahead_.front(), period);
+      ahead_.pop_front();
     }
-  };
-  while ((!ahead_.empty() || fetch()) && ahead_.front().time <= T) {
-    const HandSample s = ahead_.front();
-    ahead_.pop_front();
-    if (s.time - lastFed_ < kMinSamplePeriod) continue;  // denser than the guard: thinned, not fed
-    observeInterval(s.time - lastFed_);
-    if (s.time - lastFed_ > gap) holdUntil(s.time - period);  // a gap in the input: the wands rest through it
-    feed(s);
+    T = std::max(wallClockTime(age), lastFed_);
+  } else {
+    while ((!ahead_.empty() || fetch()) && ahead_.front().time <= T) {
+      take(ahead_.front(), period);
+      ahead_.pop_front();
+    }
   }
-  if (T - lastFed_ > gap || (finished_ && ahead_.empty())) holdUntil(T);
+  if (T - lastFed_ > 3.0 * period || (finished_ && ahead_.empty())) holdUntil(T, period);
 
   WandFrame f;
   const WandPoint left = stabilizer_->at(Hand::Left, T), right = stabilizer_->at(Hand::Right, T);
@@ -204,6 +228,7 @@ WandFrame StabilizedWands::at(double t) {
   f.wands.rightVelocity = calibration_.velocityToWorld(right.velocity).cast<float>();
   if (latest_.left.measured) f.leftHand = calibration_.toWorld(latest_.left.position).cast<float>();
   if (latest_.right.measured) f.rightHand = calibration_.toWorld(latest_.right.position).cast<float>();
+  f.handsAge = age;
   return f;
 }
 

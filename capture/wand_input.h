@@ -27,6 +27,7 @@ struct WandFrame {
   WandState wands;                      // world space
   Vec3 leftHand = Vec3::Constant(NAN);  // the newest measured input hands, world space (NaN: not measured)
   Vec3 rightHand = Vec3::Constant(NAN);
+  double handsAge = 0.0;  // s since the newest hands arrived from a camera read beside the frame loop (0: not known)
 };
 
 class WandInput {
@@ -91,6 +92,11 @@ class StabilizedWands : public WandInput {
   }
   [[nodiscard]] const Calibration& calibration() const { return calibration_; }
   [[nodiscard]] double confidence(Hand hand) const { return stabilizer_->confidence(hand); }
+  // The frame loop keeps the wall clock (live, run --realtime): at() takes the samples that have arrived and never
+  // waits for the next one. With a source that says when its samples arrived (ThreadedHandSource), the wands are
+  // then the newest sample's carried on to now by Eq. (1), whatever t says, so a loop that started late or fell
+  // behind is not behind the performer. Otherwise at(t) reads the source up to run time t, waiting where it must.
+  void followWallClock(bool follow) { wallClock_ = follow; }
 
   static constexpr double kLostHandAfter = 0.25;  // s unmeasured before a hand is reported lost
   static constexpr double kSlowRate = 25.0;       // samples per second below which the input is reported slow
@@ -122,7 +128,12 @@ class StabilizedWands : public WandInput {
   void waitForPerformer(const PerformerWait& wait);
   void centreOnPerformer(const HandSample& sample);
   void feed(const HandSample& sample);
-  void observeInterval(double dt);  // updates period_ and warns once about a slow input
+  void take(const HandSample& sample, double period);  // feeds a sample read, with the holds of a gap before it
+  void holdUntil(double until, double period);         // both hands held where they were, up to source time until
+  void observeInterval(double dt);                     // updates period_ and warns once about a slow input
+  [[nodiscard]] double wallClockTime(double& age);     // wall-clock mode: the source time now, and the hands' age
+  bool wallClock_ = false;
+  double newestSample_ = 0.0;  // source time of the newest sample read (not a hold)
 };
 
 }  // namespace gb

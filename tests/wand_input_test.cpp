@@ -2,12 +2,18 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
 #include <cstdio>
 #include <functional>
+#include <future>
+#include <mutex>
 #include <numbers>
+#include <thread>
 
 #include "hand_sources.h"
+#include "threaded_hand_source.h"
 #include "trajectory_metrics.h"
 
 namespace gb {
@@ -248,6 +254,87 @@ TEST(WandInput, AWaitForAPerformerEndsWhenCancelled) {
   EXPECT_EQ(polls, 21);
   EXPECT_FALSE(input.performerFound());
   EXPECT_TRUE(mentions(input.takeMessages(), "warning: no performer found"));
+}
+
+TEST(ThreadedHandSource, PassesEverySampleOnInOrderThenTheFailure) {
+  ThreadedHandSource threaded(std::make_unique<FunctionSource>(moving, 30, true));
+  EXPECT_EQ(threaded.describe(), "function");
+  for (int k = 0; k < 30; ++k) {
+    const std::optional<HandSample> s = threaded.next();
+    ASSERT_TRUE(s);
+    EXPECT_DOUBLE_EQ(s->time, 10.0 + k / 30.0);
+    EXPECT_TRUE(threaded.arrivedAt());
+  }
+  EXPECT_THROW(threaded.next(), HandSourceLost);  // the camera's failure, after the samples it gave
+  EXPECT_TRUE(threaded.ready());
+}
+
+// A camera that delivers a sample each time the test lets it: until then its read blocks, as a Kinect's does while
+// it waits for its next frame.
+class GatedCamera : public HandSource {
+ public:
+  std::optional<HandSample> next() override {
+    std::unique_lock lock(mutex_);
+    changed_.wait(lock, [this] { return allowed_ > given_ || closed_; });
+    if (closed_) return std::nullopt;
+    return moving(10.0 + given_++ / 30.0);
+  }
+  [[nodiscard]] std::string describe() const override { return "gated camera"; }
+  void allow(int samples) {
+    {
+      const std::lock_guard lock(mutex_);
+      allowed_ += samples;
+    }
+    changed_.notify_all();
+  }
+  int given() {
+    const std::lock_guard lock(mutex_);
+    return given_;
+  }
+  void close() {
+    {
+      const std::lock_guard lock(mutex_);
+      closed_ = true;
+    }
+    changed_.notify_all();
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable changed_;
+  int allowed_ = 0, given_ = 0;
+  bool closed_ = false;
+};
+
+// The show's frame loop keeps the wall clock: it takes the hands that have arrived and never waits for the camera's
+// next frame, however far its own time runs ahead; the hands' age says how old they are.
+TEST(WandInput, OnTheWallClockTheFrameLoopNeverWaitsForTheCamera) {
+  auto owned = std::make_unique<GatedCamera>();
+  GatedCamera* camera = owned.get();
+  camera->allow(10);
+  StabilizedWands input(std::make_unique<ThreadedHandSource>(std::move(owned)), StabilizerOptions{}, Calibration{});
+  input.followWallClock(true);
+  while (camera->given() < 10) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));  // the thread has queued all ten
+  // Each call must return although the camera gives nothing more: a blocking read would never return. 5 s is a
+  // hang, not a slow machine.
+  double age = 0.0;
+  for (int k = 1; k <= 5; ++k) {
+    auto frame = std::async(std::launch::async, [&] { return input.at(1.0 * k); });  // far past the samples
+    ASSERT_EQ(frame.wait_for(std::chrono::seconds(5)), std::future_status::ready) << "at() waited for the camera";
+    const WandFrame f = frame.get();
+    EXPECT_GE(f.handsAge, age);  // the newest hands only get older while no frame comes
+    age = f.handsAge;
+    EXPECT_TRUE(f.wands.leftPosition.allFinite());
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_GT(age, 0.04);  // at least the 50 ms slept since the tenth sample arrived
+  // The camera delivers again: its hands are taken at once, young.
+  camera->allow(1);
+  while (camera->given() < 11) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  EXPECT_LT(input.at(6.0).handsAge, age);
+  camera->close();  // its read returns, so that the thread ends
 }
 
 TEST(PointerHandSource, DraggingMovesOnlyTheHeldHandWithoutAJump) {

@@ -2,9 +2,12 @@
 
 #include <cstdio>
 
+#include "cli_checks.h"
 #include "depth_recording.h"
 #include "hand_evaluation.h"
+#include "input_options.h"
 #include "trajectory_file.h"
+#include "untrusted.h"
 
 namespace gb {
 
@@ -15,9 +18,18 @@ void printHeader() {
               "swapped", "median cm", "ms/frame");
 }
 
+// The median error of the hands found, "-" when none was (a median of nothing is no 0.0 cm).
+std::string medianText(const HandScore& s) {
+  if (s.within15 == 0) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f", 100 * s.medianError());
+  return text;
+}
+
 void printScore(const std::string& name, const HandScore& s) {
-  std::printf("%-24s %7ld %7.1f%% %7.1f%% %12.3f %8.1f%% %10.1f %9.1f\n", name.c_str(), s.frames, 100 * s.found10(),
-              100 * s.found15(), s.falsePerFrame(), 100 * s.swappedShare(), 100 * s.medianError(), s.msPerFrame());
+  std::printf("%-24s %7ld %7.1f%% %7.1f%% %12.3f %8.1f%% %10s %9.1f\n", printable(name).c_str(), s.frames,
+              100 * s.found10(), 100 * s.found15(), s.falsePerFrame(), 100 * s.swappedShare(), medianText(s).c_str(),
+              s.msPerFrame());
 }
 
 }  // namespace
@@ -26,11 +38,12 @@ CLI::App* addEvaluateCommand(CLI::App& app, EvaluateOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "evaluate", "score the hands found in depth recordings against their ground truth (hands.csv)");
   cmd->add_option("recordings", o.recordings, "fakenect recordings: folders or .tar.gz archives of one")->required();
-  cmd->add_option("--truth", o.truth, "the ground truth of a single recording (a trajectory CSV), if not hands.csv");
-  cmd->add_option("--depth-band", o.depthBand, "NEAR FAR: metres from the camera where the performer stands")
-      ->expected(2);
+  cmd->add_option("--truth", o.truth, "the ground truth of a single recording (a trajectory CSV), if not hands.csv")
+      ->check(NotEmpty());
+  addDepthBandOption(cmd, o.depthBand);
   cmd->add_flag("--mirrored", o.mirrored, "the depth images are mirrored (the performer's left hand on the left)");
-  cmd->add_option("--forest", o.forest, "a hand forest model (gb_train_hand_forest) instead of the built-in one");
+  cmd->add_option("--forest", o.forest, "a hand forest model (gb_train_hand_forest) instead of the built-in one")
+      ->check(NotEmpty());
   cmd->add_flag("--each", o.perRecording, "print a line per recording, not only the total");
   return cmd;
 }

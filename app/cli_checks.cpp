@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include "untrusted.h"
@@ -13,7 +14,7 @@ namespace {
 // "[0 - 20]", the range as the help and the messages show it.
 std::string rangeText(double lo, double hi) {
   std::ostringstream range;
-  range << "[" << lo << " - " << hi << "]";
+  range << std::setprecision(15) << "[" << lo << " - " << hi << "]";
   return range.str();
 }
 

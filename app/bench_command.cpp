@@ -10,6 +10,7 @@
 #include "output_file.h"
 #include "scripted_gestures.h"
 #include "simulation.h"
+#include "untrusted.h"
 #include "vulkan_context.h"
 
 namespace gb {
@@ -155,8 +156,9 @@ FilmRun benchOne(const std::string& backendName, const std::string& device, int 
 }  // namespace
 
 int runBenchmark(const BenchOptions& o) {
-  try {
-    (void)outputTarget(o.json);  // a folder or a device is refused before minutes of measuring, not after
+  std::vector<OutputFolder> holds;
+  try {  // refused before minutes of measuring, not after
+    holds = checkOutputs({{"--json", o.json, Output::Kind::File, ".json"}});
   } catch (const OutputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;
@@ -188,7 +190,7 @@ int runBenchmark(const BenchOptions& o) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return 1;
   }
-  std::printf("\nresults written to %s\n", o.json.string().c_str());
+  std::printf("\nresults written to %s\n", printablePath(o.json).c_str());
   return failures ? 1 : 0;
 }
 

@@ -7,8 +7,10 @@
 #include "depth_recording.h"
 #include "film_evaluation.h"
 #include "hand_evaluation.h"
+#include "input_options.h"
 #include "scene_file.h"
 #include "trajectory_file.h"
+#include "untrusted.h"
 
 namespace gb {
 
@@ -19,9 +21,18 @@ void printHeader() {
               "swapped", "median cm", "ms/frame");
 }
 
+// The median error of the hands found, "-" when none was (a median of nothing is no 0.0 cm).
+std::string medianText(const HandScore& s) {
+  if (s.within15 == 0) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1f", 100 * s.medianError());
+  return text;
+}
+
 void printScore(const std::string& name, const HandScore& s) {
-  std::printf("%-24s %7ld %7.1f%% %7.1f%% %12.3f %8.1f%% %10.1f %9.1f\n", name.c_str(), s.frames, 100 * s.found10(),
-              100 * s.found15(), s.falsePerFrame(), 100 * s.swappedShare(), 100 * s.medianError(), s.msPerFrame());
+  std::printf("%-24s %7ld %7.1f%% %7.1f%% %12.3f %8.1f%% %10s %9.1f\n", printable(name).c_str(), s.frames,
+              100 * s.found10(), 100 * s.found15(), s.falsePerFrame(), 100 * s.swappedShare(), medianText(s).c_str(),
+              s.msPerFrame());
 }
 
 void printFilmHeader() {
@@ -39,8 +50,9 @@ void printFilmLine(const std::string& name, const std::vector<FilmLife>& lives) 
   }
   std::string ended;
   for (const auto& [how, count] : endings) ended += (ended.empty() ? "" : ", ") + how + " " + std::to_string(count);
-  std::printf("%-24s %6zu %8.0f%% %8.0f%% %7.2fx %8.0f %8.1f  %s\n", name.c_str(), s.recordings, 100 * s.survivedShare,
-              100 * s.medianLifeShare, s.medianGrowth, 1e3 * s.medianLag, fastest, ended.c_str());
+  std::printf("%-24s %6zu %8.0f%% %8.0f%% %7.2fx %8.0f %8.1f  %s\n", printable(name).c_str(), s.recordings,
+              100 * s.survivedShare, 100 * s.medianLifeShare, s.medianGrowth, 1e3 * s.medianLag, fastest,
+              ended.c_str());
 }
 
 // The recordings' names up to their first '_' (UTD-MHAD's aA_sS_tT: the action), in the order first met.
@@ -74,18 +86,19 @@ CLI::App* addEvaluateCommand(CLI::App& app, EvaluateOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "evaluate", "score the hands found in depth recordings against their ground truth (hands.csv)");
   cmd->add_option("recordings", o.recordings, "fakenect recordings: folders or .tar.gz archives of one")->required();
-  cmd->add_option("--truth", o.truth, "the ground truth of a single recording (a trajectory CSV), if not hands.csv");
-  cmd->add_option("--depth-band", o.depthBand, "NEAR FAR: metres from the camera where the performer stands")
-      ->expected(2);
+  cmd->add_option("--truth", o.truth, "the ground truth of a single recording (a trajectory CSV), if not hands.csv")
+      ->check(NotEmpty());
+  addDepthBandOption(cmd, o.depthBand);
   cmd->add_flag("--mirrored", o.mirrored, "the depth images are mirrored (the performer's left hand on the left)");
-  cmd->add_option("--forest", o.forest, "a hand forest model (gb_train_hand_forest) instead of the built-in one");
+  cmd->add_option("--forest", o.forest, "a hand forest model (gb_train_hand_forest) instead of the built-in one")
+      ->check(NotEmpty());
   cmd->add_flag("--each", o.perRecording, "print a line per recording, not only the total");
   cmd->add_flag("--film", o.film,
                 "play each recording's hands into a run of --scene and say what the film did: the share that lived "
                 "to the end or pinched off, the median life (share of the recording), growth (peak area over the "
                 "start) and the wands' lag");
   cmd->add_flag("--truth-hands", o.truthHands, "--film: the ground truth's hands move the wands, not those found");
-  cmd->add_option("--scene", o.scene, "--film: the scene (a built-in name or a .toml file)");
+  cmd->add_option("--scene", o.scene, "--film: the scene (a built-in name or a .toml file)")->check(NotEmpty());
   cmd->add_option("--stabilizer", o.stabilizer, "--film: the hand stabilizer")
       ->check(CLI::IsMember({"bspline", "one-euro"}));
   cmd->add_option("--reach", o.reach, "--film: world metres per metre of hand motion")->check(FiniteRange(0.1, 20.0));

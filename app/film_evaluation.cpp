@@ -92,8 +92,8 @@ FilmLife playFilmOnRecording(const DepthRecording& recording, const FilmEvaluati
       if (!life.pinchedOff) life.burstCause = events.cause ? events.cause : "unknown";
     }
     if (!burst) life.peakArea = std::max(life.peakArea, sim.stats().area);
-    life.peakWandSpeed = std::max<double>(
-        life.peakWandSpeed, std::max(speed(frame.wands.leftVelocity), speed(frame.wands.rightVelocity)));
+    life.peakWandSpeed = std::max<double>(life.peakWandSpeed,
+                                          std::max(speed(frame.wands.leftVelocity), speed(frame.wands.rightVelocity)));
     const Vec3 measured[2] = {frame.leftHand, frame.rightHand};
     const Vec3 wand[2] = {frame.wands.leftPosition, frame.wands.rightPosition};
     for (int side = 0; side < 2; ++side) {

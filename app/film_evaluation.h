@@ -18,14 +18,14 @@ namespace gb {
 // How one recording's film ended.
 struct FilmLife {
   std::string recording;
-  double length = 0;          // s of the run: the recording from the frame with both hands found to its end
-  double life = 0;            // s until the film (or the free bubble it pinched off into) started to burst, else length
-  bool pinchedOff = false;    // it closed into a free bubble before any burst
-  std::string burstCause;     // the first burst's cause (bursting.h's names: "thinning", "impact", ...), else empty
-  double startArea = 0;       // m^2, the film as dipped
-  double peakArea = 0;        // m^2, the largest the film (or bubble) was
-  double lag = 0;             // s: the wands behind the input's hands (the hand that moved more)
-  double peakWandSpeed = 0;   // m/s, world space: the faster wand tip at its fastest
+  double length = 0;         // s of the run: the recording from the frame with both hands found to its end
+  double life = 0;           // s until the film (or the free bubble it pinched off into) started to burst, else length
+  bool pinchedOff = false;   // it closed into a free bubble before any burst
+  std::string burstCause;    // the first burst's cause (bursting.h's names: "thinning", "impact", ...), else empty
+  double startArea = 0;      // m^2, the film as dipped
+  double peakArea = 0;       // m^2, the largest the film (or bubble) was
+  double lag = 0;            // s: the wands behind the input's hands (the hand that moved more)
+  double peakWandSpeed = 0;  // m/s, world space: the faster wand tip at its fastest
   [[nodiscard]] bool survived() const { return pinchedOff || burstCause.empty(); }
   [[nodiscard]] double lifeShare() const { return length > 0 ? life / length : 0.0; }
   [[nodiscard]] double growth() const { return startArea > 0 ? peakArea / startArea : 0.0; }

@@ -1,12 +1,15 @@
 #include "input_options.h"
 
-#include <sstream>
+#include <cstring>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
 #include "cli_checks.h"
 #include "interrupt.h"
 #include "threaded_hand_source.h"
+#include "trajectory_file.h"
+#include "untrusted.h"
 
 namespace gb {
 
@@ -16,25 +19,62 @@ std::string InputOptions::spec() const {
   return input.empty() ? std::string("script:straight") : input;
 }
 
+namespace {
+
+// X,Y,Z in metres with Z > 0, each coordinate a finite decimal number; nothing, with `why`, when `text` is not one.
+std::optional<Vec3d> performerPoint(const std::string& text, std::string& why) {
+  std::vector<std::string> fields(1);
+  for (const char c : text) {
+    if (c == ',')
+      fields.emplace_back();
+    else
+      fields.back().push_back(c);
+  }
+  why = "--performer: expected X,Y,Z in metres with Z > 0, or auto; got '" + printable(text) + "'";
+  if (fields.size() != 3) return std::nullopt;
+  Vec3d p;
+  for (int k = 0; k < 3; ++k) {
+    if (const std::string problem = numberProblem(fields[static_cast<size_t>(k)], p[k]); !problem.empty()) {
+      why += ": " + problem;
+      return std::nullopt;
+    }
+  }
+  if (!(p.z() > 0.0 && p.norm() <= kMaxHandDistance)) return std::nullopt;
+  return p;
+}
+
+}  // namespace
+
+void addDepthBandOption(CLI::App* command, std::vector<double>& band) {
+  command->add_option("--depth-band", band, "NEAR FAR: depths (m) where the performer is looked for")
+      ->expected(2)
+      ->check(FiniteRange(0.3, 10.0));
+}
+
 void addInputOptions(CLI::App* command, InputOptions& o) {
-  command->add_option("--input", o.input,
-                      "where the hands come from: kinect, fakenect:DIR, trajectory:FILE or script:NAME "
-                      "(default: the scene's, script:giant for the default scene)");
+  command
+      ->add_option("--input", o.input,
+                   "where the hands come from: kinect, fakenect:DIR, trajectory:FILE or script:NAME "
+                   "(default: the scene's, script:giant for the default scene)")
+      ->check(NotEmpty());
   command->add_option("--gesture", o.gesture, "scripted wand gesture, the same as --input script:NAME")
       ->check(CLI::IsMember(gestureNames()))
       ->excludes("--input");
   command->add_option("--stabilizer", o.stabilizer, "hand stabilizer for camera and file inputs")
       ->check(CLI::IsMember({"bspline", "one-euro"}));
-  command->add_option("--performer", o.performer,
-                      "camera-space point X,Y,Z (m) between the performer's resting hands, or auto (the first "
-                      "sample with both hands, when the performer is found); default auto for kinect and "
-                      "fakenect:DIR, else 0,0,2");
+  command
+      ->add_option("--performer", o.performer,
+                   "camera-space point X,Y,Z (m) between the performer's resting hands, or auto (the first "
+                   "sample with both hands, when the performer is found); default auto for kinect and "
+                   "fakenect:DIR, else 0,0,2")
+      ->check([](const std::string& text) {
+        std::string why;
+        return text == "auto" || performerPoint(text, why) ? std::string() : why.substr(std::strlen("--performer: "));
+      });
   command->add_option("--reach", o.reach, "world metres per metre of hand motion")->check(FiniteRange(0.1, 20.0));
   command->add_option("--camera-pitch", o.cameraPitch, "degrees the camera is tilted up")
       ->check(FiniteRange(-45.0, 45.0));
-  command->add_option("--depth-band", o.depthBand, "NEAR FAR: depths (m) where the performer is looked for")
-      ->expected(2)
-      ->check(FiniteRange(0.3, 10.0));
+  addDepthBandOption(command, o.depthBand);
   command->add_flag("--mirrored", o.mirrored, "the depth image is mirrored (the performer's left hand on its left)");
 }
 
@@ -48,13 +88,10 @@ Calibration calibrationOf(const InputOptions& o) {
     c.autoPerformer = true;
     return c;
   }
-  const std::string point = o.performer.empty() ? "0,0,2" : o.performer;
-  std::istringstream in(point);
-  char comma1 = 0, comma2 = 0;
-  double x = 0, y = 0, z = 0;
-  if (!(in >> x >> comma1 >> y >> comma2 >> z) || comma1 != ',' || comma2 != ',' || !in.eof() || z <= 0.0)
-    throw std::invalid_argument("--performer: expected X,Y,Z in metres with Z > 0, or auto; got '" + point + "'");
-  c.performer = Vec3d(x, y, z);
+  std::string why;
+  const std::optional<Vec3d> point = performerPoint(o.performer.empty() ? "0,0,2" : o.performer, why);
+  if (!point) throw std::invalid_argument(why);
+  c.performer = *point;
   return c;
 }
 

@@ -37,6 +37,8 @@ struct InputOptions {
 
 // Adds --input, --gesture, --stabilizer, --performer, --reach, --camera-pitch, --depth-band and --mirrored.
 void addInputOptions(CLI::App* command, InputOptions& options);
+// Adds --depth-band NEAR FAR (m) alone, as evaluate takes it.
+void addDepthBandOption(CLI::App* command, std::vector<double>& band);
 
 bool isCamera(const std::string& spec);                  // kinect or fakenect:DIR: hands found in depth
 Calibration calibrationOf(const InputOptions& options);  // throws std::invalid_argument on a bad --performer

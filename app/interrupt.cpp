@@ -2,14 +2,16 @@
 
 #include <atomic>
 #include <csignal>
+#include <iterator>
 
 namespace gb {
 
 namespace {
 
 std::atomic<int> gSignal{0};
-struct sigaction gPrevious[2];
-constexpr int kSignals[2] = {SIGINT, SIGTERM};
+constexpr int kSignals[] = {SIGINT, SIGTERM, SIGHUP};
+constexpr int kCount = static_cast<int>(std::size(kSignals));
+struct sigaction gPrevious[kCount];
 
 extern "C" void onStopSignal(int signal) { gSignal.store(signal); }
 
@@ -23,11 +25,11 @@ InterruptCatcher::InterruptCatcher() {
   // SA_RESTART: a write or a wait for the camera goes on after the flag is set. SA_RESETHAND: the second
   // signal gets the default action and kills.
   action.sa_flags = SA_RESTART | SA_RESETHAND;
-  for (int k = 0; k < 2; ++k) sigaction(kSignals[k], &action, &gPrevious[k]);
+  for (int k = 0; k < kCount; ++k) sigaction(kSignals[k], &action, &gPrevious[k]);
 }
 
 InterruptCatcher::~InterruptCatcher() {
-  for (int k = 0; k < 2; ++k) sigaction(kSignals[k], &gPrevious[k], nullptr);
+  for (int k = 0; k < kCount; ++k) sigaction(kSignals[k], &gPrevious[k], nullptr);
 }
 
 int InterruptCatcher::signal() { return gSignal.load(); }
@@ -38,6 +40,8 @@ const char* signalName(int signal) {
       return "SIGINT";
     case SIGTERM:
       return "SIGTERM";
+    case SIGHUP:
+      return "SIGHUP";
     default:
       return "a signal";
   }

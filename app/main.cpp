@@ -28,15 +28,9 @@ void applyParameter(gb::Params& p, const std::string& assignment) {
   if (!gb::findParamField(name))
     throw CLI::ValidationError("--param",
                                "unknown parameter '" + gb::printable(name) + "' (see docs/model.md for the list)");
-  size_t used = 0;
   double value = 0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::logic_error&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size())
-    throw CLI::ValidationError("--param", "parameter " + name + ": '" + gb::printable(text) + "' is not a number");
+  if (const std::string problem = gb::numberProblem(text, value); !problem.empty())
+    throw CLI::ValidationError("--param", "parameter " + name + ": " + problem);
   try {
     gb::setParameter(p, name, value);
   } catch (const std::invalid_argument& e) {
@@ -101,32 +95,35 @@ int main(int argc, char** argv) {
   std::string tool = run.tool.kind == gb::ToolKind::Ring ? "ring" : "two-wands";
   std::vector<std::string> assignments;
   CLI::App* runCmd = app.add_subcommand("run", "simulate a performance headless and write its outputs");
-  runCmd->add_option("--scene", sceneName,
-                     "a built-in scene (giantbubble scenes lists them) or a scene file (.toml); "
-                     "the other options change it");
+  runCmd
+      ->add_option("--scene", sceneName,
+                   "a built-in scene (giantbubble scenes lists them) or a scene file (.toml); "
+                   "the other options change it")
+      ->check(gb::NotEmpty());
   runCmd->add_option("--duration", run.duration, "simulated seconds")
       ->check(gb::FiniteRange(0.001, gb::kMaxRunSeconds));
   runCmd->add_option("--out", run.outDir, "output folder (created if missing)");
   runCmd->add_option("--ply-every", run.plyEvery, "write a PLY mesh every N frames, 0 for none")
-      ->check(CLI::Range(0, 1000000));
+      ->transform(gb::WholeNumber(0, 1000000));
   runCmd->add_option("--images-every", run.imageEvery, "write a thickness image (PNG) every N frames, 0 for none")
-      ->check(CLI::Range(0, 1000000));
+      ->transform(gb::WholeNumber(0, 1000000));
   runCmd->add_option("--tool", tool, "bubble tool")->check(CLI::IsMember({"two-wands", "ring"}));
   gb::addInputOptions(runCmd, run.input);  // --input, --gesture and the capture options
   runCmd->add_option("--speed", run.gestureOptions.speed, "peak wand speed (m/s)")->check(gb::FiniteRange(0.0, 20.0));
   runCmd->add_option("--solution", run.params.solution, "remaining soap solution (0, 1]")
       ->check(gb::FiniteRange(0.01, 1.0));
   runCmd->add_option("--particles", run.params.particlesAtFullSolution, "particles of a film at full solution")
-      ->check(CLI::Range(16, gb::kMaxParticles));
+      ->transform(gb::WholeNumber(16, gb::kMaxParticles));
   runCmd->add_option("--param", assignments, "set a model parameter, NAME=VALUE (repeatable)");
   runCmd
       ->add_option("--burst-at", run.burstAt,
                    "poke the top of the film at this time (s), whatever the input; negative: never")
-      ->check(gb::FiniteRange(-1e9, gb::kMaxRunSeconds));
+      ->check(gb::FiniteRange(gb::kNeverBurst, gb::kMaxRunSeconds));
   runCmd->add_flag("!--no-progress", run.progress, "do not show the progress bar");
   runCmd->add_flag("--realtime", run.realtime,
                    "keep the wall clock: wait when ahead of it, take fewer solver sweeps when behind (a show's pace)");
-  runCmd->add_option("--osc", run.osc, "send events and the bubble's size and position as OSC to HOST:PORT (UDP)");
+  runCmd->add_option("--osc", run.osc, "send events and the bubble's size and position as OSC to HOST:PORT (UDP)")
+      ->check(gb::NotEmpty());
   std::string backend = "auto";
   runCmd->add_option("--backend", backend, "cpu, vulkan, or auto (Vulkan on a GPU, else the CPU)")
       ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
@@ -142,10 +139,11 @@ int main(int argc, char** argv) {
 
   gb::BenchOptions bench;
   CLI::App* benchCmd = app.add_subcommand("bench", "measure step throughput on each backend for several film sizes");
-  benchCmd->add_option("--sizes", bench.sizes, "film sizes in particles")->check(CLI::Range(100, gb::kMaxParticles));
+  benchCmd->add_option("--sizes", bench.sizes, "film sizes in particles")
+      ->transform(gb::WholeNumber(100, gb::kMaxParticles));
   benchCmd->add_option("--backends", bench.backends, "backends to measure")->check(CLI::IsMember({"cpu", "vulkan"}));
-  benchCmd->add_option("--steps", bench.steps, "substeps timed per film")->check(CLI::Range(8, 100000));
-  benchCmd->add_option("--json", bench.json, "where to write the results");
+  benchCmd->add_option("--steps", bench.steps, "substeps timed per film")->transform(gb::WholeNumber(8, 100000));
+  benchCmd->add_option("--json", bench.json, "where to write the results (.json)")->check(gb::NotEmpty());
   benchCmd->add_option("--device", bench.device, "Vulkan device: index or part of its name");
 
   CLI::App* scenesCmd = app.add_subcommand("scenes", "list the built-in scenes (the paper's figures), one per line");
@@ -167,7 +165,10 @@ int main(int argc, char** argv) {
       if (const auto errors = gb::validate(*p); !errors.empty()) throw CLI::ValidationError("--param", errors.front());
     if (runCmd->parsed() && !run.experiment.empty()) refuseOptionsForAnExperiment(*runCmd, run.experiment);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e) == 0 ? 0 : 1;  // --help is 0; any mistake on the command line is an error like any other
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help
+    // Any mistake on the command line is an error like any other; CLI11 quotes what was given, escaped here.
+    std::fprintf(stderr, "%s\nRun with --help for more information.\n", gb::printable(e.what(), 1000).c_str());
+    return 1;
   }
   if (app.get_subcommands().empty()) {
     std::fputs(app.help().c_str(), stdout);
@@ -189,7 +190,8 @@ int main(int argc, char** argv) {
     run.renderIfPossible = runCmd->count("--render") == 0;
     return gb::runSimulation(run);
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "error: out of memory (a smaller film: --particles, or fewer outputs)\n");
+    std::fprintf(stderr, "error: out of memory%s\n",
+                 runCmd->parsed() ? " (a smaller film: --particles, or fewer outputs)" : "");
     return 1;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "error: %s\n", e.what());

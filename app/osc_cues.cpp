@@ -2,6 +2,7 @@
 
 #include <lo/lo.h>
 
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 
@@ -95,6 +96,10 @@ struct OscCueDispatch {
     if (!number) {
       r.ignore(false, std::string(path) + " with arguments '" + printable(types, 20) +
                           "': a cue takes no argument or one number");
+      return 0;
+    }
+    if (!std::isfinite(value)) {  // NaN would pause (NaN != 0) and resume at once on another reading
+      r.ignore(false, std::string(path) + " with " + std::to_string(value) + ": a cue's number is finite");
       return 0;
     }
     ++r.taken_;

@@ -6,6 +6,9 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "cli_checks.h"
+#include "untrusted.h"
+
 namespace gb {
 
 struct OscSender::Address {
@@ -16,21 +19,20 @@ struct OscSender::Address {
 };
 
 OscSender::OscSender(const std::string& target) : address_(std::make_unique<Address>()) {
+  const std::string named = "OSC target '" + printable(target) + "'";
   const auto colon = target.rfind(':');
   if (colon == std::string::npos || colon == 0 || colon + 1 == target.size())
-    throw std::invalid_argument("OSC target '" + target + "' is not HOST:PORT");
+    throw std::invalid_argument(named + " is not HOST:PORT");
   const std::string host = target.substr(0, colon), port = target.substr(colon + 1);
   // Debian's liblo sends over IPv4 only: an IPv6 address would be taken and every message lost with a warning.
   if (host.front() == '[' || host.find(':') != std::string::npos)
-    throw std::invalid_argument("OSC target '" + target +
-                                "' is not HOST:PORT with an IPv4 address or a host name (IPv6 is not supported: "
+    throw std::invalid_argument(named +
+                                " is not HOST:PORT with an IPv4 address or a host name (IPv6 is not supported: "
                                 "liblo sends over IPv4)");
   // A UDP port is 1 to 65535; liblo would take 99999 and send to 99999 mod 65536.
-  if (port.find_first_not_of("0123456789") != std::string::npos || port.size() > 5 || std::stoi(port) < 1 ||
-      std::stoi(port) > 65535)
-    throw std::invalid_argument("OSC target '" + target + "': the port must be a number from 1 to 65535");
+  if (!isPort(port)) throw std::invalid_argument(named + ": the port must be a number from 1 to 65535");
   address_->handle = lo_address_new(host.c_str(), port.c_str());
-  if (!address_->handle) throw std::invalid_argument("OSC target '" + target + "' cannot be used");
+  if (!address_->handle) throw std::invalid_argument(named + " cannot be used");
 }
 
 OscSender::~OscSender() = default;

@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "output_file.h"
+#include "untrusted.h"
 
 namespace gb {
 
@@ -29,16 +30,24 @@ void writePng(const std::filesystem::path& path, int width, int height, const st
 }
 
 RgbImage readPng(const std::filesystem::path& path) {
+  const std::string named = "PNG " + printablePath(path);
+  std::string why;
+  const InputFile file = openInputFile(path, kMaxPngBytes, why);
+  if (!file) throw std::runtime_error(named + " " + why);
   png_image image{};
   image.version = PNG_IMAGE_VERSION;
-  if (!png_image_begin_read_from_file(&image, path.c_str()))
-    throw std::runtime_error("cannot read PNG " + path.string() + ": " + image.message);
+  if (!png_image_begin_read_from_stdio(&image, file.get()))
+    throw std::runtime_error("cannot read " + named + ": " + image.message);
   // The header can claim any size: refuse before allocating for it (a 200000 x 100000 header would be 60 GB).
+  const std::string size = std::to_string(image.width) + "x" + std::to_string(image.height) + " pixels";
   if (image.width > kMaxPngSide || image.height > kMaxPngSide) {
     png_image_free(&image);
-    throw std::runtime_error("PNG " + path.string() + " is " + std::to_string(image.width) + "x" +
-                             std::to_string(image.height) + " pixels; at most " + std::to_string(kMaxPngSide) +
-                             " on a side");
+    throw std::runtime_error(named + " is " + size + "; at most " + std::to_string(kMaxPngSide) + " on a side");
+  }
+  if (static_cast<unsigned long long>(image.width) * image.height > kMaxPngPixels) {
+    png_image_free(&image);
+    throw std::runtime_error(named + " is " + size + "; at most 8192x4096 in all (" + std::to_string(kMaxPngPixels) +
+                             "): scale it down");
   }
   image.format = PNG_FORMAT_RGB;
   RgbImage out;
@@ -47,7 +56,7 @@ RgbImage readPng(const std::filesystem::path& path) {
   out.rgb.resize(PNG_IMAGE_SIZE(image));
   if (!png_image_finish_read(&image, nullptr, out.rgb.data(), 0, nullptr)) {
     png_image_free(&image);
-    throw std::runtime_error("cannot read PNG " + path.string() + ": " + image.message);
+    throw std::runtime_error("cannot read " + named + ": " + image.message);
   }
   return out;
 }

@@ -16,6 +16,7 @@
 #include "trajectory_file.h"
 #include "trajectory_metrics.h"
 #include "trajectory_plot.h"
+#include "untrusted.h"
 
 namespace gb {
 
@@ -60,6 +61,14 @@ double bothHands(const std::function<double(int)>& perHand) {
   return std::sqrt(0.5 * (perHand(0) * perHand(0) + perHand(1) * perHand(1)));
 }
 
+// How many times the stabilizer reduced the jitter: "-" when there was none to reduce (hands held still).
+std::string reduction(double in, double out) {
+  if (!(in > 0.0 && out > 0.0)) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.1fx", in / out);
+  return text;
+}
+
 void printReport(const std::vector<HandSample>& samples, const InputOptions& options,
                  const ScriptedHandSource* script) {
   const double dt = (samples.back().time - samples.front().time) / static_cast<double>(samples.size() - 1);
@@ -81,7 +90,8 @@ void printReport(const std::vector<HandSample>& samples, const InputOptions& opt
     const double out = bothHands([&](int h) { return jitter(s.cameraWand[h]); });
     const double lagInput =
         0.5 * (lag(s.input[0], s.cameraWand[0], dt, 0.5) + lag(s.input[1], s.cameraWand[1], dt, 0.5));
-    std::printf("%-10s %12.2f %12.2f %9.1fx %14.0f", name, 1e3 * in, 1e3 * out, in / out, 1e3 * lagInput);
+    std::printf("%-10s %12.2f %12.2f %10s %14.0f", name, 1e3 * in, 1e3 * out, reduction(in, out).c_str(),
+                1e3 * lagInput);
     if (script) {
       double error[2] = {0, 0};
       const double lagTruth = 0.5 * (lag(s.truth[0], s.cameraWand[0], dt, 0.5, &error[0]) +
@@ -92,22 +102,36 @@ void printReport(const std::vector<HandSample>& samples, const InputOptions& opt
   }
 }
 
+// What a recording writes, checked together before it starts (output_file.h).
+std::vector<Output> outputsOf(const RecordOptions& o) {
+  std::vector<Output> outputs;
+  if (!o.trajectory.empty()) outputs.push_back({"--trajectory", o.trajectory, Output::Kind::File, ".csv"});
+  if (!o.plot.empty()) outputs.push_back({"--plot", o.plot, Output::Kind::File, ".svg"});
+  if (!o.depthPlot.empty()) outputs.push_back({"--depth-plot", o.depthPlot, Output::Kind::File, ".png"});
+  if (!o.fakenect.empty()) outputs.push_back({"--fakenect", o.fakenect, Output::Kind::NewFolder, "", true});
+  return outputs;
+}
+
 }  // namespace
 
 CLI::App* addRecordCommand(CLI::App& app, RecordOptions& o) {
   CLI::App* cmd = app.add_subcommand(
       "record", "read a hand input and keep it: a fakenect recording of the depth, a trajectory CSV, a plot, a report");
   addInputOptions(cmd, o.input);
-  cmd->add_option("--trajectory", o.trajectory, "write the hands as a trajectory CSV (camera space)");
+  cmd->add_option("--trajectory", o.trajectory, "write the hands as a trajectory CSV (camera space), FILE.csv")
+      ->check(NotEmpty());
   cmd->add_option("--fakenect", o.fakenect,
                   "write the depth frames as a fakenect recording into this new folder "
-                  "(input kinect or fakenect:DIR)");
-  cmd->add_option("--plot", o.plot, "write the input hands against the stabilized wands as SVG");
+                  "(input kinect or fakenect:DIR)")
+      ->check(NotEmpty());
+  cmd->add_option("--plot", o.plot, "write the input hands against the stabilized wands as SVG, FILE.svg")
+      ->check(NotEmpty());
   cmd->add_option("--depth-plot", o.depthPlot,
-                  "write one depth frame with the hands found in it as PNG (input kinect or fakenect:DIR): the "
-                  "view to set the camera up by");
+                  "write one depth frame with the hands found in it as PNG, FILE.png (input kinect or fakenect:DIR): "
+                  "the view to set the camera up by")
+      ->check(NotEmpty());
   cmd->add_option("--depth-plot-frame", o.depthPlotFrame, "the frame --depth-plot draws, from 0 (default: the last)")
-      ->check(CLI::Range(0, 100000000));
+      ->transform(WholeNumber(0, 100000000));
   cmd->add_flag("--report", o.report, "print the jitter and lag of both stabilizers on this input");
   cmd->add_option("--duration", o.duration,
                   "seconds to record (default: all of a recorded input, a script's "
@@ -121,7 +145,7 @@ CLI::App* addRecordCommand(CLI::App& app, RecordOptions& o) {
       ->check(FiniteRange(0.0, 1.0));
   cmd->add_option("--outlier-distance", o.noise.outlierDistance, "how far an outlier lands (m)")
       ->check(FiniteRange(0.0, 5.0));
-  cmd->add_option("--seed", o.noise.seed, "random seed of the noise");
+  cmd->add_option("--seed", o.noise.seed, "random seed of the noise")->transform(WholeNumber(0, 4294967295.0));
   return cmd;
 }
 
@@ -132,8 +156,7 @@ int runRecord(const RecordOptions& o) {
                  "--report\n");
     return 1;
   }
-  for (const std::string& file : {o.plot, o.depthPlot})  // refused now, not after the recording
-    if (!file.empty()) (void)outputTarget(file);
+  const std::vector<OutputFolder> holds = checkOutputs(outputsOf(o));  // refused now, not after the recording
   const std::string spec = o.input.spec();
   const bool noisy = o.noise.sigma > 0 || o.noise.outlierRate > 0;
   if (noisy && !o.input.scripted()) {
@@ -206,15 +229,23 @@ int runRecord(const RecordOptions& o) {
     std::fprintf(stderr, "warning: input lost after %zu samples: %s; what was recorded is kept\n", samples.size(),
                  e.what());
   }
+  const int exitStatus = InterruptCatcher::exitStatus(0);  // docs/user-guide.md: 130 after Ctrl-C, 143 after SIGTERM
+  if (InterruptCatcher::requested())
+    std::fprintf(stderr, "%s: the recording stops; what was recorded is written\n",
+                 signalName(InterruptCatcher::signal()));
   interrupts.reset();
   if (samples.empty()) {
     std::fprintf(stderr, "error: no samples from %s\n", source->describe().c_str());
     return 1;
   }
   std::printf("%zu samples, %.2f s\n", samples.size(), samples.back().time - samples.front().time);
-  if (trajectory) std::printf("trajectory written to %s\n", o.trajectory.c_str());
+  if (trajectory) {
+    trajectory->close();
+    std::printf("trajectory written to %s\n", printablePath(o.trajectory).c_str());
+  }
   if (fakenect)
-    std::printf("fakenect recording written to %s (%d depth frames)\n", o.fakenect.c_str(), fakenect->frames());
+    std::printf("fakenect recording written to %s (%d depth frames)\n", printablePath(o.fakenect).c_str(),
+                fakenect->frames());
   if (!o.plot.empty()) {
     const Stabilized s = stabilize(samples, stabilizerFromName(o.input.stabilizer), o.input, script);
     TrajectoryPlot plot;
@@ -225,7 +256,7 @@ int runRecord(const RecordOptions& o) {
     plot.rightWand = s.wand[1];
     plot.camera = s.camera;
     writeTrajectoryPlot(o.plot, plot);
-    std::printf("plot written to %s\n", o.plot.c_str());
+    std::printf("plot written to %s\n", printablePath(o.plot).c_str());
   }
   if (!o.depthPlot.empty()) {
     if (o.depthPlotFrame >= frames) {
@@ -233,7 +264,7 @@ int runRecord(const RecordOptions& o) {
       return 1;
     }
     writeDepthPlot(o.depthPlot, plotted, plottedDetection, plottedHands);
-    std::printf("depth plot written to %s: %s; hands reported: %s%s\n", o.depthPlot.c_str(),
+    std::printf("depth plot written to %s: %s; hands reported: %s%s\n", printablePath(o.depthPlot).c_str(),
                 plottedDetection.why.c_str(), plottedHands.left.measured ? "left " : "",
                 plottedHands.right.measured ? "right" : (plottedHands.left.measured ? "" : "none"));
     if (!plottedDetection.advice.empty()) std::printf("advice: %s\n", plottedDetection.advice.c_str());
@@ -245,7 +276,7 @@ int runRecord(const RecordOptions& o) {
     }
     printReport(samples, o.input, script);
   }
-  return 0;
+  return exitStatus;
 }
 
 }  // namespace gb

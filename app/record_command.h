@@ -25,6 +25,6 @@ struct RecordOptions {
 };
 
 CLI::App* addRecordCommand(CLI::App& app, RecordOptions& options);
-int runRecord(const RecordOptions& options);  // the process exit code
+int runRecord(const RecordOptions& options);  // the process exit code: 0, 1, or 128 + a signal that ended it
 
 }  // namespace gb

@@ -14,27 +14,53 @@
 #include <utility>
 
 #include "child_process.h"
+#include "cli_checks.h"
 #include "output_file.h"
 #include "png_image.h"
+#include "untrusted.h"
 #include "vulkan_stepper.h"
 
 namespace gb {
 
-void addRenderOptions(CLI::App& command, RenderOutputOptions& o) {
-  command.add_flag("--render,!--no-render", o.enabled,
-                   "render the film (interference colours, Vulkan) to PNG frames and video; --no-render: not even a "
-                   "scene's own video (the default scene renders one)");
-  command.add_option("--width", o.image.width, "rendered image width (pixels)")->check(CLI::Range(16, 16384));
-  command.add_option("--height", o.image.height, "rendered image height (pixels)")->check(CLI::Range(16, 16384));
+namespace {
+
+// --render, --render-every and --video on a command that writes no rendered files: refused by name, not shown.
+void refuseRenderedFiles(CLI::App& command) {
+  for (const char* name : {"--render", "--render-every", "--video"})
+    command
+        .add_option_function<std::string>(
+            name,
+            [name](const std::string&) {
+              throw CLI::ValidationError(name, std::string("live draws the show in its window and writes no files: ") +
+                                                   "giantbubble run --render writes rendered frames and a video; "
+                                                   "--stream sends the show's picture out");
+            },
+            "")
+        ->expected(0, 1)
+        ->group("");
+}
+
+}  // namespace
+
+void addRenderOptions(CLI::App& command, RenderOutputOptions& o, RenderedFiles files) {
+  if (files == RenderedFiles::Written) {
+    command.add_flag("--render,!--no-render", o.enabled,
+                     "render the film (interference colours, Vulkan) to PNG frames and video; --no-render: not even "
+                     "a scene's own video (the default scene renders one)");
+    command.add_option("--render-every", o.pngEvery, "write a rendered PNG every N frames, 0 for none")
+        ->transform(WholeNumber(0, 1000000));
+    command.add_option("--video", o.video,
+                       "MP4 of every rendered frame, in the output folder (needs ffmpeg); '' for none");
+  } else {
+    refuseRenderedFiles(command);
+  }
+  command.add_option("--width", o.image.width, "rendered image width (pixels)")->transform(WholeNumber(16, 16384));
+  command.add_option("--height", o.image.height, "rendered image height (pixels)")->transform(WholeNumber(16, 16384));
   command
       .add_option_function<std::string>(
           "--colouring", [&o](const std::string& name) { o.image.colouring = colouringFromName(name); },
           "film colouring: interference (default), thickness, airflow")
       ->check(CLI::IsMember({"interference", "thickness", "airflow"}));
-  command.add_option("--render-every", o.pngEvery, "write a rendered PNG every N frames, 0 for none")
-      ->check(CLI::Range(0, 1000000));
-  command.add_option("--video", o.video,
-                     "MP4 of every rendered frame, in the output folder (needs ffmpeg); '' for none");
   command.add_option("--environment", o.environment, "equirectangular PNG the film reflects (default: an outdoor sky)")
       ->check(CLI::ExistingFile);
   command
@@ -46,6 +72,7 @@ void addRenderOptions(CLI::App& command, RenderOutputOptions& o) {
   command
       .add_option("--samples", o.samples,
                   "multisample anti-aliasing, samples per pixel (1: none); default 4, 1 on a CPU driver (lavapipe)")
+      ->transform(WholeNumber(1, 8))
       ->check(CLI::IsMember({1, 2, 4, 8}));
 }
 
@@ -58,7 +85,7 @@ EnvironmentImage loadEnvironment(const std::filesystem::path& path) {
   if (path.empty()) return skyEnvironment();
   const RgbImage image = readPng(path);
   if (image.width != 2 * image.height)
-    throw std::runtime_error("environment " + path.string() + " is " + std::to_string(image.width) + "x" +
+    throw std::runtime_error("environment " + printablePath(path) + " is " + std::to_string(image.width) + "x" +
                              std::to_string(image.height) + "; an equirectangular image is twice as wide as high");
   EnvironmentImage env;
   env.width = image.width;
@@ -90,23 +117,27 @@ std::vector<std::string> ffmpegArguments(const std::filesystem::path& path, int 
           "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", "-c:v", "libx264", "-pix_fmt", "yuv420p", "-crf", "18",
           // veryfast: the encoder shares the cores with the simulation and the renderer; at the default preset
           // it took 8% of the README's main job.
-          "-preset", "veryfast", "file:" + std::filesystem::absolute(path).string()};
+          "-preset", "veryfast",
+          // MP4 whatever the name ends in: the file is NAME.mp4.partial until it is complete.
+          "-f", "mp4", "file:" + std::filesystem::absolute(path).string()};
 }
 
 }  // namespace
 
 VideoWriter::VideoWriter(const std::filesystem::path& path, int width, int height, double fps)
-    : path_(path), frameBytes_(3ull * static_cast<size_t>(width) * static_cast<size_t>(height)) {
+    : path_(path),
+      file_(std::in_place, path),
+      frameBytes_(3ull * static_cast<size_t>(width) * static_cast<size_t>(height)) {
   std::signal(SIGPIPE, SIG_IGN);  // if ffmpeg dies, write() reports it instead of the run being killed
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0)
     throw std::runtime_error("cannot make a pipe to ffmpeg: " + std::string(std::strerror(errno)));
   try {
-    pid_ = spawnWithStdin(ffmpegArguments(path, width, height, fps), fds[0]);
+    pid_ = spawnWithStdin(ffmpegArguments(file_->partialPath(), width, height, fps), fds[0]);
   } catch (const std::runtime_error& e) {
     ::close(fds[0]);
     ::close(fds[1]);
-    throw std::runtime_error(std::string(e.what()) + " for " + path.string());
+    throw std::runtime_error(std::string(e.what()) + " for " + printablePath(path));
   }
   ::close(fds[0]);
   pipe_ = fds[1];
@@ -122,7 +153,8 @@ VideoWriter::~VideoWriter() {
 void VideoWriter::write(const std::vector<uint8_t>& rgb) {
   if (pipe_ < 0 || rgb.size() != frameBytes_) throw std::logic_error("VideoWriter::write: wrong frame size or closed");
   if (!writeAll(pipe_, std::string_view(reinterpret_cast<const char*>(rgb.data()), rgb.size())))
-    throw std::runtime_error("ffmpeg stopped taking frames for " + path_.string() + " (" + std::strerror(errno) + ")");
+    throw std::runtime_error("ffmpeg stopped taking frames for " + printablePath(path_) + " (" + std::strerror(errno) +
+                             ")");
 }
 
 void VideoWriter::close() {
@@ -131,8 +163,12 @@ void VideoWriter::close() {
   int status = 0;
   while (waitpid(std::exchange(pid_, -1), &status, 0) < 0 && errno == EINTR) {
   }
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return;
-  throw std::runtime_error("ffmpeg failed writing " + path_.string() +
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) {
+    file_->commit();
+    return;
+  }
+  file_.reset();  // the .partial goes; a video that was there stays
+  throw std::runtime_error("ffmpeg failed writing " + printablePath(path_) +
                            (WIFEXITED(status) ? " (exit status " + std::to_string(WEXITSTATUS(status)) + ")"
                                               : " (killed by signal " + std::to_string(WTERMSIG(status)) + ")"));
 }
@@ -251,7 +287,7 @@ void RunRenderer::finish() {
   try {
     video_->close();
     video_.reset();
-    std::printf("render: %ld frames, video %s\n", written_, (outDir_ / options_.video).string().c_str());
+    std::printf("render: %ld frames, video %s\n", written_, printablePath(outDir_ / options_.video).c_str());
   } catch (const std::exception& e) {
     video_.reset();
     videoError_ = e.what();

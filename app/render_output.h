@@ -8,8 +8,10 @@
 #include <deque>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 
+#include "output_file.h"
 #include "renderer.h"
 #include "simulation.h"
 
@@ -30,9 +32,13 @@ struct RenderOutputOptions {
   bool followCamera = true;           // --camera follow (default): keep the film framed; fixed: `camera` as is
 };
 
-// Adds --render, --width, --height, --colouring, --render-every, --video, --environment, --camera, --samples to a
-// command.
-void addRenderOptions(CLI::App& command, RenderOutputOptions& options);
+// Whether a command writes rendered files: `run` does (PNG frames and the video); `live` draws into its window only,
+// and refuses --render, --render-every and --video by name rather than take them and write nothing.
+enum class RenderedFiles { Written, None };
+
+// Adds --width, --height, --colouring, --environment, --camera, --samples to a command, and --render, --render-every
+// and --video where it writes rendered files.
+void addRenderOptions(CLI::App& command, RenderOutputOptions& options, RenderedFiles files = RenderedFiles::Written);
 
 // The MSAA samples per pixel to draw with on `device` (its VulkanContext type, "CPU" for lavapipe): --samples when
 // given; else the image's own (4), except on a CPU driver, which draws without multisampling. Lavapipe offers 1 or 4
@@ -51,7 +57,8 @@ bool ffmpegAvailable();
 // Raw RGB frames piped into ffmpeg, which encodes H.264 MP4: no temporary file per frame. ffmpeg is started
 // without a shell (posix_spawnp with an argument vector), so any output path works, quotes and spaces
 // included, and none can run a command; it runs in its own process group, so a Ctrl-C at the terminal reaches
-// the run (which then closes the video properly) and not ffmpeg.
+// the run (which then closes the video properly) and not ffmpeg. ffmpeg writes PATH.partial (output_file.h),
+// renamed over PATH when it has finished the file: a video that failed leaves the one that was there.
 class VideoWriter {
  public:
   VideoWriter(const std::filesystem::path& path, int width, int height, double framesPerSecond);
@@ -64,6 +71,7 @@ class VideoWriter {
 
  private:
   std::filesystem::path path_;
+  std::optional<PartialFile> file_;
   size_t frameBytes_;
   int pipe_ = -1;  // write end of ffmpeg's stdin
   int pid_ = -1;

@@ -21,6 +21,7 @@
 #include "simulation.h"
 #include "thickness_image.h"
 #include "thread_policy.h"
+#include "untrusted.h"
 #include "wand_log.h"
 
 namespace gb {
@@ -81,7 +82,7 @@ void printSummary(const FrameStats& first, const FrameStats& last, long frames, 
   std::printf("%-28s %.3f -> %.3f um\n", "mean thickness", first.meanThickness * 1e6, last.meanThickness * 1e6);
   std::printf("%-28s %.3e J\n", "kinetic energy at the end", last.kineticEnergy);
   std::printf("%-28s %zu in flight\n", "aerosol droplets", last.droplets);
-  std::printf("%-28s %s\n", "outputs", outDir.string().c_str());
+  std::printf("%-28s %s\n", "outputs", printablePath(outDir).c_str());
 }
 
 // A physics experiment's measurement next to the analytic value, printed and written to experiment.json (and its
@@ -99,17 +100,20 @@ void reportMeasurement(const RunOptions& o, const Measurement& m) {
                             {"law", m.law},
                             {"relative_error", m.relativeError()}};
   writeFileAtomically(o.outDir / "experiment.json", j.dump(2) + '\n');
-  std::printf("%-28s %s\n", "written to", (o.outDir / "experiment.json").string().c_str());
+  std::printf("%-28s %s\n", "written to", printablePath(o.outDir / "experiment.json").c_str());
   if (!m.measuredPoints.empty()) {
     writeExperimentPlot(o.outDir / "experiment.svg", m);
-    std::printf("%-28s %s\n", "plot", (o.outDir / "experiment.svg").string().c_str());
+    std::printf("%-28s %s\n", "plot", printablePath(o.outDir / "experiment.svg").c_str());
   }
 }
 
-// A physics experiment of the physical tension model. Ctrl-C or SIGTERM stops it between frames, as it stops a run:
-// experiment.json then says "interrupted" (an experiment cut short has no measurement).
+// A physics experiment of the physical tension model. Ctrl-C, SIGTERM or SIGHUP stops it between frames, as it stops
+// a run: experiment.json then says "interrupted" (an experiment cut short has no measurement). It says "running"
+// while the experiment runs, so that one killed outright leaves no earlier "finished" behind.
 int runPhysicsExperiment(const RunOptions& o) {
   const InterruptCatcher interrupts;
+  writeFileAtomically(o.outDir / "experiment.json",
+                      nlohmann::json{{"experiment", o.experiment}, {"status", "running"}}.dump(2) + '\n');
   const auto printLine = [](const std::string& line) {
     std::printf("%s\n", line.c_str());
     std::fflush(stdout);
@@ -122,7 +126,7 @@ int runPhysicsExperiment(const RunOptions& o) {
     const nlohmann::json j = {{"experiment", o.experiment}, {"status", "interrupted"}};
     writeFileAtomically(o.outDir / "experiment.json", j.dump(2) + '\n');
     std::fprintf(stderr, "%s: the experiment %s %s; %s says \"interrupted\"\n", signalName(signal),
-                 o.experiment.c_str(), e.what(), (o.outDir / "experiment.json").string().c_str());
+                 o.experiment.c_str(), e.what(), printablePath(o.outDir / "experiment.json").c_str());
     return 128 + signal;
   }
 }
@@ -178,13 +182,6 @@ void passOnMessages(WandInput& input, bool midBar) {
     std::fprintf(stderr, "%s%s\n", midBar && isatty(STDERR_FILENO) ? "\n" : "", m.c_str());
 }
 
-// The files every run writes into its folder, checked before the first of them is emptied: a folder or a device
-// where one should go stops the run while the previous run's files are still as they were.
-void checkOutputTargets(const RunOptions& o) {
-  for (const char* name : {"stats.json", "stats.csv", "wands.csv", "wands.svg"}) (void)outputTarget(o.outDir / name);
-  if (o.render.enabled && !o.render.video.empty()) (void)outputTarget(o.outDir / o.render.video);
-}
-
 // What a run opens and checks before it writes anything: the hands, the film they make, OSC, the names of its outputs
 // and the renderer with its environment. A run refused while opening them leaves the previous run's files in its
 // folder as they were.
@@ -212,10 +209,11 @@ OpenedRun openRun(const RunOptions& o) {
   std::printf("%s\n", backendReport.c_str());
   run.sim = std::make_unique<Simulation>(o.params, o.tool, run.startFrame.wands, std::move(stepper));
   run.show = std::make_unique<ShowControl>(o.osc);
-  checkOutputTargets(o);  // before the renderer starts ffmpeg on the video
   if (o.render.enabled) {
     try {
       run.renderer = std::make_unique<RunRenderer>(o.render, o.outDir, *run.sim, o.device);
+    } catch (const OutputError&) {  // the video's name: another process writing it, say; not the device
+      throw;
     } catch (const std::exception& e) {
       if (!o.renderIfPossible) throw;
       std::fprintf(stderr, "note: no rendered frames (%s); the thickness images are still written\n", e.what());
@@ -285,7 +283,6 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
     }
     const WandFrame wands = input.at(t);  // a live camera may wait here for its next frame
     passOnMessages(input, o.progress);
-    wandLog.add(t, wands);
     const auto frameStart = std::chrono::steady_clock::now();
     std::string events;
     if (frame == poke && pokeTop(sim)) events += "poked ";  // nothing to poke once the film is gone
@@ -295,12 +292,13 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
     } catch (const SimulationUnstable& e) {
       bar.finish();
       std::fprintf(stderr, "error: %s\nstopped at frame %ld of %ld; outputs up to frame %ld are in %s\n", e.what(),
-                   frame, frames, frame - 1, o.outDir.string().c_str());
+                   frame, frames, frame - 1, printablePath(o.outDir).c_str());
       if (o.plyEvery > 0) writePly(o.outDir / ("unstable_" + meshName(frame)), sim.film());
       status = "unstable at frame " + std::to_string(frame) + ": " + e.what();
       exitCode = 3;
       break;
     }
+    wandLog.add(t, wands);  // a row beside each row of stats.csv: none for a frame that blew up
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
     pacer.record(1, ms, 0.0);
     PhaseClock phase;
@@ -348,7 +346,7 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
   if (status == "interrupted") {
     std::fprintf(stderr,
                  "interrupted: %ld of %ld frames simulated; outputs in %s (stats.json status \"interrupted\")\n", done,
-                 frames, o.outDir.string().c_str());
+                 frames, printablePath(o.outDir).c_str());
     return exitCode;
   }
   if (exitCode == 3) return exitCode;
@@ -359,10 +357,24 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
   return exitCode;
 }
 
+// What a run writes, checked together before anything is (output_file.h): its folder, the files it writes into it
+// every time and the video.
+std::vector<Output> outputsOf(const RunOptions& o) {
+  std::vector<Output> outputs = {{"--out", o.outDir, Output::Kind::Folder, "", true}};
+  const bool experiment = !o.experiment.empty();
+  for (const char* name : experiment ? std::vector<const char*>{"experiment.json", "experiment.svg"}
+                                     : std::vector<const char*>{"stats.json", "stats.csv", "wands.csv", "wands.svg"})
+    outputs.push_back({"", o.outDir / name, Output::Kind::File, "", true});
+  if (!experiment && o.render.enabled && !o.render.video.empty())
+    outputs.push_back({"--video", o.outDir / o.render.video, Output::Kind::File, ".mp4", true});
+  return outputs;
+}
+
 }  // namespace
 
 int runSimulation(const RunOptions& o) {
-  const OutputFolder folder(o.outDir);  // a second run into the same folder is refused while this one lives
+  // A second run into the same folder is refused while this one lives.
+  const std::vector<OutputFolder> holds = checkOutputs(outputsOf(o));
   if (!o.experiment.empty()) return runPhysicsExperiment(o);
   OpenedRun run = openRun(o);
   // From here the folder is this run's: stats.json says so first, so that a run that dies before it ends leaves no

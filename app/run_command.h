@@ -41,11 +41,13 @@ struct RunOptions {
 
 // The longest run a duration taken from a recorded input may ask for, as --duration allows (s).
 inline constexpr double kMaxRunSeconds = 3600.0;
+// The earliest --burst-at (and a scene's burst_at): any negative time is never.
+inline constexpr double kNeverBurst = -1e9;
 
 // Runs the simulation and writes its outputs; prints progress and a summary. Returns the process exit code:
 // 0 on success, 3 when the simulation became unstable (outputs up to the last good frame are kept), 5 when it
 // finished but the video could not be written (every other output is), 128 + the signal (130 for Ctrl-C, 143
-// for SIGTERM) when a signal stopped it (the frame in flight finished, every output written, status
+// for SIGTERM, 129 for SIGHUP) when a signal stopped it (the frame in flight finished, every output written, status
 // "interrupted" in stats.json). An output that cannot be written throws OutputError naming it.
 int runSimulation(const RunOptions& options);
 

@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <fstream>
 #include <functional>
 #include <map>
 #include <optional>
@@ -22,8 +21,16 @@ namespace {
 // Where a node is, for messages: "file:line:column".
 std::string where(const std::string& source, const toml::source_region& region) {
   std::ostringstream out;
-  out << source << ':' << region.begin.line << ':' << region.begin.column;
+  out << printable(source, 300) << ':' << region.begin.line << ':' << region.begin.column;
   return out.str();
+}
+
+// A number from a scene as a message shows it: all the digits that tell it apart ("3600.0000001", not "3600"), at
+// most 15 of them ("1e+300", not 301 digits).
+std::string numberText(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.15g", value);
+  return text;
 }
 
 [[noreturn]] void fail(const std::string& source, const toml::source_region& region, const std::string& message) {
@@ -53,16 +60,16 @@ class TableReader {
   [[nodiscard]] double number(const toml::node& node, const std::string& key, double lo, double hi) const {
     if (!node.is_number()) fail(source_, node.source(), key + in() + " must be a number");
     const double v = node.value<double>().value_or(0.0);
-    if (!(v >= lo && v <= hi)) {
-      std::ostringstream msg;
-      msg << key << in() << " = " << v << " is out of range [" << lo << ", " << hi << "]";
-      fail(source_, node.source(), msg.str());
-    }
+    if (!(v >= lo && v <= hi))
+      fail(source_, node.source(),
+           key + in() + " = " + numberText(v) + " is out of range [" + numberText(lo) + ", " + numberText(hi) + "]");
     return v;
   }
+  // A whole number in any form TOML writes one: 6, 6.0, 1e7 (as the command line takes them).
   [[nodiscard]] int integer(const toml::node& node, const std::string& key, int lo, int hi) const {
-    if (!node.is_integer()) fail(source_, node.source(), key + in() + " must be a whole number");
-    return static_cast<int>(number(node, key, lo, hi));
+    const double v = number(node, key, lo, hi);
+    if (v != std::floor(v)) fail(source_, node.source(), key + in() + " = " + numberText(v) + " is not a whole number");
+    return static_cast<int>(v);
   }
   [[nodiscard]] std::string text(const toml::node& node, const std::string& key,
                                  const std::vector<std::string>& choices = {}) const {
@@ -102,7 +109,7 @@ class TableReader {
       const double v = (*a)[k].value<double>().value_or(0.0);
       if (!(std::abs(v) <= kMaxCoordinate))
         fail(source_, (*a)[k].source(),
-             key + in() + ": " + std::to_string(v) + " is not a coordinate within " +
+             key + in() + ": " + numberText(v) + " is not a coordinate within " +
                  std::to_string(static_cast<int>(kMaxCoordinate)) + " m of the origin");
       p[k] = static_cast<float>(v);
     }
@@ -135,21 +142,25 @@ const toml::table& subTable(const std::string& source, const toml::node& node, c
   return *table;
 }
 
-// An input naming a file or folder must name one that exists; relative paths are the scene file's.
+// An input naming a file or folder must name one that exists; relative paths are the scene file's, inside its folder.
 std::string resolveInput(const std::string& source, const toml::node& node, const std::string& spec,
                          const std::filesystem::path& baseDir) {
   for (const std::string prefix : {"trajectory:", "fakenect:"}) {
     if (spec.rfind(prefix, 0) != 0) continue;
     std::filesystem::path path = spec.substr(prefix.size());
+    // A scene's relative paths stay inside its folder: a scene from elsewhere cannot have any file read by naming
+    // it through "../..". An absolute path says plainly what it reads.
+    if (path.is_relative() && !path.empty() && *path.lexically_normal().begin() == "..")
+      fail(source, node.source(),
+           "input path '" + printablePath(path) +
+               "' leaves the scene's folder (a relative path is read inside it; give an absolute path for elsewhere)");
     if (path.is_relative()) path = baseDir / path;
     std::error_code ec;
     const bool wantsFolder = prefix == std::string("fakenect:");
     const std::string why = whyNotARegularFile(path);
     if (wantsFolder && !std::filesystem::is_directory(path, ec))
-      fail(source, node.source(),
-           "input folder '" + printable(path.string(), 300) + "' " + (why.empty() ? "is a file" : why));
-    if (!wantsFolder && !why.empty())
-      fail(source, node.source(), "input file '" + printable(path.string(), 300) + "' " + why);
+      fail(source, node.source(), "input folder '" + printablePath(path) + "' " + (why.empty() ? "is a file" : why));
+    if (!wantsFolder && !why.empty()) fail(source, node.source(), "input file '" + printablePath(path) + "' " + why);
     return prefix + path.string();
   }
   if (spec != "kinect" && spec != "mouse" && spec.rfind("script:", 0) != 0)
@@ -172,8 +183,8 @@ void readParams(const std::string& source, const toml::table& table, Params& par
     const ParamField* field = findParamField(name);
     if (!field)
       fail(source, key.source(), "unknown parameter '" + printable(name) + "' in [params] (docs/model.md lists them)");
+    // A whole number may be written 6.0 or 1e7 (setParameter refuses one that is not whole, naming it).
     if (!node.is_number()) fail(source, node.source(), name + " in [params] must be a number");
-    if (field->integer && !node.is_integer()) fail(source, node.source(), name + " in [params] must be a whole number");
     try {
       setParameter(params, name, node.value<double>().value_or(0.0));
     } catch (const std::invalid_argument& e) {  // an integer beyond int, say: named with its line
@@ -187,6 +198,19 @@ void readParams(const std::string& source, const toml::table& table, Params& par
     const auto it = lines.find(name);
     if (it != lines.end()) fail(source, it->second, error);
     throw SceneError(source + ": " + error);
+  }
+}
+
+// A physics experiment builds its own film and runs its own length: a scene's key it would ignore is refused by name,
+// as its command-line twin is (main.cpp).
+void refuseKeysForAnExperiment(const std::string& source, const toml::table& root, const std::string& experiment) {
+  for (auto&& [key, node] : root) {
+    const std::string_view name = key.str();
+    if (name != "name" && name != "description" && name != "experiment" && name != "params")
+      fail(source, key.source(),
+           "'" + printable(name) + "' does not apply to the physics experiment '" + experiment +
+               "', which builds its own film and runs its own length (a scene of one takes name, description, "
+               "experiment and [params]; docs/validation.md)");
   }
 }
 
@@ -204,10 +228,10 @@ Scene parseScene(std::string_view text, const std::string& source, const std::fi
   TableReader top(source, "");
   top.on("name", [&](const toml::node& n) { scene.name = top.line(n, "name", 64); });
   top.on("description", [&](const toml::node& n) { scene.description = top.line(n, "description", 300); });
-  top.on("duration", [&](const toml::node& n) { run.duration = top.number(n, "duration", 0.001, 3600.0); });
+  top.on("duration", [&](const toml::node& n) { run.duration = top.number(n, "duration", 0.001, kMaxRunSeconds); });
   bool burstAtSet = false;
   top.on("burst_at", [&](const toml::node& n) {
-    run.burstAt = top.number(n, "burst_at", -1.0, 3600.0);
+    run.burstAt = top.number(n, "burst_at", kNeverBurst, kMaxRunSeconds);  // as --burst-at: negative is never
     burstAtSet = true;
   });
   top.on("experiment", [&](const toml::node& n) { run.experiment = top.text(n, "experiment", experimentNames()); });
@@ -274,6 +298,7 @@ Scene parseScene(std::string_view text, const std::string& source, const std::fi
   top.on("render", [&](const toml::node& n) { view.read(subTable(source, n, "render")); });
 
   top.read(root);
+  if (!run.experiment.empty()) refuseKeysForAnExperiment(source, root, run.experiment);
   // A scene written for a recorded or live input pokes it when it says so; a scene's poke for its script does
   // not follow the performance to another input (--input on the command line).
   run.burstOnAnyInput = burstAtSet && !run.input.scripted();
@@ -283,20 +308,15 @@ Scene parseScene(std::string_view text, const std::string& source, const std::fi
 }
 
 Scene loadSceneFile(const std::filesystem::path& path) {
-  // Checked before opening: a folder opens as an empty file, and a FIFO or a device would block or never end.
+  // Opened as a regular file only: a folder opens as an empty file, and a FIFO or a device would block or never end.
+  const std::string named = "scene file '" + printablePath(path) + "'";
   std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw SceneError("scene file '" + path.string() + "' is a folder; give a .toml file in it");
-  if (const std::string why = whyNotARegularFile(path); !why.empty())
-    throw SceneError("scene file '" + path.string() + "' " + why + " (a scene is read from a regular file)");
-  if (std::filesystem::file_size(path, ec) > kMaxSceneBytes)
-    throw SceneError("scene file '" + path.string() + "' is larger than " + std::to_string(kMaxSceneBytes / 1024) +
-                     " KiB; a scene is a page of settings");
-  std::ifstream in(path);
-  if (!in) throw SceneError("cannot read scene file '" + path.string() + "'");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parseScene(text.str(), path.string(), path.parent_path());
+  if (std::filesystem::is_directory(path, ec)) throw SceneError(named + " is a folder; give a .toml file in it");
+  std::string why, text;
+  const InputFile file = openInputFile(path, kMaxSceneBytes, why);
+  if (!file) throw SceneError(named + " " + why + " (a scene is read from a regular file)");
+  if (!readWhole(file.get(), text, why)) throw SceneError(named + " " + why);
+  return parseScene(text, path.string(), path.parent_path());
 }
 
 std::vector<std::string> builtinSceneNames() {
@@ -310,7 +330,8 @@ Scene builtinScene(const std::string& name) {
     if (name == s.name) return parseScene(s.text, "builtin:" + name, std::filesystem::current_path());
   std::string list;
   for (const std::string& n : builtinSceneNames()) list += (list.empty() ? "" : ", ") + n;
-  throw SceneError("unknown scene '" + name + "' (built-in scenes: " + list + "; or give a path to a .toml file)");
+  throw SceneError("unknown scene '" + printable(name) + "' (built-in scenes: " + list +
+                   "; or give a path to a .toml file)");
 }
 
 Scene resolveScene(const std::string& nameOrPath) {

@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "child_process.h"
+#include "cli_checks.h"
 #include "output_file.h"
 #include "render_output.h"
 #include "untrusted.h"
@@ -47,6 +48,14 @@ std::vector<std::string> streamArguments(const std::string& url, int width, int 
                                 "': not an address to stream to: give udp://HOST:PORT, srt://HOST:PORT or "
                                 "tcp://HOST:PORT (MPEG-TS), rtmp://HOST/APP/KEY (FLV) or a v4l2 loopback device "
                                 "/dev/videoN");
+  if (format == "mpegts") {  // HOST:PORT: a port that is no port would be taken and every packet lost
+    const size_t start = url.find("://") + 3;
+    const std::string address = url.substr(start, url.find_first_of("/?", start) - start);
+    const size_t colon = address.rfind(':');
+    if (colon == std::string::npos || !isPort(std::string_view(address).substr(colon + 1)))
+      throw std::invalid_argument("--stream '" + printable(url) + "': the port must be a number from 1 to 65535 (" +
+                                  url.substr(0, start) + "HOST:PORT)");
+  }
   std::vector<std::string> args = {
       "ffmpeg", "-loglevel", "error", "-nostdin",
       // Raw frames on stdin, each stamped with the wall clock as it arrives: the stream keeps the show's pace.

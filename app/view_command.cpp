@@ -33,19 +33,21 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
                                      "performer view, Home camera, Esc quit)");
   cmd->alias("view");
   // --input also takes "mouse" here: the left and right buttons drag the hands, the wheel pushes them.
-  cmd->add_option("--scene", o.run.scene, "a built-in scene or a scene file (.toml); the other options change it");
+  cmd->add_option("--scene", o.run.scene, "a built-in scene or a scene file (.toml); the other options change it")
+      ->check(NotEmpty());
   cmd->add_option("--tool", o.tool, "bubble tool")->check(CLI::IsMember({"two-wands", "ring"}));
   addInputOptions(cmd, o.run.input);  // --input kinect|fakenect:DIR|trajectory:FILE|script:NAME, --gesture, ...
   cmd->add_option("--param", o.assignments, "set a model parameter, NAME=VALUE (repeatable)");
   cmd->add_option("--osc", o.run.osc,
-                  "send events, the bubble's size and position and the hands as OSC to HOST:PORT (UDP)");
+                  "send events, the bubble's size and position and the hands as OSC to HOST:PORT (UDP)")
+      ->check(NotEmpty());
   cmd->add_option("--osc-in", o.oscIn,
                   "take cues as OSC on this UDP port: /giantbubble/dip, burst, reset, pause, colouring, camera, "
                   "fullscreen, performer_view, quit")
-      ->check(CLI::Range(1, 65535));
+      ->transform(WholeNumber(1, 65535));
   cmd->add_flag("--fullscreen", o.fullscreen, "full screen (borderless, at the monitor's resolution); F toggles");
   cmd->add_option("--monitor", o.monitor, "the monitor for full screen, from 0 (the primary)")
-      ->check(CLI::Range(0, 63));
+      ->transform(WholeNumber(0, 63));
   cmd->add_option("--stream", o.stream,
                   "send the picture through ffmpeg to udp://HOST:PORT, srt://HOST:PORT, tcp://HOST:PORT (MPEG-TS), "
                   "rtmp://HOST/APP/KEY or a v4l2 device /dev/videoN")
@@ -61,7 +63,7 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
   cmd->add_option("--auto-dip", o.autoDip, "seconds without a film before the wands dip again (negative: never)")
       ->check(FiniteRange(-1e9, 86400.0));
   cmd->add_option("--particles", o.run.params.particlesAtFullSolution, "particles of a film at full solution")
-      ->check(CLI::Range(16, kMaxParticles));
+      ->transform(WholeNumber(16, kMaxParticles));
   cmd->add_option("--solution", o.run.params.solution, "remaining soap solution (0, 1]")->check(FiniteRange(0.01, 1.0));
   cmd->add_option("--backend", o.backend, "cpu, vulkan (on the window's device), or auto (Vulkan on a GPU)")
       ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
@@ -71,7 +73,7 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
                   "auto (the device unless it is a CPU driver)")
       ->check(CLI::IsMember({"auto", "device", "cpu"}));
   cmd->add_option("--frames", o.frames, "quit after this many frames (0: when the window closes)")
-      ->check(CLI::Range(0L, 100000000L));
+      ->transform(WholeNumber(0, 100000000));
   cmd->add_option("--keys", o.keys,
                   "scripted key presses FRAME:KEY, e.g. 50:b 80:c (keys r d b p c f v, and h for Home; for tests "
                   "and demos)")
@@ -83,12 +85,12 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
                 "advance one 0.02 s frame per presented frame instead of keeping the wall clock (slow motion on a slow "
                 "machine)");
   cmd->add_option("--min-sweeps", o.minSweeps, "fewest solver sweeps per frame when the machine cannot keep up")
-      ->check(CLI::Range(1, 1000));
+      ->transform(WholeNumber(1, 1000));
   cmd->add_option(
          "--longest-step", o.longestStep,
          "frames of time one implicit step may cover when the machine cannot keep up (1: every step one frame)")
-      ->check(CLI::Range(1, 5));
-  addRenderOptions(*cmd, o.run.render);
+      ->transform(WholeNumber(1, 5));
+  addRenderOptions(*cmd, o.run.render, RenderedFiles::None);
   return cmd;
 }
 
@@ -417,7 +419,7 @@ int runView(ViewOptions o) try {
   std::unique_ptr<WandInput> input = openInput();
   if (waiting.quit()) {
     std::printf("live: ended while waiting for a performer (the window was redrawn %ld times)\n", waiting.redrawn());
-    return 0;
+    return InterruptCatcher::exitStatus(0);
   }
   std::printf("live: input %s\n", input->describe().c_str());
   std::unique_ptr<Stepper> stepper = viewStepper(o.backend, window.context(), o.betweenSteps);
@@ -728,7 +730,7 @@ int runView(ViewOptions o) try {
         "live: the implicit step's energy budget took energy back on %ld steps (smallest factor on the "
         "wobble %.2f, most drift given back %.3f m/s; docs/model.md)\n",
         budget.frames, static_cast<double>(budget.smallestScale), static_cast<double>(budget.largestShift));
-  return errors == 0 ? 0 : 4;
+  return InterruptCatcher::exitStatus(errors == 0 ? 0 : 4);  // 130 or 143 after Ctrl-C or SIGTERM
 } catch (const std::exception& e) {
   std::fprintf(stderr, "error: %s\n", e.what());
   return 1;

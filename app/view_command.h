@@ -60,7 +60,8 @@ std::optional<KeyPress> parseKeyPress(const std::string& text, std::string& why)
 CLI::App* addViewCommand(CLI::App& app, ViewOptions& options);
 
 // Runs the window until it is closed (or options.frames are shown). Returns the exit code: 0, 1 on an error (the
-// message printed), 4 when the Vulkan validation layer reported errors.
+// message printed), 4 when the Vulkan validation layer reported errors, 128 + the signal when Ctrl-C, SIGTERM or
+// SIGHUP ended the show.
 int runView(ViewOptions options);
 
 }  // namespace gb

@@ -11,6 +11,7 @@
 
 #include "freenect_stream.h"
 #include "trajectory_file.h"
+#include "untrusted.h"
 
 namespace gb {
 
@@ -27,7 +28,7 @@ kinect::DepthFrame readDepthFile(const fs::path& file) {
   std::getline(in, header);  // checked by readFakenectIndex
   std::vector<unsigned char> bytes(static_cast<size_t>(kinect::kPixels) * 2);
   in.read(reinterpret_cast<char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (!in) throw HandSourceError("depth file " + file.string() + " could not be read whole");
+  if (!in) throw HandSourceError("depth file " + printablePath(file) + " could not be read whole");
   kinect::DepthFrame frame;
   for (size_t i = 0; i < frame.raw.size(); ++i)  // little-endian, as libfreenect hands them out
     frame.raw[i] = static_cast<uint16_t>(bytes[2 * i] | (bytes[2 * i + 1] << 8));
@@ -87,9 +88,14 @@ class TemporaryFolder {
   fs::path path_;
 };
 
-// Unpacks the regular files and folders of a .tar.gz under `into`; returns the folder holding INDEX.txt.
+// The longest name of an archive's entry unpacked: a recording is a folder of files, and a deeper one would fail
+// as the file system's own error.
+constexpr size_t kMaxEntryNameBytes = 1024;
+
+// Unpacks the regular files and folders of a .tar.gz under `into`; returns the folder holding INDEX.txt. Any other
+// entry (a link, a device) is refused by name: the file a recording reads would be missing without a word.
 fs::path unpackArchive(const fs::path& archivePath, const fs::path& into) {
-  const std::string where = "recording archive " + archivePath.string();
+  const std::string where = "recording archive " + printablePath(archivePath);
   std::unique_ptr<archive, decltype(&archive_read_free)> reader(archive_read_new(), archive_read_free);
   archive_read_support_filter_gzip(reader.get());
   archive_read_support_format_tar(reader.get());
@@ -100,20 +106,30 @@ fs::path unpackArchive(const fs::path& archivePath, const fs::path& into) {
   archive_entry* entry = nullptr;
   int status = ARCHIVE_OK;
   while ((status = archive_read_next_header(reader.get(), &entry)) == ARCHIVE_OK) {
-    const fs::path relative = fs::path(archive_entry_pathname(entry)).lexically_normal();
+    const std::string name = archive_entry_pathname(entry) ? archive_entry_pathname(entry) : "";
+    const std::string entryName = "the entry '" + printable(name) + "'";
+    if (name.size() > kMaxEntryNameBytes)
+      throw HandSourceError(where + ": " + entryName + " has a name of " + std::to_string(name.size()) +
+                            " bytes, more than " + std::to_string(kMaxEntryNameBytes) + " (not a recording)");
+    const fs::path relative = fs::path(name).lexically_normal();
     if (relative.is_absolute() || relative.empty() || *relative.begin() == "..")
-      throw HandSourceError(where + ": the entry '" + relative.string() + "' points outside the archive");
+      throw HandSourceError(where + ": " + entryName + " points outside the archive");
     const fs::path target = into / relative;
+    std::error_code ec;
     if (archive_entry_filetype(entry) == AE_IFDIR) {
-      fs::create_directories(target);
+      fs::create_directories(target, ec);
+      if (ec) throw HandSourceError(where + ": cannot unpack " + entryName + ": " + ec.message());
       continue;
     }
-    if (archive_entry_filetype(entry) != AE_IFREG) continue;  // links and devices are not part of a recording
+    if (archive_entry_filetype(entry) != AE_IFREG)
+      throw HandSourceError(where + ": " + entryName + " is not a regular file (a link or a device; a recording " +
+                            "holds files and folders only)");
     unpacked += archive_entry_size(entry);
     if (unpacked > kMaxUnpackedBytes)
       throw HandSourceError(where + ": more than " + std::to_string(kMaxUnpackedBytes >> 30) +
                             " GiB unpacked (not a recording)");
-    fs::create_directories(target.parent_path());
+    fs::create_directories(target.parent_path(), ec);
+    if (ec) throw HandSourceError(where + ": cannot unpack " + entryName + ": " + ec.message());
     std::ofstream out(target, std::ios::binary);
     const void* block = nullptr;
     size_t size = 0;
@@ -122,7 +138,7 @@ fs::path unpackArchive(const fs::path& archivePath, const fs::path& into) {
     while ((read = archive_read_data_block(reader.get(), &block, &size, &offset)) == ARCHIVE_OK)
       out.write(static_cast<const char*>(block), static_cast<std::streamsize>(size));
     if (read != ARCHIVE_EOF) throw HandSourceError(where + ": " + archive_error_string(reader.get()));
-    if (!out) throw HandSourceError(where + ": cannot unpack " + relative.string() + " into " + into.string());
+    if (!out) throw HandSourceError(where + ": cannot unpack " + entryName + " into " + printablePath(into));
     if (relative.filename() == "INDEX.txt") recording = target.parent_path();
   }
   if (status != ARCHIVE_EOF) throw HandSourceError(where + ": " + archive_error_string(reader.get()));
@@ -148,8 +164,8 @@ bool isRecordingArchive(const fs::path& path) {
 
 DepthRecording readDepthRecording(const fs::path& path) {
   if (!isRecordingArchive(path)) return readFolder(path, recordingName(path));
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) throw HandSourceError("recording archive " + path.string() + ": no such file");
+  if (const std::string why = whyNotARegularFile(path); !why.empty())
+    throw HandSourceError("recording archive " + printablePath(path) + " " + why);
   const TemporaryFolder unpacked;
   return readFolder(unpackArchive(path, unpacked.path()), recordingName(path));
 }

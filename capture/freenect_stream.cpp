@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "hand_source.h"
+#include "output_file.h"
 #include "untrusted.h"
 
 #ifndef GB_FREENECT_LIBRARY
@@ -58,12 +59,16 @@ bool isKinectDepthHeader(const std::string& header) {
 // quoted escaped (printable).
 std::string fileProblem(const fs::path& folder, const FakenectEntry& e) {
   const fs::path path = folder / e.file;
-  const std::string shown = printable(path.string(), 300);
+  const std::string shown = printablePath(path);
   // Checked, not opened: a FIFO would block playback and /dev/zero would never end.
   if (const std::string why = whyNotARegularFile(path); !why.empty()) return "file " + shown + " " + why;
   std::error_code ec;
   const auto size = fs::file_size(path, ec);
   if (ec || size == 0) return "file " + shown + " is empty";
+  // fakenect reads an accelerometer entry as libfreenect's tilt state whole: a shorter file is read past its end.
+  if (e.type == 'a' && size != sizeof(freenect_raw_tilt_state))
+    return "accelerometer file " + shown + " is " + std::to_string(size) + " bytes, expected " +
+           std::to_string(sizeof(freenect_raw_tilt_state)) + " (libfreenect's tilt state)";
   if (e.type != 'd') return {};
   std::string header;
   const long long payload = depthPayload(path, header);
@@ -79,7 +84,7 @@ std::string fileProblem(const fs::path& folder, const FakenectEntry& e) {
 }  // namespace
 
 FakenectIndex readFakenectIndex(const fs::path& folder) {
-  const std::string where = "fakenect recording " + printable(folder.string(), 300);
+  const std::string where = "fakenect recording " + printablePath(folder);
   std::error_code ec;
   if (!fs::is_directory(folder, ec)) {
     const std::string why = whyNotARegularFile(folder);
@@ -88,19 +93,19 @@ FakenectIndex readFakenectIndex(const fs::path& folder) {
   const fs::path indexFile = folder / "INDEX.txt";
   if (!fs::exists(indexFile, ec) && !ec)
     throw HandSourceError(where + ": no INDEX.txt (not a recording made by fakenect-record or giantbubble record)");
-  if (const std::string why = whyNotARegularFile(indexFile); !why.empty())
-    throw HandSourceError(where + ": INDEX.txt " + why);
-  if (fs::file_size(indexFile, ec) > kMaxIndexBytes)
-    throw HandSourceError(where + ": INDEX.txt is larger than " + std::to_string(kMaxIndexBytes >> 20) +
-                          " MiB (a recording of hours is a few MiB)");
-  std::ifstream in(indexFile);
-  if (!in) throw HandSourceError(where + ": INDEX.txt cannot be read");
+  std::string why;
+  const InputFile in = openInputFile(indexFile, kMaxIndexBytes, why);
+  if (!in) throw HandSourceError(where + ": INDEX.txt " + why + " (a recording of hours is a few MiB)");
   FakenectIndex index;
   index.folder = folder;
   std::string line;
-  int lineNumber = 0, blankLine = 0;
-  while (std::getline(in, line)) {
+  int lineNumber = 0, blankLine = 0, atOneTime = 0;
+  double lastDepthTime = 0.0;
+  for (LineRead read; (read = readLine(in.get(), line, kMaxIndexLineBytes)) != LineRead::End;) {
     ++lineNumber;
+    if (read == LineRead::TooLong)
+      throw HandSourceError(where + ", INDEX.txt line " + std::to_string(lineNumber) + ": longer than " +
+                            std::to_string(kMaxIndexLineBytes) + " bytes (an entry is a file name)");
     if (line.empty()) {  // fakenect stops reading at an empty line
       if (!blankLine) blankLine = lineNumber;
       continue;
@@ -118,18 +123,29 @@ FakenectIndex readFakenectIndex(const fs::path& folder) {
         (e.type != 'd' && e.type != 'r' && e.type != 'a') || !std::isfinite(e.time))
       throw HandSourceError(at + ": '" + printable(line) +
                             "' is not a fakenect entry (TYPE-TIME-TIMESTAMP…, TYPE d, r or a)");
+    const std::string time = printableNumber(line.substr(2, line.find('-', 2) - 2));  // as written
     // fakenect sleeps through the time between entries: a jump forward would stall playback for as long.
-    if (!index.entries.empty() && e.time - index.entries.back().time > kMaxFakenectGap)
-      throw HandSourceError(at + ": time jumps " + std::to_string(e.time - index.entries.back().time) +
+    if (!index.entries.empty() && e.time - index.entries.back().time > kMaxFakenectGap) {
+      char jump[32];
+      std::snprintf(jump, sizeof jump, "%.4g", e.time - index.entries.back().time);
+      throw HandSourceError(at + ": time " + time + " jumps " + jump +
                             " s forward (fakenect would sleep through it; at most " +
                             std::to_string(static_cast<int>(kMaxFakenectGap)) + " s between entries)");
+    }
+    // A time that does not advance: a recording's frames, each a file fakenect reads, played as one moment.
+    atOneTime = !index.entries.empty() && e.time == index.entries.back().time ? atOneTime + 1 : 1;
+    if (atOneTime > kMaxEntriesAtOneTime)
+      throw HandSourceError(at + ": " + std::to_string(atOneTime) + " entries at time " + time +
+                            " (the time does not advance; fakenect-record writes at most a depth frame, a colour "
+                            "image and an accelerometer reading at one time)");
     e.timestamp = timestamp;
     e.file = line;
     if (const std::string problem = fileProblem(folder, e); !problem.empty())
       throw HandSourceError(at + ": " + problem);
     if (e.type == 'd') {
-      if (index.depthFrames > 0 && e.time < index.entries.back().time)
-        throw HandSourceError(at + ": time " + std::to_string(e.time) + " goes backwards");
+      if (index.depthFrames > 0 && e.time <= lastDepthTime)
+        throw HandSourceError(at + ": time " + time + " is not after the previous depth frame's");
+      lastDepthTime = e.time;
       ++index.depthFrames;
     }
     index.entries.push_back(e);
@@ -141,26 +157,23 @@ FakenectIndex readFakenectIndex(const fs::path& folder) {
 FakenectWriter::FakenectWriter(const fs::path& folder) : folder_(folder) {
   std::error_code ec;
   if (fs::exists(folder, ec) && !(fs::is_directory(folder, ec) && fs::is_empty(folder, ec)))
-    throw HandSourceError("will not record into " + folder.string() + ": it exists and is not an empty folder");
+    throw HandSourceError("will not record into " + printablePath(folder) + ": it exists and is not an empty folder");
   fs::create_directories(folder, ec);
-  if (ec) throw HandSourceError("cannot create " + folder.string() + ": " + ec.message());
+  if (ec) throw HandSourceError("cannot create " + printablePath(folder) + ": " + ec.message());
 }
 
 void FakenectWriter::write(const kinect::DepthFrame& frame, double recordTime) {
   if (frame.gravityUp) writeAccelerometer(*frame.gravityUp, frame.timestamp, recordTime);
   char name[96];
   std::snprintf(name, sizeof name, "d-%f-%" PRIu32 ".pgm", recordTime, frame.timestamp);
-  {
-    std::ofstream out(folder_ / name, std::ios::binary);
-    out << "P5 " << kinect::kWidth << ' ' << kinect::kHeight << " 65535\n";
-    std::vector<unsigned char> bytes(kDepthBytes);
-    for (size_t i = 0; i < frame.raw.size(); ++i) {  // little-endian, what libfreenect hands out on x86 and ARM
-      bytes[2 * i] = static_cast<unsigned char>(frame.raw[i] & 0xff);
-      bytes[2 * i + 1] = static_cast<unsigned char>(frame.raw[i] >> 8);
-    }
-    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-    if (!out) throw HandSourceError("cannot write " + (folder_ / name).string());
+  std::string bytes = "P5 " + std::to_string(kinect::kWidth) + ' ' + std::to_string(kinect::kHeight) + " 65535\n";
+  const size_t header = bytes.size();
+  bytes.resize(header + kDepthBytes);
+  for (size_t i = 0; i < frame.raw.size(); ++i) {  // little-endian, what libfreenect hands out on x86 and ARM
+    bytes[header + 2 * i] = static_cast<char>(frame.raw[i] & 0xff);
+    bytes[header + 2 * i + 1] = static_cast<char>(frame.raw[i] >> 8);
   }
+  writeFileAtomically(folder_ / name, bytes);
   addToIndex(name);
   ++frames_;
 }
@@ -175,18 +188,14 @@ void FakenectWriter::writeAccelerometer(const Eigen::Vector3d& up, uint32_t time
   state.tilt_status = TILT_STATUS_STOPPED;
   char name[96];
   std::snprintf(name, sizeof name, "a-%f-%" PRIu32 ".dump", recordTime, timestamp);
-  std::ofstream out(folder_ / name, std::ios::binary);
-  out.write(reinterpret_cast<const char*>(&state), sizeof state);
-  if (!out) throw HandSourceError("cannot write " + (folder_ / name).string());
+  writeFileAtomically(folder_ / name, std::string_view(reinterpret_cast<const char*>(&state), sizeof state));
   addToIndex(name);
 }
 
 void FakenectWriter::addToIndex(const std::string& entry) {
   index_ += entry;
   index_ += '\n';
-  std::ofstream index(folder_ / "INDEX.txt", std::ios::trunc);
-  index << index_;
-  if (!index) throw HandSourceError("cannot write " + (folder_ / "INDEX.txt").string());
+  writeFileAtomically(folder_ / "INDEX.txt", index_);
 }
 
 // One dlopen'ed libfreenect build and the device opened through it.
@@ -436,7 +445,7 @@ void DepthStream::readAccelerometer() {
 
 std::string DepthStream::describe() const {
   if (recording_)
-    return "fakenect recording " + recording_->folder.string() + " (" + std::to_string(recording_->depthFrames) +
+    return "fakenect recording " + printablePath(recording_->folder) + " (" + std::to_string(recording_->depthFrames) +
            " depth frames)";
   return "live Kinect v1 (libfreenect, 640x480 11-bit depth)";
 }

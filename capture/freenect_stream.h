@@ -44,15 +44,22 @@ struct FakenectIndex {
 inline constexpr double kMaxFakenectGap = 10.0;
 // The largest INDEX.txt read (bytes): an hour at 30 frames a second is about 10 MiB of entries.
 inline constexpr std::uintmax_t kMaxIndexBytes = std::uintmax_t{64} << 20;
+// The longest line of INDEX.txt read (bytes): an entry is a file name of about 30.
+inline constexpr std::size_t kMaxIndexLineBytes = 4096;
+// The most entries at one time: a depth frame, a colour image and an accelerometer reading. More are a time that
+// does not advance (200,000 frames at one time took fakenect minutes before the first frame).
+inline constexpr int kMaxEntriesAtOneTime = 3;
 
 // Reads and checks a recording: every listed file present and non-empty, every depth file complete with a
-// 'P5 640 480 MAX' header, LF line endings, no pause longer than kMaxFakenectGap.
+// 'P5 640 480 MAX' header, every accelerometer file a whole tilt state, LF line endings, depth frames in time order,
+// no pause longer than kMaxFakenectGap and no more than kMaxEntriesAtOneTime entries at one time.
 // Throws HandSourceError naming the folder, the line or the file and what is wrong.
 FakenectIndex readFakenectIndex(const std::filesystem::path& folder);
 
 // Writes depth frames as a fakenect recording, the way fakenect-record does (raw values in the machine's
-// little-endian order after a "P5 640 480 65535" line). INDEX.txt is rewritten after every frame, so a
-// recording that stops early is still complete up to its last frame.
+// little-endian order after a "P5 640 480 65535" line). Every file is written whole (output_file.h: an OutputError
+// naming the file and the reason when it cannot be), INDEX.txt anew after every frame, so a recording that stops
+// early is still complete up to its last frame.
 class FakenectWriter {
  public:
   explicit FakenectWriter(const std::filesystem::path& folder);  // creates the folder; refuses a non-empty one

@@ -3,13 +3,13 @@
 #include <zlib.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
-#include <fstream>
-#include <iterator>
 #include <numeric>
 #include <stdexcept>
 
 #include "kinect_depth.h"
+#include "untrusted.h"
 
 // The trained model, embedded by hand_forest_model.S.
 extern "C" const uint8_t gb_hand_forest_model_begin[];
@@ -135,13 +135,16 @@ HandForest HandForest::deserialize(const uint8_t* bytes, size_t size) {
   std::vector<uint8_t> payload(payloadSize);
   uLongf unpacked = static_cast<uLongf>(payloadSize);
   const size_t header = sizeof kMagic + sizeof(uint64_t);
-  if (uncompress(payload.data(), &unpacked, bytes + header, static_cast<uLong>(size - header)) != Z_OK ||
-      unpacked != payloadSize)
+  uLong packed = static_cast<uLong>(size - header);
+  if (uncompress2(payload.data(), &unpacked, bytes + header, &packed) != Z_OK || unpacked != payloadSize)
     throw std::runtime_error("hand forest model: damaged (it does not inflate to its stated size)");
+  if (packed != size - header) throw std::runtime_error("hand forest model: bytes after its compressed payload");
   Reader r(payload.data(), payload.size());
   HandForest forest;
   forest.trainedOn = r.getText();
   forest.surfaceToCentre = r.get<float>();
+  if (!(std::abs(forest.surfaceToCentre) <= 1.0f))  // NaN too
+    throw std::runtime_error("hand forest model: its push back to the hand's centre is not within 1 m");
   const uint32_t trees = r.get<uint32_t>();
   if (trees == 0 || trees > 64) throw std::runtime_error("hand forest model: " + std::to_string(trees) + " trees");
   for (uint32_t t = 0; t < trees; ++t) {
@@ -155,6 +158,8 @@ HandForest HandForest::deserialize(const uint8_t* bytes, size_t size) {
       for (int16_t& o : n.feature.a) o = r.get<int16_t>();
       for (int16_t& o : n.feature.b) o = r.get<int16_t>();
       n.threshold = r.get<float>();
+      // A NaN threshold sends every pixel right (every comparison with NaN is false): a model that finds nothing.
+      if (!std::isfinite(n.threshold)) throw std::runtime_error("hand forest model: a threshold is not a number");
     }
     const uint32_t leaves = r.get<uint32_t>();
     if (leaves > r.left() / kPixelClasses) throw std::runtime_error("hand forest model: truncated");
@@ -171,13 +176,14 @@ HandForest HandForest::deserialize(const uint8_t* bytes, size_t size) {
 }
 
 HandForest readHandForest(const std::string& path) {
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw std::runtime_error("hand forest model " + path + ": cannot be read");
-  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  const std::string named = "hand forest model " + printablePath(path);
+  std::string why, bytes;
+  const InputFile file = openInputFile(path, kMaxHandForestBytes, why);
+  if (!file || !readWhole(file.get(), bytes, why)) throw std::runtime_error(named + " " + why);
   try {
-    return HandForest::deserialize(bytes.data(), bytes.size());
+    return HandForest::deserialize(reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size());
   } catch (const std::runtime_error& e) {
-    throw std::runtime_error(path + ": " + e.what());
+    throw std::runtime_error(printablePath(path) + ": " + e.what());
   }
 }
 

@@ -99,7 +99,11 @@ struct HandForest {
   static const HandForest& builtin();
 };
 
-// A model file written by gb_train_hand_forest; throws std::runtime_error naming the file and the problem.
+// The largest model file read: the built-in forest is 2.1 MB.
+inline constexpr std::uintmax_t kMaxHandForestBytes = std::uintmax_t{64} << 20;
+
+// A model file written by gb_train_hand_forest; throws std::runtime_error naming the file and the problem (a FIFO, a
+// device or a folder is named as such, not read; a file over kMaxHandForestBytes is refused unread).
 HandForest readHandForest(const std::string& path);
 
 // A hand found by the forest: a mode of the density of its class's pixels over the performer's surface.

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include "trajectory_file.h"
+#include "untrusted.h"
 
 namespace gb {
 
@@ -123,7 +124,7 @@ std::unique_ptr<HandSource> openTrajectory(const std::filesystem::path& path, co
                 samples.back().time - samples.front().time);
   std::vector<std::string> messages;
   if (!cut.empty()) messages.push_back(cut);
-  return std::make_unique<ReplayHandSource>(std::move(samples), "trajectory file " + path.string() + describe,
+  return std::make_unique<ReplayHandSource>(std::move(samples), "trajectory file " + printablePath(path) + describe,
                                             std::move(messages));
 }
 

@@ -4,11 +4,11 @@
 #include <CLI/CLI.hpp>
 #include <chrono>
 #include <cstdio>
-#include <fstream>
 
 #include "depth_recording.h"
 #include "hand_finder.h"
 #include "hand_forest_training.h"
+#include "output_file.h"
 
 namespace {
 
@@ -88,10 +88,10 @@ int main(int argc, char** argv) {
   size_t nodes = 0;
   for (const gb::DecisionTree& t : forest.trees) nodes += t.nodes.size();
   const std::vector<uint8_t> bytes = forest.serialize();
-  std::ofstream file(out, std::ios::binary);
-  file.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
-  if (!file) {
-    std::fprintf(stderr, "error: cannot write %s\n", out.c_str());
+  try {
+    gb::writeFileAtomically(out, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+  } catch (const gb::OutputError& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
     return 1;
   }
   std::printf("%zu nodes, surface to centre %.1f mm, %zu bytes written to %s (%.0f s)\n", nodes,

@@ -2,10 +2,10 @@
 
 #include <charconv>
 #include <cmath>
-#include <fstream>
 #include <optional>
 #include <string>
 
+#include "output_file.h"
 #include "untrusted.h"
 
 namespace gb {
@@ -51,7 +51,7 @@ std::optional<Vec3d> handOf(const std::vector<std::string>& fields, int hand, co
     const std::optional<double> v = number(f);
     if (!v) throw HandSourceError(at + ": " + column + " '" + printable(f) + "' is not a number");
     if (std::abs(*v) > kMaxHandDistance)
-      throw HandSourceError(at + ": " + column + " " + printable(f) + " m is more than " +
+      throw HandSourceError(at + ": " + column + " " + printableNumber(f) + " m is more than " +
                             std::to_string(static_cast<int>(kMaxHandDistance)) +
                             " m from the camera (a trajectory is in metres)");
     p[k] = *v;
@@ -60,6 +60,9 @@ std::optional<Vec3d> handOf(const std::vector<std::string>& fields, int hand, co
   if (present != 0 && present != 3)
     throw HandSourceError(at + ": the " + name + " hand has " + std::to_string(present) +
                           " of 3 coordinates (leave all three empty to mark it missing)");
+  if (present && p.z() <= 0.0)  // a camera sees what is in front of it; a stabilizer would divide by it
+    throw HandSourceError(at + ": " + kColumns[3 + 3 * hand] + " " + printableNumber(fields[3 + 3 * hand]) +
+                          " m puts the " + name + " hand behind the camera (z is the distance in front of it, > 0)");
   return present ? std::optional<Vec3d>(p) : std::nullopt;
 }
 
@@ -73,27 +76,33 @@ std::string unreadRowsNote(const std::string& at, bool pastTheRunsEnd, std::size
 
 std::vector<HandSample> readTrajectory(const std::filesystem::path& path, double holdTime,
                                        const TrajectoryLimits& limits, std::string* cut) {
-  const std::string file = "trajectory file " + printable(path.string(), 300);
-  if (const std::string why = whyNotARegularFile(path); !why.empty()) throw HandSourceError(file + ": " + why);
-  std::ifstream in(path);
-  if (!in) throw HandSourceError(file + ": cannot be read");
+  const std::string file = "trajectory file " + printablePath(path);
+  std::string why;
+  const InputFile in = openInputFile(path, kMaxTrajectoryBytes, why);
+  if (!in) throw HandSourceError(file + ": " + why);
   std::vector<HandSample> samples;
   HandHold hold[2] = {HandHold(holdTime), HandHold(holdTime)};
   bool header = false;
   std::optional<double> bothHandsFrom;  // the time of the first row with both hands
   bool pastTheEnd = false;
   std::string line;
-  for (int lineNumber = 1; std::getline(in, line); ++lineNumber) {
+  LineRead read = LineRead::Line;
+  for (int lineNumber = 1; (read = readLine(in.get(), line, kMaxTrajectoryLineBytes)) != LineRead::End; ++lineNumber) {
+    const std::string at = file + ", line " + std::to_string(lineNumber);
+    if (read == LineRead::TooLong)
+      throw HandSourceError(at + ": longer than " + std::to_string(kMaxTrajectoryLineBytes) +
+                            " bytes (a row of seven numbers is under 200)");
     if (lineNumber == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // a UTF-8 BOM some editors add
     line = trim(line);
     if (line.empty() || line[0] == '#') continue;
-    const std::string at = file + ", line " + std::to_string(lineNumber);
     const std::vector<std::string> fields = splitFields(line);
     if (!header) {
       bool matches = fields.size() == std::size(kColumns);
       for (size_t i = 0; matches && i < fields.size(); ++i) matches = fields[i] == kColumns[i];
+      // The line itself is not quoted: a scene naming any file as its trajectory would have its first line printed.
       if (!matches)
-        throw HandSourceError(at + ": expected the header '" + kHeader + "', got '" + printable(line) + "'");
+        throw HandSourceError(at + ": expected the header '" + kHeader + "'; this line is not it (" +
+                              std::to_string(fields.size()) + " fields)");
       header = true;
       continue;
     }
@@ -106,12 +115,12 @@ std::vector<HandSample> readTrajectory(const std::filesystem::path& path, double
     const std::optional<double> t = number(fields[0]);
     if (!t) throw HandSourceError(at + ": time '" + printable(fields[0]) + "' is not a number");
     if (!samples.empty() && *t <= samples.back().time)
-      throw HandSourceError(at + ": time " + printable(fields[0]) + " s is not after the previous row's");
+      throw HandSourceError(at + ": time " + printableNumber(fields[0]) + " s is not after the previous row's");
     if (!samples.empty() && *t - samples.back().time > kMaxTrajectoryGap) {
-      char gap[160];
-      std::snprintf(gap, sizeof gap, ": time %.4g s is %.4g s after the previous row's (at most %.0f s between rows)",
-                    *t, *t - samples.back().time, kMaxTrajectoryGap);
-      throw HandSourceError(at + gap);
+      char gap[120];
+      std::snprintf(gap, sizeof gap, " s is %.4g s after the previous row's (at most %.0f s between rows)",
+                    *t - samples.back().time, kMaxTrajectoryGap);
+      throw HandSourceError(at + ": time " + printableNumber(fields[0]) + gap);
     }
     HandSample s;
     s.time = *t;
@@ -125,30 +134,25 @@ std::vector<HandSample> readTrajectory(const std::filesystem::path& path, double
   return samples;
 }
 
-TrajectoryWriter::TrajectoryWriter(const std::filesystem::path& path) {
-  file_ = std::fopen(path.c_str(), "w");
-  if (!file_) throw HandSourceError("cannot write the trajectory file " + path.string());
-  std::fprintf(file_,
-               "# giantbubble hand trajectory: camera space (x right, y up, z away from the camera), m and s\n%s\n",
-               kHeader);
-}
-
-TrajectoryWriter::~TrajectoryWriter() {
-  if (file_) std::fclose(file_);
+TrajectoryWriter::TrajectoryWriter(const std::filesystem::path& path) : file_(path, RowFile::Place::AtClose) {
+  file_.write("# giantbubble hand trajectory: camera space (x right, y up, z away from the camera), m and s\n" +
+              std::string(kHeader) + "\n");
 }
 
 void TrajectoryWriter::write(const HandSample& s) {
-  std::fprintf(file_, "%.6f", s.time);
+  char row[160];
+  int n = std::snprintf(row, sizeof row, "%.6f", s.time);
   for (const HandObservation* h : {&s.left, &s.right}) {
     if (h->measured)
-      std::fprintf(file_, ",%.6f,%.6f,%.6f", h->position.x(), h->position.y(), h->position.z());
+      n += std::snprintf(row + n, sizeof row - static_cast<size_t>(n), ",%.6f,%.6f,%.6f", h->position.x(),
+                         h->position.y(), h->position.z());
     else
-      std::fputs(",,,", file_);
+      n += std::snprintf(row + n, sizeof row - static_cast<size_t>(n), ",,,");
   }
-  std::fputc('\n', file_);
-  // A full disk stops the recording with a message instead of cutting rows silently.
-  if (std::fflush(file_) != 0 || std::ferror(file_))
-    throw HandSourceError("failed writing the trajectory file (disk full?)");
+  n += std::snprintf(row + n, sizeof row - static_cast<size_t>(n), "\n");
+  file_.write(std::string_view(row, static_cast<size_t>(n)));  // a full disk stops the recording, naming the file
 }
+
+void TrajectoryWriter::close() { file_.close(); }
 
 }  // namespace gb

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "hand_source.h"
+#include "output_file.h"
 
 namespace gb {
 
@@ -29,23 +30,27 @@ inline constexpr double kMaxHandDistance = 100.0;
 // time like 1e308 is a broken file, not an hour's pause.
 inline constexpr double kMaxTrajectoryGap = 3600.0;
 
+// The largest trajectory file and line read: 1,000,000 rows of seven numbers are under 150 MB, a row under 200 bytes.
+inline constexpr std::uintmax_t kMaxTrajectoryBytes = std::uintmax_t{1} << 30;
+inline constexpr std::size_t kMaxTrajectoryLineBytes = 4096;
+
 // Reads a file up to its end or `limits`; throws HandSourceError naming the file, the line and the problem. Hands
 // missing from a row are held (HandHold) from their last measured position. When the limits leave rows unread,
 // `cut` (if given) gets a note saying so.
 std::vector<HandSample> readTrajectory(const std::filesystem::path& path, double holdTime = 0.5,
                                        const TrajectoryLimits& limits = {}, std::string* cut = nullptr);
 
+// A trajectory written as it is recorded: into PATH.partial, renamed over PATH by close() (output_file.h), so that a
+// recording that fails leaves the file that was there. Throws OutputError naming the file when it cannot be written.
 class TrajectoryWriter {
  public:
-  explicit TrajectoryWriter(const std::filesystem::path& path);  // throws HandSourceError when it cannot
-  ~TrajectoryWriter();
-  TrajectoryWriter(const TrajectoryWriter&) = delete;  // owns the open file
-  TrajectoryWriter& operator=(const TrajectoryWriter&) = delete;
+  explicit TrajectoryWriter(const std::filesystem::path& path);
   // Writes a row; a hand not measured in this sample (held or never seen) is written as missing.
   void write(const HandSample& sample);
+  void close();  // the file is complete: renamed over PATH
 
  private:
-  std::FILE* file_ = nullptr;
+  RowFile file_;
 };
 
 }  // namespace gb

@@ -3,10 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <limits>
 #include <sstream>
 #include <stdexcept>
+
+#include "output_file.h"
 
 namespace gb {
 
@@ -132,8 +133,7 @@ void writeTrajectoryPlot(const std::filesystem::path& path, const TrajectoryPlot
   const std::vector<std::string> title = titleLines(plot.title);
   const double kTop = 32.0 + kTitleLine * static_cast<double>(title.size());
   const double width = 2 * kPanel + 3 * kMargin, height = kTop + 3 * kPanel + 4 * kMargin;
-  std::ofstream out(path);
-  if (!out) throw std::runtime_error("cannot write the trajectory plot " + path.string());
+  std::ostringstream out;
   out << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << width << "\" height=\"" << height
       << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
   for (size_t i = 0; i < title.size(); ++i)
@@ -172,7 +172,7 @@ void writeTrajectoryPlot(const std::filesystem::path& path, const TrajectoryPlot
   }
   scenePanels(out, plot, kTop + kMargin + 2 * (kPanel + kMargin));
   out << "</svg>\n";
-  if (!out) throw std::runtime_error("cannot write the trajectory plot " + path.string());
+  writeFileAtomically(path, out.str());
 }
 
 namespace {

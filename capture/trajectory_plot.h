@@ -21,7 +21,7 @@ struct TrajectoryPlot {
   std::optional<Vec3> camera;               // the camera's position in world space, when there is one
 };
 
-// Throws std::runtime_error when the file cannot be written.
+// Written atomically; OutputError naming the file and the reason when it cannot be (output_file.h).
 void writeTrajectoryPlot(const std::filesystem::path& path, const TrajectoryPlot& plot);
 
 }  // namespace gb

@@ -1,11 +1,14 @@
 #!/usr/bin/env bash
 # Show-proofing on the command line, one case per ctest test:
-#   cli_show_proof_test.sh EXE OUT CASE
-# Each case prints what it checks and exits non-zero with the reason when the program does not do it.
+#   cli_show_proof_test.sh EXE OUT CASE [FAKE_FREENECT MAKE_RECORDING]
+# Each case prints what it checks and exits non-zero with the reason when the program does not do it. The cases on a
+# camera take the stand-in for the live libfreenect (fake_freenect.cpp) and the synthetic recording's writer.
 set -u
 EXE=$1
 OUT=$2
 CASE=$3
+FAKE=${4:-}
+MAKE_RECORDING=${5:-}
 rm -rf "$OUT"
 mkdir -p "$OUT"
 cd "$OUT" || exit 1
@@ -71,6 +74,17 @@ signal_case() {
   [ "$frames" -eq $((rows + 1)) ] || fail "the MP4 has $frames frames, expected $((rows + 1)) (frame 0 and $rows)"
 }
 
+# Runs giantbubble ARGS and fails unless it exits 1 with MESSAGE in its output: expect_refused MESSAGE ARGS...
+expect_refused() {
+  local message=$1
+  shift
+  "$EXE" "$@" >log.txt 2>&1
+  local rc=$?
+  [ "$rc" -eq 1 ] || fail "giantbubble $*: exit status $rc, expected 1: $(cat log.txt)"
+  grep -qF -- "$message" log.txt || fail "giantbubble $*: $(cat log.txt)"
+  echo "giantbubble $*: $(grep -F -- "$message" log.txt | head -1)"
+}
+
 # Fails unless FILE is the same as its copy in saved/ (a run must not have touched it).
 expect_unchanged() {
   cmp -s "$1" "saved/$(basename "$1")" || fail "$1 was changed by a run that failed: $(cat log.txt)"
@@ -79,6 +93,7 @@ expect_unchanged() {
 case "$CASE" in
   sigint) signal_case INT 130 ;;
   sigterm) signal_case TERM 143 ;;
+  sighup) signal_case HUP 129 ;; # a closed terminal
   failed_encoder)
     # An ffmpeg that fails at once: the run says so, goes on, and writes all its results (exit 5).
     mkdir fakebin
@@ -120,7 +135,9 @@ case "$CASE" in
     rc=$?
     cat log.txt
     [ "$rc" -ne 0 ] || fail "bench --json into a missing folder exited 0"
-    grep -q "error: cannot write /nonexistent/bench.json" log.txt || fail "the unwritable path is not named"
+    grep -q "error: --json: cannot write /nonexistent/bench.json: No such file or directory" log.txt ||
+      fail "the unwritable path is not named"
+    grep -q "measuring" log.txt && fail "the path was checked after measuring, not before"
     grep -q "results written" log.txt && fail "says the results were written"
     ;;
   not_finite)
@@ -200,7 +217,8 @@ case "$CASE" in
       rc=$?
       cat log.txt
       [ "$rc" -eq 1 ] || fail "bench --json $target: exit status $rc"
-      grep -q "error: will not write $target: it is a" log.txt || fail "bench --json $target: the problem is not named"
+      grep -q "error: --json: will not write $target: it is a" log.txt ||
+        fail "bench --json $target: the problem is not named"
       grep -q "results written\|Success" log.txt && fail "bench --json $target: says it succeeded"
     done
     [ -p fifo.json ] && [ -d folder.json ] || fail "the FIFO or the folder was replaced"
@@ -307,31 +325,24 @@ case "$CASE" in
     expect_exit 1 run --scene no-such-scene
     expect_exit 1 bench --sizes 10
     expect_exit 1 run --duration 0.1 "${SMALL[@]}" --out ''
-    grep -q "error: the output folder's name is empty (--out): give a folder" log.txt || fail "--out '': $(cat log.txt)"
+    grep -q "error: --out: the name is empty: give a folder" log.txt || fail "--out '': $(cat log.txt)"
     ;;
   messages_name_the_problem)
     # Each message names the real problem and the option or file to change.
-    expect_message() {
-      local message=$1
-      shift
-      "$EXE" "$@" >log.txt 2>&1 && fail "giantbubble $* exited 0"
-      grep -qF -- "$message" log.txt || fail "giantbubble $*: $(cat log.txt)"
-      echo "giantbubble $*: $(grep -F -- "$message" log.txt)"
-    }
-    expect_message "trajectory file /dev/zero: is a character device" run --input trajectory:/dev/zero --out run
-    expect_message "--particles, --solution) is too few for its wire" run --solution 0.01 --particles 300 \
+    expect_refused "trajectory file /dev/zero: is a character device" run --input trajectory:/dev/zero --out run
+    expect_refused "--particles, --solution) is too few for its wire" run --solution 0.01 --particles 300 \
       --backend cpu --no-render --out run
-    expect_message "IPv6 is not supported" run --osc "[::1]:9000" --out run
-    expect_message "IPv6 is not supported" run --osc 127.0.0.1:9000:1 --out run
-    expect_message "particlesAtFullSolution = 2000000000 is out of range [16, 2000000]" run \
+    expect_refused "IPv6 is not supported" run --osc "[::1]:9000" --out run
+    expect_refused "IPv6 is not supported" run --osc 127.0.0.1:9000:1 --out run
+    expect_refused "particlesAtFullSolution = 2000000000 is out of range [16, 2000000]" run \
       --param particlesAtFullSolution=2e9
-    expect_message "particlesAtFullSolution = 10000000 is out of range [16, 2000000]" run \
+    expect_refused "particlesAtFullSolution = 10000000 is out of range [16, 2000000]" run \
       --param particlesAtFullSolution=10000000
-    expect_message "frameTime = 1e-50 is out of range [1e-05, 0.1] s" run --param frameTime=1e-50
-    expect_message "--keys -5:b: frame -5 is negative" live --keys -5:b
-    expect_message "--depth-plot-frame" record --input script:circles --depth-plot-frame -5 --report
+    expect_refused "frameTime = 1e-50 is out of range [1e-05, 0.1] s" run --param frameTime=1e-50
+    expect_refused "--keys -5:b: frame -5 is negative" live --keys -5:b
+    expect_refused "--depth-plot-frame" record --input script:circles --depth-plot-frame -5 --report
     trajectory 0 1e308 >forever.csv
-    expect_message "line 3: time 1e+308 s is 1e+308 s after the previous row's (at most 3600 s between rows)" run \
+    expect_refused "line 3: time 1e308 s is 1e+308 s after the previous row's (at most 3600 s between rows)" run \
       --input trajectory:forever.csv --out run
     ;;
   long_trajectory_read_as_far_as_the_run)
@@ -360,6 +371,244 @@ case "$CASE" in
     [ "$rc" -eq 0 ] || fail "exit status $rc"
     grep -q "frame 5: burst" log.txt || fail "the first B did not burst the film"
     grep -q "frame 110: B: no film to burst" log.txt || fail "B with no film is not said"
+    ;;
+  record_outputs_as_runs)
+    # record writes as run does: a trajectory that cannot be written whole leaves the old one and names the file and
+    # the reason; a FIFO or a device is refused before anything is recorded; two outputs on one file, a file inside
+    # the fakenect folder and a name whose extension is another format are refused, and nothing is written.
+    trajectory 0 0.1 0.2 >t.csv
+    mkdir saved
+    cp t.csv saved/
+    (
+      ulimit -f 4
+      trap '' XFSZ
+      exec "$EXE" record --input script:circles --trajectory t.csv
+    ) >log.txt 2>&1 && fail "a recording on a full disk exited 0"
+    cat log.txt
+    grep -q "error: failed writing t.csv: File too large" log.txt || fail "the file and the reason are not named"
+    expect_unchanged t.csv
+    [ ! -e t.csv.partial ] || fail "t.csv.partial was left"
+    mkfifo fifo.csv
+    ln -s /dev/null null.csv
+    for target in fifo.csv null.csv; do
+      timeout 20 "$EXE" record --input script:circles --trajectory $target >log.txt 2>&1
+      rc=$?
+      [ "$rc" -eq 1 ] || fail "--trajectory $target: exit status $rc (124: it blocked)"
+      grep -q "error: --trajectory: will not write $target: it is a" log.txt ||
+        fail "--trajectory $target: $(cat log.txt)"
+      grep -q "recording from" log.txt && fail "--trajectory $target: refused only after recording"
+    done
+    [ -p fifo.csv ] && [ -c /dev/null ] || fail "the FIFO or /dev/null was replaced"
+    RECORD=(record --input script:circles)
+    expect_refused "error: --plot: t.csv does not end in .svg" "${RECORD[@]}" --trajectory t.csv --plot t.csv
+    expect_unchanged t.csv
+    ln -s t.csv plot.svg
+    expect_refused "error: --trajectory t.csv and --plot plot.svg are one file" "${RECORD[@]}" --trajectory t.csv \
+      --plot plot.svg
+    expect_refused "error: --trajectory rec/hands.csv is inside --fakenect rec, which the command fills" \
+      "${RECORD[@]}" --fakenect rec --trajectory rec/hands.csv
+    expect_refused "error: --trajectory: rec/INDEX.txt does not end in .csv" "${RECORD[@]}" --fakenect rec \
+      --trajectory rec/INDEX.txt
+    expect_refused "error: --depth-plot: x.svg does not end in .png" "${RECORD[@]}" --depth-plot x.svg
+    expect_refused "error: --plot: x.png does not end in .svg" "${RECORD[@]}" --plot x.png
+    [ ! -e rec ] && [ ! -e x.svg ] && [ ! -e x.png ] || fail "a refused recording wrote something"
+    expect_unchanged t.csv
+    ;;
+  outputs_into_a_held_folder)
+    # A command writing into the folder of a run going on is refused, naming the run; two runs into other folders
+    # with one video are refused as one file another process writes. The first run's files stay whole.
+    trajectory 0 3600 7200 >long.csv
+    "$EXE" run --input trajectory:long.csv "${SMALL[@]}" "${RENDER[@]}" --video "$OUT/show.mp4" --out same \
+      >first.txt 2>&1 &
+    first=$!
+    wait_for_lines same/stats.csv 4
+    "$EXE" record --input script:circles --trajectory same/stats.csv >log.txt 2>&1
+    rc=$?
+    cat log.txt
+    [ "$rc" -eq 1 ] || { kill -INT "$first"; fail "record into the run's folder: exit status $rc"; }
+    grep -q "error: another run is writing into same (process $first: " log.txt || fail "the run is not named"
+    "$EXE" run --duration 0.1 "${SMALL[@]}" "${RENDER[@]}" --video "$OUT/show.mp4" --out other >log.txt 2>&1
+    rc=$?
+    cat log.txt
+    kill -INT "$first"
+    wait "$first"
+    [ "$rc" -eq 1 ] || fail "a second run onto the first's video: exit status $rc"
+    grep -qF "error: --video: another process is writing $OUT/show.mp4 (it holds $OUT/show.mp4.partial)" log.txt ||
+      fail "the video's writer is not named"
+    [ ! -e other/stats.json ] || fail "the refused run wrote stats.json"
+    awk -F, 'NR > 1 && NF != 19 { bad = 1 } END { exit bad }' same/stats.csv || fail "stats.csv has rows cut or mixed"
+    [ "$(mp4_frames show.mp4)" -gt 0 ] || fail "the first run's video does not play"
+    ;;
+  inputs_that_are_no_files)
+    # A FIFO, a device or a folder where an input file should be is named before anything could wait on it.
+    mkfifo fifo.bin fifo.png
+    mkdir folder.bin
+    for forest in /dev/zero fifo.bin folder.bin; do
+      timeout 20 "$EXE" evaluate missing.tar.gz --forest $forest >log.txt 2>&1
+      rc=$?
+      [ "$rc" -eq 1 ] || fail "--forest $forest: exit status $rc (124: it blocked or read for ever)"
+      grep -q "error: hand forest model $forest is a" log.txt || fail "--forest $forest: $(cat log.txt)"
+      echo "--forest $forest: $(cat log.txt)"
+    done
+    timeout 60 "$EXE" run --duration 0.1 "${SMALL[@]}" "${RENDER[@]}" --environment fifo.png --out run >log.txt 2>&1
+    rc=$?
+    [ "$rc" -eq 1 ] || fail "--environment on a FIFO: exit status $rc (124: it blocked)"
+    grep -q "PNG fifo.png is a FIFO" log.txt || fail "--environment on a FIFO: $(cat log.txt)"
+    ;;
+  experiment_killed)
+    # An experiment says "running" in experiment.json while it runs: one killed outright leaves that, not the
+    # previous "finished"; SIGHUP (a closed terminal) stops it as SIGTERM does.
+    mkdir run
+    echo '{"experiment": "minimal-surface", "status": "finished"}' >run/experiment.json
+    for signal in KILL HUP; do
+      "$EXE" run --scene minimal-surface --particles 50000 --out run >log.txt 2>&1 &
+      pid=$!
+      wait_for_text log.txt "experiment minimal-surface"
+      kill -$signal "$pid"
+      wait "$pid"
+      rc=$?
+      cat log.txt run/experiment.json
+      if [ $signal = KILL ]; then
+        grep -q '"status": "running"' run/experiment.json ||
+          fail "SIGKILL left experiment.json $(cat run/experiment.json)"
+      else
+        [ "$rc" -eq 129 ] || fail "the experiment after SIGHUP: exit status $rc, expected 129"
+        grep -q '"status": "interrupted"' run/experiment.json || fail "SIGHUP: experiment.json does not say interrupted"
+      fi
+    done
+    ;;
+  record_exit_status)
+    # record on a camera records until Ctrl-C or SIGTERM, writes what it recorded and exits 130 or 143 as the
+    # exit table says.
+    "$MAKE_RECORDING" frame 1 >/dev/null || fail "could not write the synthetic depth frame"
+    GB_FAKE_KINECT_FRAME=$(ls frame/d-*.pgm)
+    export GB_FAKE_KINECT_FRAME GIANTBUBBLE_FREENECT_LIBRARY=$FAKE
+    for signal in INT:130 TERM:143; do
+      "$EXE" record --input kinect --trajectory k.csv >log.txt 2>&1 &
+      pid=$!
+      wait_for_text log.txt "frames, left hand"  # its progress, once a second on stderr
+      sleep 1
+      kill -"${signal%:*}" "$pid"
+      wait "$pid"
+      rc=$?
+      cat log.txt
+      [ "$rc" -eq "${signal#*:}" ] || fail "record after SIG${signal%:*}: exit status $rc, expected ${signal#*:}"
+      grep -q "trajectory written to k.csv" log.txt || fail "the recording was not written"
+      [ "$(wc -l <k.csv)" -gt 3 ] || fail "k.csv holds no rows"
+    done
+    ;;
+  live_exit_status)
+    # live ends on Ctrl-C or SIGTERM as Esc ends it, and exits 130 or 143 as the exit table says; it refuses
+    # --render and --video by name rather than take them and write nothing, and names an --environment that is a
+    # FIFO rather than wait on it.
+    for signal in INT:130 TERM:143; do
+      rm -f status.txt log.txt
+      xvfb-run -a sh -c '"$@" >log.txt 2>&1 & echo $! >pid.txt; wait $!; echo $? >status.txt' sh \
+        "$EXE" live --input script:circles --width 160 --height 120 --particles 400 --backend cpu &
+      runner=$!
+      wait_for_text log.txt "live: input"
+      kill -"${signal%:*}" "$(cat pid.txt)"
+      wait "$runner"
+      cat log.txt
+      [ "$(cat status.txt)" -eq "${signal#*:}" ] ||
+        fail "live after SIG${signal%:*}: exit status $(cat status.txt), expected ${signal#*:}"
+      grep -q "live: presented" log.txt || fail "the show's totals were not printed"
+    done
+    for args in "--render" "--video show.mp4" "--render-every 5"; do
+      # shellcheck disable=SC2086
+      "$EXE" live $args >log.txt 2>&1 && fail "live $args exited 0"
+      grep -q "live draws the show in its window and writes no files" log.txt || fail "live $args: $(cat log.txt)"
+    done
+    mkfifo sky.png
+    timeout 60 xvfb-run -a "$EXE" live --frames 5 --width 160 --height 120 --particles 400 --backend cpu \
+      --environment sky.png >log.txt 2>&1
+    rc=$?
+    cat log.txt
+    [ "$rc" -ne 124 ] || fail "live blocked on an --environment FIFO"
+    grep -q "PNG sky.png is a FIFO" log.txt || fail "the FIFO is not named"
+    ;;
+  numbers_and_empty_values)
+    # Every number is decimal, finite and in range (no hex, no octal); a whole number may be written in any decimal
+    # form; an option given '' is refused, not taken as left out.
+    expect_refused "'0x10' is not a number (written in decimal)" run --width 0x10
+    expect_refused "'0x1p-3' is not a number (written in decimal)" run --duration 0x1p-3
+    expect_refused "'0x100' is not a number (written in decimal)" run --particles 0x100
+    expect_refused "'6.5' is not a whole number" run --ply-every 6.5
+    expect_refused "'0x10' is not a number (written in decimal)" bench --steps 0x10
+    expect_refused "'0x10' is not a number (written in decimal)" live --frames 0x10
+    expect_refused "'0x10' is not a number (written in decimal)" record --input script:circles --seed 0x10 --report
+    expect_refused "parameter frameTime: '0x1p-6' is not a number (written in decimal)" run --param frameTime=0x1p-6
+    expect_refused "'nan' is not a finite number" evaluate missing.tar.gz --depth-band nan 4
+    expect_refused "'-1' is not in [0.3 - 10]" evaluate missing.tar.gz --depth-band -1 4
+    expect_refused "--performer: expected X,Y,Z in metres with Z > 0, or auto; got '1,2'" run --performer 1,2
+    expect_refused "--performer: expected X,Y,Z" run --performer 0x1,0,2
+    for option in --scene --input --osc; do expect_refused "$option: an empty value" run $option ''; done
+    expect_refused "--json: an empty value" bench --json ''
+    expect_refused "the port must be a number from 1 to 65535" live --stream udp://127.0.0.1:99999
+    # Whole numbers written as decimals with a point or an exponent are taken (as in a scene), "010" is ten.
+    "$EXE" run --duration 0.04 --particles 4e2 --ply-every 010 --images-every 0 --backend cpu --no-render \
+      --no-progress --out run >log.txt 2>&1 || fail "whole numbers in decimal forms: $(cat log.txt)"
+    grep -q "giantbubble run: 400 particles" log.txt || fail "--particles 4e2 is not 400: $(cat log.txt)"
+    ;;
+  scene_keys_and_numbers)
+    # An experiment's scene refuses the keys it would ignore; scene numbers take the forms the command line takes and
+    # are named as written.
+    printf 'name = "e"\nexperiment = "catenoid"\nduration = 2.0\n' >experiment.toml
+    "$EXE" run --scene ./experiment.toml --out run >log.txt 2>&1 && fail "an experiment's duration was taken"
+    grep -q "experiment.toml:3:1: 'duration' does not apply to the physics experiment 'catenoid'" log.txt ||
+      fail "the key is not named: $(cat log.txt)"
+    printf '%s\n' 'name = "s"' 'duration = 0.04' 'burst_at = -2' '[output]' 'ply_every = 0.0' 'images_every = 0' \
+      '[params]' 'particlesAtFullSolution = 4e2' >whole.toml
+    "$EXE" run --scene ./whole.toml --backend cpu --no-render --no-progress --out run >log.txt 2>&1 ||
+      fail "whole numbers as TOML floats, burst_at = -2: $(cat log.txt)"
+    printf 'name = "s"\nduration = 3600.0000001\n' >long.toml
+    "$EXE" run --scene ./long.toml --out run >log.txt 2>&1 && fail "duration = 3600.0000001 was taken"
+    grep -q "duration = 3600.0000001 is out of range \[0.001, 3600\]" log.txt || fail "$(cat log.txt)"
+    printf 'name = "s"\n[render]\ncamera = [1e300, 1, 2]\n' >far.toml
+    "$EXE" run --scene ./far.toml --out run >log.txt 2>&1 && fail "a camera 1e300 m away was taken"
+    grep -q "camera in \[render\]: 1e+300 is not a coordinate" log.txt || fail "$(cat log.txt)"
+    [ "$(wc -c <log.txt)" -lt 300 ] || fail "the number was printed whole: $(cat log.txt)"
+    printf 'name = "s"\n[input]\nsource = "trajectory:../../../etc/passwd"\n' >outside.toml
+    "$EXE" run --scene ./outside.toml --out run >log.txt 2>&1 && fail "a scene read a file outside its folder"
+    grep -q "leaves the scene's folder" log.txt || fail "$(cat log.txt)"
+    ;;
+  messages_name_the_file_and_reason)
+    # An --out path too long for the file system and a dangling symbolic link are named with the OS's reason; a
+    # report on hands held still says there was no jitter to reduce instead of "-nanx"; an evaluation that matched
+    # no hand prints no median.
+    "$EXE" run --duration 0.04 "${SMALL[@]}" --out "$(printf 'a%.0s' $(seq 300))" >log.txt 2>&1 && fail "exited 0"
+    grep -q "error: --out: cannot write a*: File name too long" log.txt || fail "ENAMETOOLONG: $(cat log.txt)"
+    ln -s nowhere/deep dangling
+    "$EXE" run --duration 0.04 "${SMALL[@]}" --out dangling >log.txt 2>&1 && fail "exited 0"
+    grep -q "error: --out: dangling is a symbolic link to nowhere/deep, which does not exist" log.txt ||
+      fail "the dangling link: $(cat log.txt)"
+    trajectory $(seq 0 0.05 2) >still.csv
+    "$EXE" record --input trajectory:still.csv --report >log.txt 2>&1 || fail "$(cat log.txt)"
+    cat log.txt
+    grep -qi "nan" log.txt && fail "the report holds a NaN"
+    grep -Eq "^bspline +[0-9.]+ +[0-9.]+ +- " log.txt || fail "no '-' for the reduction of no jitter"
+    "$MAKE_RECORDING" rec 10 >/dev/null || fail "could not write the synthetic recording"
+    trajectory $(seq 0 1 9) | sed 's/-0.15,0,2,0.15,0,2$/-1.5,1,3.9,1.5,1,3.9/' >rec/hands.csv
+    "$EXE" evaluate rec --each >log.txt 2>&1 || fail "$(cat log.txt)"
+    cat log.txt
+    grep -Eq "^rec +10 +0.0% +0.0% .* - +[0-9.]+$" log.txt || fail "a median of no matched hand was printed"
+    ;;
+  wands_rows_after_unstable)
+    # A run that becomes unstable keeps one row per simulated frame in both row files.
+    "$EXE" run --duration 1 "${SMALL[@]}" --param integrator=0 --param airPressureGain=10000 \
+      --param pressureCoefficient=10000000 --param stabilitySafety=1 --out run >log.txt 2>&1
+    rc=$?
+    [ "$rc" -eq 3 ] || fail "exit status $rc, expected 3 (unstable): $(cat log.txt)"
+    [ "$(wc -l <run/stats.csv)" -eq "$(wc -l <run/wands.csv)" ] ||
+      fail "stats.csv has $(wc -l <run/stats.csv) lines, wands.csv $(wc -l <run/wands.csv)"
+    ;;
+  terminal_escapes_in_names)
+    # An unknown scene's name and an --out path are printed escaped: an OSC sequence would set the terminal's title.
+    "$EXE" run --scene "$(printf '\033]0;pwned\007')" >log.txt 2>&1 && fail "an unknown scene was taken"
+    grep -qF "unknown scene '\x1b]0;pwned\x07'" log.txt || fail "the name is not escaped: $(cat -v log.txt)"
+    "$EXE" run --duration 0.04 "${SMALL[@]}" --out "$(printf 'show\033[2J')" >log.txt 2>&1 || fail "$(cat -v log.txt)"
+    grep -qF 'show\x1b[2J' log.txt || fail "the --out path is not named escaped: $(cat -v log.txt)"
+    grep -q "$(printf '\033')" log.txt && fail "an escape sequence reached the terminal"
     ;;
   *) fail "unknown case $CASE" ;;
 esac

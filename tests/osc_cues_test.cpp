@@ -9,6 +9,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -103,6 +104,22 @@ TEST(OscCues, UnknownAndMalformedMessagesAreCountedAndIgnored) {
   EXPECT_NE(messages[0].find("unknown address /giantbubble/explode"), std::string::npos) << messages[0];
   EXPECT_NE(messages[2].find("/giantbubble/burst with arguments 's'"), std::string::npos) << messages[2];
   EXPECT_NE(messages[4].find("further ones are only counted"), std::string::npos) << messages[4];
+}
+
+TEST(OscCues, ACueWithANumberThatIsNotFiniteIsIgnored) {
+  OscCueReceiver receiver(0);
+  CueSender sender(receiver.port());
+  sender.sendFloat("/giantbubble/pause", NAN);       // would pause (NaN != 0)
+  sender.sendFloat("/giantbubble/pause", INFINITY);  // a number, but no state
+  sender.sendFloat("/giantbubble/burst", 1.0f);
+  const std::vector<Cue> cues = pollFor(receiver, 1);
+  ASSERT_EQ(cues.size(), 1u);
+  EXPECT_EQ(cues[0].action, CueAction::Burst);
+  EXPECT_EQ(receiver.malformed(), 2);
+  const std::vector<std::string> messages = receiver.takeMessages();
+  ASSERT_EQ(messages.size(), 2u);
+  EXPECT_NE(messages[0].find("/giantbubble/pause with nan: a cue's number is finite"), std::string::npos)
+      << messages[0];
 }
 
 TEST(OscCues, AFloodIsReadAFewDozenAtATime) {

@@ -66,7 +66,7 @@ TEST(SceneFile, AWrongTypeIsNamed) {
   EXPECT_NE(e.find("test.toml:2:"), std::string::npos) << e;
   EXPECT_NE(e.find("duration must be a number"), std::string::npos) << e;
   const std::string i = errorOf("name = \"x\"\n[params]\nholeOpening = 0.5\n");
-  EXPECT_NE(i.find("holeOpening in [params] must be a whole number"), std::string::npos) << i;
+  EXPECT_NE(i.find("holeOpening = 0.5 must be a whole number"), std::string::npos) << i;
   const std::string t = errorOf("name = \"x\"\n[tool]\nkind = \"trumpet\"\n");
   EXPECT_NE(t.find("'trumpet' is not one of: two-wands, ring"), std::string::npos) << t;
 }

@@ -8,14 +8,18 @@
 #include <zlib.h>
 
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 
 #include "cli_checks.h"
+#include "depth_recording.h"
 #include "experiments.h"
 #include "freenect_stream.h"
+#include "hand_forest.h"
+#include "interrupt.h"
 #include "osc_events.h"
 #include "output_file.h"
 #include "png_image.h"
@@ -24,7 +28,9 @@
 #include "run_output.h"
 #include "scene_file.h"
 #include "trajectory_file.h"
+#include "trajectory_plot.h"
 #include "untrusted.h"
+#include "video_stream.h"
 #include "view_command.h"
 #include "wand_input.h"
 
@@ -298,8 +304,11 @@ TEST(ShowProof, ATrajectoryThatIsNoFileOrHoldsHostileTextIsNamedShortly) {
   const std::string header = "t,left_x,left_y,left_z,right_x,right_y,right_z\n";
   std::ofstream(dir / "long.csv") << header << "0," << std::string(10 << 20, '7') << "x,0,2,0.3,0,2\n";
   const std::string longField = errorOf([&] { (void)readTrajectory(dir / "long.csv"); });
-  EXPECT_LT(longField.size(), 300u) << "a 10 MB field is quoted, not echoed whole";
-  EXPECT_NE(longField.find("...(10485761 bytes)' is not a number"), std::string::npos) << longField.substr(0, 300);
+  EXPECT_LT(longField.size(), 300u) << "a 10 MB line is refused by its length, not read or echoed";
+  EXPECT_NE(longField.find("line 2: longer than 4096 bytes"), std::string::npos) << longField.substr(0, 300);
+  std::ofstream(dir / "field.csv") << header << "0," << std::string(1000, '7') << "x,0,2,0.3,0,2\n";
+  const std::string field = errorOf([&] { (void)readTrajectory(dir / "field.csv"); });
+  EXPECT_NE(field.find("...(1001 bytes)' is not a number"), std::string::npos) << field;
   const char nulRow[] = "0,1\0x,0,2,0.3,0,2\n";
   std::ofstream(dir / "nul.csv") << header << std::string(nulRow, sizeof nulRow - 1);
   const std::string nul = errorOf([&] { (void)readTrajectory(dir / "nul.csv"); });
@@ -478,6 +487,355 @@ TEST(Untrusted, ControlCharactersAreEscapedAndLongTextIsCut) {
   EXPECT_EQ(printable("\xff\xfe"), "\\xff\\xfe");  // bytes that are not UTF-8
   const std::string field(10 << 20, '7');          // a 10 MB CSV field
   EXPECT_EQ(printable(field), std::string(kMaxQuotedBytes, '7') + "...(10485760 bytes)");
+}
+
+TEST(Untrusted, DirectionControlsAreEscaped) {
+  // A right-to-left override (U+202E) and an isolate (U+2066) would show the rest of a message in another order.
+  EXPECT_EQ(printable("show\xe2\x80\xaegnp.exe"), "show\\u202egnp.exe");
+  EXPECT_EQ(printable("a\xe2\x81\xa6"
+                      "b"),
+            "a\\u2066b");
+  EXPECT_EQ(printable("\xd8\x9c"), "\\u061c");
+  EXPECT_EQ(printable("\xe2\x80\x94"), "\xe2\x80\x94");  // an em dash is text
+}
+
+// The third round: every output of every command written as `run`'s are, every input bounded before it is read,
+// and numbers, signals and messages as the docs say.
+
+TEST(ShowProof, ARecordedTrajectoryOnAFullDiskKeepsTheOldFileAndNamesTheReason) {
+  const fs::path csv = scratch("full_trajectory") / "hands.csv";
+  std::ofstream(csv) << "the previous recording\n";
+  HandSample sample;
+  sample.left.measured = sample.right.measured = true;
+  sample.left.position = sample.right.position = Vec3d(0.1, 0.0, 2.0);
+  std::string message;
+  {
+    const FullDiskAfter full(2000);  // a row is about 70 bytes
+    message = errorOf([&] {
+      TrajectoryWriter writer(csv);
+      for (int k = 0; k < 100; ++k) {
+        sample.time = k / 30.0;
+        writer.write(sample);
+      }
+      writer.close();
+    });
+  }
+  EXPECT_NE(message.find("failed writing " + csv.string() + ": File too large"), std::string::npos) << message;
+  EXPECT_EQ(readAll(csv), "the previous recording\n");
+  EXPECT_FALSE(fs::exists(csv.string() + ".partial"));
+  TrajectoryWriter writer(csv);  // a recording that ends is renamed over the old one
+  writer.write(sample);
+  EXPECT_EQ(readAll(csv), "the previous recording\n") << "the old file stays while the recording goes on";
+  writer.close();
+  EXPECT_EQ(readTrajectory(csv).size(), 1u);
+}
+
+TEST(ShowProof, ARecordingsOutputsAreCheckedBeforeAnythingIsWritten) {
+  const fs::path dir = scratch("record_outputs");
+  ASSERT_EQ(::mkfifo((dir / "fifo.csv").c_str(), 0644), 0);
+  const auto refusal = [](std::vector<Output> outputs) { return errorOf([&] { (void)checkOutputs(outputs); }); };
+  using Kind = Output::Kind;
+  EXPECT_NE(refusal({{"--trajectory", dir / "fifo.csv", Kind::File, ".csv"}})
+                .find("--trajectory: will not write " + (dir / "fifo.csv").string() + ": it is a FIFO"),
+            std::string::npos);
+  EXPECT_NE(refusal({{"--trajectory", "/dev/null", Kind::File, ""}}).find("it is a character device"),
+            std::string::npos);
+  // One file named twice, also through a symbolic link to a file that does not exist yet.
+  fs::create_symlink("t.csv", dir / "link.svg");
+  EXPECT_NE(
+      refusal({{"--trajectory", dir / "t.csv", Kind::File, ".csv"}, {"--plot", dir / "link.svg", Kind::File, ".svg"}})
+          .find("--trajectory " + (dir / "t.csv").string() + " and --plot " + (dir / "link.svg").string() +
+                " are one file"),
+      std::string::npos);
+  // A file inside the folder a fakenect recording fills.
+  EXPECT_NE(refusal({{"--fakenect", dir / "rec", Kind::NewFolder, "", true},
+                     {"--trajectory", dir / "rec" / "hands.csv", Kind::File, ".csv"}})
+                .find("is inside --fakenect " + (dir / "rec").string() + ", which the command fills"),
+            std::string::npos);
+  // The extension says the format.
+  EXPECT_NE(refusal({{"--depth-plot", dir / "x.svg", Kind::File, ".png"}})
+                .find("--depth-plot: " + (dir / "x.svg").string() + " does not end in .png"),
+            std::string::npos);
+  EXPECT_EQ(refusal({{"--depth-plot", dir / "X.PNG", Kind::File, ".png"}}), "(no error)");
+  // An empty name, a name too long for the file system, a folder that is missing or is a file.
+  EXPECT_NE(refusal({{"--json", "", Kind::File, ".json"}}).find("--json: the name is empty: give a file"),
+            std::string::npos);
+  EXPECT_NE(refusal({{"--out", dir / std::string(300, 'a'), Kind::Folder, "", true}}).find("File name too long"),
+            std::string::npos);
+  EXPECT_NE(refusal({{"--json", dir / "missing" / "b.json", Kind::File, ".json"}})
+                .find("--json: cannot write " + (dir / "missing" / "b.json").string() + ": No such file or directory"),
+            std::string::npos);
+  fs::create_symlink("nowhere/deep", dir / "dangling");
+  EXPECT_NE(refusal({{"--out", dir / "dangling", Kind::Folder, "", true}})
+                .find("is a symbolic link to nowhere/deep, which does not exist: give a folder"),
+            std::string::npos);
+  EXPECT_TRUE(fs::is_fifo(dir / "fifo.csv"));
+  EXPECT_FALSE(fs::exists(dir / "rec"));
+}
+
+TEST(ShowProof, AFileInAFolderARunHoldsIsRefusedNamingTheRun) {
+  const fs::path dir = scratch("held_folder") / "out";
+  const OutputFolder run(dir);
+  const std::string message = errorOf([&] {
+    (void)checkOutputs({{"--trajectory", dir / "stats.csv", Output::Kind::File, ".csv"}});
+  });
+  EXPECT_NE(message.find("another run is writing into " + dir.string() + " (process " + std::to_string(::getpid())),
+            std::string::npos)
+      << message;
+  EXPECT_FALSE(fs::exists(dir / "stats.csv"));
+}
+
+TEST(ShowProof, AFileAnotherProcessIsWritingIsRefusedAndALeftoverPartialReplaced) {
+  const fs::path dir = scratch("partial");
+  const fs::path video = dir / "show.mp4";
+  {
+    const PartialFile first(video);  // held, as by a run whose ffmpeg writes it
+    EXPECT_NE(errorOf([&] {
+                const PartialFile second(video);
+              }).find("another process is writing " + video.string() + " (it holds " + video.string() + ".partial)"),
+              std::string::npos);
+    EXPECT_NE(errorOf([&] {
+                (void)checkOutputs({{"--video", video, Output::Kind::File, ".mp4"}});
+              }).find("--video: another process is writing"),
+              std::string::npos);
+  }
+  EXPECT_FALSE(fs::exists(video.string() + ".partial")) << "an uncommitted partial file goes";
+  std::ofstream(dir / "x.json.partial") << "left by a process killed while writing";
+  writeFileAtomically(dir / "x.json", "{}\n");
+  EXPECT_EQ(readAll(dir / "x.json"), "{}\n");
+  ASSERT_EQ(::mkfifo((dir / "y.json.partial").c_str(), 0644), 0);
+  EXPECT_NE(errorOf([&] {
+              writeFileAtomically(dir / "y.json", "{}");
+            }).find("y.json.partial is a FIFO, not a file left by an earlier write"),
+            std::string::npos);
+  EXPECT_TRUE(fs::is_fifo(dir / "y.json.partial")) << "a FIFO is not removed";
+}
+
+TEST(ShowProof, ATrajectoryPlotIsWrittenWholeOrNotAtAll) {
+  const fs::path svg = scratch("plot") / "hands.svg";
+  std::ofstream(svg) << "<svg>the previous plot</svg>\n";
+  TrajectoryPlot plot;
+  plot.title = "test";
+  for (int k = 0; k < 2000; ++k) {
+    plot.leftWand.push_back(Vec3(0.01f * static_cast<float>(k), 1.0f, 0.0f));
+    plot.rightWand.push_back(Vec3(0.01f * static_cast<float>(k), 1.2f, 0.0f));
+  }
+  std::string message;
+  {
+    const FullDiskAfter full(4096);  // 4000 points are tens of KB
+    message = errorOf([&] { writeTrajectoryPlot(svg, plot); });
+  }
+  EXPECT_NE(message.find("failed writing " + svg.string() + ": File too large"), std::string::npos) << message;
+  EXPECT_EQ(readAll(svg), "<svg>the previous plot</svg>\n");
+}
+
+TEST(ShowProof, AnInputThatIsNoRegularFileIsNamedWithoutWaitingOnIt) {
+  const fs::path dir = scratch("inputs");
+  const fs::path fifo = dir / "fifo";
+  ASSERT_EQ(::mkfifo(fifo.c_str(), 0644), 0);
+  std::string why;
+  EXPECT_FALSE(openInputFile(fifo, 1 << 20, why));  // would block in open() without a writer
+  EXPECT_EQ(why, "is a FIFO");
+  EXPECT_FALSE(openInputFile(dir, 1 << 20, why));
+  EXPECT_EQ(why, "is a folder");
+  EXPECT_FALSE(openInputFile("/dev/zero", 1 << 20, why));
+  EXPECT_EQ(why, "is a character device");
+  std::ofstream(dir / "big") << std::string(3 << 20, 'x');
+  EXPECT_FALSE(openInputFile(dir / "big", 1 << 20, why));
+  EXPECT_EQ(why, "is 3.0 MiB, more than the 1.0 MiB such a file may have");
+  for (const fs::path& path : {fifo, fs::path(dir), fs::path("/dev/zero")}) {
+    EXPECT_NE(
+        errorOf([&] { (void)readHandForest(path.string()); }).find("hand forest model " + path.string() + " is a"),
+        std::string::npos);
+    EXPECT_NE(errorOf([&] { (void)readPng(path); }).find("PNG " + path.string() + " is a"), std::string::npos);
+  }
+}
+
+TEST(ShowProof, AHandForestWithANanThresholdOrTrailingBytesIsRefused) {
+  DecisionTree tree;
+  tree.nodes.resize(3);
+  tree.nodes[0] = {{{{100, 0}}, {{0, 0}}}, NAN, 1};
+  tree.nodes[1].next = -1;
+  tree.nodes[2].next = -2;
+  tree.leaves = {{1.0f, 0.0f, 0.0f}, {0.0f, 1.0f, 0.0f}};
+  HandForest forest;
+  forest.trees = {tree};
+  std::vector<uint8_t> bytes = forest.serialize();
+  EXPECT_NE(
+      errorOf([&] { (void)HandForest::deserialize(bytes.data(), bytes.size()); }).find("a threshold is not a number"),
+      std::string::npos);
+  forest.trees[0].nodes[0].threshold = 0.5f;
+  bytes = forest.serialize();
+  EXPECT_NO_THROW((void)HandForest::deserialize(bytes.data(), bytes.size()));
+  bytes.push_back(0);
+  EXPECT_NE(errorOf([&] {
+              (void)HandForest::deserialize(bytes.data(), bytes.size());
+            }).find("bytes after its compressed payload"),
+            std::string::npos);
+}
+
+TEST(ShowProof, APngOfTooManyPixelsIsRefusedBeforeAllocating) {
+  const fs::path png = scratch("png_pixels") / "sky.png";
+  writePngHeader(png, 16384, 8192);  // within 16384 on a side: 400 MB of RGB if believed
+  const std::string message = errorOf([&] { (void)readPng(png); });
+  EXPECT_NE(message.find("is 16384x8192 pixels; at most 8192x4096 in all"), std::string::npos) << message;
+}
+
+TEST(ShowProof, AFakenectTimeThatDoesNotAdvanceIsRefused) {
+  const fs::path dir = scratch("fakenect_time");
+  const std::string header = "P5 640 480 65535\n";
+  std::ofstream(dir / "d-1.000000-100.pgm", std::ios::binary) << header << std::string(640 * 480 * 2, '\0');
+  {
+    std::ofstream index(dir / "INDEX.txt");
+    for (int k = 0; k < 10; ++k) index << "d-1.000000-100.pgm\n";  // one frame, ten times, at one time
+  }
+  const std::string message = errorOf([&] { (void)readFakenectIndex(dir); });
+  EXPECT_NE(message.find("INDEX.txt line 2: time 1.000000 is not after the previous depth frame's"), std::string::npos)
+      << message;
+  std::ofstream(dir / "a-1.000000-100.dump", std::ios::binary) << "12345";  // a tilt state is longer
+  std::ofstream(dir / "INDEX.txt") << "a-1.000000-100.dump\nd-1.000000-100.pgm\n";
+  EXPECT_NE(errorOf([&] { (void)readFakenectIndex(dir); }).find("a-1.000000-100.dump is 5 bytes, expected"),
+            std::string::npos);
+  {
+    std::ofstream index(dir / "INDEX.txt");
+    for (int k = 0; k < 5; ++k) index << "r-2.000000-100.pgm\n";  // colour images: no depth frame to check
+  }
+  std::ofstream(dir / "r-2.000000-100.pgm") << "x";
+  EXPECT_NE(errorOf([&] { (void)readFakenectIndex(dir); }).find("line 4: 4 entries at time 2.000000"),
+            std::string::npos);
+  // A time of 1e308 is named as written, not as 309 digits; a line of 5000 bytes is not read.
+  std::ofstream(dir / "INDEX.txt") << "d-1.000000-100.pgm\nd-1e308-101.pgm\n";
+  const std::string huge = errorOf([&] { (void)readFakenectIndex(dir); });
+  EXPECT_NE(huge.find("line 2: time 1e308 jumps 1e+308 s forward"), std::string::npos) << huge;
+  std::ofstream(dir / "INDEX.txt") << "d-1.000000-100.pgm\n" << std::string(5000, 'd') << "\n";
+  EXPECT_NE(errorOf([&] { (void)readFakenectIndex(dir); }).find("line 2: longer than 4096 bytes"), std::string::npos);
+}
+
+TEST(ShowProof, ATrajectoryHandBehindTheCameraIsRefused) {
+  const fs::path csv = scratch("behind") / "hands.csv";
+  std::ofstream(csv) << "t,left_x,left_y,left_z,right_x,right_y,right_z\n0,0,0,2,0.3,0,-0.5\n";
+  EXPECT_NE(
+      errorOf([&] { (void)readTrajectory(csv); }).find("line 2: right_z -0.5 m puts the right hand behind the camera"),
+      std::string::npos);
+}
+
+TEST(ShowProof, ATrajectoryHeaderFromAnyOtherFileIsNotQuoted) {
+  const fs::path csv = scratch("header") / "secret.csv";
+  std::ofstream(csv) << "root:x:0:0:root:/root:/bin/bash\n";
+  const std::string message = errorOf([&] { (void)readTrajectory(csv); });
+  EXPECT_NE(message.find("line 1: expected the header"), std::string::npos) << message;
+  EXPECT_EQ(message.find("root:x"), std::string::npos) << message;
+}
+
+TEST(ShowProof, ADeepOrLinkedArchiveEntryIsNamed) {
+  const fs::path dir = scratch("archive");
+  fs::create_directories(dir / "rec");
+  std::ofstream(dir / "rec" / "INDEX.txt") << "d-0.000000-0.pgm\n";
+  fs::create_symlink("/etc/hostname", dir / "rec" / "hands.csv");
+  ASSERT_EQ(std::system(("tar czf " + (dir / "linked.tar.gz").string() + " -C " + dir.string() + " rec").c_str()), 0);
+  EXPECT_NE(errorOf([&] {
+              (void)readDepthRecording(dir / "linked.tar.gz");
+            }).find("the entry 'rec/hands.csv' is not a regular file"),
+            std::string::npos);
+  fs::path deep = dir / "deep";
+  std::string name;
+  for (int k = 0; k < 400; ++k) name += "dd/";  // 1200 bytes
+  fs::create_directories(dir / "deep" / name);
+  ASSERT_EQ(
+      std::system(("tar czf " + (dir / "deep.tar.gz").string() + " -C " + (dir / "deep").string() + " dd").c_str()), 0);
+  const std::string message = errorOf([&] { (void)readDepthRecording(dir / "deep.tar.gz"); });
+  EXPECT_NE(message.find("bytes, more than 1024 (not a recording)"), std::string::npos) << message;
+}
+
+TEST(ShowProof, NumbersOnTheCommandLineAreDecimalFiniteAndWholeWhereTheyCount) {
+  const FiniteRange range(0.0, 20.0);
+  for (std::string hex : {"0x10", "0x1p-3", "0X1A"})
+    EXPECT_NE(range(hex).find("is not a number (written in decimal)"), std::string::npos) << hex;
+  EXPECT_EQ(range("1e1"), "");
+  const WholeNumber whole(0, 100000);
+  std::string text = "1e4";
+  EXPECT_EQ(whole(text), "");
+  EXPECT_EQ(text, "10000") << "CLI11 is handed the plain digits";
+  for (std::string bad : {"0x10", "6.5", "nan", "1e6"}) EXPECT_NE(whole(bad), "") << bad;
+  EXPECT_NE(whole(std::string("6.5")).find("'6.5' is not a whole number"), std::string::npos);
+  double value = 0;
+  EXPECT_EQ(numberProblem("010", value), "");
+  EXPECT_EQ(value, 10.0) << "decimal, not octal";
+  EXPECT_NE(
+      numberProblem(std::string(400, '9'), value).find("'999999999999999999999999...(400 bytes)' is not a finite"),
+      std::string::npos);
+  EXPECT_TRUE(isPort("65535"));
+  for (const char* port : {"0", "65536", "99999", "0x50", "-1", ""}) EXPECT_FALSE(isPort(port)) << port;
+}
+
+TEST(ShowProof, AStreamToAPortThatIsNoPortIsRefused) {
+  EXPECT_NE(errorOf([] { (void)streamArguments("udp://127.0.0.1:99999", 16, 16); }).find("from 1 to 65535"),
+            std::string::npos);
+  EXPECT_NE(errorOf([] { (void)streamArguments("srt://host", 16, 16); }).find("from 1 to 65535"), std::string::npos);
+  EXPECT_EQ(errorOf([] { (void)streamArguments("udp://127.0.0.1:9000?ttl=2", 16, 16); }), "(no error)");
+}
+
+TEST(ShowProof, SighupStopsLikeSigterm) {
+  const InterruptCatcher catcher;
+  ASSERT_EQ(std::raise(SIGHUP), 0);  // caught: the test process goes on
+  EXPECT_EQ(InterruptCatcher::signal(), SIGHUP);
+  EXPECT_EQ(InterruptCatcher::exitStatus(0), 129);
+  EXPECT_STREQ(signalName(SIGHUP), "SIGHUP");
+}
+
+Scene sceneOf(const std::string& text) { return parseScene(text, "s.toml", fs::current_path()); }
+
+TEST(ShowProof, AnExperimentSceneRefusesTheKeysItWouldIgnore) {
+  for (const char* key :
+       {"duration = 2.0", "burst_at = 1.0", "[tool]\nkind = \"ring\"", "[input]\nsource = \"script:circles\"",
+        "[render]\nenabled = true", "[output]\nply_every = 5"}) {
+    const std::string message =
+        errorOf([&] { (void)sceneOf(std::string("name = \"e\"\nexperiment = \"catenoid\"\n") + key + "\n"); });
+    EXPECT_NE(message.find("s.toml:3:"), std::string::npos) << message;
+    EXPECT_NE(message.find("does not apply to the physics experiment 'catenoid'"), std::string::npos) << message;
+  }
+  EXPECT_NO_THROW((void)sceneOf("name = \"e\"\nexperiment = \"catenoid\"\n[params]\ntensionModel = 1\n"));
+}
+
+TEST(ShowProof, SceneNumbersTakeAnyWholeFormAndAreNamedAsWritten) {
+  const Scene whole =
+      sceneOf("name = \"s\"\n[output]\nply_every = 6.0\n[render]\nwidth = 1.6e3\n[params]\nmaxSubsteps = 1e3\n");
+  EXPECT_EQ(whole.run.plyEvery, 6);
+  EXPECT_EQ(whole.run.render.image.width, 1600);
+  EXPECT_EQ(whole.run.params.maxSubsteps, 1000);
+  EXPECT_NE(errorOf([] {
+              (void)sceneOf("name = \"s\"\n[output]\nply_every = 6.5\n");
+            }).find("ply_every in [output] = 6.5 is not a whole number"),
+            std::string::npos);
+  EXPECT_NE(errorOf([] {
+              (void)sceneOf("name = \"s\"\nduration = 3600.0000001\n");
+            }).find("duration = 3600.0000001 is out of range [0.001, 3600]"),
+            std::string::npos);
+  // std::to_string(1e300) is 301 digits and ".000000".
+  const std::string huge = errorOf([] { (void)sceneOf("name = \"s\"\n[render]\ncamera = [1e300, 1, 2]\n"); });
+  EXPECT_NE(huge.find("camera in [render]: 1e+300 is not a coordinate"), std::string::npos) << huge;
+  EXPECT_LT(huge.size(), 200u) << huge;
+  // A scene's poke is never for any negative time, as --burst-at's.
+  EXPECT_EQ(sceneOf("name = \"s\"\nburst_at = -2\n").run.burstAt, -2.0);
+}
+
+TEST(ShowProof, AScenesRelativeInputStaysInItsFolder) {
+  const std::string message =
+      errorOf([] { (void)sceneOf("name = \"s\"\n[input]\nsource = \"trajectory:../../etc/passwd\"\n"); });
+  EXPECT_NE(message.find("input path '../../etc/passwd' leaves the scene's folder"), std::string::npos) << message;
+}
+
+TEST(ShowProof, UntrustedNamesAreEscapedInEveryMessage) {
+  const std::string scene = errorOf([] { (void)resolveScene("\x1b]0;pwned\x07"); });
+  EXPECT_NE(scene.find("unknown scene '\\x1b]0;pwned\\x07'"), std::string::npos) << scene;
+  EXPECT_EQ(scene.find('\x1b'), std::string::npos);
+  const std::string folder = errorOf([] {
+    (void)checkOutputs({{"--out", "/nonexistent\x1b[2J/x", Output::Kind::Folder, ""}});
+  });
+  EXPECT_EQ(folder.find('\x1b'), std::string::npos) << folder;
+  EXPECT_NE(folder.find("\\x1b[2J"), std::string::npos) << folder;
+  const std::string rlo = errorOf([] { (void)sceneOf("name = \"show\xe2\x80\xaegnp\"\n"); });
+  EXPECT_NE(rlo.find("name = 'show\\u202egnp' holds control characters"), std::string::npos) << rlo;
 }
 
 }  // namespace

@@ -42,6 +42,7 @@ TEST(TrajectoryFile, WritesAndReadsBackWithMissingHandsHeld) {
   {
     TrajectoryWriter writer(path);
     for (const HandSample& s : written) writer.write(s);
+    writer.close();
   }
   const std::vector<HandSample> read = readTrajectory(path, 0.5);
   fs::remove(path);

@@ -99,7 +99,7 @@ void setParameter(Params& params, const std::string& name, double value) {
   if (!field) throw std::invalid_argument("unknown parameter '" + name + "' (docs/model.md lists them)");
   if (!(value >= field->lo && value <= field->hi)) {  // NaN too
     std::ostringstream msg;
-    msg << std::setprecision(10) << "parameter " << name << " = " << value << " is out of range [" << field->lo << ", "
+    msg << std::setprecision(15) << "parameter " << name << " = " << value << " is out of range [" << field->lo << ", "
         << field->hi << "]" << field->unit;
     throw std::invalid_argument(msg.str());
   }

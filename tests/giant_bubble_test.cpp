@@ -105,8 +105,8 @@ TEST(GiantBubble, DefaultPerformanceBlowsReleasesAndBurstsABubble) {
       "m/s against the wands' %.1f m/s, roundness a second after pinch-off %.2f, folded triangles %.1f%%\n",
       r.firstArea, r.peakArea, r.peakVolume, r.pinchTime, r.burstCause.c_str(), r.burstTime,
       r.peakFilmSpeedOutsideBursts, r.peakWandSpeed, r.roundnessOneSecondLater, 100.0 * r.foldedOneSecondLater);
-  // Measured: area 0.63 -> 3.15 m^2, volume 0.53 m^3, pinch-off at 1.86 s, burst by the floor at 4.16 s, fastest
-  // film particle 2.8 m/s against the wands' 2.2 m/s, roundness a second after pinch-off 1.09, 1.1% folded.
+  // Measured: area 0.63 -> 3.48 m^2, volume 0.60 m^3, pinch-off at 1.86 s, burst by the floor at 5.08 s, fastest
+  // film particle 2.8 m/s against the wands' 2.2 m/s, roundness a second after pinch-off 1.09, 2.1% folded.
   EXPECT_GE(r.peakArea, 3.0 * r.firstArea) << "the bag is not giant: peak area " << r.peakArea << " m^2";
   EXPECT_GE(r.peakVolume, 0.5) << "peak volume " << r.peakVolume << " m^3";
   ASSERT_GE(r.pinchTime, 0.0) << "the wands closed but the film never pinched off";
@@ -124,10 +124,12 @@ TEST(GiantBubble, DefaultPerformanceBlowsReleasesAndBurstsABubble) {
   // pinch-off its area is within 25% of a sphere's of the same volume (measured 1.09; 1.37 when the slack film
   // hangs in wrinkles; it still wobbles, and its closing seam is a fold).
   EXPECT_LT(r.roundnessOneSecondLater, 1.25) << "the free bubble hangs in folds";
-  // Nor is it crumpled: a second after pinch-off at most 2% of its triangles are folded (corner normals over 37
-  // degrees apart). Measured 1.1%; 6.1% without the merging of crowded thick particles (mergeCrowdedParticles), whose
-  // folds glitter on the seam.
-  EXPECT_LT(r.foldedOneSecondLater, 0.02) << "the free bubble is crumpled";
+  // Nor is it crumpled: a second after pinch-off at most 3% of its triangles are folded (corner normals over 37
+  // degrees apart). Measured 2.1%, and 1.3-2.5% with the stroke 1-2% slower or faster: the band the stroke draws off
+  // the wire is fed to a new film's thickness (film_growth.h), and film as thick as the dip is not contracted, so the
+  // seam keeps a few more folds than the 0.6-1.3% of a bag whose band thinned (which burst real performers' films).
+  // 6.1% without the merging of crowded thick particles (mergeCrowdedParticles), whose folds glitter on the seam.
+  EXPECT_LT(r.foldedOneSecondLater, 0.03) << "the free bubble is crumpled";
 }
 
 TEST(GiantBubble, AGibbsFloorLetsTheFreeBubbleLiveWhateverTheSolversSweeps) {

@@ -8,11 +8,32 @@ namespace gb {
 
 namespace {
 
-constexpr double kFullHandDensity = 0.003;  // m^2 of sure hand surface around a mode: a whole hand in view
-constexpr double kMinConfidence = 0.1;      // hand modes less sure than this are not detections
+constexpr double kFullHandDensity = 0.003;              // m^2 of sure hand surface around a mode: a whole hand in view
+constexpr double kMinConfidence = 0.1;                  // hand modes less sure than this are not detections
+constexpr int kLowerEdgeRows = BodyDepth::kHeight / 5;  // lowerEdgeFactor's rows: a fifth of the image
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
+// Whether the performer's body runs from grid pixel (u, v) down to the image's lower edge, within a few pixels either
+// side: a limb that leaves the image there. Close to the camera, with the legs cut off by the lower edge, the thighs
+// and knees end there like forearms do at the hands, and the forest takes them for hands more often than a real hand
+// is there (a hand held that low is usually out of the image).
+bool limbLeavesAtLowerEdge(const BodyDepth& body, int u, int v) {
+  constexpr int kHalfWidth = 3;  // grid pixels either side (about 4 cm at 1.2 m)
+  for (int y = std::max(v, 0); y < BodyDepth::kHeight; ++y) {
+    bool row = false;
+    for (int x = u - kHalfWidth; x <= u + kHalfWidth && !row; ++x) row = body.at(x, y) < BodyDepth::kBackground;
+    if (!row) return false;
+  }
+  return true;
+}
+
 }  // namespace
+
+double lowerEdgeFactor(const BodyDepth& body, const Vec3d& hand) {
+  const Eigen::Vector2d px = kinect::cameraToPixel(hand) / 2.0;  // the half-resolution grid
+  const int u = static_cast<int>(std::lround(px.x())), v = static_cast<int>(std::lround(px.y()));
+  return v >= BodyDepth::kHeight - kLowerEdgeRows && limbLeavesAtLowerEdge(body, u, v) ? kLimbAtEdgeFactor : 1.0;
+}
 
 Detection detectHands(const kinect::DepthFrame& frame, PerformerSegmenter& segmenter, const DetectionOptions& o) {
   Detection d;
@@ -36,6 +57,7 @@ Detection detectHands(const kinect::DepthFrame& frame, PerformerSegmenter& segme
       h.side = hand == 0 ? 1 : -1;
       h.sideConfidence = std::clamp(2.0 * m.share - 1.0, 0.0, 1.0);
       h.confidence = std::min(1.0, m.weight / kFullHandDensity);
+      h.confidence *= lowerEdgeFactor(d.body, h.position);
       if (h.confidence >= kMinConfidence) d.hands.push_back(h);
     }
   std::stable_sort(d.hands.begin(), d.hands.end(),
@@ -94,12 +116,21 @@ HandSample HandTracker::update(double time, const Detection& detection) {
   const DetectedHand* best[2] = {nullptr, nullptr};
   for (int h = 0; h < 2; ++h) {
     double nearest = kInfinity;
+    const DetectedHand* strongest = nullptr;
     for (const DetectedHand& d : detection.hands) {
       if (d.side != sideOf(h)) continue;
-      if (!best[h]) best[h] = &d;
+      if (!strongest) best[h] = strongest = &d;
       if (!followed(h, time) || d.confidence < options_.followConfidence) continue;
       const double distance = (d.position - predicted(h, time)).norm();
       if (distance <= reach(h, time) && distance < nearest) nearest = distance, best[h] = &d;
+    }
+    // The followed detection outweighed by a sure one elsewhere, letGoFrames in a row: let go of it for that one.
+    const bool outweighed = strongest && best[h] != strongest && strongest->confidence >= options_.newConfidence &&
+                            strongest->confidence >= options_.letGoRatio * best[h]->confidence;
+    unsupported_[h] = outweighed ? unsupported_[h] + 1 : 0;
+    if (outweighed && unsupported_[h] >= options_.letGoFrames) {
+      best[h] = strongest;
+      unsupported_[h] = 0;
     }
   }
   std::optional<Vec3d> measured[2];

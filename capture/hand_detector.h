@@ -49,6 +49,13 @@ struct Detection {
   std::string advice;               // what the performer should change to be found (empty: nothing)
 };
 
+// A hand mode in the image's lowest rows (a fifth) on a limb that runs out of the image there is a leg more often than
+// a hand: close to the camera, with the legs cut off by the lower edge, thighs and knees end there as forearms do at
+// the hands, and a hand held that low is usually out of the image. Its confidence is multiplied by this, so that the
+// tracker takes it for a hand it was already following there but not for a new one (TrackerOptions).
+inline constexpr double kLimbAtEdgeFactor = 0.5;
+double lowerEdgeFactor(const BodyDepth& body, const Vec3d& hand);  // kLimbAtEdgeFactor there, else 1
+
 // Hands of the performer that `segmenter` takes in this frame (it learns the room as it goes).
 Detection detectHands(const kinect::DepthFrame& frame, PerformerSegmenter& segmenter, const DetectionOptions& options);
 // One frame on its own: a room never seen before.
@@ -62,12 +69,18 @@ struct TrackerOptions {
   double followTime = 0.3;        // s: a hand seen this recently is followed
   double maxHandSpeed = 4.0;      // m/s: a followed hand's detection within this speed of its prediction is near
   double jumpMargin = 0.10;       // m, added to that distance (detection noise)
+  // A followed hand whose detection is this many times weaker than a sure detection of its side elsewhere, frame
+  // after frame, is let go for that one: the detections no longer support where it is (a hand followed onto a knee
+  // while the raised hand is found).
+  double letGoRatio = 2.0;
+  int letGoFrames = 3;
 };
 
 // Left/right identity over time. The forest tells the sides (it learned them from whole bodies, crossed arms
 // included), so each hand takes a detection of its side: a followed hand the one nearest to where it was
-// going, from a lower confidence; else (a new hand, or a followed one with nothing of its side near) the
-// strongest, only when it is sure. A hand with no detection is held (HandHold).
+// going, from a lower confidence; else (a new hand, or a followed one with nothing of its side near, or one whose
+// detection a sure one elsewhere has outweighed for letGoFrames) the strongest, only when it is sure. A hand with no
+// detection is held (HandHold).
 class HandTracker {
  public:
   explicit HandTracker(const TrackerOptions& options = {});
@@ -78,6 +91,7 @@ class HandTracker {
   std::optional<Vec3d> last_[2];
   Vec3d velocity_[2] = {Vec3d::Zero(), Vec3d::Zero()};
   double lastSeen_[2] = {0.0, 0.0};
+  int unsupported_[2] = {0, 0};  // frames in a row a sure detection elsewhere outweighed the followed one
   HandHold hold_[2];
   [[nodiscard]] Vec3d predicted(int hand, double time) const;
   [[nodiscard]] bool followed(int hand, double time) const;

@@ -7,7 +7,9 @@ HandFinder::HandFinder(const DetectionOptions& detection, const TrackerOptions& 
 
 HandSample HandFinder::update(const kinect::DepthFrame& frame) {
   detection_ = detectHands(frame, segmenter_, options_);
-  return tracker_.update(frame.time, detection_);
+  HandSample sample = tracker_.update(frame.time, detection_);
+  sample.body = detection_.centre;
+  return sample;
 }
 
 HandSample HandFinder::miss(double time) { return tracker_.update(time, Detection{}); }

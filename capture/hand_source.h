@@ -30,6 +30,7 @@ struct HandObservation {
 struct HandSample {
   double time = 0.0;  // s, increasing along a source
   HandObservation left, right;
+  std::optional<Vec3d> body;  // the performer's median point (camera space), where a depth camera found them
   HandObservation& hand(Hand h) { return h == Hand::Left ? left : right; }
   [[nodiscard]] const HandObservation& hand(Hand h) const { return h == Hand::Left ? left : right; }
 };

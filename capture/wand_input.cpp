@@ -36,7 +36,17 @@ std::string ScriptedWands::describe() const {
 void printToStderr(const std::string& message) { std::fprintf(stderr, "%s\n", message.c_str()); }
 
 namespace {
+
 bool bothMeasured(const HandSample& s) { return s.left.measured && s.right.measured; }
+
+// Both hands measured and each sure (the hand tracker's confidence for a hand it was not following): the pose a
+// performer is found in and the calibration is centred on. A hand followed onto something less sure (down to 0.3),
+// or a knee at the lower edge of a close camera's image (halved, hand_detector.cpp), does not place the performer.
+constexpr double kConfidentHand = 0.6;
+bool confidentPose(const HandSample& s) {
+  return bothMeasured(s) && s.left.confidence >= kConfidentHand && s.right.confidence >= kConfidentHand;
+}
+
 }  // namespace
 
 StabilizedWands::StabilizedWands(std::unique_ptr<HandSource> source, const StabilizerOptions& stabilizer,
@@ -48,9 +58,9 @@ StabilizedWands::StabilizedWands(std::unique_ptr<HandSource> source, const Stabi
   if (wait.enabled) {
     waitForPerformer(wait);
   } else if (calibration_.autoPerformer) {
-    while (!bothMeasured(ahead_.back()) && ahead_.back().time - start_ < 3.0 && fetch()) {
+    while (!confidentPose(ahead_.back()) && ahead_.back().time - start_ < 3.0 && fetch()) {
     }
-    if (bothMeasured(ahead_.back()))
+    if (confidentPose(ahead_.back()))
       centreOnPerformer(ahead_.back());
     else
       messages_.push_back(
@@ -72,6 +82,7 @@ StabilizedWands::StabilizedWands(std::unique_ptr<HandSource> source, const Stabi
 
 void StabilizedWands::centreOnPerformer(const HandSample& sample) {
   calibration_.performer = 0.5 * (sample.left.position + sample.right.position);
+  if (sample.body) centreFromBody_ = calibration_.performer - *sample.body;
   char text[160];
   std::snprintf(text, sizeof text, "note: calibration: performer at (%.2f, %.2f, %.2f) m, between the hands at t = %s",
                 calibration_.performer.x(), calibration_.performer.y(), calibration_.performer.z(),
@@ -83,22 +94,42 @@ void StabilizedWands::waitForPerformer(const PerformerWait& wait) {
   // Said at once, then once per second of input: a waiting console is not flooded.
   double saidAt = -1.0;
   const bool live = !source_->length();
-  while (!bothMeasured(ahead_.back())) {
+  HandSample held;  // the sample the set-up's hold began with (time < 0: none)
+  held.time = -1.0;
+  int counted = 0;  // the last number of the count said
+  for (;;) {
     const HandSample& s = ahead_.back();
-    const bool one = s.left.measured || s.right.measured;
-    const std::string why =
-        one ? std::string(s.left.measured ? "the left" : "the right") + " hand found, waiting for the other"
-            : source_->whyNoHands();
-    const double t = s.time - first_;
-    if (saidAt < 0.0 || t - saidAt >= 1.0) {
-      wait.say("waiting for a performer: " + why + " (" + seconds(t) + " of input)");
-      saidAt = t;
+    if (confidentPose(s)) {
+      if (wait.holdStill <= 0.0) break;
+      const bool moved = held.time < 0.0 || (s.left.position - held.left.position).norm() > PerformerWait::kHeldStill ||
+                         (s.right.position - held.right.position).norm() > PerformerWait::kHeldStill;
+      if (moved) held = s;
+      const double left = wait.holdStill - (s.time - held.time);
+      if (left <= 0.0) break;
+      if (const int count = static_cast<int>(std::ceil(3.0 * left / wait.holdStill)); count != counted) {
+        wait.say("waiting for a performer: hold both hands forward and still: " + std::to_string(count));
+        counted = count;
+      }
+    } else {
+      held.time = -1.0;
+      counted = 0;
+      const bool one = s.left.measured || s.right.measured;
+      const std::string why =
+          bothMeasured(s) ? "both hands found, not surely yet (raise them in front of you)"
+          : one ? std::string(s.left.measured ? "the left" : "the right") + " hand found, waiting for the other"
+                : source_->whyNoHands();
+      const double t = s.time - first_;
+      if (saidAt < 0.0 || t - saidAt >= 1.0) {
+        wait.say("waiting for a performer: " + why + " (" + seconds(t) + " of input)");
+        saidAt = t;
+      }
     }
     if (live && ahead_.size() > 1) ahead_.pop_front();            // a camera may wait for hours: keep the newest only
     if ((wait.cancelled && wait.cancelled()) || !fetch()) break;  // stopped, or the input ended or was lost
   }
-  if (!bothMeasured(ahead_.back())) {
-    messages_.push_back("warning: no performer found (no sample with both hands); the run starts where the input does");
+  if (!confidentPose(ahead_.back())) {
+    messages_.push_back(
+        "warning: no performer found (no sample with both hands surely found); the run starts where the input does");
     start_ = ahead_.front().time;
     return;
   }
@@ -153,7 +184,28 @@ void StabilizedWands::observeInterval(double dt) {
   }
 }
 
+void StabilizedWands::followPerformer(const HandSample& sample, double dt) {
+  if (!calibration_.autoPerformer || !centreFromBody_ || !sample.body || !(dt > 0.0)) return;
+  const Vec3d target = *sample.body + *centreFromBody_;
+  Vec3d away = target - calibration_.performer;
+  away.y() = 0.0;  // a squat is a gesture, not a walk
+  const double distance = away.norm();
+  movedFor_ = distance > kMovedDistance ? movedFor_ + dt : 0.0;
+  if (!recentring_ && movedFor_ >= kMovedTime) {
+    recentring_ = true;
+    char text[160];
+    std::snprintf(text, sizeof text, "note: the performer moved %.2f m at t = %s; the calibration follows them",
+                  distance, seconds(sample.time - start_).c_str());
+    messages_.push_back(text);
+  }
+  if (!recentring_) return;
+  const double step = kRecentreSpeed * dt;
+  calibration_.performer += distance <= step ? away : Vec3d(away * (step / distance));
+  if (distance <= step) recentring_ = false;
+}
+
 void StabilizedWands::feed(const HandSample& sample) {
+  followPerformer(sample, sample.time - lastFed_);
   stabilizer_->add(sample);
   lastFed_ = sample.time;
   latest_ = sample;

@@ -7,6 +7,7 @@
 // or ends, the wands come to rest and hold still, and a message says so; a hand not seen for a while, and its
 // return, are reported the same way.
 
+#include <array>
 #include <cmath>
 #include <deque>
 #include <functional>
@@ -44,6 +45,8 @@ class WandInput {
   [[nodiscard]] virtual std::optional<Vec3> camera() const { return std::nullopt; }
   // Seconds of input read before the performer was found (run time 0 is then), when waited for.
   [[nodiscard]] virtual std::optional<double> performerFound() const { return std::nullopt; }
+  // Whether each hand (left, right) has gone unmeasured for kLostHandAfter and is held (reported lost).
+  [[nodiscard]] virtual std::array<bool, 2> handsLost() const { return {false, false}; }
   // Warnings and notes since the last call, each one line ("warning: …" or "note: …").
   std::vector<std::string> takeMessages() { return std::exchange(messages_, {}); }
 
@@ -71,6 +74,11 @@ struct PerformerWait {
   bool enabled = false;
   MessageSink say = printToStderr;  // "waiting for a performer: …", once per second of input
   std::function<bool()> cancelled;  // polled while waiting: true stops the wait (Ctrl-C), the run starts as is
+  // The set-up step of a show with a live camera: the sure pose held this long (s), the hands within kHeldStill of
+  // where they were when it began, before the performer is taken; say() counts it down ("hold both hands forward
+  // and still: 3", 2, 1). 0: the first sure pose is taken (a recording, a file).
+  double holdStill = 0.0;
+  static constexpr double kHeldStill = 0.15;  // m each hand may move while held
 };
 
 class StabilizedWands : public WandInput {
@@ -87,6 +95,7 @@ class StabilizedWands : public WandInput {
   [[nodiscard]] std::string describe() const override;
   [[nodiscard]] std::optional<double> length() const override;
   [[nodiscard]] std::optional<double> performerFound() const override { return performerFound_; }
+  [[nodiscard]] std::array<bool, 2> handsLost() const override { return {reportedLost_[0], reportedLost_[1]}; }
   [[nodiscard]] std::optional<Vec3> camera() const override {
     return calibration_.toWorld(Vec3d::Zero()).cast<float>();
   }
@@ -99,7 +108,13 @@ class StabilizedWands : public WandInput {
   void followWallClock(bool follow) { wallClock_ = follow; }
 
   static constexpr double kLostHandAfter = 0.25;  // s unmeasured before a hand is reported lost
-  static constexpr double kSlowRate = 25.0;       // samples per second below which the input is reported slow
+  // A performer found in depth who walks this far (m, across or along the camera's view; a squat or a raised arm
+  // moves their median point up and down, not this way) and stays there this long (s) is centred on again: the
+  // calibration glides after them at kRecentreSpeed (m/s of hand space), so the wands never jump.
+  static constexpr double kMovedDistance = 0.3;
+  static constexpr double kMovedTime = 1.0;
+  static constexpr double kRecentreSpeed = 0.5;
+  static constexpr double kSlowRate = 25.0;  // samples per second below which the input is reported slow
   // Samples closer than this (s) to the last one fed are skipped, and holds through a gap go at least this far
   // apart: an input with samples 1 ns apart would otherwise cost millions of stabilizer updates per frame.
   static constexpr double kMinSamplePeriod = 1e-3;
@@ -128,11 +143,15 @@ class StabilizedWands : public WandInput {
   void waitForPerformer(const PerformerWait& wait);
   void centreOnPerformer(const HandSample& sample);
   void feed(const HandSample& sample);
-  void take(const HandSample& sample, double period);  // feeds a sample read, with the holds of a gap before it
-  void holdUntil(double until, double period);         // both hands held where they were, up to source time until
-  void observeInterval(double dt);                     // updates period_ and warns once about a slow input
-  [[nodiscard]] double wallClockTime(double& age);     // wall-clock mode: the source time now, and the hands' age
+  void followPerformer(const HandSample& sample, double dt);  // re-centres on a performer who walked
+  void take(const HandSample& sample, double period);         // feeds a sample read, with the holds of a gap before it
+  void holdUntil(double until, double period);      // both hands held where they were, up to source time until
+  void observeInterval(double dt);                  // updates period_ and warns once about a slow input
+  [[nodiscard]] double wallClockTime(double& age);  // wall-clock mode: the source time now, and the hands' age
   bool wallClock_ = false;
+  std::optional<Vec3d> centreFromBody_;  // calibration.performer less the performer's median point, when centred
+  double movedFor_ = 0.0;                // s the performer has stood kMovedDistance from where they were centred
+  bool recentring_ = false;
   double newestSample_ = 0.0;  // source time of the newest sample read (not a hold)
 };
 

@@ -244,5 +244,47 @@ TEST(HandTracker, HoldsALostHandWithDecayingConfidenceAndTakesItBack) {
   EXPECT_EQ(back.right.position, Vec3d(-0.2, 0.05, 1.75));
 }
 
+// Close to the camera the forest's left hand may be followed onto a knee while the raised hand is found surely
+// elsewhere. A followed detection outweighed letGoFrames in a row by a sure one of its side (letGoRatio times as
+// confident) is let go for it; outweighed only now and then (noise), it is kept.
+TEST(HandTracker, AFollowedHandTheDetectionsNoLongerSupportIsLetGo) {
+  TrackerOptions o;
+  HandTracker tracker(o);
+  const Vec3d knee(0.2, -0.5, 1.3), raised(0.5, 0.3, 1.3);
+  ASSERT_TRUE(tracker.update(0.0, handsAt({{knee, 1}}, 0.7)).left.measured);
+  auto frame = [&](int i, double kneeConfidence) {
+    Detection d = handsAt({{raised, 1}}, 0.9);
+    d.hands.push_back({knee, kneeConfidence, 1, 1.0});
+    return tracker.update(i / 30.0, d);
+  };
+  // Outweighed every other frame: the knee is kept.
+  for (int i = 1; i <= 8; ++i) EXPECT_EQ(frame(i, i % 2 ? 0.35 : 0.6).left.position, knee) << i;
+  // Outweighed frame after frame: kept for letGoFrames - 1 frames, then let go for the raised hand.
+  for (int k = 1; k < o.letGoFrames; ++k) EXPECT_EQ(frame(8 + k, 0.35).left.position, knee) << k;
+  const HandSample s = frame(8 + o.letGoFrames, 0.35);
+  EXPECT_TRUE(s.left.measured);
+  EXPECT_EQ(s.left.position, raised);
+  EXPECT_EQ(frame(9 + o.letGoFrames, 0.35).left.position, raised);  // followed there from now on
+}
+
+// A hand mode on a limb that runs out of the image at its lower edge, in the image's lowest fifth, is a leg more
+// often than a hand: its confidence is halved. The same mode on a limb that ends above the edge (a hanging hand), or
+// higher up in the image, keeps its confidence.
+TEST(HandDetection, AModeOnALimbLeavingTheImageAtItsLowerEdgeIsHalved) {
+  const double z = 1.3;
+  auto limb = [&](int fromRow, int toRow) {  // a vertical strip 6 grid pixels wide around column 200
+    BodyDepth body;
+    for (int v = fromRow; v < toRow; ++v)
+      for (int u = 197; u <= 203; ++u) body.depth[static_cast<size_t>(v) * BodyDepth::kWidth + u] = float(z);
+    return body;
+  };
+  const Vec3d low = kinect::pixelToCamera(400.0, 2.0 * 225.0, z);  // grid (200, 225): in the lowest fifth
+  const Vec3d high = kinect::pixelToCamera(400.0, 2.0 * 120.0, z);
+  EXPECT_EQ(lowerEdgeFactor(limb(100, BodyDepth::kHeight), low), kLimbAtEdgeFactor);  // a thigh out of the image
+  EXPECT_EQ(lowerEdgeFactor(limb(100, 232), low), 1.0);                               // a hand hanging above the edge
+  EXPECT_EQ(lowerEdgeFactor(limb(100, BodyDepth::kHeight), high), 1.0);  // a forearm well above the lowest fifth
+  EXPECT_EQ(lowerEdgeFactor(BodyDepth{}, low), 1.0);                     // no body under it at all
+}
+
 }  // namespace
 }  // namespace gb

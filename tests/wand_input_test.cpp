@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <condition_variable>
@@ -254,6 +255,51 @@ TEST(WandInput, AWaitForAPerformerEndsWhenCancelled) {
   EXPECT_EQ(polls, 21);
   EXPECT_FALSE(input.performerFound());
   EXPECT_TRUE(mentions(input.takeMessages(), "warning: no performer found"));
+}
+
+// The performer is found in a sure pose: both hands found, each at least 0.6 sure (a hand followed onto a knee is
+// less). Centred then, the calibration follows them when they walk 0.6 m sideways and stay there, gliding after them
+// so that the wands never jump; a squat (their median point going down) is not a walk.
+TEST(WandInput, ThePerformerIsFoundInASurePoseAndFollowedWhenTheyWalk) {
+  auto walker = [](double t) {
+    const double walk = std::clamp(t - 12.0, 0.0, 0.6), squat = t > 15.0 ? 0.4 : 0.0;
+    HandSample s;
+    s.time = t;
+    s.left.position = Vec3d(0.25 + walk, -squat, 2.0);
+    s.right.position = Vec3d(-0.25 + walk, -squat, 2.0);
+    for (HandObservation* h : {&s.left, &s.right}) {
+      h->measured = true;
+      h->confidence = t < 10.5 - 1e-9 ? 0.4 : 0.9;
+    }
+    s.body = Vec3d(walk, -0.3 - squat, 2.1);
+    return s;
+  };
+  Calibration c;
+  c.autoPerformer = true;
+  PerformerWait wait;
+  wait.enabled = true;
+  wait.say = [](const std::string&) {};
+  StabilizedWands input(std::make_unique<FunctionSource>(walker, 240, false), StabilizerOptions{}, c, wait);
+  ASSERT_TRUE(input.performerFound());
+  EXPECT_NEAR(*input.performerFound(), 0.5, 1e-9);  // the first sure sample, not the first with both hands
+  EXPECT_NEAR(input.calibration().performer.x(), 0.0, 1e-9);
+  std::vector<std::string> messages;
+  Vec3 previous = input.at(0.0).wands.leftPosition;
+  double largestStep = 0.0;
+  for (double t = 0.02; t < 7.0; t += 0.02) {
+    const Vec3 p = input.at(t).wands.leftPosition;
+    largestStep = std::max(largestStep, double((p - previous).norm()));
+    previous = p;
+    for (const std::string& m : input.takeMessages()) messages.push_back(m);
+    if (t > 4.2 && t < 4.3) {  // source time 14.7: walked at 12-12.6, stood 0.3 m away from 12.3 on
+      EXPECT_NEAR(input.calibration().performer.x(), 0.6, 1e-6);
+    }
+  }
+  EXPECT_TRUE(mentions(messages, "note: the performer moved")) << (messages.empty() ? "" : messages.front());
+  EXPECT_NEAR(input.calibration().performer.x(), 0.6, 1e-6);
+  EXPECT_NEAR(input.calibration().performer.y(), 0.0, 1e-9);  // the squat was not followed
+  // No jump: the tips' own limit (3 m/s) plus the glide's (0.5 m/s of hand space, 1 m/s at reach 2), 0.08 m a frame.
+  EXPECT_LE(largestStep, (StabilizerOptions{}.tipSpeed + StabilizedWands::kRecentreSpeed * c.reach) * 0.02 + 1e-4);
 }
 
 TEST(ThreadedHandSource, PassesEverySampleOnInOrderThenTheFailure) {

@@ -21,6 +21,7 @@ constexpr std::pair<const char*, CueAction> kCues[] = {
     {"camera", CueAction::Camera},
     {"fullscreen", CueAction::Fullscreen},
     {"performer_view", CueAction::PerformerView},
+    {"operator", CueAction::Operator},
     {"quit", CueAction::Quit},
 };
 constexpr std::string_view kPrefix = "/giantbubble/";

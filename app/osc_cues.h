@@ -10,6 +10,7 @@
 //   /giantbubble/camera         Home   the camera back to following the film
 //   /giantbubble/fullscreen     F      full screen or a window
 //   /giantbubble/performer_view V      the performer view on or off
+//   /giantbubble/operator       O      the operator overlay on or off
 //   /giantbubble/quit           Esc    end the show
 //
 // A cue takes no argument, or one number: a controller's push button sends 1 when pressed and 0 when let go, and
@@ -23,7 +24,7 @@
 
 namespace gb {
 
-enum class CueAction { Dip, Burst, Reset, Pause, Colouring, Camera, Fullscreen, PerformerView, Quit };
+enum class CueAction { Dip, Burst, Reset, Pause, Colouring, Camera, Fullscreen, PerformerView, Operator, Quit };
 
 struct Cue {
   CueAction action = CueAction::Dip;

@@ -1,8 +1,14 @@
 #include "osc_events.h"
 
 #include <lo/lo.h>
+#include <netdb.h>
+#include <sys/socket.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
 #include <sstream>
 #include <stdexcept>
 
@@ -11,10 +17,14 @@
 
 namespace gb {
 
+// The target as a connected UDP socket: liblo builds each message, and the socket sends it. Connected, the socket
+// hears the ICMP "port unreachable" a host answers when nothing listens on the port, so the next send fails with
+// ECONNREFUSED and the show can say so (liblo's own sends go out unconnected and never learn it).
 struct OscSender::Address {
-  lo_address handle = nullptr;
+  int socket = -1;
+  std::string target;
   ~Address() {
-    if (handle) lo_address_free(handle);
+    if (socket >= 0) close(socket);
   }
 };
 
@@ -31,36 +41,65 @@ OscSender::OscSender(const std::string& target) : address_(std::make_unique<Addr
                                 "liblo sends over IPv4)");
   // A UDP port is 1 to 65535; liblo would take 99999 and send to 99999 mod 65536.
   if (!isPort(port)) throw std::invalid_argument(named + ": the port must be a number from 1 to 65535");
-  address_->handle = lo_address_new(host.c_str(), port.c_str());
-  if (!address_->handle) throw std::invalid_argument(named + " cannot be used");
+  addrinfo hints{};
+  hints.ai_family = AF_INET;
+  hints.ai_socktype = SOCK_DGRAM;
+  addrinfo* found = nullptr;
+  if (const int error = getaddrinfo(host.c_str(), port.c_str(), &hints, &found); error != 0 || !found)
+    throw std::invalid_argument(named + ": " + (error != 0 ? gai_strerror(error) : "no address"));
+  address_->socket = ::socket(found->ai_family, found->ai_socktype, found->ai_protocol);
+  const bool connected =
+      address_->socket >= 0 && connect(address_->socket, found->ai_addr, found->ai_addrlen) == 0;  // sends nothing
+  const int error = errno;
+  freeaddrinfo(found);
+  if (!connected) throw std::invalid_argument(named + " cannot be used: " + std::strerror(error));
+  address_->target = printable(target);
 }
 
 OscSender::~OscSender() = default;
 
-bool OscSender::event(const std::string& name, double time) {
-  if (lo_send(address_->handle, "/giantbubble/event", "sd", name.c_str(), time) >= 0) return true;
-  lastError_ = lo_address_errstr(address_->handle);
+bool OscSender::send(const char* path, lo_message message) {
+  size_t size = 0;
+  void* bytes = lo_message_serialise(message, path, nullptr, &size);
+  const bool sent = bytes && ::send(address_->socket, bytes, size, MSG_DONTWAIT) == static_cast<ssize_t>(size);
+  const int error = errno;
+  std::free(bytes);
+  lo_message_free(message);
+  if (sent) return true;
+  lastError_ = error == ECONNREFUSED ? "nothing listens at " + address_->target + ": the port refused them"
+                                     : address_->target + ": " + std::strerror(error);
   return false;
+}
+
+bool OscSender::event(const std::string& name, double time) {
+  lo_message m = lo_message_new();
+  lo_message_add(m, "sd", name.c_str(), time);
+  return send("/giantbubble/event", m);
 }
 
 bool OscSender::bubble(double time, const Vec3& centre, double area, double volume, double solution) {
-  if (lo_send(address_->handle, "/giantbubble/bubble", "dffffff", time, centre.x(), centre.y(), centre.z(),
-              static_cast<float>(area), static_cast<float>(volume), static_cast<float>(solution)) >= 0)
-    return true;
-  lastError_ = lo_address_errstr(address_->handle);
-  return false;
+  lo_message m = lo_message_new();
+  lo_message_add(m, "dffffff", time, centre.x(), centre.y(), centre.z(), static_cast<float>(area),
+                 static_cast<float>(volume), static_cast<float>(solution));
+  return send("/giantbubble/bubble", m);
 }
 
 bool OscSender::cue(const std::string& name, const std::string& done, double time) {
-  if (lo_send(address_->handle, "/giantbubble/cue", "ssd", name.c_str(), done.c_str(), time) >= 0) return true;
-  lastError_ = lo_address_errstr(address_->handle);
-  return false;
+  lo_message m = lo_message_new();
+  lo_message_add(m, "ssd", name.c_str(), done.c_str(), time);
+  return send("/giantbubble/cue", m);
 }
 
 bool OscSender::joint(const std::string& name, int user, const std::array<float, 3>& p) {
-  if (lo_send(address_->handle, "/joint", "sifff", name.c_str(), user, p[0], p[1], p[2]) >= 0) return true;
-  lastError_ = lo_address_errstr(address_->handle);
-  return false;
+  lo_message m = lo_message_new();
+  lo_message_add(m, "sifff", name.c_str(), user, p[0], p[1], p[2]);
+  return send("/joint", m);
+}
+
+bool OscSender::performer(const std::string& state, const std::string& detail) {
+  lo_message m = lo_message_new();
+  lo_message_add(m, "ss", state.c_str(), detail.c_str());
+  return send("/giantbubble/performer", m);
 }
 
 std::array<float, 3> oscCeletonPosition(const Vec3d& camera) {
@@ -94,6 +133,10 @@ void ShowControl::hands(const Vec3d& left, const Vec3d& right) {
   if (left.allFinite()) ok = sender_->joint("l_hand", 1, oscCeletonPosition(left)) && ok;
   if (right.allFinite()) ok = sender_->joint("r_hand", 1, oscCeletonPosition(right)) && ok;
   check(ok);
+}
+
+void ShowControl::performer(const std::string& state, const std::string& detail) {
+  if (sender_) check(sender_->performer(state, detail));
 }
 
 void ShowControl::check(bool sent) {

@@ -7,12 +7,16 @@
 //                                                simulation_unstable, input_lost, input_back
 //   /giantbubble/bubble ,dffffff  time (s), centre x y z (m, world), area (m^2), volume (m^3), solution left
 //   /giantbubble/cue    ,ssd  cue, what was done, time (s)   live --osc-in: each cue taken (osc_cues.h)
+//   /giantbubble/performer ,ss  state, detail   live with a camera: waiting (why, or the set-up's count), found,
+//                                                left_hand_lost, right_hand_lost, hands_back
 //   /joint              ,sifff  l_hand or r_hand, user 1, x y z   live: the performer's hands as a Kinect skeleton
 //                                                tracker (OSCeleton) sends them: x 0..1 across the camera's image
 //                                                left to right (+-1.28 m), y 0..1 top to bottom (+-0.96 m), z the
 //                                                depth in metres x 0.78125 (0..7 for 0..9 m)
 //
 // docs/formats.md describes them.
+
+#include <lo/lo.h>
 
 #include <array>
 #include <memory>
@@ -38,10 +42,12 @@ class OscSender {
   bool bubble(double time, const Vec3& centre, double area, double volume, double solution);
   bool cue(const std::string& name, const std::string& done, double time);
   bool joint(const std::string& name, int user, const std::array<float, 3>& position);
+  bool performer(const std::string& state, const std::string& detail);
   [[nodiscard]] const std::string& lastError() const { return lastError_; }
 
  private:
   struct Address;
+  bool send(const char* path, lo_message message);  // sends and frees the message
   std::unique_ptr<Address> address_;
   std::string lastError_;
 };
@@ -56,6 +62,8 @@ class ShowControl {
   void cue(const std::string& name, const std::string& done, double time);
   // The performer's hands in camera space (kinect_depth.h; m), as OSCeleton joints; a hand not finite is not sent.
   void hands(const Vec3d& left, const Vec3d& right);
+  // Where the performer stands with the show: waiting (and why), found, a hand lost or back (the list above).
+  void performer(const std::string& state, const std::string& detail);
 
  private:
   std::unique_ptr<OscSender> sender_;

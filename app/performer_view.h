@@ -1,8 +1,10 @@
 #pragma once
 // The performer view of the live window: what a depth camera sees (its depth, the floor, the body taken for the
 // performer, the hands found and the hands reported), drawn as `record --depth-plot` draws it (depth_plot.h), as a
-// picture-in-picture. V toggles it; until then it shows while the show waits for a performer with a camera input
-// (kinect, fakenect:DIR), so that whoever steps in sees where the camera looks.
+// picture-in-picture, with a caption for the performer: what to do (step in, step back, raise a hand), how sure the
+// tracking is, and the show's word to them (the set-up's count). V toggles it; until then it shows while the show
+// waits for a performer with a camera input (kinect, fakenect:DIR), so that whoever steps in sees where the camera
+// looks. It is a layer of the window: the video stream never holds it.
 
 #include <memory>
 #include <mutex>
@@ -32,6 +34,9 @@ class ObservedHandSource : public HandSource {
   [[nodiscard]] bool hasDepth() const { return depth_ != nullptr; }
   // The newest depth frame drawn at 1/step of the camera's resolution, when one arrived since the last call.
   std::optional<RgbImage> takeView(int step);
+  // What the performer should do now, from the newest frame (empty before the first), with how sure the tracking
+  // of each hand is when asked.
+  [[nodiscard]] std::string advice(bool withTracking);
 
  private:
   std::unique_ptr<HandSource> source_;
@@ -41,6 +46,7 @@ class ObservedHandSource : public HandSource {
   Detection detection_;    // frame_'s
   bool newFrame_ = false;  // frame_ came, its detection not taken yet
   bool fresh_ = false;     // frame_ and detection_ not drawn yet
+  bool drawn_ = false;     // a frame was drawn
   HandSample latest_;
 };
 
@@ -56,6 +62,10 @@ class PerformerView {
   // V: shows it if hidden and hides it if shown; says what it did.
   std::string toggle();
   [[nodiscard]] bool shown() const;
+  // The show's word to the performer under the advice (the set-up's count; empty: none).
+  void setCaption(const std::string& caption) { caption_ = caption; }
+  // What the performer should do now (performerAdvice; empty without a depth camera).
+  [[nodiscard]] std::string advice() const;
   // The picture to show when a new one is there (nothing: keep the one shown); an empty image hides it.
   std::optional<RgbImage> update();
 
@@ -64,6 +74,15 @@ class PerformerView {
   bool waiting_ = false;
   std::optional<bool> chosen_;  // by V
   bool wasShown_ = false;
+  std::string caption_;
+  RgbImage plot_;          // the newest depth plot, without its caption
+  std::string captioned_;  // the text drawn over plot_ last
 };
+
+// What the performer should do, in a line: step in or back (the segmentation's advice), raise a hand not found.
+std::string performerAdvice(const Detection& detection, const HandSample& hands);
+
+// `text` drawn over the top of `image` (a banner as the window's overlay draws it, host/banner_text.h).
+void drawCaption(RgbImage& image, const std::string& text);
 
 }  // namespace gb

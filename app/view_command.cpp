@@ -30,7 +30,7 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
   CLI::App* cmd = app.add_subcommand("live",
                                      "perform live in a window: the wands follow --input (mouse: orbit, zoom; "
                                      "keys: R reset, D dip, B burst, Space pause, C colouring, F full screen, V "
-                                     "performer view, Home camera, Esc quit)");
+                                     "performer view, O operator overlay, Home camera, Esc quit)");
   cmd->alias("view");
   // --input also takes "mouse" here: the left and right buttons drag the hands, the wheel pushes them.
   cmd->add_option("--scene", o.run.scene, "a built-in scene or a scene file (.toml); the other options change it")
@@ -43,9 +43,12 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
       ->check(NotEmpty());
   cmd->add_option("--osc-in", o.oscIn,
                   "take cues as OSC on this UDP port: /giantbubble/dip, burst, reset, pause, colouring, camera, "
-                  "fullscreen, performer_view, quit")
+                  "fullscreen, performer_view, operator, quit")
       ->transform(WholeNumber(1, 65535));
   cmd->add_flag("--fullscreen", o.fullscreen, "full screen (borderless, at the monitor's resolution); F toggles");
+  cmd->add_flag("--operator", o.operatorOverlay,
+                "start with the operator overlay on: the show's messages over the window (never in the stream); O "
+                "toggles it");
   cmd->add_option("--monitor", o.monitor, "the monitor for full screen, from 0 (the primary)")
       ->transform(WholeNumber(0, 63));
   cmd->add_option("--stream", o.stream,
@@ -141,16 +144,17 @@ class RestingWands : public WandInput {
 // closing the window or Ctrl-C end the show).
 class PerformerWaitScreen {
  public:
-  PerformerWaitScreen(Window& window, Renderer& renderer, std::function<bool()> service)
-      : window_(window), renderer_(renderer), service_(std::move(service)) {}
+  // `tell` takes each of the wait's messages (the console, the operator overlay, the performer view, OSC).
+  PerformerWaitScreen(Window& window, Renderer& renderer, std::function<bool()> service, MessageSink tell)
+      : window_(window), renderer_(renderer), service_(std::move(service)), tell_(std::move(tell)) {}
 
-  [[nodiscard]] PerformerWait hooks() {
+  // A live camera's performer goes through the set-up step: both hands held forward and still for this long.
+  static constexpr double kSetUpSeconds = 1.5;
+  [[nodiscard]] PerformerWait hooks(bool liveCamera) {
     PerformerWait wait;
-    wait.say = [this](const std::string& message) {
-      printToStderr(message);
-      window_.showMessage(message);
-    };
+    wait.say = tell_;
     wait.cancelled = [this] { return pollAndRedraw(); };
+    wait.holdStill = liveCamera ? kSetUpSeconds : 0.0;
     return wait;
   }
   [[nodiscard]] bool quit() const { return quit_; }
@@ -174,6 +178,7 @@ class PerformerWaitScreen {
   Window& window_;
   Renderer& renderer_;
   std::function<bool()> service_;
+  MessageSink tell_;
   const Film noFilm_;
   bool quit_ = false;
   long redrawn_ = 0;
@@ -181,10 +186,10 @@ class PerformerWaitScreen {
 };
 
 // The keys of --keys and the actions they stand for: the window's keys and the OSC cues act the same.
-constexpr std::pair<char, CueAction> kScriptedKeys[] = {{'r', CueAction::Reset},         {'d', CueAction::Dip},
-                                                        {'b', CueAction::Burst},         {'p', CueAction::Pause},
-                                                        {'c', CueAction::Colouring},     {'f', CueAction::Fullscreen},
-                                                        {'v', CueAction::PerformerView}, {'h', CueAction::Camera}};
+constexpr std::pair<char, CueAction> kScriptedKeys[] = {
+    {'r', CueAction::Reset},         {'d', CueAction::Dip},       {'b', CueAction::Burst},
+    {'p', CueAction::Pause},         {'c', CueAction::Colouring}, {'f', CueAction::Fullscreen},
+    {'v', CueAction::PerformerView}, {'o', CueAction::Operator},  {'h', CueAction::Camera}};
 
 // The window's flag of each action.
 constexpr std::pair<CueAction, bool WindowKeys::*> kFlags[] = {{CueAction::Dip, &WindowKeys::dip},
@@ -195,6 +200,7 @@ constexpr std::pair<CueAction, bool WindowKeys::*> kFlags[] = {{CueAction::Dip, 
                                                                {CueAction::Camera, &WindowKeys::resetCamera},
                                                                {CueAction::Fullscreen, &WindowKeys::fullscreen},
                                                                {CueAction::PerformerView, &WindowKeys::performerView},
+                                                               {CueAction::Operator, &WindowKeys::operatorOverlay},
                                                                {CueAction::Quit, &WindowKeys::quit}};
 bool& flagOf(WindowKeys& keys, CueAction action) {
   for (const auto& [a, flag] : kFlags)
@@ -373,6 +379,12 @@ int runView(ViewOptions o) try {
     say(frame, cued ? std::string("cue ") + cueName(action) + ": " + cueText : keyText);
     if (cued) show.cue(cueName(action), cueText, time);
   };
+  // O: the operator overlay (the show's messages over the window, never in the stream) on or off.
+  window.setOperatorOverlay(o.operatorOverlay);
+  auto toggleOperatorOverlay = [&]() -> std::string {
+    window.setOperatorOverlay(!window.operatorOverlay());
+    return window.operatorOverlay() ? "operator overlay on" : "operator overlay off";
+  };
   // The performer view's newest picture into the window's inset.
   bool viewTold = false;
   auto updateInset = [&] {
@@ -393,11 +405,21 @@ int runView(ViewOptions o) try {
     if (keys.fullscreen) toggleFullscreen(waitFrames);
     if (keys.performerView)
       reportCue(waitFrames, fromCue.performerView, CueAction::PerformerView, performerView.toggle(), 0.0);
+    if (keys.operatorOverlay)
+      reportCue(waitFrames, fromCue.operatorOverlay, CueAction::Operator, toggleOperatorOverlay(), 0.0);
     updateInset();
     ++waitFrames;
     return keys.quit;
   };
-  PerformerWaitScreen waiting(window, renderer, serviceWhileWaiting);
+  // The wait's messages: the console, the operator overlay, the performer (under the performer view) and OSC.
+  const MessageSink tellWait = [&](const std::string& message) {
+    printToStderr(message);
+    window.showMessage(message);
+    const std::string prefix = "waiting for a performer: ";
+    performerView.setCaption(message.rfind(prefix, 0) == 0 ? message.substr(prefix.size()) : message);
+    show.performer("waiting", message);
+  };
+  PerformerWaitScreen waiting(window, renderer, serviceWhileWaiting, tellWait);
   // A camera's depth frames are kept for the performer view.
   const HandSourceWrapper observe = [&](std::unique_ptr<HandSource> source) -> std::unique_ptr<HandSource> {
     auto observed = std::make_unique<ObservedHandSource>(std::move(source));
@@ -408,8 +430,11 @@ int runView(ViewOptions o) try {
   auto openInput = [&] {
     performerView.attach(nullptr);  // the source it shows goes with the input
     try {
-      std::unique_ptr<WandInput> opened = makeLiveInput(run, window, waiting.hooks(), observe);
+      std::unique_ptr<WandInput> opened =
+          makeLiveInput(run, window, waiting.hooks(run.input.spec() == "kinect"), observe);
       performerView.setWaiting(false);
+      performerView.setCaption("");
+      if (opened->performerFound()) show.performer("found", opened->describe());
       return opened;
     } catch (...) {
       performerView.setWaiting(false);
@@ -456,6 +481,25 @@ int runView(ViewOptions o) try {
     const Vec3 left = stabilized ? hands.leftHand : wands.leftPosition;
     const Vec3 right = stabilized ? hands.rightHand : wands.rightPosition;
     show.hands(calibration.toCamera(left.cast<double>()), calibration.toCamera(right.cast<double>()));
+  };
+  // The performer's state over OSC as it changes (a hand lost, both back), and what they should do on the console
+  // when that changes (at most every 2 s: a hand flickering in and out does not flood it).
+  std::array<bool, 2> handsLost{false, false};
+  std::string advised;
+  auto advisedAt = std::chrono::steady_clock::now() - std::chrono::seconds(10);
+  auto tellPerformer = [&] {
+    const std::array<bool, 2> lost = input->handsLost();
+    for (int h = 0; h < 2; ++h)
+      if (lost[h] && !handsLost[h]) show.performer(h == 0 ? "left_hand_lost" : "right_hand_lost", "");
+    if (handsLost != lost && !lost[0] && !lost[1]) show.performer("hands_back", "");
+    handsLost = lost;
+    const std::string advice = performerView.advice();
+    const auto now = std::chrono::steady_clock::now();
+    if (advice != advised && now - advisedAt >= std::chrono::seconds(2)) {
+      if (!advice.empty()) say(shown, "advice for the performer: " + advice);
+      advised = advice;
+      advisedAt = now;
+    }
   };
   auto lastReopen = std::chrono::steady_clock::now();
   SimulationThreads threads;  // one fewer for each core another process keeps busy (thread_policy.h)
@@ -510,6 +554,8 @@ int runView(ViewOptions o) try {
     }
     if (keys.performerView)
       reportCue(shown, fromCue.performerView, CueAction::PerformerView, performerView.toggle(), t);
+    if (keys.operatorOverlay)
+      reportCue(shown, fromCue.operatorOverlay, CueAction::Operator, toggleOperatorOverlay(), t);
     if (keys.resetCamera) {
       camera.home();
       reportCue(shown, fromCue.resetCamera, CueAction::Camera,
@@ -582,12 +628,13 @@ int runView(ViewOptions o) try {
         case PerformanceLoop::Action::Play:
           break;
       }
-      hands = input->at(t - inputStart);  // a live camera may wait here for its next frame
+      hands = input->at(t - inputStart);  // a camera's newest hands: never waited for (input.wallClock)
       wands = hands.wands;
       for (const std::string& m : input->takeMessages()) {  // e.g. a camera's hands lost or found
         std::fprintf(stderr, "%s\n", m.c_str());
         window.showMessage(m);
       }
+      tellPerformer();
       if (input->ended() && !inputLost && !loop.looping()) {
         inputLost = true;
         if (!performer) {  // a recording or a file played to its end: it plays again once the stage is empty

@@ -37,17 +37,18 @@ struct ViewOptions {
   double autoDip = 1.0;                  // seconds of empty stage before the wands dip again (negative: never)
   long frames = 0;                       // quit after this many presented frames (0: when the window closes)
   std::vector<std::string> keys;         // scripted key presses FRAME:KEY (keys r d b p c), as if typed at that frame
-  bool fixedStep = false;       // one simulation frame per presented frame (slow motion when the machine is slow)
-  int minSweeps = 3;            // the fewest solver sweeps the wall clock may leave the film (realtime_pacer.h)
-  int longestStep = 2;          // frames of time one implicit step may cover when the machine falls behind
-  double minRenderScale = 0.5;  // the smallest image drawn when behind, as a fraction of the window's size
-  bool fullscreen = false;      // start full screen (borderless, the monitor's resolution)
-  int monitor = 0;              // the monitor for full screen
-  int oscIn = 0;                // UDP port cues come in on (0: none)
-  std::string stream;           // where ffmpeg sends the picture (empty: nowhere)
+  bool fixedStep = false;        // one simulation frame per presented frame (slow motion when the machine is slow)
+  int minSweeps = 3;             // the fewest solver sweeps the wall clock may leave the film (realtime_pacer.h)
+  int longestStep = 2;           // frames of time one implicit step may cover when the machine falls behind
+  double minRenderScale = 0.5;   // the smallest image drawn when behind, as a fraction of the window's size
+  bool fullscreen = false;       // start full screen (borderless, the monitor's resolution)
+  int monitor = 0;               // the monitor for full screen
+  int oscIn = 0;                 // UDP port cues come in on (0: none)
+  std::string stream;            // where ffmpeg sends the picture (empty: nowhere)
+  bool operatorOverlay = false;  // start with the operator overlay on (O toggles it)
 };
 
-// A scripted key press of --keys: at presented frame `frame`, key `key` (r d b p c f v, and h for Home).
+// A scripted key press of --keys: at presented frame `frame`, key `key` (r d b p c f v o, and h for Home).
 struct KeyPress {
   long frame = 0;
   char key = 0;

@@ -247,28 +247,31 @@ void StabilizedWands::take(const HandSample& s, double period) {
   newestSample_ = s.time;
 }
 
-double StabilizedWands::wallClockTime(double& age) {
-  const std::optional<std::chrono::steady_clock::time_point> arrived = source_->arrivedAt();
-  age = arrived ? std::chrono::duration<double>(std::chrono::steady_clock::now() - *arrived).count() : 0.0;
-  return newestSample_ + age;
+double StabilizedWands::wallClockTime(double t, double period) {
+  while (source_->ready() && fetch()) {  // every sample that has arrived, none waited for
+  }
+  const double newest = ahead_.empty() ? newestSample_ : ahead_.back().time;
+  if (!aligned_) {  // the first frame starts at the newest hands, not at those of when the input opened
+    offset_ = std::max(0.0, newest - (start_ + t));
+    aligned_ = true;
+  } else if (const double behind = newest - (start_ + t + offset_) - period; behind > 0.0) {
+    offset_ += std::min(behind, kCatchUp * std::max(t - lastT_, 0.0));  // a loop fallen behind catches up
+  }
+  lastT_ = t;
+  // Never more than a period past the newest sample: a camera late with its hands (its thread starved of a core)
+  // holds the input's time back, so that its samples are taken when they come instead of passed by and dropped.
+  if (const double ahead = start_ + t + offset_ - (newest + period); ahead > 0.0) offset_ -= ahead;
+  return start_ + t + offset_;
 }
 
 WandFrame StabilizedWands::at(double t) {
   // The observed period, not the nominal one: a camera delivering 7.5 frames per second is slow, not absent.
   const double period = std::max(period_, this->period());
-  double T = start_ + t, age = 0.0;
-  if (wallClock_ && source_->arrivedAt()) {
-    // Every sample that has arrived, none waited for; the wands are carried on to now.
-    while (!ahead_.empty() || (source_->ready() && fetch())) {
-      take(ahead_.front(), period);
-      ahead_.pop_front();
-    }
-    T = std::max(wallClockTime(age), lastFed_);
-  } else {
-    while ((!ahead_.empty() || fetch()) && ahead_.front().time <= T) {
-      take(ahead_.front(), period);
-      ahead_.pop_front();
-    }
+  const bool wallClock = wallClock_ && source_->arrivedAt();
+  const double T = wallClock ? wallClockTime(t, period) : start_ + t;
+  while ((!ahead_.empty() || (!wallClock && fetch())) && ahead_.front().time <= T) {
+    take(ahead_.front(), period);
+    ahead_.pop_front();
   }
   if (T - lastFed_ > 3.0 * period || (finished_ && ahead_.empty())) holdUntil(T, period);
 
@@ -280,7 +283,12 @@ WandFrame StabilizedWands::at(double t) {
   f.wands.rightVelocity = calibration_.velocityToWorld(right.velocity).cast<float>();
   if (latest_.left.measured) f.leftHand = calibration_.toWorld(latest_.left.position).cast<float>();
   if (latest_.right.measured) f.rightHand = calibration_.toWorld(latest_.right.position).cast<float>();
-  f.handsAge = age;
+  if (wallClock) {  // the newest sample arrived arrivedAgo; hands behind it (a loop catching up) are older still
+    const double arrivedAgo =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - *source_->arrivedAt()).count();
+    const double newest = ahead_.empty() ? newestSample_ : ahead_.back().time;
+    f.handsAge = arrivedAgo + std::max(0.0, newest - T);
+  }
   return f;
 }
 

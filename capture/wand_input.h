@@ -101,11 +101,18 @@ class StabilizedWands : public WandInput {
   }
   [[nodiscard]] const Calibration& calibration() const { return calibration_; }
   [[nodiscard]] double confidence(Hand hand) const { return stabilizer_->confidence(hand); }
-  // The frame loop keeps the wall clock (live, run --realtime): at() takes the samples that have arrived and never
-  // waits for the next one. With a source that says when its samples arrived (ThreadedHandSource), the wands are
-  // then the newest sample's carried on to now by Eq. (1), whatever t says, so a loop that started late or fell
-  // behind is not behind the performer. Otherwise at(t) reads the source up to run time t, waiting where it must.
+  // The frame loop keeps the wall clock (live, run --realtime): with a source read on a thread of its own
+  // (ThreadedHandSource), at() takes the samples that have arrived and never waits for the next one; past the newest
+  // the wands are carried on by Eq. (1). The first call starts at the newest hands (not at those of when the input
+  // opened, before the film and the window were made), and run time then maps onto the input's time one to one, so
+  // the wands never jump; a loop that falls behind the input catches up at 1 + kCatchUp times its own pace, and one
+  // that runs ahead of it (the camera's thread starved of a core) waits a period past the newest sample, the wands
+  // carried on by Eq. (1), rather than passing samples by. Otherwise at(t) reads the source up to run time t, waiting
+  // where it must.
   void followWallClock(bool follow) { wallClock_ = follow; }
+  // The input's time runs this much faster than the loop's while the loop is behind it (frames it dropped): 5% faster
+  // wands barely change a film (20% faster ones burst films that lived), and a second of lag is gone in 20.
+  static constexpr double kCatchUp = 0.05;
 
   static constexpr double kLostHandAfter = 0.25;  // s unmeasured before a hand is reported lost
   // A performer found in depth who walks this far (m, across or along the camera's view; a squat or a raised arm
@@ -145,10 +152,13 @@ class StabilizedWands : public WandInput {
   void feed(const HandSample& sample);
   void followPerformer(const HandSample& sample, double dt);  // re-centres on a performer who walked
   void take(const HandSample& sample, double period);         // feeds a sample read, with the holds of a gap before it
-  void holdUntil(double until, double period);      // both hands held where they were, up to source time until
-  void observeInterval(double dt);                  // updates period_ and warns once about a slow input
-  [[nodiscard]] double wallClockTime(double& age);  // wall-clock mode: the source time now, and the hands' age
+  void holdUntil(double until, double period);    // both hands held where they were, up to source time until
+  void observeInterval(double dt);                // updates period_ and warns once about a slow input
+  double wallClockTime(double t, double period);  // wall-clock mode: the source time of run time t
   bool wallClock_ = false;
+  bool aligned_ = false;  // wall-clock mode: offset_ taken at the first call
+  double offset_ = 0.0;   // s the input's time runs ahead of start_ + t
+  double lastT_ = 0.0;
   std::optional<Vec3d> centreFromBody_;  // calibration.performer less the performer's median point, when centred
   double movedFor_ = 0.0;                // s the performer has stood kMovedDistance from where they were centred
   bool recentring_ = false;

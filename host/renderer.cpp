@@ -9,7 +9,6 @@
 #include <stdexcept>
 #include <string>
 
-#include "banner_text.h"
 #include "device_buffer.h"
 #include "device_image.h"
 #include "film_swirls.h"
@@ -145,7 +144,7 @@ struct Renderer::Impl {
   vk::raii::DescriptorSet compositeSet{nullptr};
 
   // What a frame in flight owns: its commands and fence, the buffers they read (the uploaded film, props,
-  // droplets, swirls, uniforms, banner, and the descriptor set naming them) and the pixels they read back. Two
+  // droplets, swirls, uniforms, and the descriptor set naming them) and the pixels they read back. Two
   // slots: `run` submits a frame while the one before is still drawn. The targets are shared: frames run in
   // submission order on the one queue, and each render pass waits for the passes before it that touch its
   // attachments (its external dependencies).
@@ -156,8 +155,7 @@ struct Renderer::Impl {
     Renderer::Ticket ticket = 0;
     DeviceBuffer uniforms, position, normal, thickness, airFlow, triangles, propsMesh, dropletBuffer, variation;
     DeviceBuffer readback;
-    DeviceBuffer bannerPixels;  // the message banner's RGBA rows (host memory the copy reads)
-    uint32_t propsVertices = 0, dropletCount = 0, bannerRows = 0;
+    uint32_t propsVertices = 0, dropletCount = 0;
     vk::raii::DescriptorSet sceneSet{nullptr};
   };
   std::array<FrameSlot, 2> slots;
@@ -227,11 +225,9 @@ struct Renderer::Impl {
     extent = vk::Extent2D(static_cast<uint32_t>(width), static_cast<uint32_t>(height));
   }
 
-  void makeImageBuffers() {  // host memory for the read-back images and the banners' rows
-    for (FrameSlot& f : slots) {
+  void makeImageBuffers() {  // host memory for the read-back images
+    for (FrameSlot& f : slots)
       f.readback = DeviceBuffer(*ctx, 4ull * extent.width * extent.height, DeviceBuffer::Placement::Readback);
-      f.bannerPixels = DeviceBuffer(*ctx, 4ull * extent.width * extent.height, DeviceBuffer::Placement::Host);
-    }
   }
 
   void resize(int width, int height) {
@@ -594,26 +590,6 @@ struct Renderer::Impl {
     ctx->device.updateDescriptorSets(writes, {});
   }
 
-  // The banner of `text` into the slot's bannerPixels; bannerRows its height (0: no banner this frame).
-  void uploadBanner(const std::string& text) {
-    const BannerImage banner = drawBanner(text, static_cast<int>(extent.width), static_cast<int>(extent.height));
-    slot().bannerRows = static_cast<uint32_t>(banner.height);
-    if (slot().bannerRows > 0) slot().bannerPixels.write(banner.rgba.data(), banner.rgba.size());
-  }
-
-  // Copies the banner over the output's top rows. The resolve pass left the output ready to be read by a
-  // transfer; it becomes a transfer destination for the copy and is then handed on, readable, as before.
-  void recordBannerCopy(const vk::raii::CommandBuffer& cb) const {
-    transitionImage(cb, output.handle(), Layout::eTransferSrcOptimal, Layout::eTransferDstOptimal,
-                    Stage::eColorAttachmentOutput, Access::eColorAttachmentWrite, Stage::eTransfer,
-                    Access::eTransferWrite);
-    cb.copyBufferToImage(slot().bannerPixels.handle(), output.handle(), Layout::eTransferDstOptimal,
-                         vk::BufferImageCopy(0, 0, 0, {vk::ImageAspectFlagBits::eColor, 0, 0, 1}, {0, 0, 0},
-                                             vk::Extent3D(extent.width, slot().bannerRows, 1)));
-    transitionImage(cb, output.handle(), Layout::eTransferDstOptimal, Layout::eTransferSrcOptimal, Stage::eTransfer,
-                    Access::eTransferWrite, Stage::eTransfer, Access::eTransferRead);
-  }
-
   void record(const DeviceFilm& f, bool drawSky, bool readPixels, const AfterRender& after) {
     const vk::raii::CommandBuffer& cb = slot().commands;
     cb.reset();
@@ -656,7 +632,6 @@ struct Renderer::Impl {
     cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *composite);
     cb.draw(3, 1, 0, 0);
     cb.endRenderPass();
-    if (slot().bannerRows > 0) recordBannerCopy(cb);
 
     if (readPixels) {
       cb.copyImageToBuffer(output.handle(), Layout::eTransferSrcOptimal, slot().readback.handle(),
@@ -674,7 +649,7 @@ double renderTargetBytes(int width, int height, int samples) {
   const double pixels = static_cast<double>(width) * height;
   const double resolved = 8 + 8 + 2 + 4;                       // opaque, accum, reveal, output
   const double perSample = 4 + (samples > 1 ? 8 + 8 + 2 : 0);  // depth, and the multisampled colours
-  const double hostRows = 2 * (4 + 4);                         // two frames' read-back and banner rows
+  const double hostRows = 2 * 4;                               // two frames' read-back rows
   return pixels * (resolved + perSample * samples + hostRows);
 }
 
@@ -717,7 +692,6 @@ Renderer::Ticket Renderer::submit(const RenderFrame& frame, bool readback, const
   const bool varied = m.uploadVariation(frame);
   m.uploadUniforms(frame, film.particleCount, varied);
   m.bindSceneBuffers(film);
-  m.uploadBanner(frame.banner);
   // The sky is drawn again only when the view turns or zooms (or the size changes): on lavapipe a full-screen
   // environment lookup costs a seventh of a main-job frame, and the framing often holds its direction.
   const Impl::SkyView view{frame.camera.yaw, frame.camera.pitch, frame.camera.fovY, m.extent.width, m.extent.height};

@@ -11,7 +11,6 @@
 //                                                                    -> sky (RGBA16F), kept between frames
 //   4. resolve:  film over opaque (or the sky where nothing opaque is), exposure, sRGB encoding
 //                                                                    -> output (RGBA8)
-//   then, when the frame has a message, its banner (drawn on the CPU) copied over the output's top rows.
 // docs/rendering.md has the optics and the choices.
 
 #include <functional>
@@ -51,7 +50,7 @@ struct RenderOptions {
 // The largest image side the renderer draws (pixels), whatever the device allows.
 inline constexpr int kMaxRenderSide = 16384;
 // The memory a width x height image takes at `samples` per pixel (bytes): its colour and depth targets, the
-// multisampled ones, the output and the two frames' read-back and banner rows (16384 x 16384 is 11 GB at 1 sample).
+// multisampled ones, the output and the two frames' read-back rows (16384 x 16384 is 11 GB at 1 sample).
 double renderTargetBytes(int width, int height, int samples);
 // Why `device` cannot draw a width x height image at `samples` per pixel, or empty when it can: a side beyond its
 // largest (and kMaxRenderSide), or targets beyond a quarter of its largest memory heap, which would fail mid-show
@@ -71,7 +70,6 @@ struct RenderFrame {
   float blackFilmThickness = Params{}.blackFilmThickness;  // m: thinner film is drawn as black film
   const WireFrame* wireFrame = nullptr;                    // the wands and their string (or ring)
   OrbitCamera camera;
-  std::string banner;  // a message drawn over the top of the image (host/banner_text.h); empty: none
 };
 
 class Renderer {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "banner_text.h"
 #include "device_buffer.h"
 #include "device_image.h"
 
@@ -93,12 +94,20 @@ struct Window::Impl {
   bool fullscreen = false;
   std::array<int, 4> windowed{0, 0, 0, 0};  // x, y, width, height of the window before it went full screen
   bool resized = false;                     // the framebuffer changed size: the swapchain is made again
-  // The inset (setInset): its pixels waiting to be copied in, and the image the blit reads.
-  int insetWidth = 0, insetHeight = 0;
-  bool insetChanged = false;
-  DeviceBuffer insetPixels;
-  DeviceImage insetImage;
-  bool insetUploaded = false;  // insetImage holds pixels (in transfer-source layout)
+  // A picture blitted over the window after the frame was drawn and copied for the stream, so never in the stream:
+  // its pixels waiting to be copied in, and the image the blit reads.
+  struct Layer {
+    int width = 0, height = 0;
+    bool changed = false;
+    DeviceBuffer pixels;
+    DeviceImage image;
+    bool uploaded = false;  // image holds pixels (in transfer-source layout)
+  };
+  Layer inset;    // the performer view (setInset), over the bottom right corner
+  Layer overlay;  // the operator overlay (showMessage while operatorOverlay), across the top
+  bool operatorOverlay = false;
+  std::string overlayText;  // what the overlay layer holds, at overlayWidth pixels across
+  uint32_t overlayWidth = 0;
   // The copies of each frame (captureFrames): a fixed-size image the output is scaled into, and its pixels.
   DeviceImage captureImage;
   DeviceBuffer captureBuffer;
@@ -237,6 +246,9 @@ struct Window::Impl {
       case GLFW_KEY_V:
         k.performerView = true;
         break;
+      case GLFW_KEY_O:
+        k.operatorOverlay = true;
+        break;
       default:
         break;
     }
@@ -310,44 +322,82 @@ struct Window::Impl {
                                                                               static_cast<int32_t>(extent.height), 1)};
     cb.blitImage(output, vk::ImageLayout::eTransferSrcOptimal, target, vk::ImageLayout::eTransferDstOptimal,
                  vk::ImageBlit(colour, src, colour, dst), vk::Filter::eLinear);
-    if (insetUploaded) recordInset(cb, target);
+    if (inset.uploaded) recordLayer(cb, target, inset, insetRectangle());
+    if (overlay.uploaded && operatorOverlay) recordLayer(cb, target, overlay, overlayRectangle());
     transitionImage(cb, target, vk::ImageLayout::eTransferDstOptimal, vk::ImageLayout::ePresentSrcKHR, Stage::eTransfer,
                     Access::eTransferWrite, Stage::eBottomOfPipe, {});
     if (captureBuffer.size() > 0) recordCapture(cb, output, from);
   }
 
-  // The inset's new pixels into its image (when they changed), then the image over the bottom right corner of
-  // `target`, which the main blit wrote before: a barrier orders the two writes.
-  void recordInset(const vk::raii::CommandBuffer& cb, vk::Image target) {
+  // A layer's new pixels into its image (when they changed), then the image over `rectangle` of `target`, which the
+  // main blit wrote before: a barrier orders the two writes.
+  static void recordLayer(const vk::raii::CommandBuffer& cb, vk::Image target, Layer& layer,
+                          const std::array<int32_t, 4>& rectangle) {
     using Stage = vk::PipelineStageFlagBits;
     using Access = vk::AccessFlagBits;
     using Layout = vk::ImageLayout;
-    if (insetChanged) {
-      transitionImage(cb, insetImage.handle(), Layout::eUndefined, Layout::eTransferDstOptimal, Stage::eTransfer,
+    if (layer.changed) {
+      transitionImage(cb, layer.image.handle(), Layout::eUndefined, Layout::eTransferDstOptimal, Stage::eTransfer,
                       Access::eTransferRead, Stage::eTransfer, Access::eTransferWrite);
-      cb.copyBufferToImage(insetPixels.handle(), insetImage.handle(), Layout::eTransferDstOptimal,
+      cb.copyBufferToImage(layer.pixels.handle(), layer.image.handle(), Layout::eTransferDstOptimal,
                            vk::BufferImageCopy(0, 0, 0, {vk::ImageAspectFlagBits::eColor, 0, 0, 1}, {0, 0, 0},
-                                               vk::Extent3D(insetImage.extent(), 1)));
-      transitionImage(cb, insetImage.handle(), Layout::eTransferDstOptimal, Layout::eTransferSrcOptimal,
+                                               vk::Extent3D(layer.image.extent(), 1)));
+      transitionImage(cb, layer.image.handle(), Layout::eTransferDstOptimal, Layout::eTransferSrcOptimal,
                       Stage::eTransfer, Access::eTransferWrite, Stage::eTransfer, Access::eTransferRead);
-      insetChanged = false;
+      layer.changed = false;
     }
     const vk::MemoryBarrier afterBlit(Access::eTransferWrite, Access::eTransferWrite);
     cb.pipelineBarrier(Stage::eTransfer, Stage::eTransfer, {}, afterBlit, {}, {});
-    const auto [x0, y0, x1, y1] = insetRectangle();
+    const auto [x0, y0, x1, y1] = rectangle;
     const vk::ImageSubresourceLayers colour(vk::ImageAspectFlagBits::eColor, 0, 0, 1);
-    const std::array<vk::Offset3D, 2> src{vk::Offset3D(0, 0, 0), vk::Offset3D(insetWidth, insetHeight, 1)};
+    const std::array<vk::Offset3D, 2> src{vk::Offset3D(0, 0, 0), vk::Offset3D(layer.width, layer.height, 1)};
     const std::array<vk::Offset3D, 2> dst{vk::Offset3D(x0, y0, 0), vk::Offset3D(x1, y1, 1)};
-    cb.blitImage(insetImage.handle(), Layout::eTransferSrcOptimal, target, Layout::eTransferDstOptimal,
+    cb.blitImage(layer.image.handle(), Layout::eTransferSrcOptimal, target, Layout::eTransferDstOptimal,
                  vk::ImageBlit(colour, src, colour, dst), vk::Filter::eLinear);
   }
   // Where the inset goes: kInsetWidth of the window's width, its own aspect, a margin from the bottom right corner.
   [[nodiscard]] std::array<int32_t, 4> insetRectangle() const {
     const auto w = static_cast<int32_t>(Window::kInsetWidth * extent.width);
-    const auto h = static_cast<int32_t>(static_cast<double>(w) * insetHeight / std::max(insetWidth, 1));
+    const auto h = static_cast<int32_t>(static_cast<double>(w) * inset.height / std::max(inset.width, 1));
     const int32_t margin = std::max<int32_t>(4, static_cast<int32_t>(extent.height) / 60);
     const auto x1 = static_cast<int32_t>(extent.width) - margin, y1 = static_cast<int32_t>(extent.height) - margin;
     return {std::max(0, x1 - w), std::max(0, y1 - h), x1, y1};
+  }
+  // Where the operator overlay goes: across the top of the window, at its own size.
+  [[nodiscard]] std::array<int32_t, 4> overlayRectangle() const {
+    return {0, 0, overlay.width, std::min(overlay.height, static_cast<int32_t>(extent.height))};
+  }
+
+  // A layer's pixels (RGBA, rows from the top) for the next present: a new image when the size changed.
+  void setLayer(Layer& layer, int width, int height, const std::vector<uint8_t>& rgba) {
+    if (width != layer.width || height != layer.height || layer.pixels.size() == 0) {
+      ctx->device.waitIdle();  // the old image may still be read by a frame in flight
+      const vk::Extent2D size(static_cast<uint32_t>(width), static_cast<uint32_t>(height));
+      layer.image = DeviceImage(*ctx, size, vk::Format::eR8G8B8A8Srgb,
+                                vk::ImageUsageFlagBits::eTransferDst | vk::ImageUsageFlagBits::eTransferSrc);
+      layer.pixels = DeviceBuffer(*ctx, 4ull * width * height, DeviceBuffer::Placement::Host);
+      layer.width = width;
+      layer.height = height;
+    }
+    layer.pixels.write(rgba.data(), rgba.size());  // present() waits for its frame: nothing reads it now
+    layer.changed = true;
+    layer.uploaded = true;
+  }
+
+  // The overlay layer for the message shown now (the banner at the window's width), drawn again only when the
+  // message or the width changed.
+  void updateOverlay() {
+    const bool shown = std::chrono::steady_clock::now() < messageUntil;
+    const std::string text = shown ? message : std::string();
+    if (text == overlayText && extent.width == overlayWidth) return;
+    overlayText = text;
+    overlayWidth = extent.width;
+    const BannerImage banner = drawBanner(text, static_cast<int>(extent.width), static_cast<int>(extent.height));
+    if (banner.height == 0) {
+      overlay.uploaded = false;
+      return;
+    }
+    setLayer(overlay, banner.width, banner.height, banner.rgba);
   }
 
   // The output scaled into the capture image, and that copied to the capture buffer for the host to read.
@@ -414,28 +464,21 @@ std::array<int, 2> Window::size() const {
 void Window::setInset(int width, int height, const std::vector<uint8_t>& rgb) {
   Impl& m = *impl_;
   if (rgb.empty() || width <= 0 || height <= 0) {
-    m.insetUploaded = false;
+    m.inset.uploaded = false;
     return;
   }
   if (rgb.size() != 3ull * static_cast<size_t>(width) * static_cast<size_t>(height))
     throw std::invalid_argument("Window::setInset: " + std::to_string(rgb.size()) + " bytes for " +
                                 std::to_string(width) + "x" + std::to_string(height) + " RGB");
-  if (width != m.insetWidth || height != m.insetHeight || m.insetPixels.size() == 0) {
-    m.ctx->device.waitIdle();  // the old image may still be read by a frame in flight
-    const vk::Extent2D extent(static_cast<uint32_t>(width), static_cast<uint32_t>(height));
-    m.insetImage = DeviceImage(*m.ctx, extent, vk::Format::eR8G8B8A8Srgb,
-                               vk::ImageUsageFlagBits::eTransferDst | vk::ImageUsageFlagBits::eTransferSrc);
-    m.insetPixels = DeviceBuffer(*m.ctx, 4ull * width * height, DeviceBuffer::Placement::Host);
-    m.insetWidth = width;
-    m.insetHeight = height;
-  }
   std::vector<uint8_t> rgba(4ull * width * height, 255);
   for (size_t i = 0; i < static_cast<size_t>(width) * static_cast<size_t>(height); ++i)
     for (size_t c = 0; c < 3; ++c) rgba[4 * i + c] = rgb[3 * i + c];
-  m.insetPixels.write(rgba.data(), rgba.size());  // present() waits for its frame: nothing reads it now
-  m.insetChanged = true;
-  m.insetUploaded = true;
+  m.setLayer(m.inset, width, height, rgba);
 }
+
+void Window::setOperatorOverlay(bool on) { impl_->operatorOverlay = on; }
+
+bool Window::operatorOverlay() const { return impl_->operatorOverlay; }
 
 void Window::captureFrames(int width, int height) {
   Impl& m = *impl_;
@@ -465,7 +508,7 @@ void Window::showMessage(const std::string& line, double seconds) {
 void Window::present(Renderer& renderer, RenderFrame frame) {
   Impl& m = *impl_;
   const uint32_t index = m.acquire();
-  if (frame.banner.empty() && std::chrono::steady_clock::now() < m.messageUntil) frame.banner = m.message;
+  if (m.operatorOverlay) m.updateOverlay();
   const vk::Extent2D from(static_cast<uint32_t>(renderer.options().width),
                           static_cast<uint32_t>(renderer.options().height));
   renderer.render(frame, false,

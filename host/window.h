@@ -1,8 +1,9 @@
 #pragma once
 // The live window (GLFW on X11): a Vulkan swapchain that shows the renderer's output, an orbiting camera on the
 // mouse (drag to turn, wheel to zoom) and the keys of `giantbubble view` (app/view_command.cpp); full screen on a
-// chosen monitor (a projector), a picture-in-picture inset (the performer view) and a copy of each frame at a fixed
-// size (the video stream). It runs under Xvfb with lavapipe, which is how CI tests it.
+// chosen monitor (a projector), a picture-in-picture inset (the performer view), the operator overlay (messages for
+// whoever runs the show) and a copy of each frame at a fixed size (the video stream), which holds neither of them. It
+// runs under Xvfb with lavapipe, which is how CI tests it.
 
 #include <array>
 #include <chrono>
@@ -22,16 +23,17 @@ namespace gb {
 
 // Keys pressed since the last poll.
 struct WindowKeys {
-  bool quit = false;           // Escape, Q, or the window closed
-  bool reset = false;          // R: new film and the performance from its start
-  bool dip = false;            // D: dip the wands again (new film where the wands are)
-  bool burst = false;          // B: poke the film
-  bool pause = false;          // Space or P: pause / resume the simulation
-  bool nextColouring = false;  // C: interference -> thickness -> air flow
-  bool resetCamera = false;    // Home
-  bool fullscreen = false;     // F: full screen <-> window
-  bool performerView = false;  // V: the performer view on or off
-  bool cameraMoved = false;    // the mouse turned or zoomed camera() (a drag, the wheel)
+  bool quit = false;             // Escape, Q, or the window closed
+  bool reset = false;            // R: new film and the performance from its start
+  bool dip = false;              // D: dip the wands again (new film where the wands are)
+  bool burst = false;            // B: poke the film
+  bool pause = false;            // Space or P: pause / resume the simulation
+  bool nextColouring = false;    // C: interference -> thickness -> air flow
+  bool resetCamera = false;      // Home
+  bool fullscreen = false;       // F: full screen <-> window
+  bool performerView = false;    // V: the performer view on or off
+  bool operatorOverlay = false;  // O: the operator overlay on or off
+  bool cameraMoved = false;      // the mouse turned or zoomed camera() (a drag, the wheel)
 };
 
 // Where the window goes: a window of the given size, or borderless over a whole monitor at its own resolution.
@@ -90,10 +92,14 @@ class Window {
   [[nodiscard]] const std::vector<uint8_t>& captured() const;
   // The title bar's text (the live show's figures).
   void setTitle(const std::string& title);
-  // A status line for the audience and the operator (a recovery, a lost camera, nobody in front of it), shown
-  // in a banner over the top of the image for `seconds` of wall time; a later message replaces it, and an empty
-  // one removes it. The title bar alone is not enough: a show runs full screen or on a projector.
+  // A status line for the operator (a recovery, a lost camera, nobody in front of it), shown in a banner over the
+  // top of the window for `seconds` of wall time while the operator overlay is on; a later message replaces it, and
+  // an empty one removes it. The title bar alone is not enough: a show runs full screen or on a projector. The
+  // overlay is drawn after the frame is copied for the stream, so neither the stream nor (with the overlay off, the
+  // default) the audience's picture ever shows it.
   void showMessage(const std::string& line, double seconds = kMessageSeconds);
+  void setOperatorOverlay(bool on);
+  [[nodiscard]] bool operatorOverlay() const;
   static constexpr double kMessageSeconds = 5.0;  // long enough to read two lines from across a room
 
  private:

@@ -9,6 +9,7 @@
 #   stream             --stream udp://127.0.0.1:PORT is received by ffprobe as H.264 at the show's size
 #   stream_unreachable a stream nobody can take (RTMP, nothing listening) is said once and the show goes on
 #   performer_view     while the show waits for a performer on a camera, the performer view shows, and V hides it
+#   operator_overlay   the show's messages are over the window with --operator, and never in the stream
 set -u
 source "$(dirname "$0")/live_show_on_fake_kinect.sh"  # EXE FAKE MAKE_RECORDING OUT, a fresh OUT, fail
 CASE=$5
@@ -162,6 +163,45 @@ EOF
     wait "$show"
     grep -q "cue performer_view: performer view off" log.txt || fail "the V cue did not hide the view"
     grep -q "ended while waiting for a performer" log.txt || fail "the quit cue did not end the wait"
+    ;;
+  operator_overlay)
+    # A recording's messages ("calibration: performer at ...", "input ended ...") go to the operator overlay for 5 s:
+    # a dark banner over the window's top rows, while the streamed picture keeps the sky there on every frame.
+    "$MAKE_RECORDING" rec 60 >/dev/null || fail "could not write the synthetic recording"
+    port=$(free_port)
+    # The receiver ends 3 s after the stream does (udp's timeout, in microseconds).
+    timeout 120 ffmpeg -v error -y -i "udp://127.0.0.1:$port?timeout=3000000" -vf "crop=160:8:0:0,format=gray" \
+      -f rawvideo stream_top.raw &
+    receiver=$!
+    sleep 1
+    cat >check.sh <<SCRIPT
+"$EXE" live --input fakenect:rec ${small[*]} --operator --stream udp://127.0.0.1:$port --frames 300 >log.txt 2>&1 &
+show=\$!
+for _ in \$(seq 1200); do grep -q "calibration: performer at" log.txt && break; sleep 0.1; done
+sleep 1  # the message is on for 5 s: the window's picture now holds it
+xwininfo -root -tree >tree.txt
+ffmpeg -v error -y -f x11grab -video_size 800x600 -i "\$DISPLAY" -frames:v 1 -vf format=gray -f rawvideo screen.raw
+wait \$show
+echo "show exit \$?" >>log.txt
+SCRIPT
+    timeout 240 xvfb-run -a -s "-screen 0 800x600x24" bash check.sh
+    wait "$receiver"
+    grep -q "show exit 0" log.txt || fail "the show failed"
+    # The window's corner on the screen (xwininfo), then the mean grey (0-255) of its rows 0-7 and of the stream's
+    # on each frame: the banner is dark (under 60), the sky light (over 100).
+    read -r x y < <(grep '"giantbubble' tree.txt | head -1 | sed -n 's/.* 160x120+\([0-9]*\)+\([0-9]*\) .*/\1 \2/p')
+    [ -n "${x:-}" ] || fail "no 160x120 window on the screen: $(grep giantbubble tree.txt)"
+    window_top=$(python3 -c "
+d = open('screen.raw', 'rb').read()
+print(int(sum(sum(d[(${y} + r) * 800 + ${x}:(${y} + r) * 800 + ${x} + 160]) for r in range(8)) / (8 * 160)))")
+    read -r frames darkest < <(python3 -c "
+d = open('stream_top.raw', 'rb').read(); n = 160 * 8
+means = [sum(d[i:i + n]) / n for i in range(0, len(d) - n + 1, n)]
+print(len(means), int(min(means)) if means else -1)")
+    echo "window's top rows: grey $window_top; the stream's: $frames frames, the darkest grey $darkest"
+    [ "$window_top" -lt 60 ] || fail "the operator overlay is not over the window (grey $window_top)"
+    [ "$frames" -ge 50 ] || fail "only $frames stream frames received"
+    [ "$darkest" -gt 100 ] || fail "the operator overlay is in the stream (grey $darkest)"
     ;;
   *) fail "unknown case $CASE" ;;
 esac

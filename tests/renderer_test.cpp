@@ -16,7 +16,6 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "banner_text.h"
 #include "film_swirls.h"
 #include "png_image.h"
 #include "render_output.h"
@@ -189,44 +188,6 @@ TEST(Renderer, ReadsTheVulkanSteppersBuffersInPlace) {
   frame = test::frameOf(empty);
   renderer.render(frame);
   EXPECT_GT(compare(uploaded, renderer.readPixels()).mean, 1.0);
-  EXPECT_EQ(device->validationErrors(), 0u);
-}
-
-// The live window's message banner (RenderFrame::banner): copied over the top rows of the rendered image, the
-// rest of the picture untouched.
-TEST(Renderer, MessageBannerCoversTheTopRowsOnly) {
-  GB_REQUIRE_VULKAN(device);
-  const test::KnownScene scene = test::makeKnownScene();
-  Renderer renderer(device, smallImage(), studioEnvironment(256));
-  RenderFrame frame = test::frameOf(scene);
-  renderer.render(frame);
-  const std::vector<uint8_t> plain = renderer.readPixels();
-  frame.banner = "the simulation became unstable; a new film is dipped";
-  renderer.render(frame);
-  const std::vector<uint8_t> withBanner = renderer.readPixels();
-  writePng("render_banner.png", kWidth, kHeight, withBanner);  // beside the test binary, to look at
-
-  const BannerImage banner = drawBanner(frame.banner, kWidth, kHeight);
-  ASSERT_GT(banner.height, 0);
-  ASSERT_LT(banner.height, kHeight / 2);
-  const size_t bannerBytes = 3 * static_cast<size_t>(kWidth) * static_cast<size_t>(banner.height);
-  // Tolerances: none. The banner's bytes are copied, not drawn, so they arrive exactly (RGBA minus alpha); below
-  // it the same commands ran on the same film, which gives the same picture bit for bit.
-  size_t differing = 0;
-  for (size_t p = 0; p < bannerBytes / 3; ++p) {
-    for (size_t c = 0; c < 3; ++c) ASSERT_EQ(withBanner[3 * p + c], banner.rgba[4 * p + c]) << "pixel " << p;
-    differing += std::abs(int(withBanner[3 * p]) - int(plain[3 * p])) > 8 ? 1 : 0;
-  }
-  // The band is dark where the studio backdrop is light: most of its pixels are visibly changed.
-  EXPECT_GT(static_cast<double>(differing) / static_cast<double>(bannerBytes / 3), 0.5);
-  const PixelError below =
-      compare(std::vector<uint8_t>(plain.begin() + static_cast<ptrdiff_t>(bannerBytes), plain.end()),
-              std::vector<uint8_t>(withBanner.begin() + static_cast<ptrdiff_t>(bannerBytes), withBanner.end()));
-  EXPECT_EQ(below.max, 0);
-  // And the next frame without a message is the plain picture again.
-  frame.banner.clear();
-  renderer.render(frame);
-  EXPECT_EQ(compare(plain, renderer.readPixels()).max, 0);
   EXPECT_EQ(device->validationErrors(), 0u);
 }
 

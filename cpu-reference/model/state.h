@@ -1,6 +1,6 @@
 #pragma once
 // The simulated film as a structure of arrays: one array per attribute, the layout the Vulkan backend
-// mirrors with one storage buffer per attribute. float32 throughout (ARCHITECTURE.md).
+// mirrors with one storage buffer per attribute. float32 throughout (docs/architecture.md).
 
 #include <Eigen/Dense>
 #include <algorithm>

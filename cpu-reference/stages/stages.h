@@ -1,5 +1,5 @@
 #pragma once
-// The stages of one simulation step (ARCHITECTURE.md "The step"), each a function of one element that
+// The stages of one simulation step (docs/architecture.md "The step's stages"), each a function of one element that
 // reads explicit inputs and writes only that element's outputs. This file is the definition both backends
 // follow: each stage's GLSL kernel(s) in kernels/ (kernel_list.h) run the function of the same name per element.
 //

@@ -1,6 +1,6 @@
 #pragma once
 // What every backend offers the simulation: the same stages, in the same order, with the same semantics
-// (ARCHITECTURE.md). CpuStepper (here) is the reference; VulkanStepper (host/) runs the stages as compute
+// (docs/architecture.md). CpuStepper (here) is the reference; VulkanStepper (host/) runs the stages as compute
 // shaders and is checked against it.
 
 #include <array>
@@ -62,7 +62,7 @@ constexpr uint32_t bufferSet(std::initializer_list<gpu::Binding> bindings) {
   return bits;
 }
 // The one list of the step's stages, in order: CpuStepper::step, VulkanStepper's recording and both
-// backends' timing walk it (ARCHITECTURE.md "The step").
+// backends' timing walk it (docs/architecture.md "The step's stages").
 std::span<const StageSpec> stepStages();
 const char* stageName(Stage stage);
 

@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "run_command.h"
+#include "run_options.h"
 
 namespace gb {
 

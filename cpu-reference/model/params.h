@@ -1,5 +1,5 @@
 #pragma once
-// The model's parameters: the block itself is defined once in kernels/shared_params.h, shared with the
+// The model's parameters: the block itself is defined once in kernels/shared/shared_params.h, shared with the
 // compute shaders; this header adds what only C++ needs.
 
 #include <span>

@@ -15,7 +15,7 @@
 namespace gb {
 
 // What a step needs besides the state: computed once per step on the host (on the GPU one StepUniformsBlock per
-// step of a batch, in a storage buffer: kernels/shared_step.h).
+// step of a batch, in a storage buffer: kernels/shared/shared_step.h).
 struct StepUniforms {
   float dt = 0.0f;                   // substep length (s)
   WandState wands;                   // wand tips at the start of the step, the air sources of Eq. (5)

@@ -45,9 +45,9 @@ enum class Stage : int {
 inline constexpr int kStageCount = static_cast<int>(Stage::Count);
 
 // One row of the step: the stage, its name (the C++ stage, its GLSL kernel(s) and the tests use it), when it
-// runs, the device's buffers it reads and writes (bits of gpu::Binding, kernels/device_data.h), and why a barrier
-// follows it (nullptr: no stage before the next barrier reads what it wrote or writes what it read; a test checks
-// this against the buffers).
+// runs, the device's buffers it reads and writes (bits of gpu::Binding, kernels/shared/device_data.h), and why a
+// barrier follows it (nullptr: no stage before the next barrier reads what it wrote or writes what it read; a test
+// checks this against the buffers).
 struct StageSpec {
   Stage stage;
   const char* name;

@@ -38,7 +38,7 @@ struct InputOptions {
   [[nodiscard]] bool scripted() const { return spec().rfind("script:", 0) == 0; }
 };
 
-// Rendered pictures of a run (app/render_output.h writes them).
+// Rendered pictures of a run (app/outputs/render_output.h writes them).
 struct RenderOutputOptions {
   bool enabled = false;               // --render (or the scene's [render] enabled), --no-render
   RenderOptions image;                // size and colouring (host/renderer.h)
@@ -72,7 +72,7 @@ struct RunOptions {
   std::string osc;                                // HOST:PORT to send events and the bubble's state to (empty: off)
   bool renderIfPossible = false;                  // the main job renders when it can and says so when it cannot
   std::string experiment;                         // a physics experiment instead of a performance (experiments.h)
-  RenderOutputOptions render;                     // --render: rendered frames and video (app/render_output.h)
+  RenderOutputOptions render;                     // --render: rendered frames and video (app/outputs/render_output.h)
 };
 
 // The longest run a duration taken from a recorded input may ask for, as --duration allows (s).

@@ -10,12 +10,12 @@
 #include "cli_checks.h"
 #include "evaluate_command.h"
 #include "experiments.h"
+#include "live_command.h"
 #include "record_command.h"
 #include "run_command.h"
 #include "scene_file.h"
 #include "thread_policy.h"
 #include "untrusted.h"
-#include "view_command.h"
 
 namespace {
 
@@ -74,7 +74,7 @@ void refuseOptionsForAnExperiment(const CLI::App& command, const std::string& ex
 }  // namespace
 
 int main(int argc, char** argv) {
-  gb::setOpenMpWaiting(argv);  // before any thread starts (app/thread_policy.h)
+  gb::setOpenMpWaiting(argv);  // before any thread starts (app/commands/thread_policy.h)
   CLI::App app{"giantbubble: real-time giant soap bubbles blown and burst with your hands"};
   app.require_subcommand(0, 1);
 
@@ -152,10 +152,10 @@ int main(int argc, char** argv) {
   CLI::App* recordCmd = gb::addRecordCommand(app, record);
   gb::EvaluateOptions evaluate;
   CLI::App* evaluateCmd = gb::addEvaluateCommand(app, evaluate);
-  gb::ViewOptions view;
+  gb::LiveOptions view;
   view.run = run;  // the scene, if any
   view.tool = tool;
-  CLI::App* viewCmd = gb::addViewCommand(app, view);
+  CLI::App* viewCmd = gb::addLiveCommand(app, view);
 
   try {
     app.parse(argc, argv);
@@ -176,7 +176,7 @@ int main(int argc, char** argv) {
   }
   if (benchCmd->parsed()) return gb::runBenchmark(bench);
   if (scenesCmd->parsed()) return listScenes();
-  if (viewCmd->parsed()) return gb::runView(view);
+  if (viewCmd->parsed()) return gb::runLive(view);
   try {
     if (recordCmd->parsed()) return gb::runRecord(record);
     if (evaluateCmd->parsed()) return gb::runEvaluate(evaluate);

@@ -7,8 +7,8 @@
 // BM_FlatFilm/N: a film of N particles hanging still on the default loop after one frame (1,000,000: the largest
 //   size docs/performance.md measures), where every candidate the cells hold is an in-plane neighbour.
 // BM_DefaultPerformanceOnDevice/F, BM_FlatFilmOnDevice/N: the same searches on the Vulkan device
-//   (VulkanStepper::findContacts, kernels/contact_*.comp), the list read back as Simulation has it read back; skipped
-//   with a message when there is no device.
+//   (VulkanStepper::findContacts, kernels/contacts/contact_*.comp), the list read back as Simulation has it read back;
+//   skipped with a message when there is no device.
 // Counters: pairs listed, particles, and ns per particle.
 #include <benchmark/benchmark.h>
 

@@ -293,7 +293,7 @@ std::array<Vec3, 2> hemisphereMeans(const EnvironmentImage& env) {
 namespace {
 
 // The direction (unit, world) of the centre of texel (row, col) of an equirectangular environment: the
-// parameterisation of environment() in kernels/render_common.glsl, u = 0.5 + atan(x, -z) / 2 pi, v = polar / pi.
+// parameterisation of environment() in kernels/render/render_common.glsl, u = 0.5 + atan(x, -z) / 2 pi, v = polar / pi.
 Vec3 texelDirection(const EnvironmentImage& env, int row, int col) {
   const float polar = kPi * (static_cast<float>(row) + 0.5f) / static_cast<float>(env.height);
   const float azimuth = 2 * kPi * ((static_cast<float>(col) + 0.5f) / static_cast<float>(env.width) - 0.5f);
@@ -301,7 +301,7 @@ Vec3 texelDirection(const EnvironmentImage& env, int row, int col) {
 }
 
 // An environment of `width` x width / 2 texels whose radiance in direction d is radiance(d); the texel
-// parameterisation of environment() in kernels/render_common.glsl: u = 0.5 + atan(x, -z) / 2 pi, v = polar / pi.
+// parameterisation of environment() in kernels/render/render_common.glsl: u = 0.5 + atan(x, -z) / 2 pi, v = polar / pi.
 template <class Radiance>
 EnvironmentImage tabulateEnvironment(int width, const Radiance& radiance) {
   EnvironmentImage env;

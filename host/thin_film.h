@@ -25,7 +25,7 @@ Rgb3 thinFilmXyz(double filmIndex, double thickness, double cosIncidence);
 Rgb3 xyzToLinearSrgb(const Rgb3& xyz);
 Rgb3 linearSrgbToXyz(const Rgb3& rgb);
 
-// The lookup texture of kernels/thin_film_lut.h: GB_LUT_THICKNESS_TEXELS columns (thickness along
+// The lookup texture of kernels/render/thin_film_lut.h: GB_LUT_THICKNESS_TEXELS columns (thickness along
 // sqrt(e / max)) by GB_LUT_ANGLE_TEXELS rows (cos theta from 0 to 1, texel centres), RGBA float, linear sRGB
 // reflectance clamped to [0, 1] (the few saturated colours outside the sRGB gamut lose a little chroma),
 // alpha = luminance Y (the film's opacity in the transparency blend).

@@ -3,7 +3,7 @@
 // buffer per attribute. A batch of substeps is recorded into one command buffer and submitted once, with a
 // barrier only where a stage reads what an earlier one wrote. Topology stays on the CPU: load() takes a
 // changed film, store() brings the state back. The self-collision contacts are found on the device
-// (findContacts; kernels/contact_*.comp), where the sweeps read them.
+// (findContacts; kernels/contacts/contact_*.comp), where the sweeps read them.
 
 #include <memory>
 

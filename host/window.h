@@ -1,6 +1,6 @@
 #pragma once
 // The live window (GLFW on X11): a Vulkan swapchain that shows the renderer's output, an orbiting camera on the
-// mouse (drag to turn, wheel to zoom) and the keys of `giantbubble view` (app/view_command.cpp); full screen on a
+// mouse (drag to turn, wheel to zoom) and the keys of `giantbubble view` (app/show/live_show.cpp); full screen on a
 // chosen monitor (a projector), a picture-in-picture inset (the performer view), the operator overlay (messages for
 // whoever runs the show) and a copy of each frame at a fixed size (the video stream), which holds neither of them. It
 // runs under Xvfb with lavapipe, which is how CI tests it.

@@ -169,8 +169,9 @@ EOF
     # a dark banner over the window's top rows, while the streamed picture keeps the sky there on every frame.
     "$MAKE_RECORDING" rec 60 >/dev/null || fail "could not write the synthetic recording"
     port=$(free_port)
-    # The receiver ends 3 s after the stream does (udp's timeout, in microseconds).
-    timeout 120 ffmpeg -v error -y -i "udp://127.0.0.1:$port?timeout=3000000" -vf "crop=160:8:0:0,format=gray" \
+    # The receiver waits up to 10 s for the stream (a busy machine starts the show slowly) and ends 10 s after the
+    # stream does (udp's timeout, in microseconds).
+    timeout 120 ffmpeg -v error -y -i "udp://127.0.0.1:$port?timeout=10000000" -vf "crop=160:8:0:0,format=gray" \
       -f rawvideo stream_top.raw &
     receiver=$!
     sleep 1

@@ -1,6 +1,6 @@
-// The self-collision search on the device (VulkanStepper::findContacts, kernels/contact_*.comp) against the CPU's
-// findContacts (collision.h), the reference: the same pairs and the same rest distances, on the films the CPU search
-// is tested on (collision_test.cpp), on a crumpled film, and on the default performance's film as it runs on the
+// The self-collision search on the device (VulkanStepper::findContacts, kernels/contacts/contact_*.comp) against the
+// CPU's findContacts (collision.h), the reference: the same pairs and the same rest distances, on the films the CPU
+// search is tested on (collision_test.cpp), on a crumpled film, and on the default performance's film as it runs on the
 // Vulkan backend. Runs on whatever device VulkanContext picks (lavapipe in CI); vulkan_test_device.h says when a
 // missing device skips and when it fails.
 #include <gtest/gtest.h>

@@ -1,8 +1,8 @@
-// The frame's statistics summed on the device (VulkanStepper::probeFilm, kernels/film_statistics_*.comp) against the
-// CPU's sums in double (Simulation::stats on a CPU stepper), the reference: on the default performance's film as it
-// runs on the Vulkan backend (the bag being drawn, at its fastest, the free bubble), and on a bubble of the physical
-// tension model. Runs on whatever device VulkanContext picks (lavapipe in CI); vulkan_test_device.h says when a
-// missing device skips and when it fails.
+// The frame's statistics summed on the device (VulkanStepper::probeFilm, kernels/statistics/film_statistics_*.comp)
+// against the CPU's sums in double (Simulation::stats on a CPU stepper), the reference: on the default performance's
+// film as it runs on the Vulkan backend (the bag being drawn, at its fastest, the free bubble), and on a bubble of the
+// physical tension model. Runs on whatever device VulkanContext picks (lavapipe in CI); vulkan_test_device.h says when
+// a missing device skips and when it fails.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -47,7 +47,7 @@ double foldedTriangles(const Film& film) {
 
 // The default performance, with `sweeps` solver sweeps (0: the scene's), for `seconds` (0: the scene's duration),
 // with Params::gibbsFloorThickness (negative: the scene's). `liveSeed` > 0 steps it as `live` does on a machine
-// that cannot keep up (app/realtime_pacer.h): each step takes 3 to 6 sweeps and covers one or two frames, drawn
+// that cannot keep up (app/show/realtime_pacer.h): each step takes 3 to 6 sweeps and covers one or two frames, drawn
 // from a generator seeded with it.
 PerformanceRecord performDefaultScene(int sweeps = 0, double seconds = 0, float gibbsFloorThickness = -1,
                                       unsigned liveSeed = 0) {

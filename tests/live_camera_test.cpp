@@ -1,4 +1,4 @@
-// The live window's camera (app/live_camera.h): it keeps a drifting free bubble in the picture without jumps, lets
+// The live window's camera (app/show/live_camera.h): it keeps a drifting free bubble in the picture without jumps, lets
 // the user take over, and Home hands control back without a jump.
 #include "live_camera.h"
 

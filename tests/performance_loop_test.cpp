@@ -1,4 +1,4 @@
-// The live show's performance loop (app/performance_loop.h): a script or a recording plays again once the stage is
+// The live show's performance loop (app/show/performance_loop.h): a script or a recording plays again once the stage is
 // empty, the wands going back to its start without a jump.
 #include "performance_loop.h"
 

@@ -1,5 +1,5 @@
-// The live window's performer view (app/performer_view.h, app/depth_plot.h): the depth plot drawn small for the
-// window is the full plot's every other pixel, and V says when there is nothing to show.
+// The live window's performer view (app/show/performer_view.h, capture/depth_plot.h): the depth plot drawn small for
+// the window is the full plot's every other pixel, and V says when there is nothing to show.
 #include "performer_view.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,5 @@
-// The live loop's pacing (app/realtime_pacer.h): what it gives up, in which order, when the machine cannot keep up.
+// The live loop's pacing (app/show/realtime_pacer.h): what it gives up, in which order, when the machine cannot keep
+// up.
 #include "realtime_pacer.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,5 @@
-// The run's record (app/run_output.h): what the summary and stats.json say about the film beyond its last frame.
+// The run's record (app/outputs/run_output.h): what the summary and stats.json say about the film beyond its last
+// frame.
 #include <gtest/gtest.h>
 
 #include <filesystem>

@@ -6,6 +6,8 @@
 
 #include <filesystem>
 
+#include "run_command.h"
+
 namespace gb {
 namespace {
 

@@ -1,4 +1,4 @@
-// The C++ structs in kernels/shared_*.h and the blocks glslang laid out for the shaders must agree byte for
+// The C++ structs in kernels/shared/shared_*.h and the blocks glslang laid out for the shaders must agree byte for
 // byte. The embedded SPIR-V carries the std430 offsets glslang chose (OpMemberDecorate ... Offset) and the
 // member names (OpMemberName); this test reads them back and compares with the C++ offsets.
 #include <gtest/gtest.h>

@@ -20,6 +20,7 @@
 #include "freenect_stream.h"
 #include "hand_forest.h"
 #include "interrupt.h"
+#include "live_show.h"
 #include "osc_events.h"
 #include "output_file.h"
 #include "png_image.h"
@@ -31,7 +32,6 @@
 #include "trajectory_plot.h"
 #include "untrusted.h"
 #include "video_stream.h"
-#include "view_command.h"
 #include "wand_input.h"
 
 namespace gb {

@@ -1,4 +1,4 @@
-// How many threads the simulation runs beside other processes' load (app/thread_policy.h).
+// How many threads the simulation runs beside other processes' load (app/commands/thread_policy.h).
 #include "thread_policy.h"
 
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Video out (app/video_stream.h): ffmpeg's arguments for each kind of address, a bad address named, and a stream
+// Video out (app/show/video_stream.h): ffmpeg's arguments for each kind of address, a bad address named, and a stream
 // that never holds up the show, whether nobody receives it or ffmpeg cannot reach its receiver.
 #include "video_stream.h"
 

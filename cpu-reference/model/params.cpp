@@ -10,13 +10,13 @@
 namespace gb {
 namespace {
 
-// Appends a message when value is not finite or lies outside [lo, hi].
+// Appends an error when value is not finite or lies outside [lo, hi].
 template <class T>
-void requireRange(std::vector<std::string>& errors, const char* name, T value, T lo, T hi, const char* unit) {
+void requireRange(std::vector<ParamError>& errors, const char* name, T value, T lo, T hi, const char* unit) {
   if (std::isfinite(static_cast<double>(value)) && value >= lo && value <= hi) return;
   std::ostringstream msg;
   msg << "parameter " << name << " = " << value << " is out of range [" << lo << ", " << hi << "]" << unit;
-  errors.push_back(msg.str());
+  errors.push_back({name, msg.str()});
 }
 
 #define GB_REAL(field, lo, hi, unit) \
@@ -115,8 +115,8 @@ void setParameter(Params& params, const std::string& name, double value) {
   params.*field->integer = static_cast<int>(value);
 }
 
-std::vector<std::string> validate(const Params& p) {
-  std::vector<std::string> e;
+std::vector<ParamError> rangeErrors(const Params& p) {
+  std::vector<ParamError> e;
   for (const ParamField& f : kFields) {
     if (f.real)
       requireRange(e, f.name, p.*f.real, static_cast<float>(f.lo), static_cast<float>(f.hi), f.unit);
@@ -124,6 +124,12 @@ std::vector<std::string> validate(const Params& p) {
       requireRange(e, f.name, p.*f.integer, static_cast<int>(f.lo), static_cast<int>(f.hi), f.unit);
   }
   return e;
+}
+
+std::vector<std::string> validate(const Params& params) {
+  std::vector<std::string> messages;
+  for (const ParamError& error : rangeErrors(params)) messages.push_back(error.message);
+  return messages;
 }
 
 }  // namespace gb

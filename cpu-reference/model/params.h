@@ -1,5 +1,5 @@
 #pragma once
-// The model's parameters: the block itself is defined once in kernels/shared_params.h, shared with the
+// The model's parameters: the block itself is defined once in kernels/shared/shared_params.h, shared with the
 // compute shaders; this header adds what only C++ needs.
 
 #include <span>
@@ -39,8 +39,14 @@ const ParamField* findParamField(const std::string& name);
 // int parameter gets a value that is not a whole number.
 void setParameter(Params& params, const std::string& name, double value);
 
-// One message per parameter that is out of its valid range, each naming the parameter, its value and the
-// range. Empty when the parameters are usable.
+// A parameter out of its valid range: its name, and a message naming it, its value and the range.
+struct ParamError {
+  std::string name;
+  std::string message;
+};
+// One error per parameter that is out of its valid range. Empty when the parameters are usable.
+std::vector<ParamError> rangeErrors(const Params& params);
+// The same errors' messages.
 std::vector<std::string> validate(const Params& params);
 
 }  // namespace gb

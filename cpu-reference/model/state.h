@@ -1,6 +1,6 @@
 #pragma once
 // The simulated film as a structure of arrays: one array per attribute, the layout the Vulkan backend
-// mirrors with one storage buffer per attribute. float32 throughout (ARCHITECTURE.md).
+// mirrors with one storage buffer per attribute. float32 throughout (docs/architecture.md).
 
 #include <Eigen/Dense>
 #include <algorithm>
@@ -39,7 +39,7 @@ struct Vec3Array {
   }
 };
 
-// How a per-particle array of State travels between the host and the Vulkan stepper (kernels/device_data.h).
+// How a per-particle array of State travels between the host and the Vulkan stepper (kernels/shared/device_data.h).
 enum class Transfer {
   ReadBack,    // load() uploads it, store() brings it back
   UploadOnly,  // load() uploads it; the device only reads it, or uses it as scratch
@@ -60,7 +60,7 @@ using ParticleArray = typename ParticleArrayOf<Element, Components>::type;
 
 // Per-particle state. Indices are stable: a removed particle is flagged dead, never renumbered implicitly.
 struct State {
-  // One array per line of kernels/device_data.h, named and explained there: the list that the device's buffers,
+  // One array per line of kernels/shared/device_data.h, named and explained there: the list that the device's buffers,
   // their bindings and their uploads and read-backs follow too (forEachParticleArray).
 #define GB_ELEMENT_float float
 #define GB_ELEMENT_uint uint32_t
@@ -97,8 +97,8 @@ struct ParticleArrayInfo {
 };
 
 // Calls visit(array, info) for every per-particle array of `state` (a State or a const State), in the order of
-// kernels/device_data.h: the one list of them, so that no attribute is left out when the state grows, is uploaded,
-// is read back or is saved.
+// kernels/shared/device_data.h: the one list of them, so that no attribute is left out when the state grows, is
+// uploaded, is read back or is saved.
 template <class S, class Visit>
 void forEachParticleArray(S& state, Visit&& visit) {
 #define GB_BUFFER(binding, NAME, element, declarator, access)

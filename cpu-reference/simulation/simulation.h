@@ -1,7 +1,7 @@
 #pragma once
-// A film driven by wand input frame by frame: one implicit step per frame of Params::frameTime (or the
-// explicit integrator's stable substeps),
-// feeds the stepper interpolated wand states, and stops with a clear error if the film goes unstable.
+// A film driven by wand input frame by frame: Params::implicitSubsteps implicit steps per frame of Params::frameTime
+// (one by default), or the explicit integrator's stable substeps; feeds the stepper interpolated wand states, and
+// stops with a clear error if the film goes unstable.
 
 #include <array>
 #include <map>

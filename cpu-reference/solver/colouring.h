@@ -1,8 +1,8 @@
 #pragma once
-// Graph colouring for the implicit solver's Gauss-Seidel sweeps (ARCHITECTURE.md: a coloured sweep is
-// order-free). Made on the CPU when a film is loaded with a new mesh and handed to both backends, so that they
-// solve the same particles in the same colour order. Contacts need none (the solver reads a contact partner
-// where inertia carries it, implicit_euler.cpp); buildAdjacency drops it whenever the springs change.
+// Graph colouring for the implicit solver's Gauss-Seidel sweeps (a coloured sweep is order-free: no two
+// particles of a colour share a spring). Made on the CPU when a film is loaded with a new mesh and handed to both
+// backends, so that they solve the same particles in the same colour order. Contacts need none (the solver reads a
+// contact partner where inertia carries it, implicit_euler.cpp); buildAdjacency drops it whenever the springs change.
 
 #include "state.h"
 

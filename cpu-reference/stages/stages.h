@@ -1,5 +1,5 @@
 #pragma once
-// The stages of one simulation step (ARCHITECTURE.md "The step"), each a function of one element that
+// The stages of one simulation step (docs/architecture.md "The step's stages"), each a function of one element that
 // reads explicit inputs and writes only that element's outputs. This file is the definition both backends
 // follow: each stage's GLSL kernel(s) in kernels/ (kernel_list.h) run the function of the same name per element.
 //
@@ -15,7 +15,7 @@
 namespace gb {
 
 // What a step needs besides the state: computed once per step on the host (on the GPU one StepUniformsBlock per
-// step of a batch, in a storage buffer: kernels/shared_step.h).
+// step of a batch, in a storage buffer: kernels/shared/shared_step.h).
 struct StepUniforms {
   float dt = 0.0f;                   // substep length (s)
   WandState wands;                   // wand tips at the start of the step, the air sources of Eq. (5)

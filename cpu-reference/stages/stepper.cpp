@@ -12,8 +12,8 @@ bool explicitStep(const Params& p, const StepUniforms&) { return p.integrator ==
 bool implicitStep(const Params& p, const StepUniforms&) { return p.integrator != 0; }
 bool closedImplicitStep(const Params& p, const StepUniforms& u) { return p.integrator != 0 && u.closed != 0; }
 bool budgetedStep(const Params& p, const StepUniforms&) { return p.integrator != 0 && p.energyBudget != 0; }
-// The coarse correction runs inside vertex_block_descent, between its smoothing sweeps (coarse_correction.h),
-// never as a row of its own.
+// The coarse correction has a row, for the tests and benchmarks that run it alone (runStage), but a step runs it
+// inside vertex_block_descent, between its smoothing sweeps (coarse_correction.h): its row never runs by itself.
 bool insideTheSweeps(const Params&, const StepUniforms&) { return false; }
 bool drainsThisStep(const Params& p, const StepUniforms& u) { return u.drainageDt > 0 && p.filmFlow == 0; }
 bool flowsThisStep(const Params& p, const StepUniforms& u) { return u.drainageDt > 0 && p.filmFlow != 0; }

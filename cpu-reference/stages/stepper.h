@@ -1,6 +1,6 @@
 #pragma once
 // What every backend offers the simulation: the same stages, in the same order, with the same semantics
-// (ARCHITECTURE.md). CpuStepper (here) is the reference; VulkanStepper (host/) runs the stages as compute
+// (docs/architecture.md). CpuStepper (here) is the reference; VulkanStepper (host/) runs the stages as compute
 // shaders and is checked against it.
 
 #include <array>
@@ -45,9 +45,9 @@ enum class Stage : int {
 inline constexpr int kStageCount = static_cast<int>(Stage::Count);
 
 // One row of the step: the stage, its name (the C++ stage, its GLSL kernel(s) and the tests use it), when it
-// runs, the device's buffers it reads and writes (bits of gpu::Binding, kernels/device_data.h), and why a barrier
-// follows it (nullptr: no stage before the next barrier reads what it wrote or writes what it read; a test checks
-// this against the buffers).
+// runs, the device's buffers it reads and writes (bits of gpu::Binding, kernels/shared/device_data.h), and why a
+// barrier follows it (nullptr: no stage before the next barrier reads what it wrote or writes what it read; a test
+// checks this against the buffers).
 struct StageSpec {
   Stage stage;
   const char* name;
@@ -62,7 +62,7 @@ constexpr uint32_t bufferSet(std::initializer_list<gpu::Binding> bindings) {
   return bits;
 }
 // The one list of the step's stages, in order: CpuStepper::step, VulkanStepper's recording and both
-// backends' timing walk it (ARCHITECTURE.md "The step").
+// backends' timing walk it (docs/architecture.md "The step's stages").
 std::span<const StageSpec> stepStages();
 const char* stageName(Stage stage);
 

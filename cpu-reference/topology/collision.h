@@ -27,7 +27,7 @@ struct ContactHistory {
 // closed faster than the search's margin) made energy from nothing, 0.3-0.45 J a frame in the 25,650-particle
 // stress run (docs/performance.md). It grows back as the pair separates and never shrinks while the pair stays
 // listed, so a new list never raises the penalty energy and the step's own approach is resisted as before. The
-// formula is kernels/shared_formulas.h's, which the device search (host/vulkan_stepper.h) shares.
+// formula is kernels/shared/shared_formulas.h's, which the device search (host/vulkan_stepper.h) shares.
 float contactRestDistanceAfter(const Params& params, float previousRest, float separation);
 
 // Fills film.topology.contacts: for every living particle, the living particles that may come within
@@ -37,7 +37,8 @@ float contactRestDistanceAfter(const Params& params, float previousRest, float s
 // the rest distance it had in `history`). A pair may close by h |v_i - v_j| at its start
 // velocities, plus slack for what the frame's forces add; the margin is capped at kMaxContactMargin. The list is
 // symmetric and sorted. Returns the number of pairs. The margin (contactMargin, kMaxContactMargin) and the across test
-// (liesAcross) are kernels/shared_formulas.h's, shared with the device search (kernels/contact_pairs.comp).
+// (liesAcross) are kernels/shared/shared_formulas.h's, shared with the device search
+// (kernels/contacts/contact_pairs.comp).
 size_t findContacts(const Params& params, float frameTime, float slack, Film& film, const ContactHistory& history = {});
 
 // findContacts with the memory it keeps from one search to the next: a film of a million particles has a cell

@@ -3,9 +3,10 @@
 // reduced to a few figures: whether the film blew up, how near it is to the floor and to the wand tips, whether a
 // tip is inside a bubble, its thinnest particle (burst by thinning), the hardest impact of its contact pairs, and
 // how many springs each rest-length rule would change. A stepper that holds the state on its device reduces them
-// there (Stepper::probeFilm, kernels/film_statistics_terms.comp) with every threshold loosened by kFilmCheckMargin
-// (shared_formulas.h): a frame whose figures say that no rule acts needs no state in host memory, and a frame whose
-// figures come near a threshold brings the state back and lets the CPU rules decide exactly (docs/backends.md).
+// there (Stepper::probeFilm, kernels/statistics/film_statistics_terms.comp) with every threshold loosened by
+// kFilmCheckMargin (shared_formulas.h): a frame whose figures say that no rule acts needs no state in host memory, and
+// a frame whose figures come near a threshold brings the state back and lets the CPU rules decide exactly
+// (docs/backends.md).
 
 #include <array>
 #include <limits>

@@ -1,5 +1,5 @@
 #pragma once
-// The built-in scenes: scenes/*.toml, embedded as text at build time (app/CMakeLists.txt).
+// The built-in scenes: scenes/*.toml, embedded as text at build time (scene/CMakeLists.txt).
 
 #include <span>
 

@@ -10,30 +10,11 @@
 #include <vector>
 
 #include "hand_sources.h"
+#include "run_options.h"
 #include "stabilizer.h"
 #include "wand_input.h"
 
 namespace gb {
-
-struct InputOptions {
-  std::string input;                           // kinect, fakenect:DIR, trajectory:FILE or script:NAME
-  std::string gesture;                         // --gesture NAME, kept as an alias of --input script:NAME
-  std::string stabilizer = "one-euro";         // one-euro (the default: less lag, docs/capture.md) or bspline (the
-                                               //   paper)
-  std::string performer;                       // X,Y,Z (m) between the resting hands, or auto; empty: auto for
-                                               //   camera inputs (kinect, fakenect:DIR), 0,0,2 for the others
-  double reach = 2.0;                          // world metres per metre of hand motion
-  double cameraPitch = 0.0;                    // degrees the camera is tilted up
-  std::vector<double> depthBand = {0.5, 4.0};  // metres: the performer stands inside this band
-  bool mirrored = false;                       // the depth image is mirrored
-  double runSeconds = std::numeric_limits<double>::infinity();  // how long the run lasts once the performer is
-                                                                //   found: a trajectory file is read no further
-  bool wallClock = false;  // the frame loop keeps the wall clock (live, run --realtime): a camera's newest hands are
-                           //   used as they arrive, never waited for (StabilizedWands::followWallClock)
-
-  [[nodiscard]] std::string spec() const;  // script:GESTURE, else --input, else script:straight
-  [[nodiscard]] bool scripted() const { return spec().rfind("script:", 0) == 0; }
-};
 
 // Adds --input, --gesture, --stabilizer, --performer, --reach, --camera-pitch, --depth-band and --mirrored.
 void addInputOptions(CLI::App* command, InputOptions& options);

@@ -13,12 +13,6 @@
 
 namespace gb {
 
-std::string InputOptions::spec() const {
-  // --gesture comes from the command line only, so it wins over a scene's input (the default scene's too).
-  if (!gesture.empty()) return "script:" + gesture;
-  return input.empty() ? std::string("script:straight") : input;
-}
-
 namespace {
 
 // X,Y,Z in metres with Z > 0, each coordinate a finite decimal number; nothing, with `why`, when `text` is not one.

@@ -3,7 +3,7 @@
 // fakenect:) the performance loops. Once it has played and the wands hold no film (the bubble flies free, or it is
 // gone) the wands return to where the performance starts; once the stage has been empty for --auto-dip seconds they
 // dip there and the performance plays again from its start. A camera or the mouse is a performer, who returns and
-// dips by themselves: with them the wands dip again where they are (view_command.cpp).
+// dips by themselves: with them the wands dip again where they are (live_show.cpp).
 //
 // The return is a smoothstep between the two poses, so the wands never jump: its length is the farther tip's way at
 // kReturnSpeed, at least kShortestReturn.

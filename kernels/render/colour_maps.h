@@ -1,4 +1,4 @@
-// One definition, compiled as C++ (app/thickness_image.cpp) and GLSL (the renderer's diagnostic colourings),
+// One definition, compiled as C++ (app/outputs/thickness_image.cpp) and GLSL (the renderer's diagnostic colourings),
 // of the diagnostic colour maps, each from t in [0, 1] to a linear red, green, blue in [0, 1].
 // Thickness (the paper's Figure 8): blue (thin) through green to red (thick).
 // Air flow strength (the paper's Figure 13): dark blue (still) through magenta and orange to yellow (strong).

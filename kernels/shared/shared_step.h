@@ -80,7 +80,7 @@ struct PushBlock {
 // The reduce buffer (GB_BINDING_REDUCE) holds, one after the other, with T triangles, R patch-row entries, P patches
 // and N particles (floats):
 //   tree sum        the volume's tree sum, halves A and B of T floats each (tree_sum, triangle_volume);
-//   coarse blocks   the coarse correction's 3x3 blocks, 9 R, column-major (kernels/coarse.glsl);
+//   coarse blocks   the coarse correction's 3x3 blocks, 9 R, column-major (kernels/step/coarse.glsl);
 //   coarse vectors  its right-hand side, solution, residual, direction, preconditioned, product (3 P each, x, y and
 //                   z blocks of P), the patches' shortest springs (P), its dot products' halves A and B (P each);
 //   energy terms    the energy budget's terms, halves A and B of GB_ENERGY_TERMS blocks of N floats;
@@ -167,7 +167,7 @@ GB_REGION uint reduceFloatsWith(uint energyTermsAt, uint particleCount) {
 }  // namespace gb::gpu
 #endif
 
-// The device contact search (kernels/contact_*.comp, host/vulkan_stepper.cpp). The contacts buffer
+// The device contact search (kernels/contacts/contact_*.comp, host/vulkan_contact_search.cpp). The contacts buffer
 // (GB_BINDING_CONTACTS) holds the packed list Topology::contacts from 0, with room for C partner entries: N + 1
 // offsets, C partners, C rest distances. The search's regions follow, from its header at contactSearchAt(N, C) on
 // (uints), with B buckets (a power of two) and room for K partners a particle:

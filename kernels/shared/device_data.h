@@ -73,5 +73,5 @@ GB_BUFFER(29, CONTACTS, uint, contacts[],
           GB_WRITABLE)  // Topology::contacts, then the device search's regions (shared_step.h)
 GB_PARTICLE_ARRAY(30, PREVIOUS_POSITION, previousPosition, 3, float, GB_WRITABLE, ReadBack, 0)  // x_t of a step
 // The implicit solver's lists: its particles colour by colour (Topology::colourOrder), then the coarse
-// correction's patch lists (kernels/coarse.glsl).
+// correction's patch lists (kernels/step/coarse.glsl).
 GB_BUFFER(31, COLOUR_ORDER, uint, colourOrder[], readonly)

@@ -192,12 +192,11 @@ void readParams(const std::string& source, const toml::table& table, Params& par
     }
     lines[name] = node.source();
   }
-  // validate() names the parameter first: "parameter NAME = ..."; point at its line when the scene set it.
-  for (const std::string& error : validate(params)) {
-    const std::string name = error.substr(10, error.find(' ', 10) - 10);
-    const auto it = lines.find(name);
-    if (it != lines.end()) fail(source, it->second, error);
-    throw SceneError(source + ": " + error);
+  // An out-of-range parameter is pointed at on its line when the scene set it.
+  for (const ParamError& error : rangeErrors(params)) {
+    const auto it = lines.find(error.name);
+    if (it != lines.end()) fail(source, it->second, error.message);
+    throw SceneError(source + ": " + error.message);
   }
 }
 

@@ -13,6 +13,7 @@
 
 #include "output_file.h"
 #include "renderer.h"
+#include "run_options.h"
 #include "simulation.h"
 
 namespace CLI {
@@ -20,17 +21,6 @@ class App;
 }
 
 namespace gb {
-
-struct RenderOutputOptions {
-  bool enabled = false;               // --render (or the scene's [render] enabled), --no-render
-  RenderOptions image;                // size and colouring (host/renderer.h)
-  int samples = 0;                    // --samples: MSAA samples per pixel; 0: the command's own choice (samplesFor)
-  int pngEvery = 1;                   // write render_NNNNN.png every N frames (0: none)
-  std::string video = "render.mp4";   // in the output folder, all frames; empty: none. Needs ffmpeg
-  std::filesystem::path environment;  // equirectangular PNG the film reflects; empty: the built-in sky
-  OrbitCamera camera;                 // its direction; with followCamera its target and distance frame the film
-  bool followCamera = true;           // --camera follow (default): keep the film framed; fixed: `camera` as is
-};
 
 // Whether a command writes rendered files: `run` does (PNG frames and the video); `live` draws into its window only,
 // and refuses --render, --render-every and --video by name rather than take them and write nothing.

@@ -1,4 +1,4 @@
-// One definition, compiled as C++ (host/thin_film.cpp builds the table) and GLSL (kernels/film.frag reads it),
+// One definition, compiled as C++ (host/thin_film.cpp builds the table) and GLSL (kernels/render/film.frag reads it),
 // of the thin-film lookup texture's layout: texel columns are film thickness, rows the cosine of the view angle
 // in air. Thickness is stored along sqrt(e / max) so that the first interference orders (0-600 nm, where the
 // colour changes fastest) get most of the texels: 2.5 nm per texel at 200 nm, 16 nm at 8 um where the colours

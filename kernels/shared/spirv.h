@@ -1,5 +1,5 @@
 #pragma once
-// The embedded SPIR-V of every compute shader in this folder (kernel_list.h, the one list of them).
+// The embedded SPIR-V of every compute shader of kernels/ (kernel_list.h, the one list of them).
 
 #include <cstdint>
 #include <span>

@@ -1,6 +1,6 @@
 #pragma once
-// Scenes as data (docs/scenes.md): a TOML file holds the tool, the input, every model parameter, the output
-// and render settings and the duration of a run. The paper's figures are built-in scenes (scenes/*.toml,
+// Scenes as data (docs/formats.md "Scene files"): a TOML file holds the tool, the input, every model parameter, the
+// output and render settings and the duration of a run. The paper's figures are built-in scenes (scenes/*.toml,
 // embedded at build time), listed by `giantbubble scenes` and run by `giantbubble run --scene NAME`.
 
 #include <cstdint>
@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "run_command.h"
+#include "run_options.h"
 
 namespace gb {
 

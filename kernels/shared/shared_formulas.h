@@ -79,9 +79,9 @@ GB_FORMULA float evaporatedLiquid(float rate, float dt, float liquid, float area
   return aboveBlackFilm <= 0.0f ? 0.0f : (aboveBlackFilm < most ? aboveBlackFilm : most);
 }
 
-// Self-collision (cpu-reference/topology/collision.h, findContacts; kernels/contact_pairs.comp). A pair's margin: how
-// much closer than the collision distance it is searched for, at `closing` a bound on the speed at which it closes,
-// capped at kMaxContactMargin (m: a film faster than 2.5 m/s relative to itself bursts anyway).
+// Self-collision (cpu-reference/topology/collision.h, findContacts; kernels/contacts/contact_pairs.comp). A pair's
+// margin: how much closer than the collision distance it is searched for, at `closing` a bound on the speed at which it
+// closes, capped at kMaxContactMargin (m: a film faster than 2.5 m/s relative to itself bursts anyway).
 GB_CONST float kMaxContactMargin = 0.05f;
 GB_FORMULA float contactMargin(float frameTime, float slack, float closing) {
   GB_PRECISE const float margin = frameTime * closing + slack;

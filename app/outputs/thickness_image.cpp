@@ -16,7 +16,7 @@ namespace {
 
 using Rgb = std::array<float, 3>;
 
-// Blue (thin) through green to red (thick): the colour map of kernels/colour_maps.h, shared with the renderer.
+// Blue (thin) through green to red (thick): the colour map of kernels/render/colour_maps.h, shared with the renderer.
 Rgb thicknessColour(float e, const ImageView& v) {
   const float t = std::clamp((e - v.thinColour) / (v.thickColour - v.thinColour), 0.0f, 1.0f);
   return {colour::thicknessRed(t), colour::thicknessGreen(t), colour::thicknessBlue(t)};

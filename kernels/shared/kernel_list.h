@@ -1,4 +1,4 @@
-// The compute kernels, one line each: GB_KERNEL(EnumName, file_name) for kernels/file_name.comp. The one
+// The compute kernels, one line each: GB_KERNEL(EnumName, file_name) for kernels/FOLDER/file_name.comp. The one
 // list: kernels/CMakeLists.txt reads it for the shaders to compile, spirv.h and spirv.cpp expand it into
 // the Kernel enum, the embedded SPIR-V and the names. A stage of stepper.h records one or more of them.
 GB_KERNEL(TriangleGeometry, triangle_geometry)

@@ -93,6 +93,7 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
          "--longest-step", o.longestStep,
          "frames of time one implicit step may cover when the machine cannot keep up (1: every step one frame)")
       ->transform(WholeNumber(1, 5));
+  addControlOptions(*cmd, o.control);  // --control, --control-bind, --control-token, --presets
   addRenderOptions(*cmd, o.run.render, RenderedFiles::None);
   return cmd;
 }
@@ -304,11 +305,15 @@ int runView(ViewOptions o) try {
   run.tool.kind = o.tool == "ring" ? ToolKind::Ring : ToolKind::TwoWands;
   ShowControl show(run.osc);
   std::unique_ptr<OscCueReceiver> cues;
-  if (o.oscIn > 0) {
+  if (o.oscIn > 0 || o.control.port >= 0) {  // --control alone: OSC on a free port, for the page and HOST_INFO
     cues = std::make_unique<OscCueReceiver>(o.oscIn);
     std::printf("live: taking OSC cues on UDP port %d (/giantbubble/dip, burst, reset, pause, ...)\n", cues->port());
     std::fflush(stdout);
   }
+  // Parameters over OSC, presets, OSCQuery and the control page (control/live_control.h).
+  std::unique_ptr<LiveControl> control;
+  if (cues) control = std::make_unique<LiveControl>(o.control, run.params, *cues);
+  if (control && !control->describe().empty()) std::printf("live: %s\n", control->describe().c_str());
   RenderOptions image = run.render.image;
   Window window("giantbubble", image.width, image.height, run.device, {o.fullscreen, o.monitor});
   // The show's image: the window's size, or the monitor's in full screen (dynamic resolution draws less of it).
@@ -339,9 +344,10 @@ int runView(ViewOptions o) try {
   std::optional<RealTimePacer> pacer;  // made once the show starts
   const double floorScale = o.fixedStep ? 1.0 : o.minRenderScale;
 
-  auto say = [](long frame, const std::string& what) {
+  auto say = [&control](long frame, const std::string& what) {
     std::printf("live: frame %ld: %s\n", frame, what.c_str());
     std::fflush(stdout);
+    if (control) control->lastEvent(what);
   };
   // F: the picture goes full screen or back, the image drawn at its new size.
   auto toggleFullscreen = [&](long frame) {
@@ -515,6 +521,12 @@ int runView(ViewOptions o) try {
     WindowKeys keys = window.poll();
     addScriptedKeys(o.keys, shown, keys);
     takeCues(keys);
+    // Parameter sets and presets between frames; their reports to the console and OSC out.
+    const LiveControl::Report reportControl = [&](const std::string& what) {
+      say(shown, what);
+      show.cue("param", what, t);
+    };
+    if (control) control->betweenFrames(*sim, reportControl);
     if (keys.quit || waiting.quit() || InterruptCatcher::requested()) {  // Esc/Q, closed, a cue, Ctrl-C, SIGTERM
       if (fromCue.quit) reportCue(shown, true, CueAction::Quit, "the show ends", t);
       break;
@@ -524,6 +536,7 @@ int runView(ViewOptions o) try {
       window.showMessage(what);
     };
     auto dipNewFilm = [&](const std::string& why, const std::string& events) {
+      if (control) control->beforeDip(*sim, reportControl);
       sim->dip(wands);
       filmGoneSince = -1;
       freeBubble = false;
@@ -740,6 +753,12 @@ int runView(ViewOptions o) try {
     if (filmGoneSince < 0 && !paused)
       filmShown.add(due, sim->solverSweeps(), std::chrono::duration<double>(now - lastPresented).count());
     lastPresented = now;
+    if (control)
+      control->publish(*sim, t, paused,
+                       filmGoneSince >= 0 ? "none"
+                       : freeBubble       ? "free_bubble"
+                                          : "on_wands",
+                       performer ? (input->performerFound() ? "found" : "waiting") : "none");
     if (now - lastTitle > std::chrono::seconds(1)) {  // the show's figures in the title bar, once a second
       window.setTitle(liveFigures(*pacer, shown, start, now));
       lastTitle = now;
@@ -767,6 +786,7 @@ int runView(ViewOptions o) try {
   if (cues)
     std::printf("live: OSC cues: %ld taken, %ld unknown and %ld malformed ignored\n", cues->taken(), cues->unknown(),
                 cues->malformed());
+  if (control) std::printf("live: %s\n", control->totals().c_str());
   if (stream) {
     const long sent = stream->sent();
     stream.reset();  // ends ffmpeg: what it sent is counted

@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "control/live_control.h"
 #include "render_output.h"
 #include "run_command.h"
 
@@ -46,6 +47,7 @@ struct ViewOptions {
   int oscIn = 0;                 // UDP port cues come in on (0: none)
   std::string stream;            // where ffmpeg sends the picture (empty: nowhere)
   bool operatorOverlay = false;  // start with the operator overlay on (O toggles it)
+  ControlOptions control;        // --control: OSCQuery and the control page; presets (control/live_control.h)
 };
 
 // A scripted key press of --keys: at presented frame `frame`, key `key` (r d b p c f v o, and h for Home).

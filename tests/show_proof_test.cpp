@@ -445,9 +445,9 @@ TEST(ShowProof, ARenderSizeIsBoundedByTheDevice) {
   EXPECT_EQ(renderSizeProblem(1280, 720, 4, 16384, 16e9, "gpu"), "");
   EXPECT_EQ(renderSizeProblem(16384, 16384, 1, 8192, 1e12, "gpu"),
             "render size 16384x16384 is outside 16..8192 pixels on gpu (--width, --height)");
-  // 16384 x 16384 at one sample: 42 bytes a pixel (renderTargetBytes), 11.3 GB, beyond a quarter of 16 GB.
+  // 16384 x 16384 at one sample: 34 bytes a pixel (renderTargetBytes), 9.1 GB, beyond a quarter of 16 GB.
   EXPECT_EQ(renderSizeProblem(16384, 16384, 1, 16384, 16e9, "gpu"),
-            "a 16384x16384 image at 1 sample per pixel takes 11.3 GB of render targets, more than a quarter of the "
+            "a 16384x16384 image at 1 sample per pixel takes 9.1 GB of render targets, more than a quarter of the "
             "16.0 GB of gpu: give a smaller --width and --height");
 }
 

@@ -30,7 +30,7 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
   CLI::App* cmd = app.add_subcommand("live",
                                      "perform live in a window: the wands follow --input (mouse: orbit, zoom; "
                                      "keys: R reset, D dip, B burst, Space pause, C colouring, F full screen, V "
-                                     "performer view, O operator overlay, Home camera, Esc quit)");
+                                     "performer view, O operator overlay, Home camera, 1-9 presets, Esc quit)");
   cmd->alias("view");
   // --input also takes "mouse" here: the left and right buttons drag the hands, the wheel pushes them.
   cmd->add_option("--scene", o.run.scene, "a built-in scene or a scene file (.toml); the other options change it")
@@ -78,8 +78,8 @@ CLI::App* addViewCommand(CLI::App& app, ViewOptions& o) {
   cmd->add_option("--frames", o.frames, "quit after this many frames (0: when the window closes)")
       ->transform(WholeNumber(0, 100000000));
   cmd->add_option("--keys", o.keys,
-                  "scripted key presses FRAME:KEY, e.g. 50:b 80:c (keys r d b p c f v, and h for Home; for tests "
-                  "and demos)")
+                  "scripted key presses FRAME:KEY, e.g. 50:b 80:c (keys r d b p c f v o, h for Home, 1-9 a preset; "
+                  "for tests and demos)")
       ->check([](const std::string& s) {
         std::string why;
         return parseKeyPress(s, why) ? std::string() : why;
@@ -217,6 +217,7 @@ void addScriptedKeys(const std::vector<std::string>& script, long frame, WindowK
     if (!press || press->frame != frame) continue;
     for (const auto& [key, action] : kScriptedKeys)
       if (key == press->key) flagOf(keys, action) = true;
+    if (press->key >= '1' && press->key <= '9') keys.preset = press->key - '0';
   }
 }
 
@@ -279,9 +280,10 @@ std::optional<KeyPress> parseKeyPress(const std::string& text, std::string& why)
   const auto colon = text.find(':');
   std::string keys;
   for (const auto& [key, action] : kScriptedKeys) keys += std::string(keys.empty() ? "" : " ") + key;
-  why = "expected FRAME:KEY with KEY one of " + keys + ", got '" + text + "'";
+  why = "expected FRAME:KEY with KEY one of " + keys + " or a digit 1-9 (a preset), got '" + text + "'";
+  const bool digit = !text.empty() && text.back() >= '1' && text.back() <= '9';
   if (colon == std::string::npos || colon == 0 || text.size() != colon + 2 ||
-      keys.find(text.back()) == std::string::npos || text.back() == ' ')
+      (keys.find(text.back()) == std::string::npos && !digit) || text.back() == ' ')
     return std::nullopt;
   KeyPress press{0, text.back()};
   const char* end = text.data() + colon;
@@ -526,6 +528,7 @@ int runView(ViewOptions o) try {
       say(shown, what);
       show.cue("param", what, t);
     };
+    if (control && keys.preset > 0) control->recallNumbered(keys.preset);  // keys 1-9
     if (control) control->betweenFrames(*sim, reportControl);
     if (keys.quit || waiting.quit() || InterruptCatcher::requested()) {  // Esc/Q, closed, a cue, Ctrl-C, SIGTERM
       if (fromCue.quit) reportCue(shown, true, CueAction::Quit, "the show ends", t);

@@ -50,7 +50,7 @@ struct ViewOptions {
   ControlOptions control;        // --control: OSCQuery and the control page; presets (control/live_control.h)
 };
 
-// A scripted key press of --keys: at presented frame `frame`, key `key` (r d b p c f v o, and h for Home).
+// A scripted key press of --keys: at presented frame `frame`, key `key` (r d b p c f v o, h for Home, 1-9 a preset).
 struct KeyPress {
   long frame = 0;
   char key = 0;

@@ -9,6 +9,7 @@
 #               OSC set; HOST_INFO names the OSC port; bad requests are 4xx; a preset saved and recalled
 #   browser     the control page in headless Chromium loads without console errors, lists every parameter as a
 #               slider, a slider change reaches the simulation and the burst button bursts the film
+#   preset_key  the key 1 (scripted) recalls the first saved preset live
 #   flood       10,000 OSC sets and 1,000 HTTP requests on the loopback: the show keeps its frame rate
 set -u
 source "$(dirname "$0")/live_show_on_fake_kinect.sh"  # EXE FAKE MAKE_RECORDING OUT, a fresh OUT, fail
@@ -125,6 +126,15 @@ PYEOF
     curl -s "http://127.0.0.1:$http/giantbubble/preset" | grep -q '"VALS":\["opening"\]' || fail "the preset is not listed"
     oscsend 127.0.0.1 "$in" /giantbubble/preset s ../etc
     wait_log "preset ../etc refused"
+    stop_show
+    ;;
+  preset_key)
+    mkdir -p presets
+    printf 'name = "calm"\ndescription = "a preset"\n\n[params]\nairDrag = 3.5\n' >presets/calm.toml
+    start_show --keys 25:1 75:2
+    wait_log "preset calm: 1 parameters applied now, 0 at the next dip"
+    wait_log "key 2: no preset 2 (1 saved in presets)"
+    [ "$(value_of airDrag)" = 3.5 ] || fail "the preset's airDrag is not the show's: $(value_of airDrag)"
     stop_show
     ;;
   browser)

@@ -24,6 +24,7 @@
 #include "osc_cues.h"
 #include "scripted_gestures.h"
 #include "simulation.h"
+#include "view_command.h"
 #include "vulkan_test_device.h"
 
 namespace gb {
@@ -161,8 +162,10 @@ TEST(Presets, SaveAndRecallRoundTripEveryParameter) {
   }
   presets.save("gentle-opening", p);
   EXPECT_EQ(presets.names(), std::vector<std::string>{"gentle-opening"});
-  const Params back = presets.load("gentle-opening");
+  std::vector<std::string> listed;
+  const Params back = presets.load("gentle-opening", &listed);
   for (const ParamField& f : paramFields()) EXPECT_EQ(paramValue(back, f), paramValue(p, f)) << f.name;
+  EXPECT_EQ(listed.size(), paramFields().size());
   EXPECT_THROW(presets.save("../escape", p), std::invalid_argument);
   EXPECT_THROW((void)presets.load("missing"), std::exception);
   std::filesystem::remove_all(dir);
@@ -265,6 +268,16 @@ TEST(LiveControl, AGetIsAnsweredToTheSender) {
   lo_address_free(to);
   lo_server_free(asker);
   EXPECT_FLOAT_EQ(answer, 21.5f);
+}
+
+TEST(LiveControl, TheDigitKeysRecallPresetsByNumber) {
+  std::string why;
+  const auto press = parseKeyPress("30:1", why);
+  ASSERT_TRUE(press);
+  EXPECT_EQ(press->key, '1');
+  EXPECT_FALSE(parseKeyPress("30:0", why));
+  EXPECT_FALSE(parseKeyPress("30:t", why));  // a letter of the message is no key
+  EXPECT_NE(why.find("or a digit 1-9 (a preset)"), std::string::npos) << why;
 }
 
 TEST(ControlServer, RefusesAnOpenBindWithoutAToken) {

@@ -131,14 +131,16 @@ bool LiveControl::onOsc(const char* path, void* data) {
 
 void LiveControl::recall(const std::string& name) {
   Params preset;
+  std::vector<std::string> listed;
   try {
-    preset = presets_.load(name);
+    preset = presets_.load(name, &listed);
   } catch (const std::exception& e) {
     reports_.push_back("preset " + printable(name, 64) + " refused: " + e.what());
     return;
   }
   int now = 0, nextFilm = 0;
   for (const ParamInfo& info : paramCatalog()) {
+    if (std::find(listed.begin(), listed.end(), info.field->name) == listed.end()) continue;
     const double value = paramValue(preset, *info.field);
     if (value == paramValue(params_.wanted(), *info.field) || info.timing == ParamTiming::Start) continue;
     bool refused = false;
@@ -147,6 +149,15 @@ void LiveControl::recall(const std::string& name) {
   }
   reports_.push_back("preset " + name + ": " + std::to_string(now) + " parameters applied now, " +
                      std::to_string(nextFilm) + " at the next dip");
+}
+
+void LiveControl::recallNumbered(int n) {
+  const std::vector<std::string> names = presets_.names();
+  if (n < 1 || n > static_cast<int>(names.size()))
+    reports_.push_back("key " + std::to_string(n) + ": no preset " + std::to_string(n) + " (" +
+                       std::to_string(names.size()) + " saved in " + presets_.dir().string() + ")");
+  else
+    recalls_.push_back(names[static_cast<size_t>(n - 1)]);
 }
 
 void LiveControl::save(const std::string& name) {

@@ -57,6 +57,8 @@ class LiveControl {
   void publish(Simulation& sim, double showTime, bool paused, const std::string& filmState,
                const std::string& performer);
   void lastEvent(const std::string& line);
+  // Recalls the n-th saved preset in the order of their names (the keys 1-9), at the next betweenFrames.
+  void recallNumbered(int n);
   // The totals at the end of the show.
   [[nodiscard]] std::string totals() const;
 

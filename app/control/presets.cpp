@@ -1,5 +1,7 @@
 #include "control/presets.h"
 
+#include <toml++/toml.h>
+
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -61,6 +63,16 @@ void PresetLibrary::save(const std::string& name, const Params& params) const {
   if (!out) throw std::runtime_error("cannot write preset file " + file.string());
 }
 
-Params PresetLibrary::load(const std::string& name) const { return loadSceneFile(fileOf(name)).run.params; }
+Params PresetLibrary::load(const std::string& name, std::vector<std::string>* listed) const {
+  const std::filesystem::path file = fileOf(name);
+  const Params params = loadSceneFile(file).run.params;  // checked as --scene checks it
+  if (listed) {
+    listed->clear();
+    const toml::table root = toml::parse_file(file.string());
+    if (const toml::table* table = root["params"].as_table())
+      for (const auto& [key, value] : *table) listed->emplace_back(key.str());
+  }
+  return params;
+}
 
 }  // namespace gb

@@ -250,6 +250,7 @@ struct Window::Impl {
         k.operatorOverlay = true;
         break;
       default:
+        if (key >= GLFW_KEY_1 && key <= GLFW_KEY_9) k.preset = key - GLFW_KEY_0;
         break;
     }
   }

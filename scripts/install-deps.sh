@@ -24,6 +24,8 @@ packages=(
   ffmpeg                             # MP4 output of rendered frames (optional at run time)
   libtomlplusplus-dev                # scene files
   liblo-dev liblo-tools              # OSC events for show control; oscdump in tests
+  libwebsocketpp-dev libboost-dev    # live --control: the OSCQuery server's HTTP and WebSocket (Boost.Asio)
+  chromium python3-websocket curl    # the control page's test in headless Chromium (a DevTools driver); curl
 )
 
 missing=()

@@ -15,7 +15,7 @@ CLI::App* addLiveCommand(CLI::App& app, LiveOptions& o) {
   CLI::App* cmd = app.add_subcommand("live",
                                      "perform live in a window: the wands follow --input (mouse: orbit, zoom; "
                                      "keys: R reset, D dip, B burst, Space pause, C colouring, F full screen, V "
-                                     "performer view, O operator overlay, Home camera, Esc quit)");
+                                     "performer view, O operator overlay, Home camera, 1-9 presets, Esc quit)");
   cmd->alias("view");
   // --input also takes "mouse" here: the left and right buttons drag the hands, the wheel pushes them.
   cmd->add_option("--scene", o.run.scene, "a built-in scene or a scene file (.toml); the other options change it")
@@ -63,8 +63,8 @@ CLI::App* addLiveCommand(CLI::App& app, LiveOptions& o) {
   cmd->add_option("--frames", o.frames, "quit after this many frames (0: when the window closes)")
       ->transform(WholeNumber(0, 100000000));
   cmd->add_option("--keys", o.keys,
-                  "scripted key presses FRAME:KEY, e.g. 50:b 80:c (keys r d b p c f v, and h for Home; for tests "
-                  "and demos)")
+                  "scripted key presses FRAME:KEY, e.g. 50:b 80:c (keys r d b p c f v o, h for Home, 1-9 a preset; "
+                  "for tests and demos)")
       ->check([](const std::string& s) {
         std::string why;
         return parseKeyPress(s, why) ? std::string() : why;
@@ -78,6 +78,7 @@ CLI::App* addLiveCommand(CLI::App& app, LiveOptions& o) {
          "--longest-step", o.longestStep,
          "frames of time one implicit step may cover when the machine cannot keep up (1: every step one frame)")
       ->transform(WholeNumber(1, 5));
+  addControlOptions(*cmd, o.control);  // --control, --control-bind, --control-token, --presets
   addRenderOptions(*cmd, o.run.render, RenderedFiles::None);
   return cmd;
 }

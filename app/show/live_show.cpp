@@ -86,6 +86,7 @@ void addScriptedKeys(const std::vector<std::string>& script, long frame, WindowK
     if (!press || press->frame != frame) continue;
     for (const auto& [key, action] : kScriptedKeys)
       if (key == press->key) flagOf(keys, action) = true;
+    if (press->key >= '1' && press->key <= '9') keys.preset = press->key - '0';
   }
 }
 
@@ -112,9 +113,9 @@ LiveOptions showOptions(LiveOptions o) {
   return o;
 }
 
-// The OSC cues taken on `port` (0: none).
-std::unique_ptr<OscCueReceiver> openCues(int port) {
-  if (port <= 0) return nullptr;
+// The OSC cues taken on `port` (0: none; with --control alone, a free port, for the page and HOST_INFO).
+std::unique_ptr<OscCueReceiver> openCues(int port, const ControlOptions& control) {
+  if (port <= 0 && control.port < 0) return nullptr;
   auto cues = std::make_unique<OscCueReceiver>(port);
   std::printf("live: taking OSC cues on UDP port %d (/giantbubble/dip, burst, reset, pause, ...)\n", cues->port());
   std::fflush(stdout);
@@ -173,9 +174,10 @@ std::optional<KeyPress> parseKeyPress(const std::string& text, std::string& why)
   const auto colon = text.find(':');
   std::string keys;
   for (const auto& [key, action] : kScriptedKeys) keys += std::string(keys.empty() ? "" : " ") + key;
-  why = "expected FRAME:KEY with KEY one of " + keys + ", got '" + text + "'";
+  why = "expected FRAME:KEY with KEY one of " + keys + " or a digit 1-9 (a preset), got '" + text + "'";
+  const bool digit = !text.empty() && text.back() >= '1' && text.back() <= '9';
   if (colon == std::string::npos || colon == 0 || text.size() != colon + 2 ||
-      keys.find(text.back()) == std::string::npos || text.back() == ' ')
+      (keys.find(text.back()) == std::string::npos && !digit) || text.back() == ' ')
     return std::nullopt;
   KeyPress press{0, text.back()};
   const char* end = text.data() + colon;
@@ -225,7 +227,8 @@ LiveShow::LiveShow(LiveOptions options)
     : o_(showOptions(std::move(options))),
       run_(o_.run),
       show_(run_.osc),
-      cues_(openCues(o_.oscIn)),
+      cues_(openCues(o_.oscIn, o_.control)),
+      control_(cues_ ? std::make_unique<LiveControl>(o_.control, run_.params, *cues_) : nullptr),
       image_(run_.render.image),
       window_("giantbubble", image_.width, image_.height, run_.device, {o_.fullscreen, o_.monitor}),
       windowedSize_{image_.width, image_.height},
@@ -253,6 +256,7 @@ LiveShow::LiveShow(LiveOptions options)
   camera_ = std::make_unique<LiveCamera>(run_.render.camera, run_.render.followCamera,
                                          static_cast<float>(image_.width) / static_cast<float>(image_.height));
   window_.camera() = run_.render.camera;
+  if (control_ && !control_->describe().empty()) std::printf("live: %s\n", control_->describe().c_str());
   // O: the operator overlay (the show's messages over the window, never in the stream) on or off.
   window_.setOperatorOverlay(o_.operatorOverlay);
   waiting_ = std::make_unique<PerformerWaitScreen>(
@@ -278,6 +282,13 @@ std::unique_ptr<Stepper> LiveShow::newStepper() const {
 void LiveShow::say(long frame, const std::string& what) const {
   std::printf("live: frame %ld: %s\n", frame, what.c_str());
   std::fflush(stdout);
+  if (control_) control_->lastEvent(what);
+}
+
+// A parameter set or a preset recalled (or refused): the console and OSC out.
+void LiveShow::reportControl(const std::string& what) {
+  say(shown_, what);
+  show_.cue("param", what, t_);
 }
 
 // A fault the show recovers from: the console and the screen.
@@ -402,6 +413,7 @@ void LiveShow::restartInput() {
 }
 
 std::string LiveShow::dipNewFilm(const std::string& why, const std::string& events) {
+  if (control_) control_->beforeDip(*sim_, [this](const std::string& what) { reportControl(what); });
   sim_->dip(wands_);
   filmGoneSince_ = -1;
   freeBubble_ = false;
@@ -475,6 +487,11 @@ bool LiveShow::frame() {
   WindowKeys keys = window_.poll();
   addScriptedKeys(o_.keys, shown_, keys);
   takeCues(keys);
+  // Parameter sets and presets between frames (keys 1-9 recall presets); their reports go to the console and OSC.
+  if (control_) {
+    if (keys.preset > 0) control_->recallNumbered(keys.preset);
+    control_->betweenFrames(*sim_, [this](const std::string& what) { reportControl(what); });
+  }
   if (keys.quit || waiting_->quit() || InterruptCatcher::requested()) {  // Esc/Q, closed, a cue, Ctrl-C, SIGTERM
     if (fromCue_.quit) reportCue(shown_, true, CueAction::Quit, "the show ends", t_);
     return false;
@@ -683,6 +700,12 @@ void LiveShow::present(const WindowKeys& keys, int due, double simMs) {
   if (filmGoneSince_ < 0 && !paused_)
     filmShown_.add(due, sim_->solverSweeps(), std::chrono::duration<double>(now - lastPresented_).count());
   lastPresented_ = now;
+  if (control_)
+    control_->publish(*sim_, t_, paused_,
+                      filmGoneSince_ >= 0 ? "none"
+                      : freeBubble_       ? "free_bubble"
+                                          : "on_wands",
+                      performer_ ? (input_->performerFound() ? "found" : "waiting") : "none");
   if (now - lastTitle_ > std::chrono::seconds(1)) {  // the show's figures in the title bar, once a second
     window_.setTitle(liveFigures(*pacer_, shown_, start_, now));
     lastTitle_ = now;
@@ -711,6 +734,7 @@ int LiveShow::finish() {
   if (cues_)
     std::printf("live: OSC cues: %ld taken, %ld unknown and %ld malformed ignored\n", cues_->taken(), cues_->unknown(),
                 cues_->malformed());
+  if (control_) std::printf("live: %s\n", control_->totals().c_str());
   if (stream_) {
     const long sent = stream_->sent();
     stream_.reset();  // ends ffmpeg: what it sent is counted

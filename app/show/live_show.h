@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "control/live_control.h"
 #include "input_options.h"
 #include "interrupt.h"
 #include "live_camera.h"
@@ -47,6 +48,7 @@ struct LiveOptions {
   int oscIn = 0;                 // UDP port cues come in on (0: none)
   std::string stream;            // where ffmpeg sends the picture (empty: nowhere)
   bool operatorOverlay = false;  // start with the operator overlay on (O toggles it)
+  ControlOptions control;        // --control: OSCQuery and the control page; presets (control/live_control.h)
 };
 
 // A scripted key press of --keys: at presented frame `frame`, key `key` (r d b p c f v o, and h for Home).
@@ -92,6 +94,7 @@ class LiveShow {
 
   // What the show says and does on the way.
   void say(long frame, const std::string& what) const;
+  void reportControl(const std::string& what);
   void announce(const std::string& what);
   void reportCue(long frame, bool cued, CueAction action, const std::string& keyText, double time,
                  const std::string& done = {});
@@ -113,6 +116,7 @@ class LiveShow {
   RunOptions& run_;
   ShowControl show_;
   std::unique_ptr<OscCueReceiver> cues_;
+  std::unique_ptr<LiveControl> control_;  // parameters over OSC, presets, OSCQuery and the control page
   RenderOptions image_;
   Window window_;
   const std::array<int, 2> windowedSize_;  // the show's image in a window; full screen draws the monitor's size

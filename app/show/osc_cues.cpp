@@ -57,13 +57,17 @@ struct OscCueDispatch {
       tLastError = text;
   }
 
-  static int onMessage(const char* path, const char* types, lo_arg** argv, int argc, lo_message, void* data) {
+  static int onMessage(const char* path, const char* types, lo_arg** argv, int argc, lo_message message, void* data) {
     auto& r = *static_cast<OscCueReceiver*>(data);
     const std::string_view address(path);
     const CueAction* action = nullptr;
     if (address.starts_with(kPrefix))
       for (const auto& [name, a] : kCues)
         if (address.substr(kPrefix.size()) == name) action = &a;
+    if (!action && r.other_ && r.other_(path, message)) {
+      ++r.taken_;
+      return 0;
+    }
     if (!action) {
       r.ignore(true, "unknown address " + printable(std::string(address), 80));
       return 0;

@@ -18,6 +18,7 @@
 // message to another address (unknown), one with other arguments or a packet that is not OSC (malformed). The
 // receiver is polled by the show's loop between frames; it never waits. docs/formats.md describes the messages.
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -48,6 +49,11 @@ class OscCueReceiver {
   std::vector<Cue> poll();
   static constexpr int kMostPerPoll = 64;
 
+  // Messages to addresses that are no cue go to `other` first (live's parameters and presets, control/live_control.h):
+  // it gets the address and the liblo message (a lo_message) and returns false for an address it does not take.
+  using OtherMessages = std::function<bool(const char* path, void* message)>;
+  void setOtherMessages(OtherMessages other) { other_ = std::move(other); }
+
   [[nodiscard]] int port() const;
   [[nodiscard]] long taken() const { return taken_; }
   [[nodiscard]] long unknown() const { return unknown_; }
@@ -61,6 +67,7 @@ class OscCueReceiver {
   std::unique_ptr<Server> server_;
   std::vector<Cue> arrived_;
   std::vector<std::string> messages_;
+  OtherMessages other_;
   long taken_ = 0, unknown_ = 0, malformed_ = 0;
   void ignore(bool unknown, const std::string& why);
 

@@ -233,6 +233,20 @@ void Simulation::setFrameTime(float h) {
   }
 }
 
+void Simulation::setParams(const Params& params) {
+  if (const auto errors = validate(params); !errors.empty()) throw std::invalid_argument(errors.front());
+  const Params before = params_;
+  params_ = params;
+  params_.frameTime = before.frameTime;
+  try {
+    reloadFilm();
+  } catch (const std::invalid_argument&) {  // too many explicit substeps: the old parameters stay
+    params_ = before;
+    reloadFilm();
+    throw;
+  }
+}
+
 void Simulation::advanceFrame(const WandState& next) {
   geometryFresh_ = false;
   burstOnHardImpact();  // judged on the contacts found after the last frame, before this one moves them

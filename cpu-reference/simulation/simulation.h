@@ -115,6 +115,10 @@ class Simulation {
   // back after every step. A stepper in host memory has nothing to bring back either way.
   void setStateStaysOnDevice(bool stays) { stateStaysOnDevice_ = stays; }
   [[nodiscard]] const Params& params() const { return params_; }
+  // New parameters from the next frame on (live show control): the film stays, its geometry and the stepper are
+  // loaded again with them. The frame time stays as setFrameTime left it. Throws std::invalid_argument, the
+  // simulation unchanged, when they are out of range or the explicit integrator cannot keep the film stable.
+  void setParams(const Params& params);
   [[nodiscard]] double time() const { return time_; }
   [[nodiscard]] int substepsPerFrame() const { return substeps_; }
   // The length of the following frames (s), in (0, 0.1]: the live loop takes steps of two frames' time when the

@@ -72,6 +72,7 @@ TEST(ParamCatalog, EveryParameterHasItsGroupMeaningAndUnit) {
     SCOPED_TRACE(info.field->name);
     EXPECT_NE(info.group, "Other");
     EXPECT_FALSE(info.description.empty()) << "no row in docs/model.md's parameter table";
+    EXPECT_EQ(info.description.find('`'), std::string::npos) << "Markdown code marks left in: " << info.description;
     EXPECT_EQ(" " + info.unit(), std::string(info.field->unit).empty() ? " " : info.field->unit);
   }
   EXPECT_EQ(findParamInfo("airDrag")->group, "Surface tension and elasticity");

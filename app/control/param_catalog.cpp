@@ -53,6 +53,7 @@ std::map<std::string, std::string> meaningsOf(std::string_view document) {
     if (close == std::string::npos || cell == std::string::npos || cell < close) continue;
     std::string meaning = trim(line.substr(cell + 3));
     if (meaning.ends_with("|")) meaning = trim(meaning.substr(0, meaning.size() - 1));
+    std::erase(meaning, '`');  // the table's code marks are Markdown; an OSCQuery client shows DESCRIPTION as text
     const std::string name = line.substr(3, close - 3);
     if (name == "gravityX/Y/Z")
       for (const char* axis : {"gravityX", "gravityY", "gravityZ"}) meanings.emplace(axis, meaning);

@@ -173,8 +173,8 @@ bool VulkanStepper::findContactsOnDevice(const Params& params, float frameTime, 
   Impl& m = *impl_;
   if (!m.contactsOnDevice) return false;
   if (m.sets.empty()) throw std::logic_error("VulkanStepper: no film loaded");
-  if (params.collisionDistance != m.params.collisionDistance ||
-      params.collisionStiffness != m.params.collisionStiffness)
+  if (params.collisionDistance != m.params->collisionDistance ||
+      params.collisionStiffness != m.params->collisionStiffness)
     throw std::logic_error("VulkanStepper::findContacts: not the loaded film");
   // A search short of room lists nothing reliable: it runs once more with the room it found it needed.
   m.searchContacts(frameTime, slack, history);

@@ -9,9 +9,9 @@ namespace gb {
 std::array<float, GB_STATISTICS_TERMS> VulkanStepper::Impl::sumStatistics(const FilmProbe& probe) {
   StepUniforms u;
   u.dt = 0.0f;  // the film state without ageing it
-  u.volumeOrigin = probe.origin;
-  u.wands.leftPosition = probe.tips[0];
-  u.wands.rightPosition = probe.tips[1];
+  u.volumeOrigin = toVec4(probe.origin);
+  u.leftPosition = toVec4(probe.tips[0]);
+  u.rightPosition = toVec4(probe.tips[1]);
   u.frameTime = probe.frameTime;
   uploadSteps(std::span(&u, 1));
   const uint32_t at = gpu::reduceStatisticsAt(energyBase, particles);

@@ -1,41 +1,12 @@
 // The Vulkan stepper's step: the rows of the stage table recorded into one command buffer (stepper.h), each stage
 // as its kernels with the barriers between their passes.
+#include <cstring>
+
 #include "coarse_correction.h"
 #include "implicit_euler.h"
 #include "vulkan_stepper_impl.h"
 
 namespace gb {
-
-namespace {
-
-gpu::vec4 toVec4(const Vec3& v) { return {v.x(), v.y(), v.z(), 0.0f}; }
-
-StepUniformsBlock toBlock(const StepUniforms& u) {
-  StepUniformsBlock b{};
-  b.leftPosition = toVec4(u.wands.leftPosition);
-  b.leftVelocity = toVec4(u.wands.leftVelocity);
-  b.rightPosition = toVec4(u.wands.rightPosition);
-  b.rightVelocity = toVec4(u.wands.rightVelocity);
-  b.wireCenter = toVec4(u.wireNext.center);
-  b.wireAxis = toVec4(u.wireNext.axis);
-  b.wireDown = toVec4(u.wireNext.down);
-  b.volumeOrigin = toVec4(u.volumeOrigin);
-  b.dt = u.dt;
-  b.leftInflowWeight = u.leftInflowWeight;
-  b.airVolume = u.airVolume;
-  b.wandAlignment = u.wandAlignment;
-  b.wireHalfWidth = u.wireNext.halfWidth;
-  b.wireDepth = u.wireNext.depth;
-  b.referenceVolume = u.referenceVolume;
-  b.wireKind = static_cast<int>(u.wireNext.kind);
-  b.closed = u.closed;
-  b.drainageDt = u.drainageDt;
-  b.wireArea = u.wireArea;
-  b.frameTime = u.frameTime;
-  return b;
-}
-
-}  // namespace
 
 void VulkanStepper::Impl::dispatch(const vk::raii::CommandBuffer& cb, Kernel kernel, uint32_t count, uint32_t stepIndex,
                                    uint32_t flags, uint32_t first, float ruleShare) {
@@ -130,8 +101,8 @@ void VulkanStepper::Impl::recordStage(const vk::raii::CommandBuffer& cb, Stage s
       dispatch(cb, Kernel::ImplicitPredict, particles, stepIndex, driftInA ? GB_REDUCE_ENERGY_IN_A : 0u, energyBase);
       break;
     case Stage::VertexBlockDescent: {
-      const int coarseAfter = coarseSweepsBefore(params, u);
-      for (int sweep = 0; sweep < sweepsThisStep(params, u); ++sweep) {
+      const int coarseAfter = coarseSweepsBefore(*params, u);
+      for (int sweep = 0; sweep < sweepsThisStep(*params, u); ++sweep) {
         if (sweep > 0) computeToComputeBarrier(cb);  // the volume and the next colours read the last positions
         if (sweep == coarseAfter) {
           recordStage(cb, Stage::CoarseCorrection, u, stepIndex);
@@ -180,7 +151,7 @@ void VulkanStepper::Impl::recordStage(const vk::raii::CommandBuffer& cb, Stage s
 
 void VulkanStepper::Impl::recordStep(const vk::raii::CommandBuffer& cb, const StepUniforms& u, uint32_t stepIndex) {
   for (const StageSpec& spec : stepStages()) {
-    if (!spec.runs(params, u)) continue;
+    if (!spec.runs(*params, u)) continue;
     recordStage(cb, spec.stage, u, stepIndex);
     if (spec.barrierAfter) computeToComputeBarrier(cb);
   }
@@ -188,16 +159,17 @@ void VulkanStepper::Impl::recordStep(const vk::raii::CommandBuffer& cb, const St
 
 void VulkanStepper::Impl::uploadSteps(std::span<const StepUniforms> steps) {
   ensureStepCapacity(steps.size());
-  std::vector<StepUniformsBlock> blocks;
-  blocks.reserve(steps.size());
-  for (const StepUniforms& u : steps) blocks.push_back(toBlock(u));
-  writeVector(buffer(GB_BINDING_STEPS), blocks);
+  buffer(GB_BINDING_STEPS).write(steps.data(), steps.size_bytes());  // the CPU's uniforms are the kernels' block
+  if (std::memcmp(&paramsOnDevice, params, sizeof(Params)) != 0) {
+    paramsOnDevice = *params;
+    buffer(GB_BINDING_PARAMS).write(params, sizeof(Params));
+  }
 }
 
 float VulkanStepper::run(std::span<const StepUniforms> substeps) {
   Impl& m = *impl_;
   if (m.sets.empty()) throw std::logic_error("VulkanStepper: no film loaded");
-  if (substeps.empty()) return m.params.pressureCoefficient;
+  if (substeps.empty()) return m.params->pressureCoefficient;
   m.uploadSteps(substeps);
   const vk::raii::CommandBuffer& cb = m.commands;
   cb.reset();
@@ -212,7 +184,7 @@ float VulkanStepper::run(std::span<const StepUniforms> substeps) {
     cb.writeTimestamp(vk::PipelineStageFlagBits::eComputeShader, *pool, q++);
     for (uint32_t k = 0; k < substeps.size(); ++k)
       for (const StageSpec& spec : stepStages()) {
-        if (!spec.runs(m.params, substeps[k])) continue;
+        if (!spec.runs(*m.params, substeps[k])) continue;
         m.recordStage(cb, spec.stage, substeps[k], k);
         computeToComputeBarrier(cb);
         cb.writeTimestamp(vk::PipelineStageFlagBits::eComputeShader, *pool, q++);
@@ -233,8 +205,8 @@ float VulkanStepper::run(std::span<const StepUniforms> substeps) {
     m.ctx->submitAndWait(cb);
   }
   const StepUniforms& last = substeps.back();
-  lastBudget_ = m.params.integrator != 0 && m.params.energyBudget != 0 ? m.readVelocityBudget() : VelocityBudget{};
-  return last.closed ? boylePressure(m.params, last.referenceVolume, m.readVolume()) : m.params.pressureCoefficient;
+  lastBudget_ = m.params->integrator != 0 && m.params->energyBudget != 0 ? m.readVelocityBudget() : VelocityBudget{};
+  return last.closed ? boylePressure(*m.params, last.referenceVolume, m.readVolume()) : m.params->pressureCoefficient;
 }
 
 float VulkanStepper::runStage(Stage stage, const StepUniforms& uniforms) {

@@ -10,8 +10,9 @@ namespace gb {
 
 // The shared layouts are what the shaders expect (kernels/shared/shared_step.h): sizes and the offsets std430
 // gives the same declarations.
-static_assert(sizeof(StepUniformsBlock) == 176 && offsetof(StepUniformsBlock, dt) == 128 &&
-              offsetof(StepUniformsBlock, wireKind) == 156 && offsetof(StepUniformsBlock, closed) == 160);
+static_assert(sizeof(StepUniforms) == 192 && offsetof(StepUniforms, dt) == 128 &&
+              offsetof(StepUniforms, wireKind) == 156 && offsetof(StepUniforms, closed) == 160 &&
+              offsetof(StepUniforms, solverSweeps) == 176);
 static_assert(sizeof(PushBlock) == 36);
 static_assert(alignof(Params) == 4 && sizeof(Params) % 4 == 0,
               "Params must stay a block of 4-byte scalars, whose std430 layout is the C layout");
@@ -95,7 +96,7 @@ void VulkanStepper::Impl::ensureRoom(int binding, size_t bytes) {
 void VulkanStepper::Impl::ensureStepCapacity(size_t count) {
   if (count <= stepsCapacity) return;
   stepsCapacity = std::max<size_t>(count, 2 * stepsCapacity);
-  buffer(GB_BINDING_STEPS) = DeviceBuffer(*ctx, stepsCapacity * sizeof(StepUniformsBlock));
+  buffer(GB_BINDING_STEPS) = DeviceBuffer(*ctx, stepsCapacity * sizeof(StepUniforms));
   writeDescriptorSets();
 }
 
@@ -221,7 +222,8 @@ void VulkanStepper::load(const Params& params, Film& film) {
   if (params.coarseIterations > 0) ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
   const State& s = film.state;
   const Topology& t = film.topology;
-  m.params = params;
+  m.params = &params;
+  m.paramsOnDevice = params;
   m.particles = static_cast<uint32_t>(s.size());
   m.triangles = static_cast<uint32_t>(t.triangleCount());
   const size_t n = s.size();

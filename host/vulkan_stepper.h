@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "device_film.h"
+#include "device_residency.h"
 #include "stepper.h"
 
 namespace gb {
@@ -45,7 +46,7 @@ struct DeviceContactRecord {
   size_t entryCapacity = 0;  // partner entries the list has room for
 };
 
-class VulkanStepper final : public Stepper {
+class VulkanStepper final : public Stepper, public DeviceResidency {
  public:
   explicit VulkanStepper(std::shared_ptr<const VulkanContext> context, VulkanStepperOptions options = {});
   ~VulkanStepper() override;
@@ -56,6 +57,9 @@ class VulkanStepper final : public Stepper {
   void load(const Params& params, Film& film) override;
   float run(std::span<const StepUniforms> substeps) override;
   float runStage(Stage stage, const StepUniforms& uniforms) override;
+  DeviceResidency* device() override { return this; }
+
+  // DeviceResidency:
   void store(Film& film) override;
   void storePositions(Film& film) override;
   void updateContacts(const Film& film) override;

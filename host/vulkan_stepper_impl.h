@@ -18,7 +18,6 @@
 namespace gb {
 
 using gpu::PushBlock;
-using gpu::StepUniformsBlock;
 using kernels::Kernel;
 using enum gpu::Binding;
 
@@ -74,7 +73,8 @@ struct VulkanStepper::Impl {
   std::vector<vk::raii::Pipeline> pipelines;
   vk::raii::CommandBuffer commands{nullptr};
 
-  Params params;
+  const Params* params = nullptr;  // the caller's, read at every recording (Stepper::load)
+  Params paramsOnDevice;           // the block GB_BINDING_PARAMS holds, written again when the caller's changed
   uint32_t particles = 0, triangles = 0;
   std::array<DeviceBuffer, GB_BINDING_COUNT> buffers;  // indexed by binding; AIR_FLOW/NEXT are the two air
                                                        // buffers of descriptor set 0
@@ -207,6 +207,8 @@ struct VulkanStepper::Impl {
   // One step: the rows of stepStages() that run, each followed by its barrier where the table gives one.
   void recordStep(const vk::raii::CommandBuffer& cb, const StepUniforms& u, uint32_t stepIndex);
 
+  // The steps' uniforms into GB_BINDING_STEPS, and the parameters into GB_BINDING_PARAMS where they changed since
+  // they were last written (a live change, Simulation::setFrameTime).
   void uploadSteps(std::span<const StepUniforms> steps);
 
   // The exclusive prefix sum of `count` uints of the contacts buffer (GB_SCAN_ROWS in flags: the partner counts, else

@@ -23,13 +23,12 @@ rank() {
   esac
 }
 
-# The includes that still run back up inside cpu-reference/: the step's vocabulary (StepUniforms, in stages.h) that
-# the film generation and the solver read, and the film probe's types (film_checks.h) in the Stepper interface.
+# The includes that still run back up inside cpu-reference/: the step's vocabulary in stages.h (the geometry, the
+# CPU's names of the step uniforms) that the film generation and the solver read.
 known=(
   "cpu-reference/model/film_generation.cpp -> cpu-reference/stages/stages.h"
   "cpu-reference/solver/energy_budget.h -> cpu-reference/stages/stages.h"
   "cpu-reference/solver/implicit_euler.h -> cpu-reference/stages/stages.h"
-  "cpu-reference/stages/stepper.h -> cpu-reference/topology/film_checks.h"
 )
 
 declare -A header

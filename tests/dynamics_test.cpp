@@ -242,7 +242,7 @@ TEST(Dynamics, WandsFarApartOrTogetherStillGiveFiniteFrames) {
   together.leftPosition = together.rightPosition;
   for (const WandState& w : {apart, together}) {
     const StepUniforms u = sim.uniformsFor(w, w, 0.001f);
-    for (float uu : {0.0f, 0.5f, 1.0f, 1.5f}) EXPECT_TRUE(wirePoint(u.wireNext, uu).allFinite());
+    for (float uu : {0.0f, 0.5f, 1.0f, 1.5f}) EXPECT_TRUE(wirePoint(wireNextOf(u), uu).allFinite());
     EXPECT_TRUE(std::isfinite(u.airVolume));
   }
 }

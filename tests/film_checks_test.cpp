@@ -25,7 +25,7 @@ namespace {
 
 // The CPU stepper, checking the film between steps in host memory as a device stepper checks it on its device
 // (checkFilm with the device's margin).
-class CheckingCpuStepper final : public Stepper {
+class CheckingCpuStepper final : public Stepper, public DeviceResidency {
  public:
   [[nodiscard]] std::string name() const override { return "cpu, checking"; }
   void load(const Params& params, Film& film) override {
@@ -39,10 +39,21 @@ class CheckingCpuStepper final : public Stepper {
     return pressure;
   }
   float runStage(Stage stage, const StepUniforms& uniforms) override { return cpu_.runStage(stage, uniforms); }
+  DeviceResidency* device() override { return this; }
+  // The film stays in host memory: nothing to bring back or to take, no rule or search run here.
   void store(Film&) override {}
-  void updateTopology(const Params& params, Film& film) override { cpu_.updateTopology(params, film); }
-  void updateRestLengths(const Film& film) override { cpu_.updateRestLengths(film); }
-  void updateContacts(const Film& film) override { cpu_.updateContacts(film); }
+  void storePositions(Film&) override {}
+  void updateTopology(const Params& params, Film& film) override { load(params, film); }
+  void updateRestLengths(const Film&) override {}
+  void updateContacts(const Film&) override {}
+  bool findContacts(const Params&, float, float, Film&, const ContactHistory&) override { return false; }
+  bool findContactsOnDevice(const Params&, float, float, const ContactHistory&) override { return false; }
+  void storeContacts(Film&) override {}
+  bool yieldStretchedSprings() override { return false; }
+  bool payOutFilmAtWire() override { return false; }
+  bool contractSlackSprings(float) override { return false; }
+  void storeRestLengths(Film&) override {}
+  [[nodiscard]] DeviceReadback readback() const override { return {}; }
   // The checks between steps; the statistics are left to the caller.
   bool probeFilm(const FilmProbe& probe, FilmSums&, FilmChecks& checks) override {
     if (probe.atPresentPositions) return false;
@@ -176,12 +187,12 @@ TEST(DeviceFilmChecks, TheDevicesChecksAreTheCpus) {
     const std::string name = "the default performance at frame " + std::to_string(f);
     FilmSums sums;
     FilmChecks checks;
-    ASSERT_TRUE(played.stepper().probeFilm(probe, sums, checks));
+    ASSERT_TRUE(played.stepper().device()->probeFilm(probe, sums, checks));
     const Film& film = played.film();  // brought back
     expectSameChecks(checks, played.params(), film, probe, name);
     if (!film.topology.isClosed()) return;
     probe.tips[0] = centroid(film.state);
-    ASSERT_TRUE(played.stepper().probeFilm(probe, sums, checks));
+    ASSERT_TRUE(played.stepper().device()->probeFilm(probe, sums, checks));
     expectSameChecks(checks, played.params(), film, probe, name + ", a tip at its centre");
     EXPECT_NEAR(checks.winding[0], 1.0f, kWindingTolerance);
   });
@@ -287,9 +298,9 @@ TEST(DeviceFilmChecks, ADrawnFilmBringsBackItsPositionsAlone) {
     const WandState wands = defaultWandsAt(scene, f);
     everyFrame.advanceFrame(wands);
     onDevice.advanceFrame(wands);
-    const DeviceReadback before = onDevice.stepper().readback();
+    const DeviceReadback before = onDevice.stepper().device()->readback();
     const State& drawn = onDevice.filmPositionsOnly().state;
-    const DeviceReadback after = onDevice.stepper().readback();
+    const DeviceReadback after = onDevice.stepper().device()->readback();
     ASSERT_EQ(after.stateReadbacks, before.stateReadbacks) << "frame " << f << ": no state read back";
     const uint64_t positionBytes = 3 * sizeof(float) * drawn.size();
     ASSERT_TRUE(after.bytes == before.bytes || after.bytes == before.bytes + positionBytes) << "frame " << f;
@@ -298,9 +309,10 @@ TEST(DeviceFilmChecks, ADrawnFilmBringsBackItsPositionsAlone) {
     ASSERT_EQ(drawn.size(), whole.size()) << "frame " << f;
     for (size_t i = 0; i < whole.size(); ++i)
       ASSERT_EQ(drawn.position.get(i), whole.position.get(i)) << "frame " << f << ", particle " << i;
-    const DeviceReadback again = onDevice.stepper().readback();
+    const DeviceReadback again = onDevice.stepper().device()->readback();
     (void)onDevice.filmPositionsOnly();
-    ASSERT_EQ(onDevice.stepper().readback().bytes, again.bytes) << "frame " << f << ": brought back once a frame";
+    ASSERT_EQ(onDevice.stepper().device()->readback().bytes, again.bytes)
+        << "frame " << f << ": brought back once a frame";
   }
   std::printf("positions alone brought back on %d of 50 frames\n", positionsAlone);
   EXPECT_GT(positionsAlone, 10) << "most of the bag's frames pass the checks and keep the state on the device";

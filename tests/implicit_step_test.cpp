@@ -339,7 +339,7 @@ void expectLanesMatchOneByOne(const Params& p, Simulation& sim, const WandState&
     if (spec.runs(p, u)) stepper.runStage(spec.stage, u);
   }
   Bubble bubble;
-  if (u.closed) bubble = bubbleOf(stepper.volume(film, u.volumeOrigin), 1.02f * p.pressureCoefficient);
+  if (u.closed) bubble = bubbleOf(stepper.volume(film, toVec3(u.volumeOrigin)), 1.02f * p.pressureCoefficient);
   Film lanes = film, oneByOne = film;
   SweepRuns runs;
   layOutSweepRuns(p, u, lanes.topology, lanes.state, runs);

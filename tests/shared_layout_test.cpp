@@ -85,7 +85,8 @@ TEST(SharedLayout, StepUniformsAndPushConstantsMatchTheCppOffsets) {
                                                   {"closed", offsetof(StepUniformsBlock, closed)},
                                                   {"drainageDt", offsetof(StepUniformsBlock, drainageDt)},
                                                   {"wireArea", offsetof(StepUniformsBlock, wireArea)},
-                                                  {"frameTime", offsetof(StepUniformsBlock, frameTime)}};
+                                                  {"frameTime", offsetof(StepUniformsBlock, frameTime)},
+                                                  {"solverSweeps", offsetof(StepUniformsBlock, solverSweeps)}};
   const auto members = structLayout(kernels::spirv(kernels::Kernel::Integrate), "StepUniformsBlock");
   ASSERT_EQ(members.size(), expected.size());
   for (const Member& m : members) {

@@ -127,9 +127,11 @@ TEST(Geometry, FourTrianglesAtATimeAreTheSameFloatsAsOneAtATime) {
 TEST(AirInflow, Eq5FallsOffWithDistanceAndOpposesTheWands) {
   Params p;
   StepUniforms u;
-  u.wands.leftPosition = Vec3(-1, 0, 0);
-  u.wands.rightPosition = Vec3(3, 0, 0);
-  u.wands.leftVelocity = u.wands.rightVelocity = Vec3(0, 0, 1);
+  WandState wands;
+  wands.leftPosition = Vec3(-1, 0, 0);
+  wands.rightPosition = Vec3(3, 0, 0);
+  wands.leftVelocity = wands.rightVelocity = Vec3(0, 0, 1);
+  setWands(u, wands);
   u.airVolume = 0.5f;
   u.wandAlignment = 1.0f;
   // At the origin: distances 1 and 3, so -0.5 * (1/2 + 1/4) along z.
@@ -252,11 +254,13 @@ TEST(Integration, BoundaryParticlesFollowTheWireFrame) {
   s.wireParam[1] = 0.25f;
   StepUniforms u;
   u.dt = 0.1f;
-  u.wireNext.kind = ToolKind::Ring;
-  u.wireNext.center = Vec3(0, 0, 1);
-  u.wireNext.halfWidth = u.wireNext.depth = 2.0f;
+  WireFrame ring;
+  ring.kind = ToolKind::Ring;
+  ring.center = Vec3(0, 0, 1);
+  ring.halfWidth = ring.depth = 2.0f;
+  setWireNext(u, ring);
   integrate(u, film.topology, s, 1);
-  const Vec3 expected = wirePoint(u.wireNext, 0.25f);
+  const Vec3 expected = wirePoint(ring, 0.25f);
   EXPECT_EQ(s.position.get(1), expected);
   EXPECT_NEAR((s.velocity.get(1) - (expected - Vec3(1, 0, 0)) / 0.1f).norm(), 0.0f, 1e-5f);
 }

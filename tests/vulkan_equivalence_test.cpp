@@ -259,7 +259,6 @@ std::pair<Film, Film> stagesOnBoth(const std::shared_ptr<const VulkanContext>& d
     cpu.runStage(stage, u);
     gpu.runStage(stage, u);
   }
-  cpu.store(cpuFilm);
   gpu.store(gpuFilm);
   return {cpuFilm, gpuFilm};
 }
@@ -291,6 +290,35 @@ TEST(VulkanEquivalence, ThePhysicalFilmStateReadsTheSurfactantNotTheLiquid) {
               thicknessError);
   EXPECT_LT(tensionError, kStageTolerance);
   EXPECT_LT(thicknessError, kStageTolerance);
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
+// The parameters stay the caller's (Stepper::load): one changed after the film was loaded reaches the next stage on
+// both backends, the CPU stepper reading the caller's block and the Vulkan stepper writing it to the device again
+// before the stage. The physical model's tension, chosen after the load, against the spring model's it was loaded
+// with: the stage bound, 1e-5 relative, between the backends.
+TEST(VulkanEquivalence, AParameterChangedAfterTheLoadReachesTheStages) {
+  GB_REQUIRE_VULKAN(device);
+  const MovingFilm input;
+  Params springs = input.params, p = input.params;
+  springs.tensionModel = p.tensionModel = 0;
+  Film springFilm = input.film, cpuFilm = input.film, gpuFilm = input.film;
+  CpuStepper springStepper, cpu;
+  VulkanStepper gpu(device);
+  springStepper.load(springs, springFilm);
+  cpu.load(p, cpuFilm);
+  gpu.load(p, gpuFilm);
+  p.tensionModel = 1;
+  for (Stage stage : {Stage::Geometry, Stage::FilmState}) {
+    springStepper.runStage(stage, input.uniforms);
+    cpu.runStage(stage, input.uniforms);
+    gpu.runStage(stage, input.uniforms);
+  }
+  gpu.store(gpuFilm);
+  EXPECT_GT(worstRelativeError(springFilm.state.elasticity, cpuFilm.state.elasticity, 1e-3), 0.1)
+      << "the CPU stepper did not read the tension model set after the load";
+  EXPECT_LT(worstRelativeError(cpuFilm.state.elasticity, gpuFilm.state.elasticity, 1e-3), kStageTolerance)
+      << "the device did not read it";
   EXPECT_EQ(device->validationErrors(), 0u);
 }
 
@@ -554,7 +582,7 @@ TEST(VulkanEquivalence, ALargeBubblesVolumeSumsInThreePasses) {
   VulkanStepper gpu(device);
   gpu.load(p, gpuFilm);
   const float gpuVolume = gpu.runStage(Stage::Volume, u);  // the cone volumes need the positions alone
-  const float cpuVolume = CpuStepper().volume(reference.film(), u.volumeOrigin);
+  const float cpuVolume = CpuStepper().volume(reference.film(), toVec3(u.volumeOrigin));
   EXPECT_NEAR(gpuVolume, cpuVolume, kStageTolerance * cpuVolume);
   EXPECT_NEAR(cpuVolume, 4.0f / 3.0f * 3.14159265f * 0.125f, 0.01f * cpuVolume);  // a sphere of radius 0.5 m
   EXPECT_EQ(device->validationErrors(), 0u);
@@ -687,7 +715,7 @@ TEST(VulkanEquivalence, CollidingSheetsMatch) {
   EXPECT_EQ(device->validationErrors(), 0u);
 }
 
-// Film paid out at the wire between frames reaches the device as new rest lengths (Stepper::updateRestLengths):
+// Film paid out at the wire between frames reaches the device as new rest lengths (DeviceResidency::updateRestLengths):
 // a film whose rungs rest at 60% of their length pays out once the wands move, on both backends alike.
 TEST(VulkanEquivalence, RestLengthsPaidOutAtTheWireMatch) {
   GB_REQUIRE_VULKAN(device);

@@ -54,7 +54,7 @@ Measurement flatDisc(const Params& p, const StopRequest& stop) {
     const float r2 = (s.position.get(i) - ring.wands.rightPosition).squaredNorm() / (a * a);
     if (!sim.film().topology.boundary[i]) s.position.z[i] += 0.03f * std::max(0.0f, 1.0f - r2);
   }
-  sim.stepper().load(p, sim.film());
+  sim.stepper().load(sim.params(), sim.film());
   run(sim, ring.wands, 50, stop);  // 1 s
   double worst = 0;
   for (size_t i = 0; i < s.size(); ++i)
@@ -79,7 +79,7 @@ Measurement minimalSurface(const Params& p, const StopRequest& stop) {
     if (film.topology.boundary[i]) film.state.wireParam[i] = -1.0f;  // pinned on the bent wire
   }
   CpuStepper::refreshGeometry(p, film);
-  sim.stepper().load(p, film);
+  sim.stepper().load(sim.params(), film);
   run(sim, ring.wands, 100, stop);  // 2 s
   CpuStepper::refreshGeometry(p, sim.film());
   return {"minimal-surface",

@@ -160,7 +160,7 @@ Simulation::Simulation(const Params& params, Film film, const WandState& wands, 
   chooseSubsteps();
   stepper_->load(params_, film_);
   updateContacts();
-  readbackRecorded_ = stepper_->readback();
+  readbackRecorded_ = deviceReadback();
 }
 
 void Simulation::chooseSubsteps() {
@@ -200,22 +200,23 @@ StepUniforms Simulation::uniformsBetween(const WandState& a, const WandState& b,
                                          const Vec3& hangB) const {
   StepUniforms u;
   u.dt = dt;
-  u.wands = a;
+  WandState sources = a;
   // Eq. (5) has a source at each end of the frame. The ring's one hand moves its whole frame, both ends at once:
   // it blows as two wands held together there would (the air a frame pushes is set by the frame's motion, not by
   // how many hands hold it), both sources at the hand, aligned.
   if (film_.tool.kind == ToolKind::Ring) {
-    u.wands.leftPosition = a.rightPosition;
-    u.wands.leftVelocity = a.rightVelocity;
+    sources.leftPosition = a.rightPosition;
+    sources.leftVelocity = a.rightVelocity;
   }
+  setWands(u, sources);
   u.leftInflowWeight = 1.0f;
-  u.wandAlignment = wandAlignment(u.wands);
+  u.wandAlignment = wandAlignment(sources);
   const WireFrame frameNow = frameHanging(a, hangA);
   u.wireArea = frameNow.area();
   u.airVolume = frameNow.height() * u.wireArea;  // Eq. (6)
-  u.wireNext = frameHanging(b, hangB);
+  setWireNext(u, frameHanging(b, hangB));
   u.closed = film_.topology.isClosed() ? 1u : 0u;
-  u.volumeOrigin = u.closed ? film_.volumeOrigin : frameNow.center;
+  u.volumeOrigin = toVec4(u.closed ? film_.volumeOrigin : frameNow.center);
   u.referenceVolume = film_.referenceVolume;
   return u;
 }
@@ -268,7 +269,7 @@ void Simulation::advanceFrame(const WandState& next) {
   const long loadsBefore = loads_;
   const auto started = Clock::now();
   pressure_ = stepper_->run(substepUniforms_);
-  stateOnDevice_ = positionsOnDevice_ = true;  // the step's state is the stepper's until brought back
+  stateOnDevice_ = positionsOnDevice_ = device() != nullptr;  // the step's state is the device's until brought back
   refreshOnPull_ = false;
   checksForNextFrame_.reset();
   heldChecks_.reset();
@@ -308,10 +309,10 @@ bool Simulation::passesOnDevice(const WandState& next, float wandSpeed) {
   } else {
     // The rest-length rules the device runs itself may still act: there. The payout widens the wire's band, which
     // the checks then measure again for a new ring (growFilmAtWire looks for one after its payout).
-    const bool yielded = checks->yielding > 0 && yieldApplies() && stepper_->yieldStretchedSprings();
+    const bool yielded = checks->yielding > 0 && yieldApplies() && device()->yieldStretchedSprings();
     SpringEnergyAllowance allowance{stepper_->lastBudget().released};
     const bool contracted = checks->slack > 0 && contractionApplies() && contractOnDevice(*checks, allowance);
-    const bool paidOut = checks->rungsPastGrowth > 0 && payoutApplies(wandSpeed) && stepper_->payOutFilmAtWire();
+    const bool paidOut = checks->rungsPastGrowth > 0 && payoutApplies(wandSpeed) && device()->payOutFilmAtWire();
     if (paidOut) checks = checksOnDevice(false);
     if (yielded) checks->yielding = 0;  // its springs now at the yield stretch, within the checks' margin
     if (contracted) checks->slack = 0;  // taken as far as the allowance pays
@@ -333,7 +334,12 @@ void Simulation::applyRulesBetweenSteps(const WandState& next, float wandSpeed) 
   burstOnWandTouch();
   burstOnFloorTouch();
   events_ = advanceBurst(params_, time_, film_, burst_, aerosol_);
-  if (events_.particlesRemoved > 0) stepper_->updateTopology(params_, film_);  // the mesh shrank
+  if (events_.particlesRemoved > 0) {  // the mesh shrank
+    if (DeviceResidency* d = device())
+      d->updateTopology(params_, film_);
+    else
+      stepper_->load(params_, film_);
+  }
   if (!burst_.active()) {
     // Only a film being drawn yields: a free bubble's wobbles are elastic, so it rounds up again instead of
     // keeping every dent its momentum makes. A free bubble contracts where it goes slack instead: the long bag it
@@ -341,10 +347,10 @@ void Simulation::applyRulesBetweenSteps(const WandState& next, float wandSpeed) 
     // (and fills the contact lists). The open bag is not contracted: it is slack where the air has not yet filled
     // it, and there it is still being drawn.
     if (yieldApplies()) {
-      if (stepper_->yieldStretchedSprings())
+      if (device() && device()->yieldStretchedSprings())
         restLengthsOnDevice_ = true;
       else if (yieldStretchedSprings(params_, film_) > 0)
-        stepper_->updateRestLengths(film_);
+        updateDeviceRestLengths();
     }
     // What contraction and merging add to the springs, the step's dissipation pays (SpringEnergyAllowance). The
     // merges, which remake the mesh and reload the stepper, run every mergeInterval frames.
@@ -358,10 +364,16 @@ void Simulation::applyRulesBetweenSteps(const WandState& next, float wandSpeed) 
   if (tipsTogether && !film_.topology.isClosed() && !burst_.active()) events_.pinchedOff = pinch();
 }
 
+DeviceReadback Simulation::deviceReadback() const { return device() ? device()->readback() : DeviceReadback{}; }
+
+void Simulation::updateDeviceRestLengths() {
+  if (DeviceResidency* d = device()) d->updateRestLengths(film_);
+}
+
 void Simulation::recordReadback(long loadsBefore) {
   // Since the last frame's record: this frame's copies and those made between the frames, for the statistics and
   // whatever read film() (the outputs, the renderer's framing).
-  const DeviceReadback before = std::exchange(readbackRecorded_, stepper_->readback());
+  const DeviceReadback before = std::exchange(readbackRecorded_, deviceReadback());
   const DeviceReadback& now = readbackRecorded_;
   const uint64_t bytes = now.bytes - before.bytes;
   const bool burstScheduled = burst_.cause != nullptr && burst_.finished < 0;  // a crack to come, or one opening
@@ -384,7 +396,7 @@ std::optional<FilmChecks> Simulation::checksOnDevice(bool atPresentPositions) {
   probe.atPresentPositions = atPresentPositions;
   FilmSums sums;
   FilmChecks checks;
-  if (!stepper_->probeFilm(probe, sums, checks)) return std::nullopt;
+  if (!device() || !device()->probeFilm(probe, sums, checks)) return std::nullopt;
   return checks;
 }
 
@@ -398,13 +410,13 @@ void Simulation::contractSlackSpringsWhereTheyLie(SpringEnergyAllowance& allowan
     pullState();  // the rest lengths, for the merges
     return;
   }
-  if (contractSlackSprings(params_, film_, allowance) > 0) stepper_->updateRestLengths(film_);
+  if (contractSlackSprings(params_, film_, allowance) > 0) updateDeviceRestLengths();
 }
 
 bool Simulation::contractOnDevice(const FilmChecks& checks, SpringEnergyAllowance& allowance) {
   const float quadratic = checks.contractionQuadratic, linear = checks.contractionLinear;
   const float share = contractionShareOf(quadratic, linear, allowance.joules);
-  if (!stepper_->contractSlackSprings(share)) return false;
+  if (!device() || !device()->contractSlackSprings(share)) return false;
   allowance.joules -= contractionEnergyOf(share, quadratic, linear);
   restLengthsOnDevice_ = true;
   return true;
@@ -452,16 +464,16 @@ const char* Simulation::ruleThatMayAct(const FilmChecks& c, const WandState& nex
 
 void Simulation::pullState() const {
   if (restLengthsOnDevice_) {
-    stepper_->storeRestLengths(film_);
+    device()->storeRestLengths(film_);
     restLengthsOnDevice_ = false;
   }
   if (stateOnDevice_) {
-    stepper_->store(film_);
+    device()->store(film_);
     stateOnDevice_ = positionsOnDevice_ = false;
     if (refreshOnPull_) CpuStepper::refreshGeometry(params_, film_);  // as stats() leaves a film in host memory
   }
   if (contactsOnDevice_) {
-    stepper_->storeContacts(film_);
+    device()->storeContacts(film_);
     contactsOnDevice_ = false;
     contactHistory_ = {film_.topology.contacts, film_.state.size()};
   }
@@ -469,7 +481,7 @@ void Simulation::pullState() const {
 
 const Film& Simulation::filmPositionsOnly() const {
   if (positionsOnDevice_) {
-    stepper_->storePositions(film_);
+    device()->storePositions(film_);
     positionsOnDevice_ = false;
   }
   return film_;
@@ -516,13 +528,13 @@ bool Simulation::payoutApplies(float wandSpeed) const {
 }
 
 void Simulation::growFilm(const WandState& wands, float wandSpeed) {
-  const bool paidOnDevice = payoutApplies(wandSpeed) && stepper_->payOutFilmAtWire();
+  const bool paidOnDevice = payoutApplies(wandSpeed) && device() && device()->payOutFilmAtWire();
   if (paidOnDevice) restLengthsOnDevice_ = true;
   pullState();  // the rest lengths the device's rules changed: the ring insertion reads them, the payout uploads them
   const WireFrame frame = wireFrame(wands);
   const GrowthEvent grew = growFilmAtWire(params_, frame, wandSpeed, film_, !paidOnDevice);
   if (grew.particlesAdded == 0) {
-    if (grew.restLengthsChanged > 0) stepper_->updateRestLengths(film_);
+    if (grew.restLengthsChanged > 0) updateDeviceRestLengths();
     return;
   }
   events_.particlesAdded = grew.particlesAdded;
@@ -546,7 +558,7 @@ void Simulation::updateContacts() {
   constexpr float slack = 0.005f;
   // A stepper that searches on its device keeps the list there for its sweeps (and brings it back with the state);
   // otherwise the CPU searches.
-  if (stepper_->findContactsOnDevice(params_, contactHorizon_, slack, contactHistory_)) {
+  if (device() && device()->findContactsOnDevice(params_, contactHorizon_, slack, contactHistory_)) {
     contactsOnDevice_ = true;
     contactHistory_ = {{}, film_.state.size(), true};
     if (!stateStaysOnDevice_) pullState();
@@ -554,7 +566,7 @@ void Simulation::updateContacts() {
   }
   pullState();
   contactSearch_.find(params_, contactHorizon_, slack, film_, contactHistory_);
-  stepper_->updateContacts(film_);
+  if (DeviceResidency* d = device()) d->updateContacts(film_);
   contactHistory_ = {film_.topology.contacts, film_.state.size()};
 }
 
@@ -641,7 +653,7 @@ FrameStats Simulation::stats() {
   probe.frameTime = params_.frameTime;
   FilmSums sums;
   FilmChecks checks;
-  if (stepper_->probeFilm(probe, sums, checks)) {
+  if (device() && device()->probeFilm(probe, sums, checks)) {
     checksForNextFrame_ = checks;  // of the film the next frame starts from: its impact test
     // The device refreshed its geometry: so does the film in host memory, now or when it comes back.
     if (stateOnDevice_)

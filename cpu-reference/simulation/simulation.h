@@ -12,6 +12,7 @@
 #include "bursting.h"
 #include "collision.h"
 #include "cpu_stepper.h"
+#include "device_residency.h"
 #include "film.h"
 #include "film_growth.h"
 #include "pinch_off.h"
@@ -105,13 +106,13 @@ class Simulation {
   [[nodiscard]] size_t particleCount() const { return film_.state.size(); }
   [[nodiscard]] size_t triangleCount() const { return film_.topology.triangleCount(); }
   // The film as far as where it is: its topology, which particles live and their positions, the positions brought
-  // back alone from the device where the state stayed there (Stepper::storePositions, a tenth of the state). The
-  // rest of its state is as it was last brought back: read that through film(). For the renderer's framing and hole
+  // back alone from the device where the state stayed there (DeviceResidency::storePositions, a tenth of the state).
+  // The rest of its state is as it was last brought back: read that through film(). For the renderer's framing and hole
   // rims when it draws the stepper's own buffers in place, and the bubble's centre sent over OSC.
   [[nodiscard]] const Film& filmPositionsOnly() const;
   // Whether a frame on which no rule between steps acts leaves the film's state and contact list on the stepper's
-  // device (true, the default), where the stepper checks the film there (Stepper::probeFilm, film_checks.h): the
-  // state then comes back only when a rule acts, a topology event fires or something reads film(). False brings it
+  // device (true, the default), where the stepper checks the film there (DeviceResidency::probeFilm, film_checks.h):
+  // the state then comes back only when a rule acts, a topology event fires or something reads film(). False brings it
   // back after every step. A stepper in host memory has nothing to bring back either way.
   void setStateStaysOnDevice(bool stays) { stateStaysOnDevice_ = stays; }
   [[nodiscard]] const Params& params() const { return params_; }
@@ -139,10 +140,10 @@ class Simulation {
     float largestShift = 0.0f;   // the most drift it gave back in one step (m/s)
   };
   [[nodiscard]] const BudgetRecord& energyBudgetRecord() const { return budgetRecord_; }
-  // What the frames copied from the stepper's device into host memory (Stepper::readback), each frame with what was
-  // copied since the frame before it (the statistics, the outputs and the renderer reading film()), split by whether
-  // the frame had a topology event (a burst under way, film growth at the wire, a pinch-off, a merge): the frames
-  // without one are those a GPU-resident frame needs no state for. All zero on the CPU backend.
+  // What the frames copied from the stepper's device into host memory (DeviceResidency::readback), each frame with
+  // what was copied since the frame before it (the statistics, the outputs and the renderer reading film()), split by
+  // whether the frame had a topology event (a burst under way, film growth at the wire, a pinch-off, a merge): the
+  // frames without one are those a GPU-resident frame needs no state for. All zero on the CPU backend.
   struct ReadbackRecord {
     long frames = 0;
     long framesWithoutEvent = 0;
@@ -180,6 +181,12 @@ class Simulation {
   void burstOnFloorTouch();
   void updateContacts();
   void checkStable() const;
+  // The stepper's device, null for a stepper that steps the film in host memory (Stepper::device).
+  [[nodiscard]] DeviceResidency* device() const { return stepper_->device(); }
+  // What the device has copied into host memory so far: nothing without one.
+  [[nodiscard]] DeviceReadback deviceReadback() const;
+  // The film's changed rest lengths, onto the device where the film lives there.
+  void updateDeviceRestLengths();
   void recordReadback(long loadsBefore);
   // Whether the frame passes without the state in host memory: the device's checks say that no rule between steps
   // acts but those the device runs itself (the yield, the payout), which it then runs. Updates the tips' arming.

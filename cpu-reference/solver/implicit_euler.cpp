@@ -422,7 +422,7 @@ void implicitPredict(const StepUniforms& u, const Topology& topo, const Vec3& dr
   const Vec3 x = s.position.get(i);
   s.previousPosition.set(i, x);
   if (topo.boundary[i]) {
-    if (s.wireParam[i] >= 0.0f) s.position.set(i, wirePoint(u.wireNext, s.wireParam[i]));
+    if (s.wireParam[i] >= 0.0f) s.position.set(i, wirePoint(wireNextOf(u), s.wireParam[i]));
     return;
   }
   s.position.set(i, aboveFloor(x + u.dt * s.velocity.get(i) + (u.dt * u.dt) * drift));

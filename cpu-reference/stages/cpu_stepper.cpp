@@ -65,7 +65,7 @@ void CpuStepper::timed(Stage stage, Body&& body) {
 }
 
 void CpuStepper::load(const Params& params, Film& film) {
-  params_ = params;
+  params_ = &params;
   film_ = &film;
   lastBudget_ = {};
   drift_ = Vec3::Zero();
@@ -114,26 +114,26 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
         break;
       }
       case Stage::Volume:
-        result = volume(*film_, u.volumeOrigin);
+        result = volume(*film_, toVec3(u.volumeOrigin));
         break;
       case Stage::FilmState:
-        forEach(n, [&](size_t i) { filmState(params_, u.dt, s, i); });
+        forEach(n, [&](size_t i) { filmState(params(), u.dt, s, i); });
         break;
       case Stage::AirInflow:
-        forEach(n, [&](size_t i) { airInflow(params_, u, s, i); });
+        forEach(n, [&](size_t i) { airInflow(params(), u, s, i); });
         break;
       case Stage::AirTransfer:
-        forEach(n, [&](size_t i) { airTransfer(params_, topo, s, i); });
+        forEach(n, [&](size_t i) { airTransfer(params(), topo, s, i); });
         std::swap(s.airFlow, s.airFlowNext);  // Jacobi: the new air becomes the front buffer
         break;
       case Stage::Forces:
-        forEach(n, [&](size_t i) { forces(params_, u, currentPressure(u), topo, s, i); });
+        forEach(n, [&](size_t i) { forces(params(), u, currentPressure(u), topo, s, i); });
         break;
       case Stage::Integrate:
         forEach(n, [&](size_t i) { integrate(u, topo, s, i); });
         break;
       case Stage::ExternalForces:
-        forEach(n, [&](size_t i) { externalForces(params_, u, currentPressure(u), s, i); });
+        forEach(n, [&](size_t i) { externalForces(params(), u, currentPressure(u), s, i); });
         break;
       case Stage::ExternalDrift:
         drift_ = filmDrift();
@@ -158,16 +158,16 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
         break;
       }
       case Stage::Drainage:  // two Jacobi passes: every outflow is known before anyone gathers
-        forEach(n, [&](size_t i) { drainageOutflow(params_, u.drainageDt, topo, s, i); });
-        forEach(n, [&](size_t i) { drainageGather(params_, topo, s, i); });
+        forEach(n, [&](size_t i) { drainageOutflow(params(), u.drainageDt, topo, s, i); });
+        forEach(n, [&](size_t i) { drainageGather(params(), topo, s, i); });
         break;
       case Stage::FilmFlow:  // Jacobi passes: the logs, new velocities, then every limit, then the gathers
         flowLogSurfactant_.resize(n);
-        forEach(n, [&](size_t i) { filmFlowLogSurfactant(params_, s, i, flowLogSurfactant_); });
-        forEach(n, [&](size_t i) { filmFlowVelocity(params_, u, topo, s, i, flowLogSurfactant_); });
+        forEach(n, [&](size_t i) { filmFlowLogSurfactant(params(), s, i, flowLogSurfactant_); });
+        forEach(n, [&](size_t i) { filmFlowVelocity(params(), u, topo, s, i, flowLogSurfactant_); });
         flowSwept_.resize(2 * topo.springCount());
-        forEach(n, [&](size_t i) { filmFlowLimit(params_, u.drainageDt, topo, s, i, flowSwept_); });
-        forEach(n, [&](size_t i) { filmFlowGather(params_, u.drainageDt, topo, s, i, flowSwept_); });
+        forEach(n, [&](size_t i) { filmFlowLimit(params(), u.drainageDt, topo, s, i, flowSwept_); });
+        forEach(n, [&](size_t i) { filmFlowGather(params(), u.drainageDt, topo, s, i, flowSwept_); });
         break;
       case Stage::Count:
         break;
@@ -181,8 +181,8 @@ float CpuStepper::runStage(Stage stage, const StepUniforms& u) {
 }
 
 void CpuStepper::sweep(const StepUniforms& u) {
-  layOutSweepRuns(params_, u, film_->topology, film_->state, sweepRuns_);
-  const int sweeps = sweepsThisStep(params_, u), before = coarseSweepsBefore(params_, u);
+  layOutSweepRuns(params(), u, film_->topology, film_->state, sweepRuns_);
+  const int sweeps = sweepsThisStep(params(), u), before = coarseSweepsBefore(params(), u);
   if (before < 0) return runSweeps(u, 0, sweeps);
   runSweeps(u, 0, before);
   runStage(Stage::CoarseCorrection, u);
@@ -204,7 +204,7 @@ void CpuStepper::runSweeps(const StepUniforms& u, int from, int to) {
                      // thread, their sum on one, in the fixed order both backends add in
 #pragma omp for schedule(static)
       for (long b = 0; b < static_cast<long>(blocks.size()); ++b)
-        triangleVolumes(topo, s, u.volumeOrigin, false, FourBlocks::first(static_cast<size_t>(b)),
+        triangleVolumes(topo, s, toVec3(u.volumeOrigin), false, FourBlocks::first(static_cast<size_t>(b)),
                         blocks.last(static_cast<size_t>(b)), triangleVolumes_.data());
 #pragma omp single
       {
@@ -216,7 +216,7 @@ void CpuStepper::runSweeps(const StepUniforms& u, int from, int to) {
       const auto first = static_cast<long>(runs.colourRuns[c]), last = static_cast<long>(runs.colourRuns[c + 1]);
 #pragma omp for schedule(static)
       for (long r = first; r < last; ++r)
-        vertexBlockDescentRun(params_, u, bubble, topo, s, runs, static_cast<uint32_t>(r));
+        vertexBlockDescentRun(params(), u, bubble, topo, s, runs, static_cast<uint32_t>(r));
     }
   }
 }
@@ -226,26 +226,26 @@ void CpuStepper::correctCoarsely(const StepUniforms& u) {
   const Topology& topo = film_->topology;
   if (topo.patchOffset.empty()) return;  // the correction is off: no patches were made
   Bubble bubble;
-  if (u.closed) {                                  // Boyle's pressure at this iterate's volume, as a sweep takes it
-    lastVolume_ = volume(*film_, u.volumeOrigin);  // first: Boyle's pressure reads it
+  if (u.closed) {  // Boyle's pressure at this iterate's volume, as a sweep takes it
+    lastVolume_ = volume(*film_, toVec3(u.volumeOrigin));  // first: Boyle's pressure reads it
     bubble = bubbleOf(lastVolume_, currentPressure(u));
   }
   fitCoarseSystem(topo, coarse_);
   forEach(coarse_.shortestSpring.size(),
-          [&](size_t patch) { coarseAssemble(params_, u, bubble, topo, s, patch, coarse_); });
-  coarseSolve(topo, params_.coarseIterations, coarse_);
+          [&](size_t patch) { coarseAssemble(params(), u, bubble, topo, s, patch, coarse_); });
+  coarseSolve(topo, params().coarseIterations, coarse_);
   forEach(s.size(), [&](size_t i) { coarseApply(topo, coarse_, s, i); });
 }
 
 VelocityBudget CpuStepper::budgetEnergy(const StepUniforms& u) {
   const State& s = film_->state;
   const Topology& topo = film_->topology;
-  const size_t pieces = heldPieceCount(params_, topo);
+  const size_t pieces = heldPieceCount(params(), topo);
   heldPieces_.start.resize(pieces);
   heldPieces_.end.resize(pieces);
-  forEachFour(pieces, [&](size_t first, size_t last) { heldPieces(params_, topo, s, first, last, heldPieces_); });
+  forEachFour(pieces, [&](size_t first, size_t last) { heldPieces(params(), topo, s, first, last, heldPieces_); });
   const std::array<float, GB_ENERGY_TERMS> sums = treeSumsOf(energyTerms_, s.size(), [&](size_t i) {
-    const ParticleEnergy e = energyTerms(params_, u, topo, s, heldPieces_, i);
+    const ParticleEnergy e = energyTerms(params(), u, topo, s, heldPieces_, i);
     return std::array<float, GB_ENERGY_TERMS>{e.start,        e.kinetic,      e.held,         e.mass,
                                               e.momentum.x(), e.momentum.y(), e.momentum.z(), e.expected.x(),
                                               e.expected.y(), e.expected.z()};
@@ -255,9 +255,9 @@ VelocityBudget CpuStepper::budgetEnergy(const StepUniforms& u) {
     // The budget places particles on the wire at their end position (positionAtStepStart): the volume stage's sum
     // at the step's start is the budget's "before" only where there are none.
     const float before =
-        stepStartVolume_ && !topo.hasBoundary() ? *stepStartVolume_ : volumeOf(*film_, u.volumeOrigin, true);
-    lastVolume_ = volume(*film_, u.volumeOrigin);
-    gas = boyleEnergyChange(params_, u.referenceVolume, before, lastVolume_);
+        stepStartVolume_ && !topo.hasBoundary() ? *stepStartVolume_ : volumeOf(*film_, toVec3(u.volumeOrigin), true);
+    lastVolume_ = volume(*film_, toVec3(u.volumeOrigin));
+    gas = boyleEnergyChange(params(), u.referenceVolume, before, lastVolume_);
   }
   return energyScale(sums[0], sums[1], sums[2] + gas, sums[3], Vec3(sums[4], sums[5], sums[6]),
                      Vec3(sums[7], sums[8], sums[9]));
@@ -269,7 +269,7 @@ Vec3 CpuStepper::filmDrift() {
 }
 
 float CpuStepper::currentPressure(const StepUniforms& u) const {
-  return u.closed ? boylePressure(params_, u.referenceVolume, lastVolume_) : params_.pressureCoefficient;
+  return u.closed ? boylePressure(params(), u.referenceVolume, lastVolume_) : params().pressureCoefficient;
 }
 
 float CpuStepper::step(const StepUniforms& u) {
@@ -277,14 +277,14 @@ float CpuStepper::step(const StepUniforms& u) {
   stepping_ = true;
   stepStartVolume_.reset();
   for (const StageSpec& spec : stepStages())
-    if (spec.runs(params_, u)) runStage(spec.stage, u);
+    if (spec.runs(params(), u)) runStage(spec.stage, u);
   stepping_ = false;
   stepStartVolume_.reset();
   return currentPressure(u);
 }
 
 float CpuStepper::run(std::span<const StepUniforms> substeps) {
-  float pressure = params_.pressureCoefficient;
+  float pressure = params().pressureCoefficient;
   for (const StepUniforms& u : substeps) pressure = step(u);
   return pressure;
 }

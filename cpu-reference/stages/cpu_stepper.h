@@ -19,7 +19,6 @@ class CpuStepper final : public Stepper {
   void load(const Params& params, Film& film) override;
   float run(std::span<const StepUniforms> substeps) override;
   float runStage(Stage stage, const StepUniforms& uniforms) override;
-  void store(Film&) override {}
 
   // Geometry (normals, Voronoi areas) and the film state from the current positions, without stepping.
   static void refreshGeometry(const Params& params, Film& film);
@@ -48,7 +47,9 @@ class CpuStepper final : public Stepper {
   template <class Body>
   void timed(Stage stage, Body&& body);
 
-  Params params_;
+  [[nodiscard]] const Params& params() const { return *params_; }
+
+  const Params* params_ = nullptr;  // the caller's, read at every stage (Stepper::load)
   Film* film_ = nullptr;
   std::vector<float> triangleVolumes_;    // scratch for the volume reduction, reused every step
   std::vector<float> flowLogSurfactant_;  // the film flow's ln Gamma of each particle (filmFlowLogSurfactant)

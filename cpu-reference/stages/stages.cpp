@@ -13,6 +13,37 @@
 
 namespace gb {
 
+WandState wandsOf(const StepUniforms& u) {
+  return {toVec3(u.leftPosition), toVec3(u.leftVelocity), toVec3(u.rightPosition), toVec3(u.rightVelocity)};
+}
+
+void setWands(StepUniforms& u, const WandState& wands) {
+  u.leftPosition = toVec4(wands.leftPosition);
+  u.leftVelocity = toVec4(wands.leftVelocity);
+  u.rightPosition = toVec4(wands.rightPosition);
+  u.rightVelocity = toVec4(wands.rightVelocity);
+}
+
+WireFrame wireNextOf(const StepUniforms& u) {
+  WireFrame f;
+  f.kind = static_cast<ToolKind>(u.wireKind);
+  f.center = toVec3(u.wireCenter);
+  f.axis = toVec3(u.wireAxis);
+  f.down = toVec3(u.wireDown);
+  f.halfWidth = u.wireHalfWidth;
+  f.depth = u.wireDepth;
+  return f;
+}
+
+void setWireNext(StepUniforms& u, const WireFrame& frame) {
+  u.wireKind = static_cast<int>(frame.kind);
+  u.wireCenter = toVec4(frame.center);
+  u.wireAxis = toVec4(frame.axis);
+  u.wireDown = toVec4(frame.down);
+  u.wireHalfWidth = frame.halfWidth;
+  u.wireDepth = frame.depth;
+}
+
 // ---- geometry ---------------------------------------------------------------------------------------------
 
 namespace {
@@ -238,9 +269,10 @@ void filmState(const Params& p, float dt, State& s, size_t i) {
 // ---- air ------------------------------------------------------------------------------------------------
 
 Vec3 airInflowAt(const Params& p, const StepUniforms& u, const Vec3& x) {
-  const float dLeft = (x - u.wands.leftPosition).norm(), dRight = (x - u.wands.rightPosition).norm();
-  const Vec3 sources = u.leftInflowWeight * u.wands.leftVelocity / (dLeft + p.airInflowDistance) +
-                       u.wands.rightVelocity / (dRight + p.airInflowDistance);
+  const WandState wands = wandsOf(u);
+  const float dLeft = (x - wands.leftPosition).norm(), dRight = (x - wands.rightPosition).norm();
+  const Vec3 sources = u.leftInflowWeight * wands.leftVelocity / (dLeft + p.airInflowDistance) +
+                       wands.rightVelocity / (dRight + p.airInflowDistance);
   return -u.airVolume * u.wandAlignment * sources;
 }
 
@@ -389,7 +421,7 @@ void integrate(const StepUniforms& u, const Topology& topo, State& s, size_t i) 
       s.velocity.set(i, Vec3::Zero());
       return;
     }
-    const Vec3 xNext = wirePoint(u.wireNext, s.wireParam[i]);
+    const Vec3 xNext = wirePoint(wireNextOf(u), s.wireParam[i]);
     s.velocity.set(i, (xNext - x) / u.dt);
     s.position.set(i, xNext);
     return;

@@ -9,30 +9,24 @@
 #include <span>
 
 #include "params.h"
+#include "shared_step.h"
 #include "state.h"
 #include "wire_frame.h"
 
 namespace gb {
 
-// What a step needs besides the state: computed once per step on the host (on the GPU one StepUniformsBlock per
-// step of a batch, in a storage buffer: kernels/shared/shared_step.h).
-struct StepUniforms {
-  float dt = 0.0f;                   // substep length (s)
-  WandState wands;                   // wand tips at the start of the step, the air sources of Eq. (5)
-  float leftInflowWeight = 1.0f;     // weight of the left source of Eq. (5); the ring's frame has both at its hand
-  float airVolume = 0.0f;            // V_wm = H_wire * Area_wm, Eq. (6) (m^3)
-  float wireArea = 0.0f;             // Area_wm (m^2): the air flow over it is the air's speed (airCoupling)
-  float wandAlignment = 0.0f;        // MAX(cos(theta), 0) of Eq. (5)
-  WireFrame wireNext;                // the wire frame at the end of the step, for the boundary particles
-  Vec3 volumeOrigin = Vec3::Zero();  // apex of the cone decomposition of the (swept) volume
-  uint32_t closed = 0;               // 1 once the film is a closed bubble: Eqs. (10)-(11) replace Eq. (9)
-  float referenceVolume = 0.0f;      // V_0 of Eq. (11), the volume when the bubble closed (m^3)
-  float drainageDt = 0.0f;           // drainage runs in this step over this time, 0: not in this step. Liquid
-                                     // drains over seconds, so once per frame is enough (Simulation)
-  int solverSweeps = 0;              // implicit integrator: vertex block descent sweeps in this step (the live
-                                     // loop lowers it when a frame runs over its budget)
-  float frameTime = 0.0f;            // the frame's length (s), for the film checks between steps (film_checks.h)
-};
+// What a step needs besides the state, computed once per step on the host: one definition for both backends,
+// kernels/shared/shared_step.h, which the GPU receives as it is (one per step of a batch, in a storage buffer). Its
+// vectors are vec4; these read and write them as the CPU's types.
+using StepUniforms = gpu::StepUniformsBlock;
+inline Vec3 toVec3(const gpu::vec4& v) { return {v.x, v.y, v.z}; }
+inline gpu::vec4 toVec4(const Vec3& v) { return {v.x(), v.y(), v.z(), 0.0f}; }
+// The wand tips at the start of the step, the air sources of Eq. (5).
+WandState wandsOf(const StepUniforms& u);
+void setWands(StepUniforms& u, const WandState& wands);
+// The wire frame at the end of the step, for the boundary particles.
+WireFrame wireNextOf(const StepUniforms& u);
+void setWireNext(StepUniforms& u, const WireFrame& frame);
 
 // ---- Stage 1-2: geometry -------------------------------------------------------------------------------
 // Pass 1, per triangle t: its area-weighted normal and the mixed Voronoi area (Meyer et al. 2003) of each of

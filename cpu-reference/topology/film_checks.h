@@ -3,7 +3,7 @@
 // reduced to a few figures: whether the film blew up, how near it is to the floor and to the wand tips, whether a
 // tip is inside a bubble, its thinnest particle (burst by thinning), the hardest impact of its contact pairs, and
 // how many springs each rest-length rule would change. A stepper that holds the state on its device reduces them
-// there (Stepper::probeFilm, kernels/statistics/film_statistics_terms.comp) with every threshold loosened by
+// there (DeviceResidency::probeFilm, kernels/statistics/film_statistics_terms.comp) with every threshold loosened by
 // kFilmCheckMargin (shared_formulas.h): a frame whose figures say that no rule acts needs no state in host memory, and
 // a frame whose figures come near a threshold brings the state back and lets the CPU rules decide exactly
 // (docs/backends.md).
@@ -21,7 +21,8 @@ struct FilmProbe {
   Vec3 origin = Vec3::Zero();  // apex of the cone volumes of the statistics (FilmSums)
   std::array<Vec3, 2> tips{Vec3::Zero(), Vec3::Zero()};
   float frameTime = 0.0f;
-  bool atPresentPositions = true;  // the geometry and film state brought up to the positions first (Stepper::probeFilm)
+  bool atPresentPositions =
+      true;  // the geometry and film state brought up to the positions first (DeviceResidency::probeFilm)
 };
 
 struct FilmChecks {

@@ -1,4 +1,4 @@
-// One definition, compiled as C++ (host/) and GLSL (every compute shader), of what the GPU stages receive
+// One definition, compiled as C++ (the CPU stages, host/) and GLSL (every compute shader), of what the stages receive
 // besides the parameter block: the per-step uniforms, the push constants, the buffer bindings (from the list in
 // device_data.h) and the regions of the reduce buffer.
 // Vectors are vec4 (w unused) so that std430 and C++ agree without hidden padding; host/ static_asserts
@@ -8,34 +8,48 @@
 #include <cstdint>
 namespace gb::gpu {
 struct alignas(16) vec4 {
-  float x, y, z, w;
+  float x = 0.0f, y = 0.0f, z = 0.0f, w = 0.0f;
 };
 using uint = uint32_t;
 #endif
 
-// StepUniforms of cpu-reference/stages/stages.h, one per step of a submitted batch.
+// What a step needs besides the state, one per step of a submitted batch: computed on the host, read as it is by
+// the CPU stages (stages.h calls it StepUniforms) and by the kernels. The vectors are the CPU's WandState and
+// WireFrame (cpu-reference/model/wire_frame.h) as vec4; stages.h reads and writes them as those. GB_INIT gives the
+// C++ defaults (GLSL has none); a vec4 is zero unless given.
+#ifdef __cplusplus
+#define GB_INIT(value) = value
+#else
+#define GB_INIT(value)
+#endif
 struct StepUniformsBlock {
-  vec4 leftPosition;  // wand tips at the start of the substep (Eq. 5)
+  vec4 leftPosition;  // wand tips at the start of the step, the air sources of Eq. (5)
   vec4 leftVelocity;
   vec4 rightPosition;
   vec4 rightVelocity;
-  vec4 wireCenter;  // wire frame at the end of the substep (boundary particles)
-  vec4 wireAxis;
-  vec4 wireDown;
-  vec4 volumeOrigin;  // apex of the volume's cone decomposition
-  float dt;           // substep (s)
-  float leftInflowWeight;
-  float airVolume;      // V_wm of Eq. (6)
-  float wandAlignment;  // MAX(cos theta, 0) of Eq. (5)
-  float wireHalfWidth;
-  float wireDepth;
-  float referenceVolume;  // V_0 of Eq. (11)
-  int wireKind;           // ToolKind: 0 two wands, 1 ring
-  uint closed;            // 1 for a closed bubble
-  float drainageDt;       // drainage time of this substep, 0: no drainage
-  float wireArea;         // Area_wm of Eq. (6): turns the air flow into the air's speed (air coupling)
-  float frameTime;        // the frame's length (s): the film checks' impact test (film_statistics_terms)
+  vec4 wireCenter;  // the wire frame at the end of the step, for the boundary particles
+  vec4 wireAxis GB_INIT(vec4(1.0f, 0.0f, 0.0f, 0.0f));
+  vec4 wireDown GB_INIT(vec4(0.0f, -1.0f, 0.0f, 0.0f));
+  vec4 volumeOrigin;                     // apex of the cone decomposition of the (swept) volume
+  float dt GB_INIT(0.0f);                // substep length (s)
+  float leftInflowWeight GB_INIT(1.0f);  // weight of the left source of Eq. (5); the ring's frame has both at its hand
+  float airVolume GB_INIT(0.0f);         // V_wm = H_wire * Area_wm, Eq. (6) (m^3)
+  float wandAlignment GB_INIT(0.0f);     // MAX(cos theta, 0) of Eq. (5)
+  float wireHalfWidth GB_INIT(0.5f);
+  float wireDepth GB_INIT(0.5f);
+  float referenceVolume GB_INIT(0.0f);  // V_0 of Eq. (11), the volume when the bubble closed (m^3)
+  int wireKind GB_INIT(0);              // ToolKind: 0 two wands, 1 ring
+  uint closed GB_INIT(0u);              // 1 once the film is a closed bubble: Eqs. (10)-(11) replace Eq. (9)
+  // Drainage runs in this step over this time, 0: not in this step. Liquid drains over seconds, so once per frame
+  // is enough (Simulation).
+  float drainageDt GB_INIT(0.0f);
+  float wireArea GB_INIT(0.0f);   // Area_wm (m^2) of Eq. (6): the air flow over it is the air's speed (airCoupling)
+  float frameTime GB_INIT(0.0f);  // the frame's length (s): the film checks' impact test (film_checks.h)
+  // Implicit integrator: vertex block descent sweeps in this step, 0: Params::solverSweeps (the live loop lowers them
+  // when a frame runs over its budget). The host records the sweeps; no kernel reads it.
+  int solverSweeps GB_INIT(0);
 };
+#undef GB_INIT
 
 // Push constants of every stage (36 bytes of the 128 guaranteed).
 struct PushBlock {

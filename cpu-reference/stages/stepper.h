@@ -106,6 +106,10 @@ class Stepper {
   // Brings back only the particles' positions (a renderer drawing the stepper's buffers in place frames the film
   // from them): by default the whole state.
   virtual void storePositions(Film& film) { store(film); }
+  // Brings back the per-particle arrays of film.state listed (by address) for every particle: what a rule between
+  // steps reads of the whole film (the merges choose by the positions, thickness and elasticity). By default the
+  // whole state.
+  virtual void storeParticleArrays(Film& film, std::initializer_list<const void*> /*arrays*/) { store(film); }
   // Takes the film's new self-collision contact list (Topology::contacts), found between frames.
   virtual void updateContacts(const Film&) {}
   // Finds the film's self-collision contacts for the next frame itself, the list findContacts makes with the same
@@ -120,6 +124,21 @@ class Stepper {
   virtual void updateTopology(const Params& params, Film& film) { load(params, film); }
   // Takes the film's changed spring rest lengths (the wire paying out film between frames, film_growth.h).
   virtual void updateRestLengths(const Film&) {}
+  // Brings back a region of the film where a rule between steps reads it, not the whole state: the per-particle state
+  // store() brings back, of the particles listed, and the rest lengths of the springs listed (both ascending). False
+  // where the stepper brings back nothing by regions (the caller then calls store()), as the CPU stepper does.
+  virtual bool storeRegion(Film&, std::span<const uint32_t> /*particles*/, std::span<const uint32_t> /*springs*/) {
+    return false;
+  }
+  // Takes a film that a rule between steps changed in a region and may have grown (film growth at the wire appends
+  // particles, springs and triangles, old indices staying): the per-particle arrays of the particles listed and of
+  // those from firstNewParticle on, the rest lengths of the springs listed and of those from firstNewSpring on, and the
+  // mesh's connectivity. Everything else the stepper holds stays, its state included, and its contact list stays the
+  // history of the next search. False where the stepper takes only whole films (the caller then calls load()).
+  virtual bool updateRegion(const Params&, Film&, std::span<const uint32_t> /*particles*/, size_t /*firstNewParticle*/,
+                            std::span<const uint32_t> /*springs*/, size_t /*firstNewSpring*/) {
+    return false;
+  }
 
   // What the energy budget did in the last step run (the last substep of run()): nothing (VelocityBudget{}) when
   // the step kept within its budget or no budget ran (energy_budget.h).

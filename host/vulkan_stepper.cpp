@@ -498,6 +498,17 @@ bool VulkanStepper::updateRegion(const Params& params, Film& film, std::span<con
   m.volumeInA = true;  // as a load leaves them
   m.driftInA = true;
   m.writeDescriptorSets();
+  // The geometry and film state everywhere at the present positions, as a reloaded film has them: the contact search
+  // reads the normals before the next step makes them anew.
+  StepUniforms u;
+  u.dt = 0.0f;
+  m.uploadSteps(std::span(&u, 1));
+  const vk::raii::CommandBuffer& cb = m.commands;
+  cb.reset();
+  cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+  m.recordGeometryAtPresentPositions(cb, u);
+  cb.end();
+  m.ctx->submitAndWait(cb);
   return true;
 }
 

@@ -266,6 +266,10 @@ struct VulkanStepper::Impl {
   // The list the last search left, into `contacts` (Topology::contacts).
   void readContactList(std::vector<uint32_t>& contacts);
 
+  // The geometry and the film state at the film's present positions (the stages geometry and film_state with the
+  // uniforms u, whose dt is 0), as CpuStepper::refreshGeometry makes them in host memory; ends with a barrier.
+  void recordGeometryAtPresentPositions(const vk::raii::CommandBuffer& cb, const StepUniforms& u);
+
   // The frame's statistics and film checks: with probe.atPresentPositions the geometry and the film state at the
   // film's present positions first (what CpuStepper::refreshGeometry does to a film in host memory: the next step's
   // first stages compute the same), then the terms and their tree, then the sums read back.

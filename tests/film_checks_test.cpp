@@ -262,7 +262,9 @@ TEST(DeviceFilmChecks, TheStateStaysOnTheDeviceWhereNoRuleActs) {
     const auto whole = some.stateReadbacksHeldByRule.find(rule);
     const size_t readBack = whole == some.stateReadbacksHeldByRule.end() ? 0 : whole->second;
     heldInRegion += static_cast<size_t>(frames) - readBack;
-    if (rule != "ring" && rule != "yield" && rule != "merge") EXPECT_EQ(readBack, static_cast<size_t>(frames)) << rule;
+    if (rule != "ring" && rule != "yield" && rule != "merge") {
+      EXPECT_EQ(readBack, static_cast<size_t>(frames)) << rule;
+    }
   }
   EXPECT_GT(heldInRegion, 0u) << "the rings at the wire and the merges change the film on the device";
   EXPECT_EQ(some.stateReadbacks + static_cast<size_t>(some.framesPassed) + heldInRegion, all.stateReadbacks)

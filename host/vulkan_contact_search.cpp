@@ -43,15 +43,7 @@ void VulkanStepper::Impl::ensureContactRoom(size_t entries, size_t previousUints
 
 void VulkanStepper::Impl::copyContactUints(const DeviceBuffer& from, size_t fromUint, const DeviceBuffer& to,
                                            size_t toUint, size_t uints) {
-  if (uints == 0) return;
-  const vk::raii::CommandBuffer& cb = commands;
-  cb.reset();
-  cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
-  computeToTransferBarrier(cb);
-  to.recordCopyFrom(cb, from, fromUint * sizeof(uint32_t), uints * sizeof(uint32_t), toUint * sizeof(uint32_t));
-  transferToComputeBarrier(cb);
-  cb.end();
-  ctx->submitAndWait(cb);
+  copyOnDevice(from, fromUint * sizeof(uint32_t), to, toUint * sizeof(uint32_t), uints * sizeof(uint32_t));
 }
 
 void VulkanStepper::Impl::recordContactScan(const vk::raii::CommandBuffer& cb, uint32_t count, uint32_t flags) {
@@ -80,9 +72,12 @@ void VulkanStepper::Impl::searchContacts(float frameTime, float slack, const Con
   ensureContactRoom(0, history.contacts.size());
   const gpu::ContactSearchLayout l = contactLayout();
   DeviceBuffer& contacts = buffer(GB_BINDING_CONTACTS);
-  const bool historyOnDevice = deviceListEntries > 0 && history.particles == particles &&
-                               (history.onDevice || history.contacts.size() == deviceListEntries);
-  uint32_t previousParticles = static_cast<uint32_t>(particles);
+  // The device's own list is the history also when the film grew on the device since (updateRegion): its particles
+  // kept their numbers, and the list its count.
+  const bool historyOnDevice =
+      deviceListEntries > 0 &&
+      (history.onDevice || (history.particles == particles && history.contacts.size() == deviceListEntries));
+  uint32_t previousParticles = static_cast<uint32_t>(history.particles);
   if (!historyOnDevice) {
     const bool listed = !history.contacts.empty() && history.contacts.size() >= history.particles + 1;
     previousParticles = listed ? static_cast<uint32_t>(history.particles) : 0u;

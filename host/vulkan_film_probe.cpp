@@ -6,6 +6,13 @@
 
 namespace gb {
 
+void VulkanStepper::Impl::recordGeometryAtPresentPositions(const vk::raii::CommandBuffer& cb, const StepUniforms& u) {
+  recordStage(cb, Stage::Geometry, u, 0);
+  computeToComputeBarrier(cb);
+  recordStage(cb, Stage::FilmState, u, 0);
+  computeToComputeBarrier(cb);
+}
+
 std::array<float, GB_STATISTICS_TERMS> VulkanStepper::Impl::sumStatistics(const FilmProbe& probe) {
   StepUniforms u;
   u.dt = 0.0f;  // the film state without ageing it
@@ -18,12 +25,7 @@ std::array<float, GB_STATISTICS_TERMS> VulkanStepper::Impl::sumStatistics(const 
   const vk::raii::CommandBuffer& cb = commands;
   cb.reset();
   cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
-  if (probe.atPresentPositions) {
-    recordStage(cb, Stage::Geometry, u, 0);
-    computeToComputeBarrier(cb);
-    recordStage(cb, Stage::FilmState, u, 0);
-    computeToComputeBarrier(cb);
-  }
+  if (probe.atPresentPositions) recordGeometryAtPresentPositions(cb, u);
   dispatch(cb, Kernel::FilmStatisticsTerms, particles, 0, 0, at);
   computeToComputeBarrier(cb);
   bool inA = true;

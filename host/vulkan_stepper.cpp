@@ -57,6 +57,32 @@ size_t reduceFloats(const Topology& t, size_t particles) {
 // The VelocityBudget's slots, GB_SLOT_SCALE to GB_SLOT_RELEASED.
 constexpr size_t kBudgetSlots = GB_SLOT_RELEASED - GB_SLOT_SCALE + 1;
 
+// The blocks of `particles` elements each per-particle buffer holds: as many as the arrays of device_data.h in it.
+std::array<int, GB_BINDING_COUNT> particleBlocks(const State& s) {
+  std::array<int, GB_BINDING_COUNT> blocks{};
+  forEachParticleArray(s, [&](const auto&, const ParticleArrayInfo& a) {
+    int& held = blocks[static_cast<size_t>(a.binding)];
+    held = std::max(held, a.block + a.components);
+  });
+  return blocks;
+}
+
+// Ascending indices as runs of consecutive ones, [first, end): a region's particles lie in a few runs (a ring at the
+// wire is numbered in order), each one range of a buffer.
+struct IndexRun {
+  uint32_t first, end;
+};
+std::vector<IndexRun> runsOf(std::span<const uint32_t> ascending) {
+  std::vector<IndexRun> runs;
+  for (const uint32_t i : ascending) {
+    if (!runs.empty() && runs.back().end == i)
+      ++runs.back().end;
+    else
+      runs.push_back({i, i + 1});
+  }
+  return runs;
+}
+
 }  // namespace
 
 VulkanStepper::Impl::Impl(std::shared_ptr<const VulkanContext> context, VulkanStepperOptions stepperOptions)
@@ -104,18 +130,118 @@ void VulkanStepper::Impl::writeMesh(const State& s, const Topology& t) {
   forEachParticleArray(s, [&](const auto& array, const ParticleArrayInfo& info) {
     if (info.transfer == Transfer::WithMesh) writeParticleArray(buffer(info.binding), array, info, s.size());
   });
+  writeVector(buffer(GB_BINDING_REST_LENGTH), t.restLength);
+  writeConnectivity(t);
+  writeContacts(t);
+}
+
+void VulkanStepper::Impl::writeConnectivity(const Topology& t) {
   writeVector(buffer(GB_BINDING_BOUNDARY), t.boundary);
   writeVector(buffer(GB_BINDING_TRIANGLES), t.triangles);
-  writeVector(buffer(GB_BINDING_REST_LENGTH), t.restLength);
   writeVector(buffer(GB_BINDING_SPRING_OFFSET), t.springOffset);
   writeVector(buffer(GB_BINDING_SPRING_INDEX), t.springIndex);
   writeVector(buffer(GB_BINDING_SPRING_NEIGHBOUR), t.springNeighbour);
   writeVector(buffer(GB_BINDING_TRIANGLE_OFFSET), t.triangleOffset);
   writeVector(buffer(GB_BINDING_TRIANGLE_CORNER), t.triangleCorner);
   writeSolverLists(t);
-  writeContacts(t);
   energyBase = energyTermsAt(t);
   writeVelocityBudget({});  // no budget has run on this mesh yet
+}
+
+void VulkanStepper::Impl::ensureMeshRoom(const Topology& t, size_t n) {
+  ensureRoom(GB_BINDING_BOUNDARY, t.boundary.size() * sizeof(uint32_t));
+  ensureRoom(GB_BINDING_COLOUR_ORDER, solverListEntries(t) * sizeof(uint32_t));
+  ensureRoom(GB_BINDING_TRIANGLES, t.triangles.size() * sizeof(uint32_t));
+  ensureRoom(GB_BINDING_SPRING_OFFSET, t.springOffset.size() * sizeof(uint32_t));
+  ensureRoom(GB_BINDING_SPRING_INDEX, t.springIndex.size() * sizeof(uint32_t));
+  ensureRoom(GB_BINDING_SPRING_NEIGHBOUR, t.springNeighbour.size() * sizeof(uint32_t));
+  ensureRoom(GB_BINDING_TRIANGLE_OFFSET, t.triangleOffset.size() * sizeof(uint32_t));
+  ensureRoom(GB_BINDING_TRIANGLE_CORNER, t.triangleCorner.size() * sizeof(uint32_t));
+  ensureRoom(GB_BINDING_TRIANGLE_NORMAL, 3 * t.triangleCount() * sizeof(float));
+  ensureRoom(GB_BINDING_CORNER_AREA, 3 * t.triangleCount() * sizeof(float));
+  ensureRoom(GB_BINDING_REDUCE, reduceFloats(t, n) * sizeof(float));
+}
+
+void VulkanStepper::Impl::layOutParticles(const std::array<int, GB_BINDING_COUNT>& blocks, uint32_t count) {
+  const vk::DeviceSize oldBlock = vk::DeviceSize{particles} * sizeof(float),
+                       newBlock = vk::DeviceSize{count} * sizeof(float);
+  vk::DeviceSize total = 0;
+  for (const int held : blocks) total += static_cast<vk::DeviceSize>(held) * oldBlock;
+  if (relayout.size() < total) relayout = DeviceBuffer(*ctx, total + total / 8);
+  const vk::raii::CommandBuffer& cb = commands;
+  if (total > 0) {  // the old film's blocks, one after the other
+    cb.reset();
+    cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    computeToTransferBarrier(cb);
+    vk::DeviceSize at = 0;
+    for (int b = 0; b < GB_BINDING_COUNT; ++b)
+      if (const vk::DeviceSize bytes = static_cast<vk::DeviceSize>(blocks[static_cast<size_t>(b)]) * oldBlock;
+          bytes > 0) {
+        relayout.recordCopyFrom(cb, buffer(b), 0, bytes, at);
+        at += bytes;
+      }
+    cb.end();
+    ctx->submitAndWait(cb);
+  }
+  for (int b = 0; b < GB_BINDING_COUNT; ++b)
+    if (const int held = blocks[static_cast<size_t>(b)]; held > 0) ensureRoom(b, static_cast<size_t>(held) * newBlock);
+  cb.reset();
+  cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+  transferToTransferBarrier(cb);  // the copy above is done
+  vk::DeviceSize at = 0;
+  for (int b = 0; b < GB_BINDING_COUNT; ++b)
+    for (int k = 0; k < blocks[static_cast<size_t>(b)] && oldBlock > 0; ++k) {  // each block at its new place
+      buffer(b).recordCopyFrom(cb, relayout, at, oldBlock, static_cast<vk::DeviceSize>(k) * newBlock);
+      at += oldBlock;
+    }
+  transferToComputeBarrier(cb);
+  cb.end();
+  ctx->submitAndWait(cb);
+  particles = count;
+}
+
+void VulkanStepper::Impl::growKeeping(int binding, size_t bytes, size_t keptBytes) {
+  if (buffer(binding).size() >= bytes) return;
+  DeviceBuffer grown(*ctx, bytes + bytes / 8);  // an eighth more room, as ensureRoom gives
+  copyOnDevice(buffer(binding), 0, grown, 0, keptBytes);
+  buffer(binding) = std::move(grown);
+}
+
+void VulkanStepper::Impl::copyOnDevice(const DeviceBuffer& from, vk::DeviceSize fromOffset, const DeviceBuffer& to,
+                                       vk::DeviceSize toOffset, vk::DeviceSize bytes) {
+  if (bytes == 0) return;
+  const vk::raii::CommandBuffer& cb = commands;
+  cb.reset();
+  cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+  computeToTransferBarrier(cb);
+  to.recordCopyFrom(cb, from, fromOffset, bytes, toOffset);
+  transferToComputeBarrier(cb);
+  cb.end();
+  ctx->submitAndWait(cb);
+}
+
+void VulkanStepper::Impl::writeThroughUpload(std::span<const HostPart> parts) {
+  vk::DeviceSize total = 0;
+  for (const HostPart& part : parts) total += part.bytes;
+  if (total == 0) return;
+  if (upload.size() < total) upload = DeviceBuffer(*ctx, total + total / 2, DeviceBuffer::Placement::Host);
+  vk::DeviceSize at = 0;
+  for (const HostPart& part : parts) {
+    upload.write(part.from, part.bytes, at);
+    at += part.bytes;
+  }
+  const vk::raii::CommandBuffer& cb = commands;
+  cb.reset();
+  cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+  computeToTransferBarrier(cb);
+  at = 0;
+  for (const HostPart& part : parts) {
+    part.to->recordCopyFrom(cb, upload, at, part.bytes, part.offset);
+    at += part.bytes;
+  }
+  transferToComputeBarrier(cb);
+  cb.end();
+  ctx->submitAndWait(cb);
 }
 
 void VulkanStepper::Impl::writeVelocityBudget(const VelocityBudget& b) {
@@ -230,30 +356,16 @@ void VulkanStepper::load(const Params& params, Film& film) {
   auto make = [&](int binding, size_t bytes) { m.ensureRoom(binding, bytes); };
   make(GB_BINDING_PARAMS, sizeof(Params));
   // The per-particle buffers: as many blocks of n elements as the arrays of device_data.h they hold.
-  std::array<int, GB_BINDING_COUNT> blocks{};
-  forEachParticleArray(s, [&](const auto&, const ParticleArrayInfo& a) {
-    int& held = blocks[static_cast<size_t>(a.binding)];
-    held = std::max(held, a.block + a.components);
-  });
+  const std::array<int, GB_BINDING_COUNT> blocks = particleBlocks(s);
   for (int b = 0; b < GB_BINDING_COUNT; ++b)
     if (blocks[static_cast<size_t>(b)] > 0)
       make(b, static_cast<size_t>(blocks[static_cast<size_t>(b)]) * n * sizeof(float));
-  make(GB_BINDING_BOUNDARY, t.boundary.size() * sizeof(uint32_t));
-  make(GB_BINDING_COLOUR_ORDER, solverListEntries(t) * sizeof(uint32_t));
-  make(GB_BINDING_TRIANGLES, t.triangles.size() * sizeof(uint32_t));
   make(GB_BINDING_REST_LENGTH, t.restLength.size() * sizeof(float));
-  make(GB_BINDING_SPRING_OFFSET, t.springOffset.size() * sizeof(uint32_t));
-  make(GB_BINDING_SPRING_INDEX, t.springIndex.size() * sizeof(uint32_t));
-  make(GB_BINDING_SPRING_NEIGHBOUR, t.springNeighbour.size() * sizeof(uint32_t));
-  make(GB_BINDING_TRIANGLE_OFFSET, t.triangleOffset.size() * sizeof(uint32_t));
-  make(GB_BINDING_TRIANGLE_CORNER, t.triangleCorner.size() * sizeof(uint32_t));
+  m.ensureMeshRoom(t, n);
   m.contactPreviousCapacity = 0;  // the contacts buffer is kept as grown, and grown for these particles below
   m.deviceListEntries = 0;        // the old film's list: the film's own is written below
   const size_t startingEntries = m.contactEntryCapacity > 0 ? 0 : n;  // the room grown for an earlier film is kept
   m.ensureContactRoom(std::max(startingEntries, m.partnerEntriesOf(t.contacts)), 0);
-  make(GB_BINDING_TRIANGLE_NORMAL, 3 * t.triangleCount() * sizeof(float));
-  make(GB_BINDING_CORNER_AREA, 3 * t.triangleCount() * sizeof(float));
-  make(GB_BINDING_REDUCE, reduceFloats(t, n) * sizeof(float));
 
   m.buffer(GB_BINDING_PARAMS).write(&params, sizeof(Params));
   m.airParity = 0;  // each air array into its own buffer
@@ -309,6 +421,99 @@ void VulkanStepper::updateRestLengths(const Film& film) {
   writeVector(m.buffer(GB_BINDING_REST_LENGTH), film.topology.restLength);
 }
 
+bool VulkanStepper::storeRegion(Film& film, std::span<const uint32_t> particles, std::span<const uint32_t> springs) {
+  Impl& m = *impl_;
+  State& s = film.state;
+  if (s.size() != m.particles) throw std::logic_error("VulkanStepper::storeRegion: not the loaded film");
+  const std::vector<IndexRun> particleRuns = runsOf(particles), springRuns = runsOf(springs);
+  const vk::DeviceSize blockBytes = s.size() * sizeof(float);
+  // The arrays store() brings back, each run of each, then the springs' runs, one after the other in the copy.
+  std::vector<Impl::DevicePart> parts;
+  forEachParticleArray(s, [&](const auto& array, const ParticleArrayInfo& info) {
+    if (info.transfer != Transfer::ReadBack) return;
+    forEachComponent(array, [&](const auto&, int c) {
+      for (const IndexRun& run : particleRuns)
+        parts.push_back({&m.holding(info.binding),
+                         static_cast<vk::DeviceSize>(info.block + c) * blockBytes + run.first * sizeof(float),
+                         (run.end - run.first) * sizeof(float)});
+    });
+  });
+  for (const IndexRun& run : springRuns)
+    parts.push_back(
+        {&m.buffer(GB_BINDING_REST_LENGTH), run.first * sizeof(float), (run.end - run.first) * sizeof(float)});
+  if (parts.empty()) return true;
+  m.copyIntoReadback(parts);
+  // The same runs in the same order, out of the copy.
+  vk::DeviceSize at = 0;
+  const auto readRuns = [&](auto* values, const std::vector<IndexRun>& runs) {
+    for (const IndexRun& run : runs) {
+      const vk::DeviceSize bytes = (run.end - run.first) * sizeof(float);
+      m.readFrom(m.readback, values + run.first, bytes, at);
+      at += bytes;
+    }
+  };
+  forEachParticleArray(s, [&](auto& array, const ParticleArrayInfo& info) {
+    if (info.transfer != Transfer::ReadBack) return;
+    forEachComponent(array, [&](auto& values, int) { readRuns(values.data(), particleRuns); });
+  });
+  readRuns(film.topology.restLength.data(), springRuns);
+  return true;
+}
+
+bool VulkanStepper::updateRegion(const Params& params, Film& film, std::span<const uint32_t> particles,
+                                 size_t firstNewParticle, std::span<const uint32_t> springs, size_t firstNewSpring) {
+  Impl& m = *impl_;
+  if (m.sets.empty()) return false;
+  if (firstNewParticle != m.particles) throw std::logic_error("VulkanStepper::updateRegion: not the loaded film");
+  ensureColouring(film.state.alive, film.topology);
+  if (params.coarseIterations > 0) ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
+  const State& s = film.state;
+  const Topology& t = film.topology;
+  m.params = params;
+  m.buffer(GB_BINDING_PARAMS).write(&params, sizeof(Params));
+  const auto n = static_cast<uint32_t>(s.size());
+  if (n != m.particles) m.layOutParticles(particleBlocks(s), n);
+  m.triangles = static_cast<uint32_t>(t.triangleCount());
+  m.growKeeping(GB_BINDING_REST_LENGTH, t.restLength.size() * sizeof(float), firstNewSpring * sizeof(float));
+  m.ensureMeshRoom(t, n);
+  m.ensureContactRoom(0, 0);  // the list the device holds stays, the history of the next search
+  // The region's particles and the new ones, every array; the region's springs and the new ones.
+  std::vector<IndexRun> particleRuns = runsOf(particles), springRuns = runsOf(springs);
+  if (firstNewParticle < n) particleRuns.push_back({static_cast<uint32_t>(firstNewParticle), n});
+  if (firstNewSpring < t.restLength.size())
+    springRuns.push_back({static_cast<uint32_t>(firstNewSpring), static_cast<uint32_t>(t.restLength.size())});
+  const vk::DeviceSize blockBytes = vk::DeviceSize{n} * sizeof(float);
+  std::vector<Impl::HostPart> parts;
+  forEachParticleArray(s, [&](const auto& array, const ParticleArrayInfo& info) {
+    forEachComponent(array, [&](const auto& values, int c) {
+      for (const IndexRun& run : particleRuns)
+        parts.push_back({values.data() + run.first, &m.holding(info.binding),
+                         static_cast<vk::DeviceSize>(info.block + c) * blockBytes + run.first * sizeof(float),
+                         (run.end - run.first) * sizeof(float)});
+    });
+  });
+  for (const IndexRun& run : springRuns)
+    parts.push_back({t.restLength.data() + run.first, &m.buffer(GB_BINDING_REST_LENGTH), run.first * sizeof(float),
+                     (run.end - run.first) * sizeof(float)});
+  m.writeThroughUpload(parts);
+  m.writeConnectivity(t);
+  m.volumeInA = true;  // as a load leaves them
+  m.driftInA = true;
+  m.writeDescriptorSets();
+  // The geometry and film state everywhere at the present positions, as a reloaded film has them: the contact search
+  // reads the normals before the next step makes them anew.
+  StepUniforms u;
+  u.dt = 0.0f;
+  m.uploadSteps(std::span(&u, 1));
+  const vk::raii::CommandBuffer& cb = m.commands;
+  cb.reset();
+  cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+  m.recordGeometryAtPresentPositions(cb, u);
+  cb.end();
+  m.ctx->submitAndWait(cb);
+  return true;
+}
+
 // The state is copied in one submission into host-cached memory and read from there: on a discrete GPU the
 // CPU reads the device's own memory through a mapping (resizable BAR) at uncached speed, which made this the
 // slowest part of a frame on an H100 (docs/performance.md).
@@ -320,6 +525,12 @@ void VulkanStepper::store(Film& film) {
 void VulkanStepper::storePositions(Film& film) {
   const void* position = &film.state.position;
   storeArrays(film, [&](const void* array, const ParticleArrayInfo&) { return array == position; });
+}
+
+void VulkanStepper::storeParticleArrays(Film& film, std::initializer_list<const void*> arrays) {
+  storeArrays(film, [&](const void* array, const ParticleArrayInfo&) {
+    return std::find(arrays.begin(), arrays.end(), array) != arrays.end();
+  });
 }
 
 template <class Chosen>

@@ -2,7 +2,8 @@
 // The Vulkan backend: the stages of cpu-reference/stages/stages.h as compute shaders (kernels/) over one storage
 // buffer per attribute. A batch of substeps is recorded into one command buffer and submitted once, with a
 // barrier only where a stage reads what an earlier one wrote. Topology stays on the CPU: load() takes a
-// changed film, store() brings the state back. The self-collision contacts are found on the device
+// changed film, store() brings the state back; for a ring at the wire storeRegion() and updateRegion() move only the
+// region film growth reads and changes, and the new ring. The self-collision contacts are found on the device
 // (findContacts; kernels/contacts/contact_*.comp), where the sweeps read them.
 
 #include <memory>
@@ -62,6 +63,7 @@ class VulkanStepper final : public Stepper, public DeviceResidency {
   // DeviceResidency:
   void store(Film& film) override;
   void storePositions(Film& film) override;
+  void storeParticleArrays(Film& film, std::initializer_list<const void*> arrays) override;
   void updateContacts(const Film& film) override;
   // The search of findContacts (collision.h) on the device: cells hashed and counting-sorted, each particle gathering
   // its partners by the same pair rule; the list stays on the device for the sweeps and is read back into
@@ -83,6 +85,11 @@ class VulkanStepper final : public Stepper, public DeviceResidency {
   [[nodiscard]] DeviceReadback readback() const override;
   void updateRestLengths(const Film& film) override;
   void updateTopology(const Params& params, Film& film) override;
+  // The region's ranges copied into host-cached memory in one submission, and the region's changes written in
+  // ranges; the per-particle buffers of a grown film laid out for the new count by copies on the device.
+  bool storeRegion(Film& film, std::span<const uint32_t> particles, std::span<const uint32_t> springs) override;
+  bool updateRegion(const Params& params, Film& film, std::span<const uint32_t> particles, size_t firstNewParticle,
+                    std::span<const uint32_t> springs, size_t firstNewSpring) override;
 
   [[nodiscard]] const VulkanContext& context() const;
   // The film's buffers as the last batch left them, for a renderer on the same device to read in place.

@@ -53,6 +53,13 @@ inline void computeToTransferBarrier(const vk::raii::CommandBuffer& cb) {
                      {});
 }
 
+// Makes the copies recorded so far visible to the copies recorded after it.
+inline void transferToTransferBarrier(const vk::raii::CommandBuffer& cb) {
+  const vk::MemoryBarrier barrier(vk::AccessFlagBits::eTransferWrite,
+                                  vk::AccessFlagBits::eTransferRead | vk::AccessFlagBits::eTransferWrite);
+  cb.pipelineBarrier(vk::PipelineStageFlagBits::eTransfer, vk::PipelineStageFlagBits::eTransfer, {}, barrier, {}, {});
+}
+
 // Makes the last copies visible to the host reading their destination after the fence.
 inline void transferToHostBarrier(const vk::raii::CommandBuffer& cb) {
   const vk::MemoryBarrier barrier(vk::AccessFlagBits::eTransferWrite, vk::AccessFlagBits::eHostRead);
@@ -90,6 +97,8 @@ struct VulkanStepper::Impl {
   DeviceBuffer readback;                      // host-cached copy of the state store() brings back, and of reads
                                               // larger than kDirectReadBytes
   DeviceBuffer statisticsReadback;            // host-cached copy of the frame's statistics and checks (probeFilm)
+  DeviceBuffer relayout;                      // the per-particle buffers' contents while a grown film's are laid out
+  DeviceBuffer upload;                        // host memory the ranges updateRegion writes are copied from
 
   // The device contact search's room in the contacts buffer (shared_step.h's contact regions).
   VulkanStepperOptions options;
@@ -125,6 +134,17 @@ struct VulkanStepper::Impl {
   // The mesh: the arrays that travel with it (alive flags), wire flags, triangles, rest lengths, the CSR one-ring and
   // the contacts. A load writes it with the state; a burst (updateTopology) writes only it.
   void writeMesh(const State& s, const Topology& t);
+  // The mesh's connectivity, which only the host changes: wire flags, triangles, the CSR one-ring, the solver's lists
+  // (updateRegion writes it with the region's rest lengths, keeping the device's own).
+  void writeConnectivity(const Topology& t);
+  // Room for the mesh's connectivity and the per-triangle and reduce buffers, for n particles.
+  void ensureMeshRoom(const Topology& t, size_t n);
+
+  // The per-particle buffers laid out for `count` particles (each holds `blocks` blocks of `particles` elements, and a
+  // block's place moves with the count): copied on the device through `relayout`, old particles keeping their values.
+  void layOutParticles(const std::array<int, GB_BINDING_COUNT>& blocks, uint32_t count);
+  // A buffer of `binding` with room for `bytes` whose first `keptBytes` stay (copied on the device where it grows).
+  void growKeeping(int binding, size_t bytes, size_t keptBytes);
 
   // The VelocityBudget implicit_velocity applies (ENERGY_VELOCITY_SCALE, ENERGY_CENTRE, ENERGY_SHIFT), as the energy
   // budget leaves it.
@@ -144,6 +164,18 @@ struct VulkanStepper::Impl {
   };
   // Copies the parts one after the other into `readback` (grown to fit) in one submission, and waits for it.
   void copyIntoReadback(std::span<const DevicePart> parts);
+  // A range of host memory and where it goes on the device.
+  struct HostPart {
+    const void* from;
+    DeviceBuffer* to;
+    vk::DeviceSize offset, bytes;
+  };
+  // Writes the parts through `upload` (grown to fit) in one submission, and waits for it: many small ranges cost one
+  // submission, where a write to device-only memory costs one each.
+  void writeThroughUpload(std::span<const HostPart> parts);
+  // A copy of `bytes` on the device, between the compute work before and after it.
+  void copyOnDevice(const DeviceBuffer& from, vk::DeviceSize fromOffset, const DeviceBuffer& to,
+                    vk::DeviceSize toOffset, vk::DeviceSize bytes);
 
   [[nodiscard]] VelocityBudget readVelocityBudget();
 
@@ -235,6 +267,10 @@ struct VulkanStepper::Impl {
 
   // The list the last search left, into `contacts` (Topology::contacts).
   void readContactList(std::vector<uint32_t>& contacts);
+
+  // The geometry and the film state at the film's present positions (the stages geometry and film_state with the
+  // uniforms u, whose dt is 0), as CpuStepper::refreshGeometry makes them in host memory; ends with a barrier.
+  void recordGeometryAtPresentPositions(const vk::raii::CommandBuffer& cb, const StepUniforms& u);
 
   // The frame's statistics and film checks: with probe.atPresentPositions the geometry and the film state at the
   // film's present positions first (what CpuStepper::refreshGeometry does to a film in host memory: the next step's

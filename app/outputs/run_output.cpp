@@ -148,6 +148,8 @@ void RunRecord::writeJson(const std::filesystem::path& path, const std::string& 
       {"frames_without_event", readback_.framesWithoutEvent},
       {"frames_passed_by_checks", readback_.framesPassed},
       {"frames_held_by_rule", readback_.framesHeldByRule},
+      {"state_readbacks_held_by_rule", readback_.stateReadbacksHeldByRule},
+      {"bytes_held_by_rule", readback_.bytesHeldByRule},
       {"bytes_per_frame", perFrame(readback_.bytes, readback_.frames)},
       {"bytes_per_frame_without_event", perFrame(readback_.bytesWithoutEvent, readback_.framesWithoutEvent)}};
   j["first_frame"] = frameJson(first_);
@@ -292,8 +294,14 @@ std::string RunRecord::story() const {
     text += lines;
     if (!readback_.framesHeldByRule.empty()) {
       std::string held;
-      for (const auto& [rule, frames] : readback_.framesHeldByRule)
-        held += (held.empty() ? "" : ", ") + rule + " " + std::to_string(frames);
+      for (const auto& [rule, frames] : readback_.framesHeldByRule) {
+        const auto bytes = readback_.bytesHeldByRule.find(rule), states = readback_.stateReadbacksHeldByRule.find(rule);
+        char moved[96];
+        std::snprintf(moved, sizeof moved, " (the state %zu, %.0f KiB)",
+                      states == readback_.stateReadbacksHeldByRule.end() ? size_t{0} : states->second,
+                      bytes == readback_.bytesHeldByRule.end() ? 0.0 : static_cast<double>(bytes->second) / 1024.0);
+        held += (held.empty() ? "" : ", ") + rule + " " + std::to_string(frames) + moved;
+      }
       std::snprintf(lines, sizeof lines, "%-28s %s\n", "frames held by the rule", held.c_str());
       text += lines;
     }

@@ -285,13 +285,19 @@ void Simulation::advanceFrame(const WandState& next) {
   time_ += params_.frameTime;
   // The rules between steps read the state in host memory: it comes back only when the device's checks say one of
   // them may act.
+  heldForARegion_ = false;
+  heldRule_ = nullptr;
   const bool passed = stateStaysOnDevice_ && passesOnDevice(next, wandSpeed);
-  if (!passed) pullState();
+  if (!passed && !heldForARegion_) pullState();
   const auto stepped = Clock::now();
-  if (passed)
+  if (passed) {
     ++readbackRecord_.framesPassed;
-  else
+  } else if (heldForARegion_) {  // applyRulesBetweenSteps where the checks let pass all that reads the whole state
+    events_ = {};
+    applyRulesOfAnUnbrokenFilm(next, wandSpeed);
+  } else {
     applyRulesBetweenSteps(next, wandSpeed);
+  }
   if (mergeDue()) framesSinceMerge_ = 0;  // its turn taken, on whichever path the frame went
   const auto changed = Clock::now();
   updateContacts();
@@ -321,6 +327,8 @@ bool Simulation::passesOnDevice(const WandState& next, float wandSpeed) {
   }
   if (const char* rule = ruleThatMayAct(*checks, next, wandSpeed, true)) {
     ++readbackRecord_.framesHeldByRule[rule];
+    heldRule_ = rule;
+    heldForARegion_ = aRegionServes(*checks, next, wandSpeed);
     return false;
   }
   for (int w = 0; w < 2; ++w)  // burstOnWandTouch's arming, far from its threshold (ruleThatMayAct)
@@ -340,28 +348,76 @@ void Simulation::applyRulesBetweenSteps(const WandState& next, float wandSpeed) 
     else
       stepper_->load(params_, film_);
   }
-  if (!burst_.active()) {
-    // Only a film being drawn yields: a free bubble's wobbles are elastic, so it rounds up again instead of
-    // keeping every dent its momentum makes. A free bubble contracts where it goes slack instead: the long bag it
-    // was drawn as holds about 1.6 times the surface of a sphere of its air, which otherwise hangs in wrinkles
-    // (and fills the contact lists). The open bag is not contracted: it is slack where the air has not yet filled
-    // it, and there it is still being drawn.
-    if (yieldApplies()) {
-      if (device() && device()->yieldStretchedSprings())
-        restLengthsOnDevice_ = true;
-      else if (yieldStretchedSprings(params_, film_) > 0)
-        updateDeviceRestLengths();
-    }
-    // What contraction and merging add to the springs, the step's dissipation pays (SpringEnergyAllowance). The
-    // merges, which remake the mesh and reload the stepper, run every mergeInterval frames.
-    SpringEnergyAllowance allowance{stepper_->lastBudget().released};
-    if (contractionApplies()) contractSlackSpringsWhereTheyLie(allowance);
-    if (mergeDue() && mergeCrowdedParticlesInRounds(params_, film_, allowance) > 0) reloadFilm();
-    growFilm(next, wandSpeed);
+  if (!burst_.active()) applyRulesOfAnUnbrokenFilm(next, wandSpeed);
+  if (tipsTogether(next) && !film_.topology.isClosed() && !burst_.active()) events_.pinchedOff = pinch();
+}
+
+void Simulation::applyRulesOfAnUnbrokenFilm(const WandState& next, float wandSpeed) {
+  // Only a film being drawn yields: a free bubble's wobbles are elastic, so it rounds up again instead of
+  // keeping every dent its momentum makes. A free bubble contracts where it goes slack instead: the long bag it
+  // was drawn as holds about 1.6 times the surface of a sphere of its air, which otherwise hangs in wrinkles
+  // (and fills the contact lists). The open bag is not contracted: it is slack where the air has not yet filled
+  // it, and there it is still being drawn.
+  if (yieldApplies()) yieldStretchedSpringsWhereTheyLie();
+  // What contraction and merging add to the springs, the step's dissipation pays (SpringEnergyAllowance). The
+  // merges, which remake the mesh and reload the stepper, run every mergeInterval frames.
+  SpringEnergyAllowance allowance{stepper_->lastBudget().released};
+  if (contractionApplies()) contractSlackSpringsWhereTheyLie(allowance);
+  if (mergeDue()) mergeCrowdedParticlesWhereTheyLie(allowance);
+  growFilm(next, wandSpeed);
+}
+
+void Simulation::mergeCrowdedParticlesWhereTheyLie(SpringEnergyAllowance& allowance) {
+  if (!stateOnDevice_ || !device()->storeRegion(film_, {}, {})) {  // the film in host memory, or a whole stepper
+    pullState();
+    if (mergeCrowdedParticlesInRounds(params_, film_, allowance) > 0) reloadFilm();
+    return;
   }
-  const bool tipsTogether =
-      film_.tool.kind == ToolKind::TwoWands && (next.rightPosition - next.leftPosition).norm() < params_.pinchDistance;
-  if (tipsTogether && !film_.topology.isClosed() && !burst_.active()) events_.pinchedOff = pinch();
+  // The state stayed on the device. What the merges choose by, they read of every particle and spring: the positions,
+  // thickness and elasticity, and the rest lengths. Tried on a copy of the film, they name the particles they merge,
+  // whose state alone then comes back for the merges on the film; they choose the same again.
+  if (restLengthsOnDevice_) {
+    device()->storeRestLengths(film_);
+    restLengthsOnDevice_ = false;
+  }
+  State& s = film_.state;
+  device()->storeParticleArrays(film_, {&s.position, &s.thickness, &s.elasticity});
+  positionsOnDevice_ = false;  // the merges keep them current in host memory
+  Film trial = film_;
+  SpringEnergyAllowance trialAllowance = allowance;
+  if (mergeCrowdedParticlesInRounds(params_, trial, trialAllowance) == 0) return;
+  std::vector<uint32_t> merged;  // the survivors, with their mass grown, and the particles merged into them
+  for (uint32_t i = 0; i < s.size(); ++i)
+    if (trial.state.alive[i] != s.alive[i] || trial.state.mass[i] != s.mass[i]) merged.push_back(i);
+  if (!device()->storeRegion(film_, merged, {}))
+    throw std::logic_error("Simulation: a stepper that brings back regions brings back every region");
+  mergeCrowdedParticlesInRounds(params_, film_, allowance);
+  reloadRegion({merged, {}}, s.size(), 0);  // every rest length: the springs were made anew
+}
+
+void Simulation::yieldStretchedSpringsWhereTheyLie() {
+  if (device() && device()->yieldStretchedSprings()) {
+    restLengthsOnDevice_ = true;
+    return;
+  }
+  pullState();
+  if (yieldStretchedSprings(params_, film_) > 0) updateDeviceRestLengths();
+}
+
+bool Simulation::aRegionServes(const FilmChecks& checks, const WandState& next, float wandSpeed) const {
+  FilmChecks others = checks;
+  others.yielding = 0;  // the rest-length rules run where the state lies
+  others.slack = 0;
+  others.rungsPastGrowth = 0;
+  const char* rule = ruleThatMayAct(others, next, wandSpeed, true);
+  if (rule == nullptr || params_.integrator == 0) return false;  // the explicit integrator's substeps read the state
+  const std::string_view first = rule;
+  return (first == "ring" && !tipsTogether(next)) || first == "merge";  // a closed film: no ring, no pinch-off
+}
+
+bool Simulation::tipsTogether(const WandState& wands) const {
+  return film_.tool.kind == ToolKind::TwoWands &&
+         (wands.rightPosition - wands.leftPosition).norm() < params_.pinchDistance;
 }
 
 DeviceReadback Simulation::deviceReadback() const { return device() ? device()->readback() : DeviceReadback{}; }
@@ -383,6 +439,10 @@ void Simulation::recordReadback(long loadsBefore) {
   ++r.frames;
   r.stateReadbacks += now.stateReadbacks - before.stateReadbacks;
   r.bytes += bytes;
+  if (heldRule_) {
+    r.stateReadbacksHeldByRule[heldRule_] += now.stateReadbacks - before.stateReadbacks;
+    r.bytesHeldByRule[heldRule_] += bytes;
+  }
   if (!topologyEvent) {
     ++r.framesWithoutEvent;
     r.bytesWithoutEvent += bytes;
@@ -406,10 +466,12 @@ void Simulation::contractSlackSpringsWhereTheyLie(SpringEnergyAllowance& allowan
   // the frame describe the film still, unless the burst took particles since.
   std::optional<FilmChecks> checks = events_.particlesRemoved == 0 ? heldChecks_ : std::nullopt;
   if (!checks) checks = checksOnDevice(false);
-  if (checks && checks->slack > 0 && contractOnDevice(*checks, allowance)) {
-    pullState();  // the rest lengths, for the merges
+  if (checks && checks->slack == 0) return;  // the checks, loosened towards acting, find no slack spring
+  if (checks && contractOnDevice(*checks, allowance)) {
+    if (!stateOnDevice_) pullState();  // the rest lengths, for the merges (which bring them back where they lie)
     return;
   }
+  pullState();
   if (contractSlackSprings(params_, film_, allowance) > 0) updateDeviceRestLengths();
 }
 
@@ -457,9 +519,7 @@ const char* Simulation::ruleThatMayAct(const FilmChecks& c, const WandState& nex
   if (deviceRules && wandSpeed >= kDrawingSpeed && film_.wireLiquid > 0.0f && c.rungsPastGrowth > 0) return "payout";
   if (wireBandWidthOf(c.rungRest, c.rungs, c.wireEdgeLength, c.wireEdges) >= kRingInsertionWidth * (1.0f - m))
     return "ring";
-  const bool tipsTogether =
-      film_.tool.kind == ToolKind::TwoWands && (next.rightPosition - next.leftPosition).norm() < p.pinchDistance;
-  return tipsTogether && !topo.isClosed() ? "pinch" : nullptr;
+  return tipsTogether(next) && !topo.isClosed() ? "pinch" : nullptr;
 }
 
 void Simulation::pullState() const {
@@ -530,15 +590,33 @@ bool Simulation::payoutApplies(float wandSpeed) const {
 void Simulation::growFilm(const WandState& wands, float wandSpeed) {
   const bool paidOnDevice = payoutApplies(wandSpeed) && device() && device()->payOutFilmAtWire();
   if (paidOnDevice) restLengthsOnDevice_ = true;
-  pullState();  // the rest lengths the device's rules changed: the ring insertion reads them, the payout uploads them
+  // What the ring insertion reads: where the state stayed on the device, the region it reads (with the rest lengths
+  // there where the device's rules changed them); otherwise the state and the rest lengths the device's rules
+  // changed, which the payout uploads.
+  const FilmRegion region = stateOnDevice_ ? wireGrowthRegion(film_) : FilmRegion{};
+  const bool inRegion =
+      stateOnDevice_ &&
+      device()->storeRegion(film_, region.particles, restLengthsOnDevice_ ? region.springs : std::vector<uint32_t>{});
+  if (!inRegion) pullState();
+  const size_t firstParticle = film_.state.size(), firstSpring = film_.topology.springCount();
   const WireFrame frame = wireFrame(wands);
   const GrowthEvent grew = growFilmAtWire(params_, frame, wandSpeed, film_, !paidOnDevice);
-  if (grew.particlesAdded == 0) {
-    if (grew.restLengthsChanged > 0) updateDeviceRestLengths();
-    return;
-  }
   events_.particlesAdded = grew.particlesAdded;
-  reloadFilm();
+  if (inRegion && (grew.particlesAdded > 0 || grew.restLengthsChanged > 0))
+    reloadRegion(region, firstParticle, firstSpring);
+  else if (grew.particlesAdded > 0)
+    reloadFilm();
+  else if (grew.restLengthsChanged > 0)
+    updateDeviceRestLengths();
+}
+
+void Simulation::reloadRegion(const FilmRegion& region, size_t firstParticle, size_t firstSpring) {
+  checksForNextFrame_.reset();  // of the film before it changed
+  ++loads_;
+  geometryFresh_ = false;  // in host memory only the region's: stats() probes the device's
+  chooseSubsteps();
+  if (!device() || !device()->updateRegion(params_, film_, region.particles, firstParticle, region.springs, firstSpring))
+    throw std::logic_error("Simulation: a stepper that brings back regions takes them back too");
 }
 
 void Simulation::reloadFilm() {

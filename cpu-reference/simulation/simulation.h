@@ -151,6 +151,10 @@ class Simulation {
     // The other frames on which the device checked the film, by the first rule its checks said may act
     // (Simulation::ruleThatMayAct's names).
     std::map<std::string, long> framesHeldByRule;
+    // What those frames copied, by the same rule: whole-state read-backs and bytes (the event's kind: a ring at the
+    // wire brings back the region it reads, a merge or a burst the whole state).
+    std::map<std::string, size_t> stateReadbacksHeldByRule;
+    std::map<std::string, uint64_t> bytesHeldByRule;
     size_t stateReadbacks = 0;
     uint64_t bytes = 0;
     uint64_t bytesWithoutEvent = 0;
@@ -176,6 +180,21 @@ class Simulation {
   // and the stepper's copy made anew.
   void reloadFilm();
   void growFilm(const WandState& wands, float wandSpeed);
+  // The rules of a film no burst is taking (applyRulesBetweenSteps): the rest-length rules, the merges and growth at
+  // the wire, each where the state lies. A film whose state stayed on the device brings back the region a ring at
+  // the wire reads (wireGrowthRegion), or what the merges choose by and the particles they merge.
+  void applyRulesOfAnUnbrokenFilm(const WandState& next, float wandSpeed);
+  void mergeCrowdedParticlesWhereTheyLie(SpringEnergyAllowance& allowance);
+  // After a rule changed `region` of a film left on the device and appended particles and springs from the first
+  // new ones on: the stepper takes the region and the new ones (Stepper::updateRegion).
+  void reloadRegion(const FilmRegion& region, size_t firstParticle, size_t firstSpring);
+  // The yield of stretched springs on the stepper's device, or on the film in host memory.
+  void yieldStretchedSpringsWhereTheyLie();
+  // Whether the checks that held a frame leave its rules on the CPU to a region of the film: the first that may act,
+  // besides those the device runs, is a ring at the wire (the tips not together for a pinch-off) or the merges.
+  [[nodiscard]] bool aRegionServes(const FilmChecks& checks, const WandState& next, float wandSpeed) const;
+  // Whether two wand tips are close enough for the open film between them to pinch off (Params::pinchDistance).
+  [[nodiscard]] bool tipsTogether(const WandState& wands) const;
   void burstOnHardImpact();
   void burstOnWandTouch();
   void burstOnFloorTouch();
@@ -236,6 +255,9 @@ class Simulation {
   std::optional<FilmChecks> checksForNextFrame_;
   // The checks that held this frame for the rules on the CPU (passesOnDevice), of the film as the step left it.
   std::optional<FilmChecks> heldChecks_;
+  // The frame was held for rules that a region of the film serves (aRegionServes): its state stays on the device.
+  bool heldForARegion_ = false;
+  const char* heldRule_ = nullptr;  // the rule that held this frame (ruleThatMayAct's name), null where none did
   std::unique_ptr<Stepper> stepper_;
   BurstFront burst_;
   Aerosol aerosol_;
@@ -256,7 +278,7 @@ class Simulation {
   int framesSinceMerge_ = 0;  // a closed film's frames since its crowded particles last could merge
   ReadbackRecord readbackRecord_;
   DeviceReadback readbackRecorded_;  // the stepper's copies counted up to the last frame's record
-  long loads_ = 0;                   // reloadFilm calls: a merge's or a growth's new film on the stepper
+  long loads_ = 0;  // reloadFilm and reloadRegion calls: a merge's or a growth's new film on the stepper
 };
 
 }  // namespace gb

@@ -6,6 +6,8 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <initializer_list>
+#include <span>
 
 #include "film.h"
 #include "film_checks.h"
@@ -40,6 +42,20 @@ class DeviceResidency {
   // Brings back only the particles' positions (a renderer drawing the stepper's buffers in place frames the film
   // from them).
   virtual void storePositions(Film& film) = 0;
+  // Brings back the per-particle arrays of film.state listed (by address) for every particle: what a rule between
+  // steps reads of the whole film (the merges choose by the positions, thickness and elasticity).
+  virtual void storeParticleArrays(Film& film, std::initializer_list<const void*> arrays) = 0;
+  // Brings back a region of the film where a rule between steps reads it, not the whole state: the per-particle state
+  // store() brings back, of the particles listed, and the rest lengths of the springs listed (both ascending). False
+  // where the stepper brings back nothing by regions (the caller then calls store()).
+  virtual bool storeRegion(Film& film, std::span<const uint32_t> particles, std::span<const uint32_t> springs) = 0;
+  // Takes a film that a rule between steps changed in a region and may have grown (film growth at the wire appends
+  // particles, springs and triangles, old indices staying): the per-particle arrays of the particles listed and of
+  // those from firstNewParticle on, the rest lengths of the springs listed and of those from firstNewSpring on, and the
+  // mesh's connectivity. Everything else the stepper holds stays, its state included, and its contact list stays the
+  // history of the next search. False where the stepper takes only whole films (the caller then calls Stepper::load).
+  virtual bool updateRegion(const Params& params, Film& film, std::span<const uint32_t> particles,
+                            size_t firstNewParticle, std::span<const uint32_t> springs, size_t firstNewSpring) = 0;
   // Takes a film whose mesh changed but whose particles did not move or change (a burst removed springs and
   // triangles and flagged particles dead): writes only the topology and the alive flags and keeps the state on the
   // device; a load (Stepper::load) whenever the particle count changed.

@@ -459,6 +459,35 @@ float wireBandWidthOf(double rungRest, double rungs, double edgeLength, double e
 
 bool wireLoopIntact(const Film& film) { return !intactWireLoop(film).empty(); }
 
+FilmRegion wireGrowthRegion(const Film& film) {
+  const Topology& topo = film.topology;
+  std::vector<char> in(topo.boundary.size(), 0);
+  std::vector<uint32_t> ring;  // the particles the last pass added
+  FilmRegion region;
+  for (uint32_t i = 0; i < topo.boundary.size(); ++i)
+    if (topo.boundary[i]) {
+      in[i] = 1;
+      ring.push_back(i);
+      for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k)
+        region.springs.push_back(topo.springIndex[k]);
+    }
+  for (int pass = 0; pass < 2; ++pass) {  // the band joined to the wire's ring, and the ring around the band
+    std::vector<uint32_t> next;
+    for (uint32_t i : ring)
+      for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k)
+        if (const uint32_t j = topo.springNeighbour[k]; !in[j]) {
+          in[j] = 1;
+          next.push_back(j);
+        }
+    ring = std::move(next);
+  }
+  for (uint32_t i = 0; i < in.size(); ++i)
+    if (in[i]) region.particles.push_back(i);
+  std::sort(region.springs.begin(), region.springs.end());
+  region.springs.erase(std::unique(region.springs.begin(), region.springs.end()), region.springs.end());
+  return region;
+}
+
 GrowthEvent growFilmAtWire(const Params& params, const WireFrame& frame, float wandSpeed, Film& film, bool payOut) {
   GrowthEvent event;
   if (payOut && wandSpeed >= kDrawingSpeed) event.restLengthsChanged = payOutFilmAtWire(params, film);

@@ -113,4 +113,15 @@ GrowthEvent growFilmAtWire(const Params& params, const WireFrame& frame, float w
 // Whether the film is open and intact, with one boundary loop on its wire: where the wire pays out film.
 bool wireLoopIntact(const Film& film);
 
+// A region of a film: particles and springs, each ascending.
+struct FilmRegion {
+  std::vector<uint32_t> particles, springs;
+};
+// What growFilmAtWire reads of a film's per-particle state and rest lengths, and all it changes of the particles and
+// springs the film had: the wire's particles and the two rings of film inside them (the wire's ring moves along its
+// rungs, the film joined to it takes new geometry and liquid, and its triangles reach one ring further), and the
+// springs of the wire's particles (the rungs, whose rest lengths measure the band and are made anew). A film whose
+// state lies on a device brings back this much for a ring at the wire (Stepper::storeRegion).
+FilmRegion wireGrowthRegion(const Film& film);
+
 }  // namespace gb

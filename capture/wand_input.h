@@ -29,6 +29,10 @@ struct WandFrame {
   Vec3 leftHand = Vec3::Constant(NAN);  // the newest measured input hands, world space (NaN: not measured)
   Vec3 rightHand = Vec3::Constant(NAN);
   double handsAge = 0.0;  // s since the newest hands arrived from a camera read beside the frame loop (0: not known)
+  // The performer's depth points, world space, mapped as the hands are, from the newest depth frame taken (none
+  // without a depth camera), and that frame's run time.
+  std::shared_ptr<const std::vector<Vec3>> body;
+  double bodyTime = 0.0;
 };
 
 class WandInput {
@@ -144,6 +148,10 @@ class StabilizedWands : public WandInput {
   double lastMeasured_[2] = {0.0, 0.0};
   bool reportedLost_[2] = {false, false};
   HandSample latest_;
+  // The newest sample's body points in the world, made once per depth frame (at).
+  std::shared_ptr<const std::vector<Eigen::Vector3f>> bodyInCamera_;
+  std::shared_ptr<const std::vector<Vec3>> bodyInWorld_;
+  double bodyTime_ = 0.0;
   std::string describe_;
   [[nodiscard]] double period() const;  // the source's, at least kMinSamplePeriod
   bool fetch();                         // reads one more sample into ahead_; false when there are no more

@@ -48,21 +48,22 @@ TEST(BodyTouch, TheGridFindsTheNearestPointAScanFinds) {
 
 TEST(BodyTouch, APalmAtTheBubbleTouchesItAndOneAtTheGripDoesNot) {
   const Film film = bubble();
+  std::vector<uint8_t> armed(film.state.size(), 1);  // every particle has been clear of the body
   BodyTouch touch;
   // A palm 1 cm in front of the bubble's front pole (z = 0.3): within the 2 cm touch distance of the pole.
   BodyPoints body{patch(0.0f, 1.5f, 0.31f, 0.05f, 0.005f), {}, 0.0};
   touch.setBody(body);
-  const std::vector<Touch> touching = touch.touches(film.state);
+  const std::vector<Touch> touching = touch.touches(film.state, armed);
   ASSERT_FALSE(touching.empty()) << "a palm 1 cm from the film touches it";
   for (const Touch& t : touching) EXPECT_GT(t.position.z(), 0.25f) << "only the front pole touches";
   ASSERT_TRUE(touch.burstingTouch(touching)) << "dry skin bursts a film at any speed";
   // The same palm holding a wand (a grip 5 cm from it, within the 15 cm grip radius): left out.
   body.grips = {Vec3(0.0f, 1.5f, 0.36f)};
   touch.setBody(body);
-  EXPECT_TRUE(touch.touches(film.state).empty()) << "the hand on the wand does not burst its own film";
+  EXPECT_TRUE(touch.touches(film.state, armed).empty()) << "the hand on the wand does not burst its own film";
   // A palm 5 cm away: no touch.
   touch.setBody({patch(0.0f, 1.5f, 0.35f, 0.05f, 0.005f), {}, 0.1});
-  EXPECT_TRUE(touch.touches(film.state).empty());
+  EXPECT_TRUE(touch.touches(film.state, armed).empty());
 }
 
 TEST(BodyTouch, ATouchsApproachSpeedIsTheBodysClosingOverItsLastFrame) {
@@ -70,23 +71,25 @@ TEST(BodyTouch, ATouchsApproachSpeedIsTheBodysClosingOverItsLastFrame) {
   // before is measured at the particle's position to the nearest point, and the front pole's particle sits within
   // a few millimetres of the palm's axis.
   const Film film = bubble();
+  std::vector<uint8_t> armed(film.state.size(), 1);
   BodyTouch touch;
   touch.setBody({patch(0.0f, 1.5f, 0.37f, 0.05f, 0.005f), {}, 0.0});
   touch.setBody({patch(0.0f, 1.5f, 0.31f, 0.05f, 0.005f), {}, 1.0 / 30.0});
-  const std::vector<Touch> touching = touch.touches(film.state);
+  const std::vector<Touch> touching = touch.touches(film.state, armed);
   ASSERT_FALSE(touching.empty());
   EXPECT_NEAR(touching.front().approachSpeed, 1.8f, 0.3f);
 }
 
 TEST(BodyTouch, WetHandsPushTheFilmAndOnlyAStrikeBurstsIt) {
   Film film = bubble();
+  std::vector<uint8_t> armed(film.state.size(), 1);
   TouchOptions wet;
   wet.wetHands = true;
   BodyTouch touch(wet);
   // A slow palm (3 cm in a 1/30 s frame: 0.9 m/s, under the 1.5 m/s strike speed) 5 mm into the film.
   touch.setBody({patch(0.0f, 1.5f, 0.325f, 0.08f, 0.005f), {}, 0.0});
   touch.setBody({patch(0.0f, 1.5f, 0.295f, 0.08f, 0.005f), {}, 1.0 / 30.0});
-  std::vector<Touch> touching = touch.touches(film.state);
+  std::vector<Touch> touching = touch.touches(film.state, armed);
   ASSERT_FALSE(touching.empty());
   EXPECT_FALSE(touch.burstingTouch(touching)) << "a wet hand passes through a film at 0.9 m/s";
   EXPECT_GT(touch.push(film.state, touching), 0u);
@@ -99,10 +102,28 @@ TEST(BodyTouch, WetHandsPushTheFilmAndOnlyAStrikeBurstsIt) {
   Film struck = bubble();
   touch.setBody({patch(0.0f, 1.5f, 0.445f, 0.08f, 0.005f), {}, 2.0 / 30.0});
   touch.setBody({patch(0.0f, 1.5f, 0.295f, 0.08f, 0.005f), {}, 3.0 / 30.0});
-  touching = touch.touches(struck.state);
+  touching = touch.touches(struck.state, armed);
   const std::optional<Touch> burst = touch.burstingTouch(touching);
   ASSERT_TRUE(burst) << "a strike faster than the strike speed bursts even a wet film";
   EXPECT_GT(burst->approachSpeed, wet.strikeSpeed);
+}
+
+TEST(BodyTouch, AFilmMadeInsideTheBodyTouchesItOnlyOnceDrawnClear) {
+  // Hands held at the sides make the film across the hips: it passes through the body until it has been clear of it.
+  const Film film = bubble();
+  std::vector<uint8_t> armed;  // a new film: none armed
+  BodyTouch touch;
+  touch.setBody({patch(0.0f, 1.5f, 0.31f, 0.05f, 0.005f), {}, 0.0});
+  EXPECT_TRUE(touch.touches(film.state, armed).empty()) << "the pole made inside the palm is not yet armed";
+  EXPECT_EQ(armed.size(), film.state.size());
+  touch.setBody({patch(0.0f, 1.5f, 0.36f, 0.05f, 0.005f), {}, 0.1});  // 5 cm clear: not yet the 10 cm to arm
+  EXPECT_TRUE(touch.touches(film.state, armed).empty());
+  touch.setBody({patch(0.0f, 1.5f, 0.31f, 0.05f, 0.005f), {}, 0.15});
+  EXPECT_TRUE(touch.touches(film.state, armed).empty()) << "jitter within the arming distance does not arm it";
+  touch.setBody({patch(0.0f, 1.5f, 0.42f, 0.05f, 0.005f), {}, 0.1});  // drawn clear: every particle armed
+  EXPECT_TRUE(touch.touches(film.state, armed).empty());
+  touch.setBody({patch(0.0f, 1.5f, 0.31f, 0.05f, 0.005f), {}, 0.2});  // and back: now it touches
+  EXPECT_FALSE(touch.touches(film.state, armed).empty());
 }
 
 TEST(BodyTouch, AFarFlungCloudCostsNoMoreThanTheGridsCap) {

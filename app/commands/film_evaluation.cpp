@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "input_options.h"
+#include "performer_touch.h"
 #include "simulation.h"
 #include "trajectory_metrics.h"
 
@@ -83,6 +84,7 @@ FilmLife playFilmOnRecording(const DepthRecording& recording, const FilmEvaluati
   for (long k = 1; k <= frames; ++k) {
     const double t = static_cast<double>(k) * h;
     frame = input->at(t);
+    givePerformerBody(sim, frame);
     sim.advanceFrame(frame.wands);
     const TopologyEvents& events = sim.lastEvents();
     if (events.pinchedOff && !burst) life.pinchedOff = true;

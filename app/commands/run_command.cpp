@@ -16,6 +16,7 @@
 #include "interrupt.h"
 #include "osc_events.h"
 #include "output_file.h"
+#include "performer_touch.h"
 #include "realtime_pacer.h"
 #include "run_output.h"
 #include "simulation.h"
@@ -288,6 +289,7 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
     if (frame == poke && pokeTop(sim)) events += "poked ";  // nothing to poke once the film is gone
     threads.update();
     try {
+      givePerformerBody(sim, wands);
       sim.advanceFrame(wands.wands);
     } catch (const SimulationUnstable& e) {
       bar.finish();

@@ -208,6 +208,7 @@ std::string burstCauseInWords(const std::string& cause) {
   if (cause == "thin") return "thinned out";
   if (cause == "floor") return "touched the floor";
   if (cause == "wand") return "touched a wand";
+  if (cause == "touch") return "touched by the performer";
   if (cause == "impact") return "hit itself";
   if (cause == "poke") return "poked";
   return cause;

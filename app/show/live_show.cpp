@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "cpu_stepper.h"
+#include "performer_touch.h"
 #include "run_output.h"
 #include "scripted_gestures.h"
 #include "vulkan_stepper.h"
@@ -653,6 +654,7 @@ void LiveShow::advanceStep(int frames) {
   try {
     sim_->setFrameTime(run_.params.frameTime * static_cast<float>(frames));
     threads_->update();
+    givePerformerBody(*sim_, hands_);
     sim_->advanceFrame(wands_);
     const FrameStats stats = sim_->stats();
     std::string events = describeEvents(sim_->lastEvents());

@@ -322,6 +322,10 @@ bool Simulation::passesOnDevice(const WandState& next, float wandSpeed) {
     ++readbackRecord_.framesHeldByRule[rule];
     return false;
   }
+  if (touch_.hasBody() && !burst_.active()) {  // the body's touch is tested on the film in host memory
+    ++readbackRecord_.framesHeldByRule["touch"];
+    return false;
+  }
   for (int w = 0; w < 2; ++w)  // burstOnWandTouch's arming, far from its threshold (ruleThatMayAct)
     wandArmed_[w] = wandArmed_[w] || checks->nearestTip[w] > params_.pinchDistance;
   events_ = {};
@@ -331,6 +335,7 @@ bool Simulation::passesOnDevice(const WandState& next, float wandSpeed) {
 void Simulation::applyRulesBetweenSteps(const WandState& next, float wandSpeed) {
   checkStable();
   burstOnWandTouch();
+  touchByBody();
   burstOnFloorTouch();
   events_ = advanceBurst(params_, time_, film_, burst_, aerosol_);
   if (events_.particlesRemoved > 0) stepper_->updateTopology(params_, film_);  // the mesh shrank
@@ -500,6 +505,25 @@ void Simulation::burstOnWandTouch() {
   }
 }
 
+void Simulation::setBody(const BodyPoints& body) {
+  if (body.time == bodyTime_ && touch_.hasBody()) return;  // the same depth frame: its grid is built
+  touch_.setBody(body);
+  bodyTime_ = body.time;
+}
+
+void Simulation::touchByBody() {
+  if (!touch_.hasBody() || burst_.active()) return;
+  const std::vector<Touch> touching = touch_.touches(film_.state, touchArmed_);
+  if (touching.empty()) return;
+  if (const std::optional<Touch> burst = touch_.burstingTouch(touching)) {
+    startCrack(burst_, film_, burst->particle, time_, "touch");
+    lastTouch_ = burst;
+  } else if (touch_.push(film_.state, touching) > 0) {
+    stepper_->load(params_, film_);  // wet hands moved the film: the stepper takes it as it now is
+    ++loads_;
+  }
+}
+
 void Simulation::burstOnFloorTouch() {
   // A soap film bursts on a dry floor: the step lets particles land on y = 0 (and slide), this pops them.
   if (burst_.active()) return;
@@ -602,6 +626,8 @@ void Simulation::dip(const WandState& wands) {
   stateOnDevice_ = positionsOnDevice_ = contactsOnDevice_ = restLengthsOnDevice_ = false;  // the old film's, replaced
   contactHistory_ = {};  // the new film's particles are not the old one's
   burst_ = BurstFront{};
+  lastTouch_.reset();
+  touchArmed_.clear();  // the new film's particles have not yet been clear of the body
   wands_ = wands;
   reloadFilm();
 }

@@ -128,14 +128,18 @@ void BodyTouch::clear() {
   before_ = BodyGrid();
 }
 
-std::vector<Touch> BodyTouch::touches(const State& state) const {
+std::vector<Touch> BodyTouch::touches(const State& state, std::vector<uint8_t>& armed) const {
   std::vector<Touch> touching;
-  if (now_.empty()) return touching;
+  armed.resize(state.size(), 0);
   const double interval = nowTime_ - beforeTime_;
   for (size_t i = 0; i < state.size(); ++i) {
     if (!state.alive[i]) continue;
     const Vec3 x = state.position.get(i);
-    const std::optional<Vec3> nearest = now_.nearestPoint(x, options_.distance);
+    if (!armed[i]) {  // made inside the body: armed once drawn clear of it, by a margin the body's jitter never spans
+      armed[i] = now_.empty() || !now_.nearestPoint(x, options_.armDistance);
+      continue;
+    }
+    const std::optional<Vec3> nearest = now_.empty() ? std::nullopt : now_.nearestPoint(x, options_.distance);
     if (!nearest) continue;
     Touch t{i, x, 0.0f};
     const float gap = (*nearest - x).norm();

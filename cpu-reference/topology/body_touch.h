@@ -18,6 +18,7 @@ namespace gb {
 struct TouchOptions {
   float distance = 0.02f;    // m: a particle this close to a body point touches it (a film particle's half spacing)
   float gripRadius = 0.15f;  // m: body points this close to a grip are the hand on the wand, left out
+  float armDistance = 0.1f;  // m: a particle made inside the body touches it once it has been this far from it
   bool wetHands = false;     // the body pushes the film instead of bursting it at a touch
   float strikeSpeed = 1.5f;  // m/s: with wet hands, an approach faster than this still bursts the film
   size_t maxPoints = 20000;  // the body's points are thinned evenly to at most this many
@@ -84,7 +85,11 @@ class BodyTouch {
 
   // The particles of `state` that touch the body now, the fastest first; a particle's approach speed is how much
   // nearer the body came to it over the body's last frame interval plus the particle's own speed towards it.
-  [[nodiscard]] std::vector<Touch> touches(const State& state) const;
+  // `armed` (one per particle, grown with the film) keeps which particles have been clear of the body: a film made
+  // where the body is (hands held at the sides, the film across the hips) passes through it until it is drawn clear,
+  // as a wand tip passes through the bubble it let go of; an unarmed particle is armed once it is clear, and only
+  // armed particles touch.
+  [[nodiscard]] std::vector<Touch> touches(const State& state, std::vector<uint8_t>& armed) const;
   // With wet hands: moves each touching particle out to the touch distance from the body (along the line from its
   // nearest point) and takes away its velocity into the body. Returns how many it moved.
   size_t push(State& state, const std::vector<Touch>& touching) const;

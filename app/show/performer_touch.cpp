@@ -9,8 +9,10 @@ void givePerformerBody(Simulation& sim, const WandFrame& frame) {
   }
   if (sim.bodyTime() == frame.bodyTime) return;  // this depth frame's body is already the film's collider
   BodyPoints body{*frame.body, {}, frame.bodyTime};
-  for (const Vec3& hand : {frame.leftHand, frame.rightHand})
-    if (hand.allFinite()) body.grips.push_back(hand);
+  // The hands as measured, and the wand tips the stabilizer carries them to (behind the hands by its lag): the film's
+  // corners are at the tips, the hand's own points at the measured hands.
+  for (const Vec3& grip : {frame.leftHand, frame.rightHand, frame.wands.leftPosition, frame.wands.rightPosition})
+    if (grip.allFinite()) body.grips.push_back(grip);
   sim.setBody(body);
 }
 

@@ -17,7 +17,7 @@ namespace gb {
 // How the body meets the film.
 struct TouchOptions {
   float distance = 0.02f;    // m: a particle this close to a body point touches it (a film particle's half spacing)
-  float gripRadius = 0.15f;  // m: body points this close to a grip are the hand on the wand, left out
+  float gripRadius = 0.3f;   // m: body points this close to a grip are the hand on the wand, left out
   float armDistance = 0.1f;  // m: a particle made inside the body touches it once it has been this far from it
   bool wetHands = false;     // the body pushes the film instead of bursting it at a touch
   float strikeSpeed = 1.5f;  // m/s: with wet hands, an approach faster than this still bursts the film

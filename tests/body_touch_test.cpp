@@ -5,6 +5,7 @@
 #include <random>
 
 #include "film.h"
+#include "simulation.h"
 
 namespace gb {
 namespace {
@@ -16,6 +17,8 @@ std::vector<Vec3> patch(float cx, float cy, float z0, float half, float step) {
     for (float y = -half; y <= half + 1e-6f; y += step) points.emplace_back(cx + x, cy + y, z0);
   return points;
 }
+
+constexpr bool kOnTheWire = true, kFree = false;  // touches()'s film: on the wands' wire, or a free bubble
 
 // A free bubble of radius 0.3 m at (0, 1.5, 0): its front pole at z = 0.3.
 Film bubble() {
@@ -46,24 +49,27 @@ TEST(BodyTouch, TheGridFindsTheNearestPointAScanFinds) {
   EXPECT_GT(found, 50) << "the queries must also test points that are found";
 }
 
-TEST(BodyTouch, APalmAtTheBubbleTouchesItAndOneAtTheGripDoesNot) {
+TEST(BodyTouch, APalmAtTheFilmTouchesItAndOneAtTheGripOnlyWhenTheBubbleIsFree) {
   const Film film = bubble();
   std::vector<uint8_t> armed(film.state.size(), 1);  // every particle has been clear of the body
   BodyTouch touch;
   // A palm 1 cm in front of the bubble's front pole (z = 0.3): within the 2 cm touch distance of the pole.
   BodyPoints body{patch(0.0f, 1.5f, 0.31f, 0.05f, 0.005f), {}, 0.0};
   touch.setBody(body);
-  const std::vector<Touch> touching = touch.touches(film.state, armed);
+  const std::vector<Touch> touching = touch.touches(film.state, armed, kOnTheWire);
   ASSERT_FALSE(touching.empty()) << "a palm 1 cm from the film touches it";
   for (const Touch& t : touching) EXPECT_GT(t.position.z(), 0.25f) << "only the front pole touches";
   ASSERT_TRUE(touch.burstingTouch(touching)) << "dry skin bursts a film at any speed";
-  // The same palm holding a wand (a grip 5 cm from it, within the 15 cm grip radius): left out.
+  // The same palm holding a wand (a grip 5 cm from it, within the 30 cm grip radius): the film on the wire there is
+  // the hand's own; a free bubble is not.
   body.grips = {Vec3(0.0f, 1.5f, 0.36f)};
   touch.setBody(body);
-  EXPECT_TRUE(touch.touches(film.state, armed).empty()) << "the hand on the wand does not burst its own film";
+  EXPECT_TRUE(touch.touches(film.state, armed, kOnTheWire).empty())
+      << "the hand on the wand does not burst its own film";
+  EXPECT_FALSE(touch.touches(film.state, armed, kFree).empty()) << "a hand bursts a free bubble";
   // A palm 5 cm away: no touch.
   touch.setBody({patch(0.0f, 1.5f, 0.35f, 0.05f, 0.005f), {}, 0.1});
-  EXPECT_TRUE(touch.touches(film.state, armed).empty());
+  EXPECT_TRUE(touch.touches(film.state, armed, kOnTheWire).empty());
 }
 
 TEST(BodyTouch, ATouchsApproachSpeedIsTheBodysClosingOverItsLastFrame) {
@@ -75,7 +81,7 @@ TEST(BodyTouch, ATouchsApproachSpeedIsTheBodysClosingOverItsLastFrame) {
   BodyTouch touch;
   touch.setBody({patch(0.0f, 1.5f, 0.37f, 0.05f, 0.005f), {}, 0.0});
   touch.setBody({patch(0.0f, 1.5f, 0.31f, 0.05f, 0.005f), {}, 1.0 / 30.0});
-  const std::vector<Touch> touching = touch.touches(film.state, armed);
+  const std::vector<Touch> touching = touch.touches(film.state, armed, kOnTheWire);
   ASSERT_FALSE(touching.empty());
   EXPECT_NEAR(touching.front().approachSpeed, 1.8f, 0.3f);
 }
@@ -89,7 +95,7 @@ TEST(BodyTouch, WetHandsPushTheFilmAndOnlyAStrikeBurstsIt) {
   // A slow palm (3 cm in a 1/30 s frame: 0.9 m/s, under the 1.5 m/s strike speed) 5 mm into the film.
   touch.setBody({patch(0.0f, 1.5f, 0.325f, 0.08f, 0.005f), {}, 0.0});
   touch.setBody({patch(0.0f, 1.5f, 0.295f, 0.08f, 0.005f), {}, 1.0 / 30.0});
-  std::vector<Touch> touching = touch.touches(film.state, armed);
+  std::vector<Touch> touching = touch.touches(film.state, armed, kOnTheWire);
   ASSERT_FALSE(touching.empty());
   EXPECT_FALSE(touch.burstingTouch(touching)) << "a wet hand passes through a film at 0.9 m/s";
   EXPECT_GT(touch.push(film.state, touching), 0u);
@@ -102,7 +108,7 @@ TEST(BodyTouch, WetHandsPushTheFilmAndOnlyAStrikeBurstsIt) {
   Film struck = bubble();
   touch.setBody({patch(0.0f, 1.5f, 0.445f, 0.08f, 0.005f), {}, 2.0 / 30.0});
   touch.setBody({patch(0.0f, 1.5f, 0.295f, 0.08f, 0.005f), {}, 3.0 / 30.0});
-  touching = touch.touches(struck.state, armed);
+  touching = touch.touches(struck.state, armed, kOnTheWire);
   const std::optional<Touch> burst = touch.burstingTouch(touching);
   ASSERT_TRUE(burst) << "a strike faster than the strike speed bursts even a wet film";
   EXPECT_GT(burst->approachSpeed, wet.strikeSpeed);
@@ -114,16 +120,84 @@ TEST(BodyTouch, AFilmMadeInsideTheBodyTouchesItOnlyOnceDrawnClear) {
   std::vector<uint8_t> armed;  // a new film: none armed
   BodyTouch touch;
   touch.setBody({patch(0.0f, 1.5f, 0.31f, 0.05f, 0.005f), {}, 0.0});
-  EXPECT_TRUE(touch.touches(film.state, armed).empty()) << "the pole made inside the palm is not yet armed";
+  EXPECT_TRUE(touch.touches(film.state, armed, kOnTheWire).empty()) << "the pole made inside the palm is not yet armed";
   EXPECT_EQ(armed.size(), film.state.size());
   touch.setBody({patch(0.0f, 1.5f, 0.36f, 0.05f, 0.005f), {}, 0.1});  // 5 cm clear: not yet the 10 cm to arm
-  EXPECT_TRUE(touch.touches(film.state, armed).empty());
+  EXPECT_TRUE(touch.touches(film.state, armed, kOnTheWire).empty());
   touch.setBody({patch(0.0f, 1.5f, 0.31f, 0.05f, 0.005f), {}, 0.15});
-  EXPECT_TRUE(touch.touches(film.state, armed).empty()) << "jitter within the arming distance does not arm it";
+  EXPECT_TRUE(touch.touches(film.state, armed, kOnTheWire).empty())
+      << "jitter within the arming distance does not arm it";
   touch.setBody({patch(0.0f, 1.5f, 0.42f, 0.05f, 0.005f), {}, 0.1});  // drawn clear: every particle armed
-  EXPECT_TRUE(touch.touches(film.state, armed).empty());
+  EXPECT_TRUE(touch.touches(film.state, armed, kOnTheWire).empty());
   touch.setBody({patch(0.0f, 1.5f, 0.31f, 0.05f, 0.005f), {}, 0.2});  // and back: now it touches
-  EXPECT_FALSE(touch.touches(film.state, armed).empty());
+  EXPECT_FALSE(touch.touches(film.state, armed, kOnTheWire).empty());
+}
+
+// A free bubble in a simulation, the wands far below it.
+std::unique_ptr<Simulation> freeBubble(float lift) {
+  Params params;
+  params.bubbleLift = lift;
+  WandState wands;
+  wands.leftPosition = Vec3(-0.5f, 0.2f, 0.0f);
+  wands.rightPosition = Vec3(0.5f, 0.2f, 0.0f);
+  return std::make_unique<Simulation>(params, bubble(), wands);
+}
+
+TEST(BodyTouch, ABubbleWhoseAirCarriesItsWeightFloatsStill) {
+  // Half a second: a 1 um film falls about 1.2 m with nothing to hold it (less the air's drag), and not at all with its
+  // air carrying its weight. 2 cm allows for the bubble rounding up as its slack springs contract.
+  for (const float lift : {0.0f, 1.0f}) {
+    auto sim = freeBubble(lift);
+    const Vec3 start = centroid(sim->film().state);
+    WandState wands;
+    wands.leftPosition = Vec3(-0.5f, 0.2f, 0.0f);
+    wands.rightPosition = Vec3(0.5f, 0.2f, 0.0f);
+    for (int frame = 0; frame < 25; ++frame) sim->advanceFrame(wands);
+    const float drop = start.y() - centroid(sim->film().state).y();
+    if (lift > 0.0f)
+      EXPECT_LT(std::abs(drop), 0.02f) << "a neutrally buoyant bubble stays where it was placed";
+    else
+      EXPECT_GT(drop, 0.1f) << "a bubble whose air carries nothing falls";
+  }
+}
+
+TEST(BodyTouch, ATouchBurstsAFreeBubbleWhereItTouched) {
+  auto sim = freeBubble(1.0f);
+  WandState wands;
+  wands.leftPosition = Vec3(-0.5f, 0.2f, 0.0f);
+  wands.rightPosition = Vec3(0.5f, 0.2f, 0.0f);
+  // The palm first 30 cm away (the bubble is clear of the body: armed), then 1 cm in front of the front pole, in the
+  // frame before that 6 cm farther: it struck at 1.8 m/s. Its grip (the hand holds a wand) does not matter: the bubble
+  // is free.
+  sim->setBody({patch(0.0f, 1.5f, 0.6f, 0.05f, 0.005f), {Vec3(0.0f, 1.5f, 0.63f)}, 0.0});
+  sim->advanceFrame(wands);
+  ASSERT_FALSE(sim->lastEvents().started);
+  sim->setBody({patch(0.0f, 1.5f, 0.37f, 0.05f, 0.005f), {Vec3(0.0f, 1.5f, 0.4f)}, 1.0 / 30.0});
+  sim->setBody({patch(0.0f, 1.5f, 0.31f, 0.05f, 0.005f), {Vec3(0.0f, 1.5f, 0.34f)}, 2.0 / 30.0});
+  sim->advanceFrame(wands);
+  ASSERT_TRUE(sim->lastEvents().started);
+  EXPECT_STREQ(sim->lastEvents().cause, "touch");
+  ASSERT_TRUE(sim->lastTouch());
+  EXPECT_GT(sim->lastTouch()->position.z(), 0.27f) << "the crack starts at the front pole, where the palm is";
+}
+
+TEST(BodyTouch, WetHandsPassThroughAFreeBubbleWithoutBurstingIt) {
+  Params params;
+  params.bubbleLift = 1.0f;
+  params.wetHands = 1;
+  WandState wands;
+  wands.leftPosition = Vec3(-0.5f, 0.2f, 0.0f);
+  wands.rightPosition = Vec3(0.5f, 0.2f, 0.0f);
+  Simulation sim(params, bubble(), wands);
+  // The palm 30 cm away (the bubble armed), then pressed slowly 2 cm into the front pole (0.6 m/s over the frame,
+  // under the 1.5 m/s strike speed).
+  sim.setBody({patch(0.0f, 1.5f, 0.6f, 0.05f, 0.005f), {}, 0.0});
+  sim.advanceFrame(wands);
+  sim.setBody({patch(0.0f, 1.5f, 0.30f, 0.05f, 0.005f), {}, 1.0 / 30.0});
+  sim.setBody({patch(0.0f, 1.5f, 0.28f, 0.05f, 0.005f), {}, 2.0 / 30.0});
+  sim.advanceFrame(wands);
+  EXPECT_FALSE(sim.lastEvents().started) << "a wet hand pushes the film";
+  EXPECT_FALSE(sim.lastTouch());
 }
 
 TEST(BodyTouch, AFarFlungCloudCostsNoMoreThanTheGridsCap) {

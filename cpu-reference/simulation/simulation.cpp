@@ -513,7 +513,8 @@ void Simulation::setBody(const BodyPoints& body) {
 
 void Simulation::touchByBody() {
   if (!touch_.hasBody() || burst_.active()) return;
-  const std::vector<Touch> touching = touch_.touches(film_.state, touchArmed_);
+  touch_.setHands(params_.wetHands != 0, params_.touchStrikeSpeed);  // live parameters: as they are this frame
+  const std::vector<Touch> touching = touch_.touches(film_.state, touchArmed_, !film_.topology.isClosed());
   if (touching.empty()) return;
   if (const std::optional<Touch> burst = touch_.burstingTouch(touching)) {
     startCrack(burst_, film_, burst->particle, time_, "touch");

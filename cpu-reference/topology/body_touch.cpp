@@ -108,33 +108,38 @@ std::optional<float> BodyGrid::nearestWithin(const Vec3& x, float reach) const {
 void BodyTouch::setBody(const BodyPoints& body) {
   std::vector<Vec3> kept;
   kept.reserve(body.points.size());
-  const float grip2 = options_.gripRadius * options_.gripRadius;
-  for (const Vec3& p : body.points) {
-    if (!p.allFinite()) continue;
-    const bool atGrip =
-        std::any_of(body.grips.begin(), body.grips.end(), [&](const Vec3& g) { return (p - g).squaredNorm() < grip2; });
-    if (!atGrip) kept.push_back(p);
-  }
+  for (const Vec3& p : body.points)
+    if (p.allFinite()) kept.push_back(p);
   kept = thinned(std::move(kept), options_.maxPoints);
   // The newest frame becomes the frame before, asked how far the body was from a particle the new one touches.
   before_ = std::move(now_);
   beforeTime_ = nowTime_;
   now_ = BodyGrid(kept, options_.distance);
   nowTime_ = body.time;
+  grips_.clear();
+  for (const Vec3& g : body.grips)
+    if (g.allFinite()) grips_.push_back(g);
+}
+
+bool BodyTouch::atGrip(const Vec3& x) const {
+  const float grip2 = options_.gripRadius * options_.gripRadius;
+  return std::any_of(grips_.begin(), grips_.end(), [&](const Vec3& g) { return (x - g).squaredNorm() < grip2; });
 }
 
 void BodyTouch::clear() {
   now_ = BodyGrid();
   before_ = BodyGrid();
+  grips_.clear();
 }
 
-std::vector<Touch> BodyTouch::touches(const State& state, std::vector<uint8_t>& armed) const {
+std::vector<Touch> BodyTouch::touches(const State& state, std::vector<uint8_t>& armed, bool onTheWire) const {
   std::vector<Touch> touching;
   armed.resize(state.size(), 0);
   const double interval = nowTime_ - beforeTime_;
   for (size_t i = 0; i < state.size(); ++i) {
     if (!state.alive[i]) continue;
     const Vec3 x = state.position.get(i);
+    if (onTheWire && atGrip(x)) continue;
     if (!armed[i]) {  // made inside the body: armed once drawn clear of it, by a margin the body's jitter never spans
       armed[i] = now_.empty() || !now_.nearestPoint(x, options_.armDistance);
       continue;

@@ -322,7 +322,7 @@ bool Simulation::passesOnDevice(const WandState& next, float wandSpeed) {
     ++readbackRecord_.framesHeldByRule[rule];
     return false;
   }
-  if (touch_.hasBody() && !burst_.active()) {  // the body's touch is tested on the film in host memory
+  if (bodyTouchesFilm()) {  // the body's touch is tested on the film in host memory
     ++readbackRecord_.framesHeldByRule["touch"];
     return false;
   }
@@ -511,8 +511,12 @@ void Simulation::setBody(const BodyPoints& body) {
   bodyTime_ = body.time;
 }
 
+bool Simulation::bodyTouchesFilm() const {
+  return touch_.hasBody() && !burst_.active() && (film_.topology.isClosed() || params_.touchWireFilm != 0);
+}
+
 void Simulation::touchByBody() {
-  if (!touch_.hasBody() || burst_.active()) return;
+  if (!bodyTouchesFilm()) return;
   touch_.setHands(params_.wetHands != 0, params_.touchStrikeSpeed);  // live parameters: as they are this frame
   const std::vector<Touch> touching = touch_.touches(film_.state, touchArmed_, !film_.topology.isClosed());
   if (touching.empty()) return;

@@ -189,6 +189,9 @@ class Simulation {
   void growFilm(const WandState& wands, float wandSpeed);
   void burstOnHardImpact();
   void burstOnWandTouch();
+  // Whether the body is tested against the film this frame: a free bubble always, the film on the wands with
+  // Params::touchWireFilm.
+  [[nodiscard]] bool bodyTouchesFilm() const;
   void touchByBody();
   void burstOnFloorTouch();
   void updateContacts();

@@ -85,6 +85,8 @@ struct Params {
                                          // about the swing of a 0.8 m string pendulum (wire_frame.h, swingLoop)
 
   // --- The performer's touch (cpu-reference/topology/body_touch.h) ---
+  int touchWireFilm GB_DEFAULT(0);          // 1: the body touches the film on the wands too, not only free bubbles (the
+                                            // wands' sticks, not modelled, otherwise keep it off the performer)
   int wetHands GB_DEFAULT(0);               // 1: the performer's hands are wet: the body pushes the film instead of
                                             // bursting it, and only a strike faster than touchStrikeSpeed bursts it
   float touchStrikeSpeed GB_DEFAULT(1.5f);  // how fast a wet hand must strike a film to burst it (m/s)

@@ -109,6 +109,7 @@ int main(int argc, char** argv) {
       ->transform(gb::WholeNumber(0, 1000000));
   runCmd->add_option("--tool", tool, "bubble tool")->check(CLI::IsMember({"two-wands", "ring"}));
   gb::addInputOptions(runCmd, run.input);  // --input, --gesture and the capture options
+  gb::addBubbleOptions(runCmd, run.input);
   runCmd->add_option("--speed", run.gestureOptions.speed, "peak wand speed (m/s)")->check(gb::FiniteRange(0.0, 20.0));
   runCmd->add_option("--solution", run.params.solution, "remaining soap solution (0, 1]")
       ->check(gb::FiniteRange(0.01, 1.0));

@@ -7,6 +7,9 @@
 
 namespace gb {
 
+// The performer's depth points in camera space, one per pixel of the detector's half-resolution grid.
+std::shared_ptr<const std::vector<Eigen::Vector3f>> bodyPointsOf(const BodyDepth& body);
+
 class HandFinder {
  public:
   explicit HandFinder(const DetectionOptions& detection = {}, const TrackerOptions& tracker = {});

@@ -7,6 +7,7 @@
 #include <Eigen/Dense>
 #include <chrono>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -31,6 +32,9 @@ struct HandSample {
   double time = 0.0;  // s, increasing along a source
   HandObservation left, right;
   std::optional<Vec3d> body;  // the performer's median point (camera space), where a depth camera found them
+  // The performer's depth points (camera space, one per pixel of the detector's half-resolution grid), where a depth
+  // camera found them: the body the film can touch. Shared, since a sample is copied along the input's queue.
+  std::shared_ptr<const std::vector<Eigen::Vector3f>> bodyPoints;
   HandObservation& hand(Hand h) { return h == Hand::Left ? left : right; }
   [[nodiscard]] const HandObservation& hand(Hand h) const { return h == Hand::Left ? left : right; }
 };

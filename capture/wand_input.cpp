@@ -283,6 +283,18 @@ WandFrame StabilizedWands::at(double t) {
   f.wands.rightVelocity = calibration_.velocityToWorld(right.velocity).cast<float>();
   if (latest_.left.measured) f.leftHand = calibration_.toWorld(latest_.left.position).cast<float>();
   if (latest_.right.measured) f.rightHand = calibration_.toWorld(latest_.right.position).cast<float>();
+  if (latest_.bodyPoints && latest_.bodyPoints != bodyInCamera_) {  // a new depth frame's body, into the world
+    bodyInCamera_ = latest_.bodyPoints;
+    auto world = std::make_shared<std::vector<Vec3>>();
+    world->reserve(bodyInCamera_->size());
+    for (const Eigen::Vector3f& p : *bodyInCamera_)
+      world->push_back(calibration_.toWorld(p.cast<double>()).cast<float>());
+    bodyInWorld_ = std::move(world);
+    bodyTime_ = latest_.time - start_;
+  }
+  if (!latest_.bodyPoints) bodyInCamera_.reset(), bodyInWorld_.reset();  // nobody seen in the newest frame
+  f.body = bodyInWorld_;
+  f.bodyTime = bodyTime_;
   if (wallClock) {  // the newest sample arrived arrivedAgo; hands behind it (a loop catching up) are older still
     const double arrivedAgo =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - *source_->arrivedAt()).count();

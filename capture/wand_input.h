@@ -29,6 +29,10 @@ struct WandFrame {
   Vec3 leftHand = Vec3::Constant(NAN);  // the newest measured input hands, world space (NaN: not measured)
   Vec3 rightHand = Vec3::Constant(NAN);
   double handsAge = 0.0;  // s since the newest hands arrived from a camera read beside the frame loop (0: not known)
+  // The performer's depth points, world space, mapped as the hands are, from the newest depth frame taken (none
+  // without a depth camera), and that frame's run time.
+  std::shared_ptr<const std::vector<Vec3>> body;
+  double bodyTime = 0.0;
 };
 
 class WandInput {
@@ -43,6 +47,9 @@ class WandInput {
   [[nodiscard]] virtual bool ended() const { return false; }
   // Where the camera stands in the world, for inputs seen by one (camera space carried by the calibration).
   [[nodiscard]] virtual std::optional<Vec3> camera() const { return std::nullopt; }
+  // How camera space maps into the world as the hands are mapped now, for inputs that have camera space (cameras,
+  // recordings, trajectories); nothing for scripts.
+  [[nodiscard]] virtual std::optional<Calibration> cameraToWorld() const { return std::nullopt; }
   // Seconds of input read before the performer was found (run time 0 is then), when waited for.
   [[nodiscard]] virtual std::optional<double> performerFound() const { return std::nullopt; }
   // Whether each hand (left, right) has gone unmeasured for kLostHandAfter and is held (reported lost).
@@ -99,6 +106,7 @@ class StabilizedWands : public WandInput {
   [[nodiscard]] std::optional<Vec3> camera() const override {
     return calibration_.toWorld(Vec3d::Zero()).cast<float>();
   }
+  [[nodiscard]] std::optional<Calibration> cameraToWorld() const override { return calibration_; }
   [[nodiscard]] const Calibration& calibration() const { return calibration_; }
   [[nodiscard]] double confidence(Hand hand) const { return stabilizer_->confidence(hand); }
   // The frame loop keeps the wall clock (live, run --realtime): with a source read on a thread of its own
@@ -144,6 +152,10 @@ class StabilizedWands : public WandInput {
   double lastMeasured_[2] = {0.0, 0.0};
   bool reportedLost_[2] = {false, false};
   HandSample latest_;
+  // The newest sample's body points in the world, made once per depth frame (at).
+  std::shared_ptr<const std::vector<Eigen::Vector3f>> bodyInCamera_;
+  std::shared_ptr<const std::vector<Vec3>> bodyInWorld_;
+  double bodyTime_ = 0.0;
   std::string describe_;
   [[nodiscard]] double period() const;  // the source's, at least kMinSamplePeriod
   bool fetch();                         // reads one more sample into ahead_; false when there are no more

@@ -3,8 +3,10 @@
 // (scene_file.h) sets. Data only: app/ adds them to the commands (input_options.h, render_output.h) and runs them
 // (run_command.h).
 
+#include <array>
 #include <filesystem>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +33,8 @@ struct InputOptions {
   bool mirrored = false;                       // the depth image is mirrored
   double runSeconds = std::numeric_limits<double>::infinity();  // how long the run lasts once the performer is
                                                                 //   found: a trajectory file is read no further
+  std::optional<std::array<double, 3>> bubbleAt;  // --bubble-at: a still free bubble's centre in camera space (m)
+  double bubbleRadius = 0.15;                     // --bubble-radius: its radius in camera space (m)
   bool wallClock = false;  // the frame loop keeps the wall clock (live, run --realtime): a camera's newest hands are
                            //   used as they arrive, never waited for (StabilizedWands::followWallClock)
 

@@ -9,32 +9,13 @@
 #include <fstream>
 
 #include "depth_composite.h"
+#include "real_depth.h"
 #include "vulkan_test_device.h"
 
 namespace gb {
 namespace {
 
 namespace fs = std::filesystem;
-
-#ifndef GB_REAL_DEPTH_DIR
-#define GB_REAL_DEPTH_DIR "../shared/real-depth/utd-mhad"
-#endif
-
-// A recording of the real-data set, or nothing (the test then skips, loudly, outside CI and fails under it).
-std::optional<DepthRecording> realRecording(const std::string& name) {
-  const fs::path archive = fs::path(GB_REAL_DEPTH_DIR) / (name + ".tar.gz");
-  std::error_code ec;
-  if (!fs::is_regular_file(archive, ec)) return std::nullopt;
-  return readDepthRecording(archive);
-}
-
-#define REQUIRE_REAL_DEPTH(recording, name)                                                                           \
-  const std::optional<DepthRecording> recording = realRecording(name);                                                \
-  if (!recording) {                                                                                                   \
-    if (test::underCi()) FAIL() << "the real-depth set is missing: " << GB_REAL_DEPTH_DIR << "/" << name;             \
-    std::fprintf(stderr, "\n*** SKIPPED: no real-depth set at %s (../shared/real-depth) ***\n\n", GB_REAL_DEPTH_DIR); \
-    GTEST_SKIP() << "no real-depth set at " << GB_REAL_DEPTH_DIR;                                                     \
-  }
 
 HandSample sample(double t, std::optional<Vec3d> left, std::optional<Vec3d> right) {
   HandSample s;

@@ -80,6 +80,45 @@ int evaluateFilms(const EvaluateOptions& o, const FilmEvaluationOptions& film) {
   return 0;
 }
 
+const char* kindName(TouchTrialKind kind) { return kind == TouchTrialKind::Reach ? "reach" : "away"; }
+
+void printTouchLine(const TouchTrial& t) {
+  char burst[64] = "-";
+  if (t.touchBurst) std::snprintf(burst, sizeof burst, "%.2f", *t.touchBurst);
+  char entry[32] = "-";
+  if (t.kind == TouchTrialKind::Reach) std::snprintf(entry, sizeof entry, "%.2f", t.entry);
+  std::printf("%-24s %6s %8s %8s %8s  %s%s\n", printable(t.recording).c_str(), kindName(t.kind), entry, burst,
+              t.passed() ? "yes" : "no", t.otherBurst.empty() ? "" : "burst first by: ", t.otherBurst.c_str());
+}
+
+// `evaluate --touch`: each recording of a judged action against its still bubble, and the shares that passed.
+int evaluateTouches(const EvaluateOptions& o, const FilmEvaluationOptions& film) {
+  std::map<TouchTrialKind, std::pair<int, int>> passed;  // kind: passed, trials
+  if (o.perRecording) std::printf("%-24s %6s %8s %8s %8s\n", "recording", "bubble", "entry s", "touch s", "passed");
+  for (const std::string& path : o.recordings) {
+    const DepthRecording recording = readDepthRecording(path);
+    if (!touchTrialKindOf(recording.name)) {
+      std::fprintf(stderr, "note: %s: not an action the touch is judged on; skipped\n", recording.name.c_str());
+      continue;
+    }
+    const TouchTrial trial = playTouchOnRecording(recording, film);
+    if (o.perRecording) printTouchLine(trial);
+    auto& [yes, all] = passed[trial.kind];
+    yes += trial.passed() ? 1 : 0;
+    ++all;
+  }
+  const auto share = [&](TouchTrialKind kind) {
+    const auto [yes, all] = passed[kind];
+    return all > 0 ? 100.0 * yes / all : 0.0;
+  };
+  std::printf("\nreach (push, punch, knock): burst by the touch on time in %d of %d (%.1f%%; target >= 90%%)\n",
+              passed[TouchTrialKind::Reach].first, passed[TouchTrialKind::Reach].second, share(TouchTrialKind::Reach));
+  const auto [awayPassed, away] = passed[TouchTrialKind::Away];
+  std::printf("away (wave, clap, circle): burst by a touch in %d of %d (%.1f%%; target <= 2%%)\n", away - awayPassed,
+              away, away > 0 ? 100.0 * (away - awayPassed) / away : 0.0);
+  return 0;
+}
+
 }  // namespace
 
 CLI::App* addEvaluateCommand(CLI::App& app, EvaluateOptions& o) {
@@ -97,6 +136,12 @@ CLI::App* addEvaluateCommand(CLI::App& app, EvaluateOptions& o) {
                 "play each recording's hands into a run of --scene and say what the film did: the share that lived "
                 "to the end or pinched off, the median life (share of the recording), growth (peak area over the "
                 "start) and the wands' lag");
+  cmd->add_flag("--touch", o.touch,
+                "place a still bubble (radius 0.15 m) in each recording by its ground truth and play the depth's body "
+                "against it: at the farthest-forward true hand of a push, punch or knock it must burst by the touch "
+                "from 0.3 s before to 0.2 s after the hand enters it; 0.5 m from every true hand of a wave, clap or "
+                "circle it must not")
+      ->excludes("--film");
   cmd->add_flag("--truth-hands", o.truthHands, "--film: the ground truth's hands move the wands, not those found");
   cmd->add_option("--scene", o.scene, "--film: the scene (a built-in name or a .toml file)")->check(NotEmpty());
   cmd->add_option("--stabilizer", o.stabilizer, "--film: the hand stabilizer")
@@ -130,12 +175,12 @@ int runEvaluate(const EvaluateOptions& o) {
   }
   TrackerOptions tracker;
   tracker.mirrored = o.mirrored;
-  if (o.film) {
+  if (o.film || o.touch) {
     try {
       FilmEvaluationOptions film{resolveScene(o.scene).run, detection, tracker, o.truthHands};
       film.run.input.stabilizer = o.stabilizer;
       film.run.input.reach = o.reach;
-      return evaluateFilms(o, film);
+      return o.touch ? evaluateTouches(o, film) : evaluateFilms(o, film);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "error: %s\n", e.what());
       return 1;

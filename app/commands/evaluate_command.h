@@ -19,6 +19,7 @@ struct EvaluateOptions {
   bool perRecording = false;            // a line per recording, not only the total
   std::string forest;                   // a hand forest model file instead of the built-in one
   bool film = false;                    // judge the film the hands make, not the hands
+  bool touch = false;                   // judge the performer's touch on a still bubble placed by the ground truth
   bool truthHands = false;              // --film: the recordings' ground-truth hands drive the wands
   std::string scene = "default";        // --film: the scene whose parameters and tool the film has
   std::string stabilizer = "one-euro";  // --film: the stabilizer

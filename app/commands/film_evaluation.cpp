@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "input_options.h"
+#include "performer_touch.h"
 #include "simulation.h"
 #include "trajectory_metrics.h"
 
@@ -83,6 +85,7 @@ FilmLife playFilmOnRecording(const DepthRecording& recording, const FilmEvaluati
   for (long k = 1; k <= frames; ++k) {
     const double t = static_cast<double>(k) * h;
     frame = input->at(t);
+    givePerformerBody(sim, frame);
     sim.advanceFrame(frame.wands);
     const TopologyEvents& events = sim.lastEvents();
     if (events.pinchedOff && !burst) life.pinchedOff = true;
@@ -123,6 +126,98 @@ FilmLifeSummary summarize(const std::vector<FilmLife>& lives) {
   s.medianGrowth = median(growths);
   s.medianLag = median(lags);
   return s;
+}
+
+namespace {
+
+// The farthest-forward point (nearest the camera) any true hand reached.
+Vec3d farthestForward(const std::vector<HandSample>& truth) {
+  Vec3d best = Vec3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  for (const HandSample& s : truth)
+    for (const HandObservation* hand : {&s.left, &s.right})
+      if (hand->seen() && !(hand->position.z() >= best.z())) best = hand->position;
+  return best;
+}
+
+// kAwayFromHands nearer the camera than the nearest any true hand came, in front of the hands' mean: every true hand
+// position lies at least that far from it, and the body behind the hands farther still.
+Vec3d awayFromHands(const std::vector<HandSample>& truth) {
+  Vec3d sum = Vec3d::Zero();
+  double nearest = std::numeric_limits<double>::infinity();
+  int seen = 0;
+  for (const HandSample& s : truth)
+    for (const HandObservation* hand : {&s.left, &s.right})
+      if (hand->seen()) {
+        sum += hand->position;
+        nearest = std::min(nearest, hand->position.z());
+        ++seen;
+      }
+  const Vec3d mean = sum / std::max(seen, 1);
+  return {mean.x(), mean.y(), nearest - TouchTrial::kAwayFromHands};
+}
+
+// The recording time (s) a true hand first came within `radius` of `centre`.
+std::optional<double> entryTime(const std::vector<HandSample>& truth, const Vec3d& centre, double radius) {
+  for (const HandSample& s : truth)
+    for (const HandObservation* hand : {&s.left, &s.right})
+      if (hand->seen() && (hand->position - centre).norm() <= radius) return s.time;
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<TouchTrialKind> touchTrialKindOf(const std::string& recording) {
+  const std::string action = recording.substr(0, recording.find('_'));
+  for (const char* reach : {"a13", "a18", "a19"})
+    if (action == reach) return TouchTrialKind::Reach;
+  for (const char* away : {"a3", "a4", "a9", "a10"})
+    if (action == away) return TouchTrialKind::Away;
+  return std::nullopt;
+}
+
+bool TouchTrial::passed() const {
+  if (kind == TouchTrialKind::Away) return !touchBurst.has_value();
+  return touchBurst && *touchBurst >= entry - kEarliestTouch && *touchBurst <= entry + kLatestTouch;
+}
+
+TouchTrial playTouchOnRecording(const DepthRecording& recording, const FilmEvaluationOptions& o) {
+  const std::optional<TouchTrialKind> kind = touchTrialKindOf(recording.name);
+  if (!kind) throw HandSourceError(recording.name + ": not an action the touch is judged on (evaluate --touch)");
+  if (recording.truth.empty()) throw HandSourceError(recording.name + ": no ground truth (hands.csv) to place by");
+  TouchTrial trial;
+  trial.recording = recording.name;
+  trial.kind = *kind;
+  const Vec3d centre =
+      *kind == TouchTrialKind::Reach ? farthestForward(recording.truth) : awayFromHands(recording.truth);
+  if (!centre.allFinite()) throw HandSourceError(recording.name + ": its ground truth never shows a hand");
+  trial.bubbleAt = {centre.x(), centre.y(), centre.z()};
+  FilmEvaluationOptions found = o;
+  found.truthHands = false;  // the body is the depth's: the hands found in it with it
+  std::unique_ptr<StabilizedWands> input = wandsOf(handsOf(recording, found), recording, found);
+  RunOptions run = o.run;
+  run.input.bubbleAt = trial.bubbleAt;
+  run.input.bubbleRadius = TouchTrial::kBubbleRadius;
+  WandFrame frame = input->at(0.0);
+  // Run time 0 is the recording's frame with both hands found: the truth's times are moved to it.
+  const double start = input->performerFound().value_or(0.0);
+  trial.entry = entryTime(recording.truth, centre, TouchTrial::kBubbleRadius).value_or(0.0) - start;
+  std::unique_ptr<Simulation> sim = startingSimulation(run, *input, frame.wands, nullptr);
+  const double h = run.params.frameTime;
+  const long frames = std::lround(input->length().value_or(0.0) / h);
+  for (long k = 1; k <= frames; ++k) {
+    const double t = static_cast<double>(k) * h;
+    frame = input->at(t);
+    givePerformerBody(*sim, frame);
+    sim->advanceFrame(frame.wands);
+    const TopologyEvents& events = sim->lastEvents();
+    if (!events.started) continue;
+    if (events.cause && std::string(events.cause) == "touch")
+      trial.touchBurst = t;
+    else
+      trial.otherBurst = events.cause ? events.cause : "unknown";
+    break;
+  }
+  return trial;
 }
 
 }  // namespace gb

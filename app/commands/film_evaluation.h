@@ -5,6 +5,7 @@
 // reports what the film did: how long it lived, whether it lived to the end or pinched off into a free bubble, how far
 // it grew, and how far the wands lag behind the hands (docs/capture.md, "Films under real hands").
 
+#include <array>
 #include <optional>
 #include <string>
 #include <vector>
@@ -50,5 +51,36 @@ struct FilmLifeSummary {
   double medianLag = 0;     // s
 };
 FilmLifeSummary summarize(const std::vector<FilmLife>& lives);
+
+// The performer's touch on real depth (`giantbubble evaluate --touch`): a still free bubble (--bubble-at) placed in a
+// recording's camera space, the performer's body from its depth as the collider. Where the bubble goes depends on the
+// action: at the farthest-forward point of a true hand in one that reaches out (a push, a punch, a knock), where the
+// touch must burst it as the hand enters; at least kAwayFromHands from every true hand in one that does not (a wave,
+// a clap, a circle), where nothing may.
+enum class TouchTrialKind { Reach, Away };
+
+// UTD-MHAD's actions (the recordings' aA prefix) of each kind: 13 front boxing, 18 two-hand push, 19 knock on door;
+// 3 hand wave, 4 two-hand clap, 9 and 10 circles. Nothing for the others.
+std::optional<TouchTrialKind> touchTrialKindOf(const std::string& recording);
+
+struct TouchTrial {
+  std::string recording;
+  TouchTrialKind kind = TouchTrialKind::Reach;
+  std::array<double, 3> bubbleAt{};  // camera space (m)
+  double entry = 0;                  // Reach: run time (s) the true hand came within the bubble's radius of its centre
+  std::optional<double> touchBurst;  // run time (s) the body's touch burst it, if it did
+  std::string otherBurst;            // the cause of a burst by anything else first ("wand", "floor", ...)
+  // Reach: burst by the touch from kEarliestTouch before the hand's entry to kLatestTouch after it. Away: no touch.
+  [[nodiscard]] bool passed() const;
+
+  static constexpr double kBubbleRadius = 0.15;  // m of camera space
+  static constexpr double kAwayFromHands = 0.5;  // m: an Away bubble's centre from every true hand position
+  static constexpr double kEarliestTouch = 0.3;  // s before the entry: the hand's front surface leads its joint
+  static constexpr double kLatestTouch = 0.2;    // s after it: a depth frame, the step and the burst's start
+};
+
+// Plays one recording's depth (the hands found in it, the body as the collider) against its bubble; throws
+// HandSourceError when it has no ground truth or its action is of neither kind.
+TouchTrial playTouchOnRecording(const DepthRecording& recording, const FilmEvaluationOptions& options);
 
 }  // namespace gb

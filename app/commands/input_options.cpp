@@ -15,8 +15,9 @@ namespace gb {
 
 namespace {
 
-// X,Y,Z in metres with Z > 0, each coordinate a finite decimal number; nothing, with `why`, when `text` is not one.
-std::optional<Vec3d> performerPoint(const std::string& text, std::string& why) {
+// X,Y,Z in metres with Z > 0, each coordinate a finite decimal number; nothing, with `why` (`expected` and what was
+// given), when `text` is not one.
+std::optional<Vec3d> cameraPoint(const std::string& text, const std::string& expected, std::string& why) {
   std::vector<std::string> fields(1);
   for (const char c : text) {
     if (c == ',')
@@ -24,7 +25,7 @@ std::optional<Vec3d> performerPoint(const std::string& text, std::string& why) {
     else
       fields.back().push_back(c);
   }
-  why = "--performer: expected X,Y,Z in metres with Z > 0, or auto; got '" + printable(text) + "'";
+  why = expected + "; got '" + printable(text) + "'";
   if (fields.size() != 3) return std::nullopt;
   Vec3d p;
   for (int k = 0; k < 3; ++k) {
@@ -35,6 +36,13 @@ std::optional<Vec3d> performerPoint(const std::string& text, std::string& why) {
   }
   if (!(p.z() > 0.0 && p.norm() <= kMaxHandDistance)) return std::nullopt;
   return p;
+}
+
+constexpr const char* kPerformerExpected = "--performer: expected X,Y,Z in metres with Z > 0, or auto";
+constexpr const char* kBubbleExpected = "--bubble-at: expected X,Y,Z in metres with Z > 0";
+
+std::optional<Vec3d> performerPoint(const std::string& text, std::string& why) {
+  return cameraPoint(text, kPerformerExpected, why);
 }
 
 }  // namespace
@@ -70,6 +78,23 @@ void addInputOptions(CLI::App* command, InputOptions& o) {
       ->check(FiniteRange(-45.0, 45.0));
   addDepthBandOption(command, o.depthBand);
   command->add_flag("--mirrored", o.mirrored, "the depth image is mirrored (the performer's left hand on its left)");
+}
+
+void addBubbleOptions(CLI::App* command, InputOptions& o) {
+  command
+      ->add_option_function<std::string>(
+          "--bubble-at",
+          [&o](const std::string& text) {
+            std::string why;
+            const std::optional<Vec3d> p = cameraPoint(text, kBubbleExpected, why);
+            if (!p) throw CLI::ValidationError("--bubble-at", why.substr(std::strlen("--bubble-at: ")));
+            o.bubbleAt = std::array<double, 3>{p->x(), p->y(), p->z()};
+          },
+          "a still free bubble centred at camera-space X,Y,Z (m), mapped into the world as the hands are: it floats "
+          "there until something touches it (rehearsal and tests of the performer's touch)")
+      ->check(NotEmpty());
+  command->add_option("--bubble-radius", o.bubbleRadius, "the --bubble-at bubble's radius in camera space (m)")
+      ->check(FiniteRange(0.02, 1.0));
 }
 
 bool isCamera(const std::string& spec) { return spec == "kinect" || spec.rfind("fakenect:", 0) == 0; }

@@ -18,6 +18,9 @@ namespace gb {
 
 // Adds --input, --gesture, --stabilizer, --performer, --reach, --camera-pitch, --depth-band and --mirrored.
 void addInputOptions(CLI::App* command, InputOptions& options);
+// Adds --bubble-at X,Y,Z and --bubble-radius R: a still free bubble placed in camera space (run and live; the film
+// they start with is made by startingSimulation, app/show/performer_touch.h).
+void addBubbleOptions(CLI::App* command, InputOptions& options);
 // Adds --depth-band NEAR FAR (m) alone, as evaluate takes it.
 void addDepthBandOption(CLI::App* command, std::vector<double>& band);
 

@@ -22,6 +22,7 @@ CLI::App* addLiveCommand(CLI::App& app, LiveOptions& o) {
       ->check(NotEmpty());
   cmd->add_option("--tool", o.tool, "bubble tool")->check(CLI::IsMember({"two-wands", "ring"}));
   addInputOptions(cmd, o.run.input);  // --input kinect|fakenect:DIR|trajectory:FILE|script:NAME, --gesture, ...
+  addBubbleOptions(cmd, o.run.input);
   cmd->add_option("--param", o.assignments, "set a model parameter, NAME=VALUE (repeatable)");
   cmd->add_option("--osc", o.run.osc,
                   "send events, the bubble's size and position and the hands as OSC to HOST:PORT (UDP)")

@@ -16,6 +16,7 @@
 #include "interrupt.h"
 #include "osc_events.h"
 #include "output_file.h"
+#include "performer_touch.h"
 #include "realtime_pacer.h"
 #include "run_output.h"
 #include "simulation.h"
@@ -207,7 +208,8 @@ OpenedRun openRun(const RunOptions& o) {
   std::string backendReport;
   std::unique_ptr<Stepper> stepper = makeStepper(o.backend, o.device, backendReport, o.betweenSteps);
   std::printf("%s\n", backendReport.c_str());
-  run.sim = std::make_unique<Simulation>(o.params, o.tool, run.startFrame.wands, std::move(stepper));
+  run.sim = startingSimulation(o, *run.input, run.startFrame.wands, std::move(stepper));
+  if (const std::string bubble = bubbleInWords(o, *run.sim); !bubble.empty()) std::printf("film: %s\n", bubble.c_str());
   run.show = std::make_unique<ShowControl>(o.osc);
   if (o.render.enabled) {
     try {
@@ -288,6 +290,7 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
     if (frame == poke && pokeTop(sim)) events += "poked ";  // nothing to poke once the film is gone
     threads.update();
     try {
+      givePerformerBody(sim, wands);
       sim.advanceFrame(wands.wands);
     } catch (const SimulationUnstable& e) {
       bar.finish();
@@ -305,7 +308,13 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
     last = sim.stats();
     events += describeEvents(sim.lastEvents());
     if (!events.empty() && events.back() == ' ') events.pop_back();
-    stats.write(frame, last, sim.substepsPerFrame(), ms, events);
+    const std::string touched = touchInWords(sim, events);
+    const std::optional<Touch> touch = touched.empty() ? std::nullopt : sim.lastTouch();
+    if (touch) {
+      std::printf("%s%.2f s: %s\n", o.progress && isatty(STDOUT_FILENO) ? "\n" : "", last.time, touched.c_str());
+      record.addTouch(last.time, *touch);
+    }
+    stats.write(frame, last, sim.substepsPerFrame(), ms, events, touch);
     record.addFrame(last, sim.substepsPerFrame(), ms, events);
     show.frame(sim, last, events);
     const double statsMs = phase.lap();

@@ -84,6 +84,12 @@ bool OscSender::bubble(double time, const Vec3& centre, double area, double volu
   return send("/giantbubble/bubble", m);
 }
 
+bool OscSender::touch(double time, const Vec3& position, float approachSpeed) {
+  lo_message m = lo_message_new();
+  lo_message_add(m, "dffff", time, position.x(), position.y(), position.z(), approachSpeed);
+  return send("/giantbubble/touch", m);
+}
+
 bool OscSender::cue(const std::string& name, const std::string& done, double time) {
   lo_message m = lo_message_new();
   lo_message_add(m, "ssd", name.c_str(), done.c_str(), time);
@@ -118,6 +124,8 @@ void ShowControl::frame(const Simulation& sim, const FrameStats& stats, const st
   std::istringstream words(events);
   bool ok = true;
   for (std::string event; words >> event;) ok = sender_->event(event, stats.time) && ok;
+  if (events.find("burst_by_touch") != std::string::npos && sim.lastTouch())
+    ok = sender_->touch(stats.time, sim.lastTouch()->position, sim.lastTouch()->approachSpeed) && ok;
   ok = sender_->bubble(stats.time, centroid(sim.filmPositionsOnly().state), stats.area, stats.volume, stats.solution) &&
        ok;
   check(ok);

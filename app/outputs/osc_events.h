@@ -3,9 +3,11 @@
 // UDP (liblo), so that sound and light can follow the bubble. Off unless a target is given (--osc HOST:PORT).
 //
 //   /giantbubble/event  ,sd   name, time (s)     film_created, poked, film_grown, pinched_off,
-//                                                burst_started, burst_finished; live only:
+//                                                burst_started, burst_by_CAUSE (wand, touch, floor,
+//                                                thin, impact, poke, cue), burst_finished; live only:
 //                                                simulation_unstable, input_lost, input_back
 //   /giantbubble/bubble ,dffffff  time (s), centre x y z (m, world), area (m^2), volume (m^3), solution left
+//   /giantbubble/touch  ,dffff  time (s), x y z (m, world), approach (m/s)   the performer's touch that burst it
 //   /giantbubble/cue    ,ssd  cue, what was done, time (s)   live --osc-in: each cue taken (osc_cues.h)
 //   /giantbubble/performer ,ss  state, detail   live with a camera: waiting (why, or the set-up's count), found,
 //                                                left_hand_lost, right_hand_lost, hands_back
@@ -40,6 +42,7 @@ class OscSender {
   // the light desk is unplugged. lastError() says why.
   bool event(const std::string& name, double time);
   bool bubble(double time, const Vec3& centre, double area, double volume, double solution);
+  bool touch(double time, const Vec3& position, float approachSpeed);
   bool cue(const std::string& name, const std::string& done, double time);
   bool joint(const std::string& name, int user, const std::array<float, 3>& position);
   bool performer(const std::string& state, const std::string& detail);

@@ -62,16 +62,22 @@ void writeAerosolPly(const std::filesystem::path& path, const Aerosol& aerosol) 
 StatsWriter::StatsWriter(const std::filesystem::path& path) : out_(path) {
   out_.write(
       "frame,time_s,particles,triangles,area_m2,volume_m3,kinetic_J,elastic_J,potential_J,liquid_m3,"
-      "mean_thickness_m,max_speed_mps,mean_air_flow_m3ps,solution,droplets,droplet_mass_kg,substeps,frame_ms,events\n");
+      "mean_thickness_m,max_speed_mps,mean_air_flow_m3ps,solution,droplets,droplet_mass_kg,substeps,frame_ms,"
+      "touch_x_m,touch_y_m,touch_z_m,events\n");
 }
 
 void StatsWriter::write(long frame, const FrameStats& st, int substeps, double frameMilliseconds,
-                        const std::string& events) {
+                        const std::string& events, const std::optional<Touch>& touch) {
   std::ostringstream row;
   row << frame << ',' << st.time << ',' << st.particles << ',' << st.triangles << ',' << st.area << ',' << st.volume
       << ',' << st.kineticEnergy << ',' << st.elasticEnergy << ',' << st.potentialEnergy << ',' << st.liquid << ','
       << st.meanThickness << ',' << st.maxSpeed << ',' << st.meanAirFlow << ',' << st.solution << ',' << st.droplets
-      << ',' << st.dropletMass << ',' << substeps << ',' << frameMilliseconds << ',' << events << '\n';
+      << ',' << st.dropletMass << ',' << substeps << ',' << frameMilliseconds << ',';
+  if (touch)
+    row << touch->position.x() << ',' << touch->position.y() << ',' << touch->position.z();
+  else
+    row << ",,";
+  row << ',' << events << '\n';
   out_.write(row.str());
 }
 
@@ -158,7 +164,16 @@ void RunRecord::writeJson(const std::filesystem::path& path, const std::string& 
                   {"volume_m3", largestVolume_.volume}, {"volume_time_s", largestVolume_.time},
                   {"particles", mostParticles_},        {"droplets", mostDroplets_}};
   nlohmann::json events = nlohmann::json::array();
-  for (const auto& [time, name] : events_) events.push_back({{"time_s", time}, {"event", name}});
+  for (const auto& [time, name] : events_) {
+    nlohmann::json event = {{"time_s", time}, {"event", name}};
+    if (name == "burst_by_touch")  // where the performer touched it, and how fast they closed on each other
+      for (const auto& [touchTime, touch] : touches_)
+        if (touchTime == time) {
+          event["position_m"] = {touch.position.x(), touch.position.y(), touch.position.z()};
+          event["approach_mps"] = touch.approachSpeed;
+        }
+    events.push_back(event);
+  }
   j["events"] = events;
   nlohmann::json phases = nlohmann::json::object();
   for (const auto& [name, sum] : phaseSums_) phases[name] = sum / static_cast<double>(std::max(frames_, 1L));
@@ -210,6 +225,7 @@ std::string burstCauseInWords(const std::string& cause) {
   if (cause == "thin") return "thinned out";
   if (cause == "floor") return "touched the floor";
   if (cause == "wand") return "touched a wand";
+  if (cause == "touch") return "touched by the performer";
   if (cause == "impact") return "hit itself";
   if (cause == "poke") return "poked";
   return cause;

@@ -4,6 +4,7 @@
 // everything up to its last frame and a full disk stops the run with an OutputError naming the file.
 
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -26,6 +27,9 @@ class RunRecord {
  public:
   void start(const FrameStats& first);  // the new film, before any frame ran
   void addFrame(const FrameStats& stats, int substeps, double frameMilliseconds, const std::string& events);
+  // The performer's touch that burst the film this frame (Simulation::lastTouch): stats.json's burst_by_touch event
+  // carries where and how fast.
+  void addTouch(double time, const Touch& touch) { touches_.emplace_back(time, touch); }
   // stats.json: the scene, status ("finished", "interrupted" or why it stopped), frames, averages as in Table 1
   // of the paper over the frames with a film, the first and last frame's figures, every event with its time and
   // the notes. Written whole, atomically (a temporary file renamed), so a reader never sees half of it.
@@ -63,6 +67,7 @@ class RunRecord {
   Simulation::BudgetRecord budget_;
   Simulation::ReadbackRecord readback_;
   std::vector<std::pair<double, std::string>> events_;
+  std::vector<std::pair<double, Touch>> touches_;
   std::vector<std::pair<std::string, double>> phaseSums_;  // ms over all frames
 };
 
@@ -82,7 +87,9 @@ std::string describeEvents(const TopologyEvents& events);
 class StatsWriter {
  public:
   explicit StatsWriter(const std::filesystem::path& path);
-  void write(long frame, const FrameStats& stats, int substeps, double frameMilliseconds, const std::string& events);
+  // `touch`: the performer's touch that burst the film this frame, if any (its position in the touch_*_m columns).
+  void write(long frame, const FrameStats& stats, int substeps, double frameMilliseconds, const std::string& events,
+             const std::optional<Touch>& touch = std::nullopt);
   void close();
 
  private:

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "cpu_stepper.h"
+#include "performer_touch.h"
 #include "run_output.h"
 #include "scripted_gestures.h"
 #include "vulkan_stepper.h"
@@ -469,7 +470,8 @@ bool LiveShow::setUp() {
   std::fflush(stdout);
   hands_ = input_->at(t_);
   wands_ = hands_.wands;
-  sim_ = std::make_unique<Simulation>(run_.params, run_.tool, wands_, std::move(stepper));
+  sim_ = startingSimulation(run_, *input_, wands_, std::move(stepper));
+  if (const std::string bubble = bubbleInWords(run_, *sim_); !bubble.empty()) std::printf("live: %s\n", bubble.c_str());
   show_.frame(*sim_, sim_->stats(), "film_created");
   scriptCalibration_ = calibrationOf(run_.input);
   advisedAt_ = std::chrono::steady_clock::now() - std::chrono::seconds(10);
@@ -653,6 +655,7 @@ void LiveShow::advanceStep(int frames) {
   try {
     sim_->setFrameTime(run_.params.frameTime * static_cast<float>(frames));
     threads_->update();
+    givePerformerBody(*sim_, hands_);
     sim_->advanceFrame(wands_);
     const FrameStats stats = sim_->stats();
     std::string events = describeEvents(sim_->lastEvents());
@@ -660,6 +663,7 @@ void LiveShow::advanceStep(int frames) {
       events.replace(poke, std::string("burst_by_poke").size(), "burst_by_cue");
       burstByCue_ = false;
     }
+    if (const std::string touched = touchInWords(*sim_, events); !touched.empty()) say(shown_, touched);
     show_.frame(*sim_, stats, events);
     freeBubble_ = freeBubble_ || sim_->lastEvents().pinchedOff;
     if (stats.particles == 0 && filmGoneSince_ < 0) filmGoneSince_ = t_;

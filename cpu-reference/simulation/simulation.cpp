@@ -331,6 +331,10 @@ bool Simulation::passesOnDevice(const WandState& next, float wandSpeed) {
     heldForARegion_ = aRegionServes(*checks, next, wandSpeed);
     return false;
   }
+  if (bodyTouchesFilm()) {  // the body's touch is tested on the film in host memory
+    ++readbackRecord_.framesHeldByRule["touch"];
+    return false;
+  }
   for (int w = 0; w < 2; ++w)  // burstOnWandTouch's arming, far from its threshold (ruleThatMayAct)
     wandArmed_[w] = wandArmed_[w] || checks->nearestTip[w] > params_.pinchDistance;
   events_ = {};
@@ -340,6 +344,7 @@ bool Simulation::passesOnDevice(const WandState& next, float wandSpeed) {
 void Simulation::applyRulesBetweenSteps(const WandState& next, float wandSpeed) {
   checkStable();
   burstOnWandTouch();
+  touchByBody();
   burstOnFloorTouch();
   events_ = advanceBurst(params_, time_, film_, burst_, aerosol_);
   if (events_.particlesRemoved > 0) {  // the mesh shrank
@@ -572,6 +577,30 @@ void Simulation::burstOnWandTouch() {
   }
 }
 
+void Simulation::setBody(const BodyPoints& body) {
+  if (body.time == bodyTime_ && touch_.hasBody()) return;  // the same depth frame: its grid is built
+  touch_.setBody(body);
+  bodyTime_ = body.time;
+}
+
+bool Simulation::bodyTouchesFilm() const {
+  return touch_.hasBody() && !burst_.active() && (film_.topology.isClosed() || params_.touchWireFilm != 0);
+}
+
+void Simulation::touchByBody() {
+  if (!bodyTouchesFilm()) return;
+  touch_.setHands(params_.wetHands != 0, params_.touchStrikeSpeed);  // live parameters: as they are this frame
+  const std::vector<Touch> touching = touch_.touches(film_.state, touchArmed_, !film_.topology.isClosed());
+  if (touching.empty()) return;
+  if (const std::optional<Touch> burst = touch_.burstingTouch(touching)) {
+    startCrack(burst_, film_, burst->particle, time_, "touch");
+    lastTouch_ = burst;
+  } else if (touch_.push(film_.state, touching) > 0) {
+    stepper_->load(params_, film_);  // wet hands moved the film: the stepper takes it as it now is
+    ++loads_;
+  }
+}
+
 void Simulation::burstOnFloorTouch() {
   // A soap film bursts on a dry floor: the step lets particles land on y = 0 (and slide), this pops them.
   if (burst_.active()) return;
@@ -692,6 +721,8 @@ void Simulation::dip(const WandState& wands) {
   stateOnDevice_ = positionsOnDevice_ = contactsOnDevice_ = restLengthsOnDevice_ = false;  // the old film's, replaced
   contactHistory_ = {};  // the new film's particles are not the old one's
   burst_ = BurstFront{};
+  lastTouch_.reset();
+  touchArmed_.clear();  // the new film's particles have not yet been clear of the body
   wands_ = wands;
   reloadFilm();
 }

@@ -9,6 +9,7 @@
 #include <optional>
 #include <stdexcept>
 
+#include "body_touch.h"
 #include "bursting.h"
 #include "collision.h"
 #include "cpu_stepper.h"
@@ -84,6 +85,17 @@ class Simulation {
 
   // Whether each wand tip (left, right) bursts a free bubble it touches (pinch() disarms both until they are pulled
   // clear): kept by checkpoints of a long run (bench/film_checkpoint.h), which rebuild the Simulation from its film.
+  // The performer's body as the film's collider (body_touch.h): a new depth frame's points in the world, and whether a
+  // touch bursts the film (dry hands) or pushes it (wet). The film's rules read it each frame; clearBody forgets it.
+  void setBody(const BodyPoints& body);
+  void clearBody() {
+    touch_.clear();
+    bodyTime_ = -1.0;
+  }
+  [[nodiscard]] double bodyTime() const { return bodyTime_; }  // the run time of the body frame it holds (-1: none)
+  void setTouchOptions(const TouchOptions& options) { touch_ = BodyTouch(options); }
+  // Where the body burst the film and how fast it struck, when it did (the burst's cause is then "touch").
+  [[nodiscard]] const std::optional<Touch>& lastTouch() const { return lastTouch_; }
   [[nodiscard]] std::array<bool, 2> wandsArmed() const { return wandArmed_; }
   void setWandsArmed(std::array<bool, 2> armed) { wandArmed_ = armed; }
 
@@ -197,6 +209,10 @@ class Simulation {
   [[nodiscard]] bool tipsTogether(const WandState& wands) const;
   void burstOnHardImpact();
   void burstOnWandTouch();
+  // Whether the body is tested against the film this frame: a free bubble always, the film on the wands with
+  // Params::touchWireFilm.
+  [[nodiscard]] bool bodyTouchesFilm() const;
+  void touchByBody();
   void burstOnFloorTouch();
   void updateContacts();
   void checkStable() const;
@@ -266,6 +282,10 @@ class Simulation {
   std::vector<StepUniforms> substepUniforms_;  // one frame's substeps, reused
   WandState wands_;
   std::array<bool, 2> wandArmed_{true, true};  // a tip bursts a free bubble it touches once armed
+  BodyTouch touch_;                            // the performer's body as a collider
+  double bodyTime_ = -1.0;                     // the run time of the body frame touch_ holds
+  std::optional<Touch> lastTouch_;             // the touch that burst the film
+  std::vector<uint8_t> touchArmed_;            // per particle: has been clear of the body (BodyTouch::touches)
   double time_ = 0;
   int substeps_ = 1;
   int solverSweeps_ = 0;  // 0: Params::solverSweeps

@@ -365,7 +365,8 @@ Vec3 internalForce(const Params& p, const Topology& topo, const State& s, size_t
 Vec3 externalForce(const Params& p, const StepUniforms& u, float pressure, const State& s, size_t i) {
   const Vec3 n = s.normal.get(i);
   const float area = s.voronoiArea[i];
-  Vec3 f = liquidMass(p, s.liquid[i]) * Vec3(p.gravityX, p.gravityY, p.gravityZ);
+  const float lifted = u.closed ? p.bubbleLift : 0.0f;  // a free bubble's air may carry some of its weight
+  Vec3 f = (1.0f - lifted) * liquidMass(p, s.liquid[i]) * Vec3(p.gravityX, p.gravityY, p.gravityZ);
   const float flowIn = s.airFlow.get(i).dot(n), directIn = s.airInflow.get(i).dot(n);
   if (u.closed) {
     f += pressure / p.pressureCoefficient * p.airPressureGain * flowIn * area * n;  // Eq. (10), the air's part

@@ -84,6 +84,15 @@ struct Params {
   float loopSwingRate GB_DEFAULT(6.0f);  // two wands: the fastest the hanging loop turns about the tips' span (rad/s),
                                          // about the swing of a 0.8 m string pendulum (wire_frame.h, swingLoop)
 
+  // --- The performer's touch (cpu-reference/topology/body_touch.h) ---
+  int touchWireFilm GB_DEFAULT(0);          // 1: the body touches the film on the wands too, not only free bubbles (the
+                                            // wands' sticks, not modelled, otherwise keep it off the performer)
+  int wetHands GB_DEFAULT(0);               // 1: the performer's hands are wet: the body pushes the film instead of
+                                            // bursting it, and only a strike faster than touchStrikeSpeed bursts it
+  float touchStrikeSpeed GB_DEFAULT(1.5f);  // how fast a wet hand must strike a film to burst it (m/s)
+  float bubbleLift GB_DEFAULT(0.0f);        // the share of a free bubble's weight its air lifts: 1 floats it still
+                                            // (neutrally buoyant, as --bubble-at places it), 0 lets it fall
+
   // --- Soap solution control (Section 7) ---
   float solution GB_DEFAULT(1.0f);               // remaining soap solution, 1 = full dip (0, 1]
   int particlesAtFullSolution GB_DEFAULT(9500);  // particles of a film made at solution 1.0 (Table 1: 9-10k)

@@ -61,11 +61,12 @@ float currentPressure(StepUniformsBlock u) {
 // liquidMass (cpu-reference/model/film.h): the mass gravity pulls on, the particle's liquid.
 float liquidMass(uint i) { return params.liquidDensity * liquid[i]; }
 
-// externalForce: gravity, and the air force, Eq. (9) open or Eqs. (10)-(11) closed.
+// externalForce: gravity (less a free bubble's lift), and the air force, Eq. (9) open or Eqs. (10)-(11) closed.
 vec3 externalForce(StepUniformsBlock u, float pressure, uint i) {
   const vec3 n = LOAD3(normal, i);
   const float area = voronoiArea[i];
-  vec3 f = liquidMass(i) * vec3(params.gravityX, params.gravityY, params.gravityZ);
+  const float lifted = u.closed != 0u ? params.bubbleLift : 0.0;  // a free bubble's air may carry some of its weight
+  vec3 f = (1.0 - lifted) * liquidMass(i) * vec3(params.gravityX, params.gravityY, params.gravityZ);
   const float flowIn = dot(LOAD3(airFlow, i), n), directIn = dot(LOAD3(airInflow, i), n);
   if (u.closed != 0u) {
     f += pressure / params.pressureCoefficient * params.airPressureGain * flowIn * area * n;  // Eq. (10), air

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "bursting.h"
+#include "camera_layer.h"
 #include "device_film.h"
 #include "film.h"
 #include "render_scene.h"
@@ -70,6 +71,10 @@ struct RenderFrame {
   float blackFilmThickness = Params{}.blackFilmThickness;  // m: thinner film is drawn as black film
   const WireFrame* wireFrame = nullptr;                    // the wands and their string (or ring)
   OrbitCamera camera;
+  // The mirror view (host/camera_layer.h): seen from the depth camera instead of `camera`, with what it saw
+  // (`cameraImage`, in the camera's pixels; null: nothing of it) drawn in at its own depth.
+  const DepthCameraView* mirror = nullptr;
+  const CameraImage* cameraImage = nullptr;
 };
 
 class Renderer {

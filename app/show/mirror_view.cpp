@@ -1,0 +1,109 @@
+#include "mirror_view.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "colour_registration.h"
+#include "performer_view.h"
+
+namespace gb {
+
+DepthCameraView mirrorCamera(const Calibration& calibration) {
+  // toCamera is affine: its matrix from the images of the origin and the unit axes.
+  const Vec3d origin = calibration.toCamera(Vec3d::Zero());
+  Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
+  for (int axis = 0; axis < 3; ++axis) m.block<3, 1>(0, axis) = calibration.toCamera(Vec3d::Unit(axis)) - origin;
+  m.block<3, 1>(0, 3) = origin;
+  DepthCameraView view;
+  view.worldToCamera = m.cast<float>();
+  view.fx = static_cast<float>(kinect::kFx);
+  view.fy = static_cast<float>(kinect::kFy);
+  view.cx = static_cast<float>(kinect::kCx);
+  view.cy = static_cast<float>(kinect::kCy);
+  view.imageWidth = kinect::kWidth;
+  view.imageHeight = kinect::kHeight;
+  view.mirrored = true;
+  return view;
+}
+
+namespace {
+
+uint32_t packRgba(double r, double g, double b) {
+  const auto byte = [](double c) { return static_cast<uint32_t>(std::lround(255.0 * std::clamp(c, 0.0, 1.0))); };
+  return byte(r) | byte(g) << 8 | byte(b) << 16 | 255u << 24;
+}
+
+// Lambert shading of the surface the depth image shows at pixel i, under a light from above the camera: its
+// normal from the slope of the depth across the neighbours that are drawn too (flat where none is).
+double shade(const std::vector<float>& depth, int u, int v) {
+  const size_t i = static_cast<size_t>(v) * kinect::kWidth + static_cast<size_t>(u);
+  const float z = depth[i];
+  const auto at = [&](int du, int dv) {
+    const int x = u + du, y = v + dv;
+    if (x < 0 || y < 0 || x >= kinect::kWidth || y >= kinect::kHeight) return z;
+    const float n = depth[static_cast<size_t>(y) * kinect::kWidth + static_cast<size_t>(x)];
+    return n > 0.0f && std::abs(n - z) < 0.1f ? n : z;  // across an edge: flat
+  };
+  // Metres of depth per metre across, along the image's x (right) and y (down).
+  const double gx = (at(1, 0) - at(-1, 0)) * kinect::kFx / (2.0 * z);
+  const double gy = (at(0, 1) - at(0, -1)) * kinect::kFy / (2.0 * z);
+  const Vec3d normal = Vec3d(gx, -gy, -1.0).normalized();  // camera space (y up), facing the camera
+  const Vec3d light = Vec3d(0.0, 0.5, -1.0).normalized();
+  return 0.35 + 0.65 * std::max(0.0, normal.dot(light));
+}
+
+}  // namespace
+
+CameraImage cameraImageOf(const kinect::DepthFrame& frame, const BodyDepth& body, bool room) {
+  CameraImage image;
+  image.width = kinect::kWidth;
+  image.height = kinect::kHeight;
+  image.depth.assign(static_cast<size_t>(kinect::kPixels), 0.0f);
+  image.rgba.assign(static_cast<size_t>(kinect::kPixels), 0u);
+  const std::array<float, 2048>& metres = kinect::depthTable();
+  std::vector<uint8_t> performer(static_cast<size_t>(kinect::kPixels), 0);
+  for (int v = 0; v < kinect::kHeight; ++v)
+    for (int u = 0; u < kinect::kWidth; ++u) {
+      const size_t i = static_cast<size_t>(v) * kinect::kWidth + static_cast<size_t>(u);
+      const float z = metres[frame.raw[i] & 2047];
+      if (!(z > 0.0f)) continue;
+      // The segmentation's grid point of this pixel, and this pixel near its depth: the performer's.
+      const float bodyZ = body.at(u / 2, v / 2);
+      performer[i] = bodyZ < BodyDepth::kBackground && std::abs(z - bodyZ) < 0.15f;
+      if (performer[i] || room) image.depth[i] = z;
+    }
+  const bool colour = frame.colour.size() == static_cast<size_t>(kinect::kColourBytes) && frame.registration;
+  const std::vector<uint8_t> registered =
+      colour ? registeredColour(frame.colour, image.depth, *frame.registration) : std::vector<uint8_t>();
+  for (int v = 0; v < kinect::kHeight; ++v)
+    for (int u = 0; u < kinect::kWidth; ++u) {
+      const size_t i = static_cast<size_t>(v) * kinect::kWidth + static_cast<size_t>(u);
+      if (!(image.depth[i] > 0.0f)) continue;
+      if (colour) {
+        image.rgba[i] =
+            packRgba(registered[3 * i] / 255.0, registered[3 * i + 1] / 255.0, registered[3 * i + 2] / 255.0);
+        continue;
+      }
+      const double light = shade(image.depth, u, v);
+      image.rgba[i] = performer[i] ? packRgba(0.93 * light, 0.80 * light, 0.68 * light)   // a warm silhouette
+                                   : packRgba(0.45 * light, 0.47 * light, 0.50 * light);  // the room, grey
+    }
+  return image;
+}
+
+std::string MirrorView::toggle() {
+  on_ = !on_;
+  if (on_ && !source_) return "mirror view: on, shown with a depth camera input (kinect, fakenect:DIR)";
+  return on_ ? "mirror view: on" : "mirror view: off (the virtual stage)";
+}
+
+void MirrorView::apply(RenderFrame& frame, const Calibration* calibration) {
+  if (!on_ || !source_ || !calibration || !source_->hasDepth()) return;
+  if (std::optional<ObservedHandSource::Frame> newest = source_->takeFrame())
+    image_ = cameraImageOf(newest->depth, newest->body, room_);
+  camera_ = mirrorCamera(*calibration);
+  frame.mirror = &camera_;
+  frame.cameraImage = image_.depth.empty() ? nullptr : &image_;
+}
+
+}  // namespace gb

@@ -2,6 +2,7 @@
 
 #include <dlfcn.h>
 #include <libfreenect.h>
+#include <libfreenect_registration.h>
 #include <sys/time.h>
 
 #include <array>
@@ -13,6 +14,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "colour_registration.h"
@@ -259,6 +261,8 @@ class FreenectLibrary {
     bindIfThere(setVideoMode, "freenect_set_video_mode");
     bindIfThere(startVideo, "freenect_start_video");
     bindIfThere(stopVideo, "freenect_stop_video");
+    bindIfThere(copyRegistration, "freenect_copy_registration");
+    bindIfThere(destroyRegistration, "freenect_destroy_registration");
   }
   ~FreenectLibrary() {
     if (device) {
@@ -316,6 +320,54 @@ class FreenectLibrary {
     videoStarted = mode.is_valid && setVideoMode(device, mode) >= 0 && startVideo(device) >= 0;
   }
 
+  // The open device's registration as fakenect's device.json holds it (empty: the build cannot give it).
+  std::string deviceJson() {
+    if (!copyRegistration || !destroyRegistration) return {};
+    freenect_registration r = copyRegistration(device);
+    const freenect_reg_info& i = r.reg_info;
+    nlohmann::json json;
+    json["reg_info"] = {{"dx_center", i.dx_center},
+                        {"ax", i.ax},
+                        {"bx", i.bx},
+                        {"cx", i.cx},
+                        {"dx", i.dx},
+                        {"dx_start", i.dx_start},
+                        {"ay", i.ay},
+                        {"by", i.by},
+                        {"cy", i.cy},
+                        {"dy", i.dy},
+                        {"dy_start", i.dy_start},
+                        {"dx_beta_start", i.dx_beta_start},
+                        {"dy_beta_start", i.dy_beta_start},
+                        {"rollout_blank", i.rollout_blank},
+                        {"rollout_size", i.rollout_size},
+                        {"dx_beta_inc", i.dx_beta_inc},
+                        {"dy_beta_inc", i.dy_beta_inc},
+                        {"dxdx_start", i.dxdx_start},
+                        {"dxdy_start", i.dxdy_start},
+                        {"dydx_start", i.dydx_start},
+                        {"dydy_start", i.dydy_start},
+                        {"dxdxdx_start", i.dxdxdx_start},
+                        {"dydxdx_start", i.dydxdx_start},
+                        {"dxdxdy_start", i.dxdxdy_start},
+                        {"dydxdy_start", i.dydxdy_start},
+                        {"back_comp1", i.back_comp1},
+                        {"dydydx_start", i.dydydx_start},
+                        {"back_comp2", i.back_comp2},
+                        {"dydydy_start", i.dydydy_start}};
+    json["reg_pad_info"] = {{"start_lines", r.reg_pad_info.start_lines},
+                            {"end_lines", r.reg_pad_info.end_lines},
+                            {"cropping_lines", r.reg_pad_info.cropping_lines}};
+    const freenect_zero_plane_info& z = r.zero_plane_info;
+    json["zero_plane_info"] = {{"dcmos_emitter_dist", z.dcmos_emitter_dist},
+                               {"dcmos_rcmos_dist", z.dcmos_rcmos_dist},
+                               {"reference_distance", z.reference_distance},
+                               {"reference_pixel_size", z.reference_pixel_size}};
+    json["const_shift"] = r.const_shift;
+    destroyRegistration(&r);
+    return json.dump(2);
+  }
+
   // The accelerometer's up direction in camera space (kinect_depth.h), when it reads about 1 g.
   std::optional<Eigen::Vector3d> gravityUp() {
     double x = 0, y = 0, z = 0;
@@ -360,6 +412,8 @@ class FreenectLibrary {
   int (*setVideoMode)(freenect_device*, freenect_frame_mode) = nullptr;
   int (*startVideo)(freenect_device*) = nullptr;
   int (*stopVideo)(freenect_device*) = nullptr;
+  freenect_registration (*copyRegistration)(freenect_device*) = nullptr;
+  int (*destroyRegistration)(freenect_registration*) = nullptr;
 
   freenect_context* context = nullptr;
   freenect_device* device = nullptr;
@@ -428,7 +482,17 @@ std::unique_ptr<DepthStream> DepthStream::openKinect() {
   std::unique_ptr<DepthStream> s(new DepthStream());
   s->lib_ = std::make_unique<FreenectLibrary>(path ? path : GB_FREENECT_LIBRARY);
   s->lib_->start("live Kinect");
-  s->registration_ = std::make_shared<const ColourRegistration>(factoryRegistration());
+  // The device's own registration where the library gives it (kept in a recording as device.json); a device whose
+  // values are not a Kinect's is registered by the factory constants.
+  ColourRegistration registration = factoryRegistration();
+  if (const std::string json = s->lib_->deviceJson(); !json.empty()) {
+    try {
+      registration = registrationFromDeviceJson(json, "the Kinect's registration");
+    } catch (const HandSourceError& e) {
+      std::fprintf(stderr, "note: %s; the colour is registered by the factory constants\n", e.what());
+    }
+  }
+  s->registration_ = std::make_shared<const ColourRegistration>(registration);
   s->openedAt_ = steadySeconds();
   return s;
 }

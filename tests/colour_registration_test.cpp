@@ -1,9 +1,10 @@
 // The registration of depth pixels to the colour image: the factory constants and a recording's device.json.
+#include "colour_registration.h"
+
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "colour_registration.h"
 #include "hand_source.h"
 #include "kinect_depth.h"
 

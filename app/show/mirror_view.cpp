@@ -33,9 +33,36 @@ uint32_t packRgba(double r, double g, double b) {
   return byte(r) | byte(g) << 8 | byte(b) << 16 | 255u << 24;
 }
 
-// Lambert shading of the surface the depth image shows at pixel i, under a light from above the camera: its
-// normal from the slope of the depth across the neighbours that are drawn too (flat where none is).
-double shade(const std::vector<float>& depth, int u, int v) {
+// The depth of the drawn pixels averaged over a square of 2 r + 1 pixels (0 where nothing is drawn): a real
+// camera's depth comes in steps of 1-3 cm, whose slopes would shade as contour lines.
+std::vector<float> smoothedDepth(const std::vector<float>& depth, int r) {
+  const int w = kinect::kWidth, h = kinect::kHeight;
+  std::vector<float> sum(depth.size(), 0.0f), count(depth.size(), 0.0f), out(depth.size(), 0.0f);
+  for (int v = 0; v < h; ++v)  // across the rows, then down the columns
+    for (int u = 0; u < w; ++u)
+      for (int k = std::max(0, u - r); k <= std::min(w - 1, u + r); ++k) {
+        const float z = depth[static_cast<size_t>(v * w + k)];
+        sum[static_cast<size_t>(v * w + u)] += z;
+        count[static_cast<size_t>(v * w + u)] += z > 0.0f ? 1.0f : 0.0f;
+      }
+  for (int v = 0; v < h; ++v)
+    for (int u = 0; u < w; ++u) {
+      const size_t i = static_cast<size_t>(v * w + u);
+      if (!(depth[i] > 0.0f)) continue;
+      float s = 0.0f, n = 0.0f;
+      for (int k = std::max(0, v - r); k <= std::min(h - 1, v + r); ++k) {
+        s += sum[static_cast<size_t>(k * w + u)];
+        n += count[static_cast<size_t>(k * w + u)];
+      }
+      out[i] = s / n;
+    }
+  return out;
+}
+
+// Lambert shading of the surface the (smoothed) depth shows at pixel (u, v), under a light from above the camera:
+// its normal from the slope of the depth across the neighbours `step` pixels off that are drawn too (flat where
+// none is).
+double shade(const std::vector<float>& depth, int u, int v, int step) {
   const size_t i = static_cast<size_t>(v) * kinect::kWidth + static_cast<size_t>(u);
   const float z = depth[i];
   const auto at = [&](int du, int dv) {
@@ -45,8 +72,8 @@ double shade(const std::vector<float>& depth, int u, int v) {
     return n > 0.0f && std::abs(n - z) < 0.1f ? n : z;  // across an edge: flat
   };
   // Metres of depth per metre across, along the image's x (right) and y (down).
-  const double gx = (at(1, 0) - at(-1, 0)) * kinect::kFx / (2.0 * z);
-  const double gy = (at(0, 1) - at(0, -1)) * kinect::kFy / (2.0 * z);
+  const double gx = (at(step, 0) - at(-step, 0)) * kinect::kFx / (2.0 * step * z);
+  const double gy = (at(0, step) - at(0, -step)) * kinect::kFy / (2.0 * step * z);
   const Vec3d normal = Vec3d(gx, -gy, -1.0).normalized();  // camera space (y up), facing the camera
   const Vec3d light = Vec3d(0.0, 0.5, -1.0).normalized();
   return 0.35 + 0.65 * std::max(0.0, normal.dot(light));
@@ -73,6 +100,7 @@ CameraImage cameraImageOf(const kinect::DepthFrame& frame, const BodyDepth& body
       if (performer[i] || room) image.depth[i] = z;
     }
   const bool colour = frame.colour.size() == static_cast<size_t>(kinect::kColourBytes) && frame.registration;
+  const std::vector<float> smooth = colour ? std::vector<float>() : smoothedDepth(image.depth, 3);
   const std::vector<uint8_t> registered =
       colour ? registeredColour(frame.colour, image.depth, *frame.registration) : std::vector<uint8_t>();
   for (int v = 0; v < kinect::kHeight; ++v)
@@ -84,7 +112,7 @@ CameraImage cameraImageOf(const kinect::DepthFrame& frame, const BodyDepth& body
             packRgba(registered[3 * i] / 255.0, registered[3 * i + 1] / 255.0, registered[3 * i + 2] / 255.0);
         continue;
       }
-      const double light = shade(image.depth, u, v);
+      const double light = shade(smooth, u, v, 2);
       image.rgba[i] = performer[i] ? packRgba(0.93 * light, 0.80 * light, 0.68 * light)   // a warm silhouette
                                    : packRgba(0.45 * light, 0.47 * light, 0.50 * light);  // the room, grey
     }

@@ -9,11 +9,13 @@
 namespace gb {
 
 DepthCameraView mirrorCamera(const Calibration& calibration) {
-  // toCamera is affine: its matrix from the images of the origin and the unit axes.
-  const Vec3d origin = calibration.toCamera(Vec3d::Zero());
+  // toCamera is affine: its linear part the inverse of the one velocities map by (the same while the calibration
+  // glides after the performer, so the sky drawn with it is drawn once), then where the world's origin lands.
+  Eigen::Matrix3d toWorld;
+  for (int axis = 0; axis < 3; ++axis) toWorld.col(axis) = calibration.velocityToWorld(Vec3d::Unit(axis));
   Eigen::Matrix4d m = Eigen::Matrix4d::Identity();
-  for (int axis = 0; axis < 3; ++axis) m.block<3, 1>(0, axis) = calibration.toCamera(Vec3d::Unit(axis)) - origin;
-  m.block<3, 1>(0, 3) = origin;
+  m.topLeftCorner<3, 3>() = toWorld.inverse();
+  m.block<3, 1>(0, 3) = calibration.toCamera(Vec3d::Zero());
   DepthCameraView view;
   view.worldToCamera = m.cast<float>();
   view.fx = static_cast<float>(kinect::kFx);
@@ -35,18 +37,26 @@ uint32_t packRgba(double r, double g, double b) {
 
 // The depth of the drawn pixels averaged over a square of 2 r + 1 pixels (0 where nothing is drawn): a real
 // camera's depth comes in steps of 1-3 cm, whose slopes would shade as contour lines.
-std::vector<float> smoothedDepth(const std::vector<float>& depth, int r) {
+// Only the rows [top, bottom) and columns [left, right) hold drawn pixels.
+struct Box {
+  int left = kinect::kWidth, top = kinect::kHeight, right = 0, bottom = 0;
+  void add(int u, int v) {
+    left = std::min(left, u), right = std::max(right, u + 1), top = std::min(top, v), bottom = std::max(bottom, v + 1);
+  }
+};
+
+std::vector<float> smoothedDepth(const std::vector<float>& depth, int r, const Box& box) {
   const int w = kinect::kWidth, h = kinect::kHeight;
   std::vector<float> sum(depth.size(), 0.0f), count(depth.size(), 0.0f), out(depth.size(), 0.0f);
-  for (int v = 0; v < h; ++v)  // across the rows, then down the columns
-    for (int u = 0; u < w; ++u)
+  for (int v = std::max(0, box.top - r); v < std::min(h, box.bottom + r); ++v)  // across the rows, then down
+    for (int u = box.left; u < box.right; ++u)
       for (int k = std::max(0, u - r); k <= std::min(w - 1, u + r); ++k) {
         const float z = depth[static_cast<size_t>(v * w + k)];
         sum[static_cast<size_t>(v * w + u)] += z;
         count[static_cast<size_t>(v * w + u)] += z > 0.0f ? 1.0f : 0.0f;
       }
-  for (int v = 0; v < h; ++v)
-    for (int u = 0; u < w; ++u) {
+  for (int v = box.top; v < box.bottom; ++v)
+    for (int u = box.left; u < box.right; ++u) {
       const size_t i = static_cast<size_t>(v * w + u);
       if (!(depth[i] > 0.0f)) continue;
       float s = 0.0f, n = 0.0f;
@@ -89,6 +99,7 @@ CameraImage cameraImageOf(const kinect::DepthFrame& frame, const BodyDepth& body
   image.rgba.assign(static_cast<size_t>(kinect::kPixels), 0u);
   const std::array<float, 2048>& metres = kinect::depthTable();
   std::vector<uint8_t> performer(static_cast<size_t>(kinect::kPixels), 0);
+  Box drawn;
   for (int v = 0; v < kinect::kHeight; ++v)
     for (int u = 0; u < kinect::kWidth; ++u) {
       const size_t i = static_cast<size_t>(v) * kinect::kWidth + static_cast<size_t>(u);
@@ -97,14 +108,16 @@ CameraImage cameraImageOf(const kinect::DepthFrame& frame, const BodyDepth& body
       // The segmentation's grid point of this pixel, and this pixel near its depth: the performer's.
       const float bodyZ = body.at(u / 2, v / 2);
       performer[i] = bodyZ < BodyDepth::kBackground && std::abs(z - bodyZ) < 0.15f;
-      if (performer[i] || room) image.depth[i] = z;
+      if (!performer[i] && !room) continue;
+      image.depth[i] = z;
+      drawn.add(u, v);
     }
   const bool colour = frame.colour.size() == static_cast<size_t>(kinect::kColourBytes) && frame.registration;
-  const std::vector<float> smooth = colour ? std::vector<float>() : smoothedDepth(image.depth, 3);
+  const std::vector<float> smooth = colour ? std::vector<float>() : smoothedDepth(image.depth, 3, drawn);
   const std::vector<uint8_t> registered =
       colour ? registeredColour(frame.colour, image.depth, *frame.registration) : std::vector<uint8_t>();
-  for (int v = 0; v < kinect::kHeight; ++v)
-    for (int u = 0; u < kinect::kWidth; ++u) {
+  for (int v = drawn.top; v < drawn.bottom; ++v)
+    for (int u = drawn.left; u < drawn.right; ++u) {
       const size_t i = static_cast<size_t>(v) * kinect::kWidth + static_cast<size_t>(u);
       if (!(image.depth[i] > 0.0f)) continue;
       if (colour) {

@@ -4,7 +4,8 @@
 // over the ground, the wands and their string, the rim of a bursting hole and the aerosol droplets; or coloured
 // by a diagnostic (thickness, air flow). Passes into offscreen images, multisampled (MSAA) and resolved, then the
 // caller reads the pixels (PNG, video) or copies the image to a window (host/window.h):
-//   1. opaque:   ground, wands, string, hole rims                   -> colour (RGBA16F) + depth
+//   1. opaque:   ground, wands, string, hole rims, and in the mirror view the camera's image at its own depth
+//                (host/camera_layer.h)                              -> colour (RGBA16F) + depth
 //   2. film:     film and droplets, weighted blended order-independent transparency
 //                                                                    -> accum (RGBA16F) + reveal (R16F)
 //   3. sky:      the environment along each pixel's view ray, only when the view has turned or zoomed

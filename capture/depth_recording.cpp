@@ -9,6 +9,7 @@
 #include <memory>
 #include <random>
 
+#include "colour_registration.h"
 #include "freenect_stream.h"
 #include "trajectory_file.h"
 #include "untrusted.h"
@@ -35,6 +36,17 @@ kinect::DepthFrame readDepthFile(const fs::path& file) {
   return frame;
 }
 
+// A colour entry's RGB (readFakenectIndex checked its header and size).
+std::vector<uint8_t> readColourFile(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::string header;
+  std::getline(in, header);
+  std::vector<uint8_t> rgb(static_cast<size_t>(kinect::kColourBytes));
+  in.read(reinterpret_cast<char*>(rgb.data()), static_cast<std::streamsize>(rgb.size()));
+  if (!in) throw HandSourceError("colour file " + printablePath(file) + " could not be read whole");
+  return rgb;
+}
+
 // The up direction of an accelerometer entry (libfreenect's freenect_raw_tilt_state as fakenect-record dumps it).
 std::optional<Vec3d> readAccelerometer(const fs::path& file) {
   freenect_raw_tilt_state state{};
@@ -51,15 +63,23 @@ DepthRecording readFolder(const fs::path& folder, const std::string& name) {
   DepthRecording recording;
   recording.name = name;
   std::optional<Vec3d> gravityUp;
+  std::vector<uint8_t> colour;  // the newest colour image
+  std::shared_ptr<const ColourRegistration> registration;
   double firstTime = 0.0;
   for (const FakenectEntry& e : index.entries) {
     if (e.type == 'a') gravityUp = readAccelerometer(folder / e.file);
+    if (e.type == 'r') {
+      colour = readColourFile(folder / e.file);
+      if (!registration) registration = std::make_shared<const ColourRegistration>(recordingRegistration(folder));
+    }
     if (e.type != 'd') continue;
     kinect::DepthFrame frame = readDepthFile(folder / e.file);
     if (recording.frames.empty()) firstTime = e.time;
     frame.time = e.time - firstTime;
     frame.timestamp = e.timestamp;
     frame.gravityUp = gravityUp;
+    frame.colour = colour;
+    frame.registration = registration;
     recording.frames.push_back(std::move(frame));
   }
   const fs::path truth = folder / "hands.csv";

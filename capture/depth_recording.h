@@ -1,8 +1,8 @@
 #pragma once
 // A fakenect recording's depth frames read straight from its files, as fast as the disk gives them (fakenect
 // plays a recording in real time): for evaluating the hand detector on many recordings at once. A recording is
-// a folder (INDEX.txt, d-… depth files, a-… accelerometer dumps) or a .tar.gz archive holding one such
-// folder; a trajectory CSV named hands.csv beside the frames is its ground truth (docs/formats.md).
+// a folder (INDEX.txt, d-… depth files, r-… colour images, a-… accelerometer dumps, device.json) or a .tar.gz archive
+// holding one such folder; a trajectory CSV named hands.csv beside the frames is its ground truth (docs/formats.md).
 
 #include <filesystem>
 #include <string>
@@ -15,7 +15,8 @@ namespace gb {
 
 struct DepthRecording {
   std::string name;                        // the folder's or the archive's name, without .tar.gz
-  std::vector<kinect::DepthFrame> frames;  // times from the first depth frame; gravity from the a- entries
+  std::vector<kinect::DepthFrame> frames;  // times from the first depth frame; gravity from the a- entries, colour
+                                           // from the r- entries (and device.json)
   std::vector<HandSample> truth;           // hands.csv, when the recording has one (else empty)
 };
 

@@ -2,6 +2,7 @@
 
 #include <dlfcn.h>
 #include <libfreenect.h>
+#include <libfreenect_registration.h>
 #include <sys/time.h>
 
 #include <array>
@@ -13,8 +14,10 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "colour_registration.h"
 #include "hand_source.h"
 #include "output_file.h"
 #include "untrusted.h"
@@ -55,6 +58,15 @@ bool isKinectDepthHeader(const std::string& header) {
          width == kinect::kWidth && height == kinect::kHeight && maxValue > 255 && maxValue <= 65535;
 }
 
+// fakenect reads a colour entry as 640x480 8-bit RGB after a one-line header, whatever the header says.
+bool isKinectColourHeader(const std::string& header) {
+  std::istringstream in(header);
+  std::string magic;
+  int width = 0, height = 0, maxValue = 0;
+  return (in >> magic >> width >> height >> maxValue) && (in >> std::ws).eof() && magic == "P6" &&
+         width == kinect::kWidth && height == kinect::kHeight && maxValue == 255;
+}
+
 // Why fakenect could not read this entry's file now (empty when it can). The file's name comes from INDEX.txt: it is
 // quoted escaped (printable).
 std::string fileProblem(const fs::path& folder, const FakenectEntry& e) {
@@ -69,9 +81,17 @@ std::string fileProblem(const fs::path& folder, const FakenectEntry& e) {
   if (e.type == 'a' && size != sizeof(freenect_raw_tilt_state))
     return "accelerometer file " + shown + " is " + std::to_string(size) + " bytes, expected " +
            std::to_string(sizeof(freenect_raw_tilt_state)) + " (libfreenect's tilt state)";
-  if (e.type != 'd') return {};
   std::string header;
   const long long payload = depthPayload(path, header);
+  if (e.type == 'r') {
+    if (payload < 0 || !isKinectColourHeader(header))
+      return "colour file " + shown + " has the header '" + printable(header) + "', expected 'P6 640 480 255'";
+    if (payload < static_cast<long long>(kinect::kColourBytes))
+      return "colour file " + shown + " is truncated: " + std::to_string(payload) + " bytes of colour, expected " +
+             std::to_string(kinect::kColourBytes) + " (640x480 RGB)";
+    return {};
+  }
+  if (e.type != 'd') return {};
   if (payload < 0) return "depth file " + shown + " has no one-line PGM header";
   if (!isKinectDepthHeader(header))
     return "depth file " + shown + " has the header '" + printable(header) + "', expected 'P5 640 480 65535'";
@@ -164,6 +184,7 @@ FakenectWriter::FakenectWriter(const fs::path& folder) : folder_(folder) {
 
 void FakenectWriter::write(const kinect::DepthFrame& frame, double recordTime) {
   if (frame.gravityUp) writeAccelerometer(*frame.gravityUp, frame.timestamp, recordTime);
+  if (frame.colour.size() == static_cast<size_t>(kinect::kColourBytes)) writeColour(frame, recordTime);
   char name[96];
   std::snprintf(name, sizeof name, "d-%f-%" PRIu32 ".pgm", recordTime, frame.timestamp);
   std::string bytes = "P5 " + std::to_string(kinect::kWidth) + ' ' + std::to_string(kinect::kHeight) + " 65535\n";
@@ -176,6 +197,20 @@ void FakenectWriter::write(const kinect::DepthFrame& frame, double recordTime) {
   writeFileAtomically(folder_ / name, bytes);
   addToIndex(name);
   ++frames_;
+}
+
+void FakenectWriter::writeColour(const kinect::DepthFrame& frame, double recordTime) {
+  // The device's registration once, as fakenect-record keeps it beside the frames.
+  if (!wroteRegistration_ && frame.registration && !frame.registration->deviceJson.empty()) {
+    writeFileAtomically(folder_ / "device.json", frame.registration->deviceJson);
+    wroteRegistration_ = true;
+  }
+  char name[96];
+  std::snprintf(name, sizeof name, "r-%f-%" PRIu32 ".ppm", recordTime, frame.timestamp);
+  std::string bytes = "P6 " + std::to_string(kinect::kWidth) + ' ' + std::to_string(kinect::kHeight) + " 255\n";
+  bytes.append(frame.colour.begin(), frame.colour.end());
+  writeFileAtomically(folder_ / name, bytes);
+  addToIndex(name);
 }
 
 void FakenectWriter::writeAccelerometer(const Eigen::Vector3d& up, uint32_t timestamp, double recordTime) {
@@ -220,9 +255,18 @@ class FreenectLibrary {
     bind(updateTiltState, "freenect_update_tilt_state");
     bind(getTiltState, "freenect_get_tilt_state");
     bind(getMksAccel, "freenect_get_mks_accel");
+    // The colour stream, where the build has it (a stand-in library may not): without it, depth alone.
+    bindIfThere(setVideoCallback, "freenect_set_video_callback");
+    bindIfThere(findVideoMode, "freenect_find_video_mode");
+    bindIfThere(setVideoMode, "freenect_set_video_mode");
+    bindIfThere(startVideo, "freenect_start_video");
+    bindIfThere(stopVideo, "freenect_stop_video");
+    bindIfThere(copyRegistration, "freenect_copy_registration");
+    bindIfThere(destroyRegistration, "freenect_destroy_registration");
   }
   ~FreenectLibrary() {
     if (device) {
+      if (videoStarted) stopVideo(device);
       if (depthStarted) stopDepth(device);
       closeDevice(device);
     }
@@ -240,6 +284,12 @@ class FreenectLibrary {
     std::memcpy(self->target->raw.data(), depth, kDepthBytes);
     self->target->timestamp = timestamp;
     self->gotFrame = true;
+  }
+  static void onVideo(freenect_device*, void* rgb, uint32_t) {
+    FreenectLibrary* self = polling;
+    if (!self || !self->colourTarget) return;
+    const auto* bytes = static_cast<const uint8_t*>(rgb);
+    self->colourTarget->assign(bytes, bytes + kinect::kColourBytes);
   }
 
   // Initialises libfreenect and starts 11-bit depth on the first device; a message naming the failure otherwise.
@@ -259,6 +309,63 @@ class FreenectLibrary {
     if (!mode.is_valid || setDepthMode(device, mode) < 0 || startDepth(device) < 0)
       throw HandSourceError("the Kinect refused 640x480 11-bit depth (" + what + ")");
     depthStarted = true;
+    startColour();
+  }
+
+  // 640x480 RGB video beside the depth, when the build has it; a camera that refuses it gives depth alone.
+  void startColour() {
+    if (!setVideoCallback || !findVideoMode || !setVideoMode || !startVideo || !stopVideo) return;
+    setVideoCallback(device, &FreenectLibrary::onVideo);
+    const freenect_frame_mode mode = findVideoMode(FREENECT_RESOLUTION_MEDIUM, FREENECT_VIDEO_RGB);
+    videoStarted = mode.is_valid && setVideoMode(device, mode) >= 0 && startVideo(device) >= 0;
+  }
+
+  // The open device's registration as fakenect's device.json holds it (empty: the build cannot give it).
+  std::string deviceJson() {
+    if (!copyRegistration || !destroyRegistration) return {};
+    freenect_registration r = copyRegistration(device);
+    const freenect_reg_info& i = r.reg_info;
+    nlohmann::json json;
+    json["reg_info"] = {{"dx_center", i.dx_center},
+                        {"ax", i.ax},
+                        {"bx", i.bx},
+                        {"cx", i.cx},
+                        {"dx", i.dx},
+                        {"dx_start", i.dx_start},
+                        {"ay", i.ay},
+                        {"by", i.by},
+                        {"cy", i.cy},
+                        {"dy", i.dy},
+                        {"dy_start", i.dy_start},
+                        {"dx_beta_start", i.dx_beta_start},
+                        {"dy_beta_start", i.dy_beta_start},
+                        {"rollout_blank", i.rollout_blank},
+                        {"rollout_size", i.rollout_size},
+                        {"dx_beta_inc", i.dx_beta_inc},
+                        {"dy_beta_inc", i.dy_beta_inc},
+                        {"dxdx_start", i.dxdx_start},
+                        {"dxdy_start", i.dxdy_start},
+                        {"dydx_start", i.dydx_start},
+                        {"dydy_start", i.dydy_start},
+                        {"dxdxdx_start", i.dxdxdx_start},
+                        {"dydxdx_start", i.dydxdx_start},
+                        {"dxdxdy_start", i.dxdxdy_start},
+                        {"dydxdy_start", i.dydxdy_start},
+                        {"back_comp1", i.back_comp1},
+                        {"dydydx_start", i.dydydx_start},
+                        {"back_comp2", i.back_comp2},
+                        {"dydydy_start", i.dydydy_start}};
+    json["reg_pad_info"] = {{"start_lines", r.reg_pad_info.start_lines},
+                            {"end_lines", r.reg_pad_info.end_lines},
+                            {"cropping_lines", r.reg_pad_info.cropping_lines}};
+    const freenect_zero_plane_info& z = r.zero_plane_info;
+    json["zero_plane_info"] = {{"dcmos_emitter_dist", z.dcmos_emitter_dist},
+                               {"dcmos_rcmos_dist", z.dcmos_rcmos_dist},
+                               {"reference_distance", z.reference_distance},
+                               {"reference_pixel_size", z.reference_pixel_size}};
+    json["const_shift"] = r.const_shift;
+    destroyRegistration(&r);
+    return json.dump(2);
   }
 
   // The accelerometer's up direction in camera space (kinect_depth.h), when it reads about 1 g.
@@ -271,14 +378,16 @@ class FreenectLibrary {
   }
 
   // One round of libfreenect events; true when a depth frame arrived into `frame`.
-  bool pump(kinect::DepthFrame& frame, double timeout, int& status) {
+  bool pump(kinect::DepthFrame& frame, std::vector<uint8_t>& colour, double timeout, int& status) {
     timeval tv{static_cast<time_t>(timeout), static_cast<suseconds_t>(std::fmod(timeout, 1.0) * 1e6)};
     target = &frame;
+    colourTarget = &colour;
     gotFrame = false;
     polling = this;
     status = processEvents(context, &tv);
     polling = nullptr;
     target = nullptr;
+    colourTarget = nullptr;
     return gotFrame;
   }
 
@@ -298,10 +407,18 @@ class FreenectLibrary {
   int (*updateTiltState)(freenect_device*) = nullptr;
   freenect_raw_tilt_state* (*getTiltState)(freenect_device*) = nullptr;
   void (*getMksAccel)(freenect_raw_tilt_state*, double*, double*, double*) = nullptr;
+  void (*setVideoCallback)(freenect_device*, freenect_video_cb) = nullptr;
+  freenect_frame_mode (*findVideoMode)(freenect_resolution, freenect_video_format) = nullptr;
+  int (*setVideoMode)(freenect_device*, freenect_frame_mode) = nullptr;
+  int (*startVideo)(freenect_device*) = nullptr;
+  int (*stopVideo)(freenect_device*) = nullptr;
+  freenect_registration (*copyRegistration)(freenect_device*) = nullptr;
+  int (*destroyRegistration)(freenect_registration*) = nullptr;
 
   freenect_context* context = nullptr;
   freenect_device* device = nullptr;
   bool depthStarted = false;
+  bool videoStarted = false;
   bool hasAccelerometer = false;  // the motor subdevice is open (live) or the recording may carry 'a' entries
 
  private:
@@ -337,8 +454,13 @@ class FreenectLibrary {
       throw HandSourceError(std::string("libfreenect has no ") + name + ": not a libfreenect 0.5 build?");
     }
   }
+  template <typename F>
+  void bindIfThere(F& f, const char* name) {
+    f = reinterpret_cast<F>(dlsym(handle_, name));
+  }
   void* handle_ = nullptr;
   kinect::DepthFrame* target = nullptr;
+  std::vector<uint8_t>* colourTarget = nullptr;
   bool gotFrame = false;
 };
 
@@ -360,6 +482,17 @@ std::unique_ptr<DepthStream> DepthStream::openKinect() {
   std::unique_ptr<DepthStream> s(new DepthStream());
   s->lib_ = std::make_unique<FreenectLibrary>(path ? path : GB_FREENECT_LIBRARY);
   s->lib_->start("live Kinect");
+  // The device's own registration where the library gives it (kept in a recording as device.json); a device whose
+  // values are not a Kinect's is registered by the factory constants.
+  ColourRegistration registration = factoryRegistration();
+  if (const std::string json = s->lib_->deviceJson(); !json.empty()) {
+    try {
+      registration = registrationFromDeviceJson(json, "the Kinect's registration");
+    } catch (const HandSourceError& e) {
+      std::fprintf(stderr, "note: %s; the colour is registered by the factory constants\n", e.what());
+    }
+  }
+  s->registration_ = std::make_shared<const ColourRegistration>(registration);
   s->openedAt_ = steadySeconds();
   return s;
 }
@@ -367,11 +500,13 @@ std::unique_ptr<DepthStream> DepthStream::openKinect() {
 std::unique_ptr<DepthStream> DepthStream::openRecording(const fs::path& folder) {
   auto index = std::make_unique<FakenectIndex>(readFakenectIndex(folder));
   index->folder = fs::absolute(folder);
+  auto registration = std::make_shared<const ColourRegistration>(recordingRegistration(folder));
   if (gPlaybackOpen.exchange(true))
     throw HandSourceError("fakenect recording " + folder.string() +
                           ": another recording is already playing (one at a time)");
   std::unique_ptr<DepthStream> s(new DepthStream());
   s->recording_ = std::move(index);  // from here the destructor releases gPlaybackOpen
+  s->registration_ = std::move(registration);
   for (const FakenectEntry& e : s->recording_->entries) {
     if (e.type == 'd') {
       s->firstDepthTime_ = e.time;
@@ -408,13 +543,14 @@ DepthStream::Poll DepthStream::poll(kinect::DepthFrame& frame, double timeout) {
         throw HandSourceLost("fakenect recording " + recording_->folder.string() + ": " + problem +
                              " (since it was opened)");
       int status = 0;
-      const bool got = lib_->pump(frame, 0.0, status);
+      const bool got = lib_->pump(frame, colour_, 0.0, status);
       ++cursor_;
       if (status < 0) throw HandSourceLost("fakenect playback failed at " + printable(e.file, 300));
       if (e.type == 'a') gravityUp_ = lib_->gravityUp();  // fakenect keeps the entry as its tilt state
       if (got) {
         frame.time = e.time - firstDepthTime_;
         frame.gravityUp = gravityUp_;
+        attachColour(frame);
         return Poll::Frame;
       }
     }
@@ -424,16 +560,22 @@ DepthStream::Poll DepthStream::poll(kinect::DepthFrame& frame, double timeout) {
   while (true) {
     int status = 0;
     const double left = timeout - (clock() - start);
-    if (lib_->pump(frame, std::max(0.0, std::min(left, 0.05)), status)) {
+    if (lib_->pump(frame, colour_, std::max(0.0, std::min(left, 0.05)), status)) {
       frame.time = clock();
       readAccelerometer();
       frame.gravityUp = gravityUp_;
+      attachColour(frame);
       return Poll::Frame;
     }
     if (status < 0)
       throw HandSourceLost("the Kinect stopped responding (unplugged?): libusb error " + std::to_string(status));
     if (clock() - start >= timeout) return Poll::Nothing;
   }
+}
+
+void DepthStream::attachColour(kinect::DepthFrame& frame) const {
+  frame.colour = colour_;
+  frame.registration = colour_.empty() ? nullptr : registration_;
 }
 
 void DepthStream::readAccelerometer() {

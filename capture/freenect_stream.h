@@ -6,6 +6,8 @@
 // other's symbols) instead of linking either, and the `fakenect` wrapper script is not needed.
 //
 // Depth is always asked for as FREENECT_DEPTH_11BIT: Debian's fakenect 0.5.3 plays back nothing else.
+// Colour is asked for as FREENECT_VIDEO_RGB at 640x480 where the library has the video calls: each depth frame carries
+// the newest colour image (and how to register it: a recording's device.json, else the factory constants).
 // The camera and the motor subdevices are opened, the motor for its accelerometer only (read twice a second
 // live, from the recording's 'a' entries in playback): the tilt is never set and the LED is left alone.
 //
@@ -25,7 +27,8 @@
 namespace gb {
 
 // A fakenect recording folder: INDEX.txt lists one file per line, named TYPE-TIME-TIMESTAMP…, where TYPE is
-// d (depth, a one-line PGM header then 640x480 little-endian uint16 raw values), r (RGB) or a (accelerometer),
+// d (depth, a one-line PGM header then 640x480 little-endian uint16 raw values), r (colour, a one-line PPM header then
+// 640x480 RGB) or a (accelerometer),
 // TIME the wall-clock seconds when it was recorded and TIMESTAMP the Kinect's frame counter (docs/formats.md).
 struct FakenectEntry {
   char type = 'd';
@@ -51,7 +54,8 @@ inline constexpr std::size_t kMaxIndexLineBytes = 4096;
 inline constexpr int kMaxEntriesAtOneTime = 3;
 
 // Reads and checks a recording: every listed file present and non-empty, every depth file complete with a
-// 'P5 640 480 MAX' header, every accelerometer file a whole tilt state, LF line endings, depth frames in time order,
+// 'P5 640 480 MAX' header, every colour file complete with a 'P6 640 480 255' header, every accelerometer file a whole
+// tilt state, LF line endings, depth frames in time order,
 // no pause longer than kMaxFakenectGap and no more than kMaxEntriesAtOneTime entries at one time.
 // Throws HandSourceError naming the folder, the line or the file and what is wrong.
 FakenectIndex readFakenectIndex(const std::filesystem::path& folder);
@@ -64,16 +68,20 @@ class FakenectWriter {
  public:
   explicit FakenectWriter(const std::filesystem::path& folder);  // creates the folder; refuses a non-empty one
   // recordTime: wall-clock seconds of the frame (fakenect replays the differences). A frame that carries the
-  // accelerometer's gravity gets an 'a' entry before it, as fakenect-record writes them.
+  // accelerometer's gravity gets an 'a' entry before it, as fakenect-record writes them, and one that carries a colour
+  // image an 'r' entry (a "P6 640 480 255" line, then RGB); the first colour image's registration, when it came from a
+  // device.json, is written as the recording's device.json.
   void write(const kinect::DepthFrame& frame, double recordTime);
   [[nodiscard]] int frames() const { return frames_; }
 
  private:
   void writeAccelerometer(const Eigen::Vector3d& up, uint32_t timestamp, double recordTime);
+  void writeColour(const kinect::DepthFrame& frame, double recordTime);
   void addToIndex(const std::string& entry);
   std::filesystem::path folder_;
   std::string index_;
   int frames_ = 0;
+  bool wroteRegistration_ = false;
 };
 
 class FreenectLibrary;
@@ -108,8 +116,11 @@ class DepthStream {
   std::unique_ptr<FakenectIndex> recording_;
   size_t cursor_ = 0;  // next INDEX.txt entry fakenect will read
   double firstDepthTime_ = 0.0;
-  double openedAt_ = 0.0;                      // steady clock at open (s)
-  std::optional<Eigen::Vector3d> gravityUp_;   // the newest accelerometer reading, camera space
+  double openedAt_ = 0.0;                     // steady clock at open (s)
+  std::optional<Eigen::Vector3d> gravityUp_;  // the newest accelerometer reading, camera space
+  std::vector<uint8_t> colour_;               // the newest colour image (empty: none yet, or no colour stream)
+  std::shared_ptr<const ColourRegistration> registration_;  // the recording's device.json or the factory constants
+  void attachColour(kinect::DepthFrame& frame) const;
   double accelReadAt_ = -1.0;                  // clock() of the last live reading
   static constexpr double kAccelPeriod = 0.5;  // s between live readings
   void readAccelerometer();                    // live: a new reading when the last is kAccelPeriod old

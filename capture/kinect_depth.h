@@ -11,15 +11,21 @@
 #include <Eigen/Dense>
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
+
+namespace gb {
+struct ColourRegistration;  // colour_registration.h
+}
 
 namespace gb::kinect {
 
 constexpr int kWidth = 640;  // FREENECT_RESOLUTION_MEDIUM depth frame
 constexpr int kHeight = 480;
 constexpr int kPixels = kWidth * kHeight;
-constexpr uint16_t kNoReading = 2047;  // raw value of a pixel without a depth reading
+constexpr int kColourBytes = kPixels * 3;  // FREENECT_VIDEO_RGB at FREENECT_RESOLUTION_MEDIUM: 640x480, 8 bits each
+constexpr uint16_t kNoReading = 2047;      // raw value of a pixel without a depth reading
 
 // Depth intrinsics from Nicolas Burrus' Kinect v1 calibration (fx_d, fy_d, cx_d, cy_d of his published
 // calibration file); lens distortion is ignored (under a pixel at the frame centre, a few at the corners).
@@ -66,6 +72,10 @@ struct DepthFrame {
   std::vector<uint16_t> raw = std::vector<uint16_t>(kPixels, kNoReading);
   // The direction against gravity in camera space, from the accelerometer, when the input carries it.
   std::optional<Eigen::Vector3d> gravityUp;
+  // The colour camera's newest image (kColourBytes of RGB, rows from the top), when the input has one; else empty.
+  std::vector<uint8_t> colour;
+  // How the depth pixels map into it: the device's registration or the factory constants (with `colour` only).
+  std::shared_ptr<const ColourRegistration> registration;
 };
 
 }  // namespace gb::kinect

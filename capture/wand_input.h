@@ -47,9 +47,8 @@ class WandInput {
   [[nodiscard]] virtual bool ended() const { return false; }
   // Where the camera stands in the world, for inputs seen by one (camera space carried by the calibration).
   [[nodiscard]] virtual std::optional<Vec3> camera() const { return std::nullopt; }
-  // How camera space maps into the world as the hands are mapped now, for inputs that have camera space (cameras,
-  // recordings, trajectories); nothing for scripts.
-  [[nodiscard]] virtual std::optional<Calibration> cameraToWorld() const { return std::nullopt; }
+  // The calibration that carries the camera's space into the world, for inputs seen by one (nullptr: none).
+  [[nodiscard]] virtual const Calibration* cameraCalibration() const { return nullptr; }
   // Seconds of input read before the performer was found (run time 0 is then), when waited for.
   [[nodiscard]] virtual std::optional<double> performerFound() const { return std::nullopt; }
   // Whether each hand (left, right) has gone unmeasured for kLostHandAfter and is held (reported lost).
@@ -106,8 +105,8 @@ class StabilizedWands : public WandInput {
   [[nodiscard]] std::optional<Vec3> camera() const override {
     return calibration_.toWorld(Vec3d::Zero()).cast<float>();
   }
-  [[nodiscard]] std::optional<Calibration> cameraToWorld() const override { return calibration_; }
   [[nodiscard]] const Calibration& calibration() const { return calibration_; }
+  [[nodiscard]] const Calibration* cameraCalibration() const override { return &calibration_; }
   [[nodiscard]] double confidence(Hand hand) const { return stabilizer_->confidence(hand); }
   // The frame loop keeps the wall clock (live, run --realtime): with a source read on a thread of its own
   // (ThreadedHandSource), at() takes the samples that have arrived and never waits for the next one; past the newest

@@ -26,7 +26,8 @@ static_assert(offsetof(RenderUniforms, cameraPosition) == 128);
 static_assert(offsetof(RenderUniforms, skyIrradiance) == 160);
 static_assert(offsetof(RenderUniforms, horizon) == 192);
 static_assert(offsetof(RenderUniforms, particles) == 208);
-static_assert(sizeof(RenderUniforms) == 256);
+static_assert(offsetof(RenderUniforms, cameraImage) == 256);
+static_assert(sizeof(RenderUniforms) == 288);
 
 Colouring colouringFromName(const std::string& name) {
   if (name == "interference") return Colouring::Interference;
@@ -131,11 +132,12 @@ struct Renderer::Impl {
   vk::raii::DescriptorSetLayout sceneLayout{nullptr}, compositeLayout{nullptr};
   vk::raii::PipelineLayout pipelineLayout{nullptr};
   std::vector<vk::raii::ShaderModule> modules;  // indexed by RenderShader
-  vk::raii::Pipeline props{nullptr}, droplets{nullptr}, film{nullptr}, composite{nullptr}, skyLookup{nullptr};
+  vk::raii::Pipeline props{nullptr}, droplets{nullptr}, film{nullptr}, composite{nullptr}, skyLookup{nullptr},
+      cameraImage{nullptr};
   // What the sky image shows: the sky is at infinity, so it depends on the view's direction and zoom and the
   // image's size, not on where the camera is. Empty: not drawn yet (or the targets were made again).
   struct SkyView {
-    float yaw, pitch, fovY;
+    std::array<float, 16> rays;  // the camera's skyRays
     uint32_t width, height;
     bool operator==(const SkyView&) const = default;
   };
@@ -154,8 +156,10 @@ struct Renderer::Impl {
     bool inFlight = false;  // `commands` submitted and not yet waited for
     Renderer::Ticket ticket = 0;
     DeviceBuffer uniforms, position, normal, thickness, airFlow, triangles, propsMesh, dropletBuffer, variation;
+    DeviceBuffer cameraColour, cameraDepth;  // the mirror view's camera image
     DeviceBuffer readback;
     uint32_t propsVertices = 0, dropletCount = 0;
+    bool drawsCameraImage = false;
     vk::raii::DescriptorSet sceneSet{nullptr};
   };
   std::array<FrameSlot, 2> slots;
@@ -242,6 +246,7 @@ struct Renderer::Impl {
     film = nullptr;
     composite = nullptr;
     skyLookup = nullptr;
+    cameraImage = nullptr;
     modules.clear();
     makeTargets();
     makePipelines();
@@ -427,13 +432,16 @@ struct Renderer::Impl {
   }
 
   void makePipelines() {
-    for (int s = 0; s <= static_cast<int>(RenderShader::SkyFrag); ++s) {
+    for (int s = 0; s <= static_cast<int>(RenderShader::CameraImageFrag); ++s) {
       const auto code = kernels::renderSpirv(static_cast<RenderShader>(s));
       modules.emplace_back(ctx->device, vk::ShaderModuleCreateInfo({}, code.size_bytes(), code.data()));
     }
     using R = RenderShader;
     props = makePipeline(
         {R::PropsVert, R::PropsFrag, vk::PrimitiveTopology::eTriangleList, true, true, {opaqueBlend()}}, opaquePass);
+    cameraImage = makePipeline(
+        {R::FullscreenVert, R::CameraImageFrag, vk::PrimitiveTopology::eTriangleList, true, true, {opaqueBlend()}},
+        opaquePass);
     // Droplets are mostly transparent water: drawn with the film, into the same order-independent targets.
     droplets = makePipeline(
         {R::DropletsVert, R::DropletsFrag, vk::PrimitiveTopology::ePointList, true, false, transparencyBlends()},
@@ -455,7 +463,7 @@ struct Renderer::Impl {
 
   void makeDescriptors() {
     const std::array<vk::DescriptorPoolSize, 2> sizes{
-        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 2 * 9),
+        vk::DescriptorPoolSize(vk::DescriptorType::eStorageBuffer, 2 * 11),
         vk::DescriptorPoolSize(vk::DescriptorType::eCombinedImageSampler, 2 * 2 + 4)};
     pool = vk::raii::DescriptorPool(
         ctx->device, vk::DescriptorPoolCreateInfo(vk::DescriptorPoolCreateFlagBits::eFreeDescriptorSet, 3, sizes));
@@ -544,14 +552,38 @@ struct Renderer::Impl {
     return true;
   }
 
-  void uploadUniforms(const RenderFrame& frame, uint32_t particles, bool varied) {
-    RenderUniforms u{};
+  // The mirror view's camera image, for the opaque pass to draw (nothing without one).
+  void uploadCameraImage(const RenderFrame& frame) {
+    const CameraImage* image = frame.mirror ? frame.cameraImage : nullptr;
+    const size_t pixels = image ? image->rgba.size() : 0;
+    reserve(slot().cameraColour, pixels * sizeof(uint32_t));  // bound, not read, without an image
+    reserve(slot().cameraDepth, pixels * sizeof(float));
+    slot().drawsCameraImage = pixels > 0 && image->depth.size() == pixels;
+    if (!slot().drawsCameraImage) return;
+    slot().cameraColour.write(image->rgba.data(), pixels * sizeof(uint32_t));
+    slot().cameraDepth.write(image->depth.data(), pixels * sizeof(float));
+  }
+
+  // The frame's view: the orbit camera, or the depth camera's in the mirror view.
+  struct View {
+    Eigen::Matrix4f viewProjection, skyRays;
+    Vec3 eye;
+    float pointScale;
+  };
+  View viewOf(const RenderFrame& frame) const {
     const float aspect = static_cast<float>(extent.width) / static_cast<float>(extent.height);
-    const Eigen::Matrix4f viewProjection = frame.camera.viewProjection(aspect);
-    const Eigen::Matrix4f skyRays = frame.camera.skyRays(aspect);
-    std::memcpy(u.viewProjection.m, viewProjection.data(), sizeof u.viewProjection.m);
-    std::memcpy(u.skyRays.m, skyRays.data(), sizeof u.skyRays.m);
-    const Vec3 eye = frame.camera.position();
+    if (frame.mirror)
+      return {frame.mirror->viewProjection(aspect), frame.mirror->skyRays(aspect), frame.mirror->eye(),
+              frame.mirror->pointScale(static_cast<int>(extent.height))};
+    return {frame.camera.viewProjection(aspect), frame.camera.skyRays(aspect), frame.camera.position(),
+            0.5f * static_cast<float>(extent.height) / std::tan(0.5f * frame.camera.fovY)};
+  }
+
+  void uploadUniforms(const RenderFrame& frame, const View& view, uint32_t particles, bool varied) {
+    RenderUniforms u{};
+    std::memcpy(u.viewProjection.m, view.viewProjection.data(), sizeof u.viewProjection.m);
+    std::memcpy(u.skyRays.m, view.skyRays.data(), sizeof u.skyRays.m);
+    const Vec3& eye = view.eye;
     u.cameraPosition = {eye.x(), eye.y(), eye.z(), 1.0f};
     u.keyLight = {keyLight.x(), keyLight.y(), keyLight.z(), keyStrength};
     u.horizon = {horizon.x(), horizon.y(), horizon.z(), hazeDistance};
@@ -562,7 +594,16 @@ struct Renderer::Impl {
     u.thickColour = options.thickColour;
     u.airFlowColour = options.airFlowColour;
     u.exposure = options.exposure;
-    u.pointScale = 0.5f * static_cast<float>(extent.height) / std::tan(0.5f * frame.camera.fovY);
+    u.pointScale = view.pointScale;
+    if (frame.mirror) {
+      const Eigen::Vector4f image =
+          frame.mirror->imageOfPicture(static_cast<int>(extent.width), static_cast<int>(extent.height));
+      const Eigen::Vector2f distance = frame.mirror->depthOfDistance();
+      u.cameraImage = {image.x(), image.y(), image.z(), image.w()};
+      const CameraImage* c = frame.cameraImage;
+      u.cameraDepth = {distance.x(), distance.y(), c ? static_cast<float>(c->width) : 0.0f,
+                       c ? static_cast<float>(c->height) : 0.0f};
+    }
     u.dropletRadius = options.dropletRadius;
     u.thicknessVariation = varied ? 1u : 0u;
     // Drainage approaches the black film's thickness from above (stages.h, filmFlowLimit): film within a quarter of
@@ -583,7 +624,9 @@ struct Renderer::Impl {
         {GB_RENDER_TRIANGLES, info(f.triangles)},
         {GB_RENDER_MESH, info(slot().propsMesh.handle())},
         {GB_RENDER_DROPLETS, info(slot().dropletBuffer.handle())},
-        {GB_RENDER_VARIATION, info(slot().variation.handle())}};
+        {GB_RENDER_VARIATION, info(slot().variation.handle())},
+        {GB_RENDER_CAMERA_COLOUR, info(slot().cameraColour.handle())},
+        {GB_RENDER_CAMERA_DEPTH, info(slot().cameraDepth.handle())}};
     std::vector<vk::WriteDescriptorSet> writes;
     for (const auto& [binding, buffer] : buffers)
       writes.emplace_back(*slot().sceneSet, binding, 0, vk::DescriptorType::eStorageBuffer, nullptr, buffer);
@@ -605,6 +648,10 @@ struct Renderer::Impl {
                        vk::SubpassContents::eInline);
     cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *props);
     cb.draw(slot().propsVertices, 1, 0, 0);
+    if (slot().drawsCameraImage) {
+      cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *cameraImage);
+      cb.draw(3, 1, 0, 0);
+    }
     cb.endRenderPass();
 
     const std::array<vk::ClearValue, 5> filmClear{vk::ClearColorValue(std::array<float, 4>{0, 0, 0, 0}),
@@ -690,13 +737,16 @@ Renderer::Ticket Renderer::submit(const RenderFrame& frame, bool readback, const
   const DeviceFilm film = m.filmBuffers(frame);
   m.uploadPropsAndDroplets(frame);
   const bool varied = m.uploadVariation(frame);
-  m.uploadUniforms(frame, film.particleCount, varied);
+  m.uploadCameraImage(frame);
+  const Impl::View view = m.viewOf(frame);
+  m.uploadUniforms(frame, view, film.particleCount, varied);
   m.bindSceneBuffers(film);
   // The sky is drawn again only when the view turns or zooms (or the size changes): on lavapipe a full-screen
   // environment lookup costs a seventh of a main-job frame, and the framing often holds its direction.
-  const Impl::SkyView view{frame.camera.yaw, frame.camera.pitch, frame.camera.fovY, m.extent.width, m.extent.height};
-  const bool drawSky = m.skyDrawnFor != view;
-  m.skyDrawnFor = view;
+  Impl::SkyView sky{{}, m.extent.width, m.extent.height};
+  std::memcpy(sky.rays.data(), view.skyRays.data(), sizeof sky.rays);
+  const bool drawSky = m.skyDrawnFor != sky;
+  m.skyDrawnFor = sky;
   m.record(film, drawSky, readback, after);
   m.ctx->submit(m.slot().commands, m.slot().done);
   m.slot().inFlight = true;

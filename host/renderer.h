@@ -4,7 +4,8 @@
 // over the ground, the wands and their string, the rim of a bursting hole and the aerosol droplets; or coloured
 // by a diagnostic (thickness, air flow). Passes into offscreen images, multisampled (MSAA) and resolved, then the
 // caller reads the pixels (PNG, video) or copies the image to a window (host/window.h):
-//   1. opaque:   ground, wands, string, hole rims                   -> colour (RGBA16F) + depth
+//   1. opaque:   ground, wands, string, hole rims, and in the mirror view the camera's image at its own depth
+//                (host/camera_layer.h)                              -> colour (RGBA16F) + depth
 //   2. film:     film and droplets, weighted blended order-independent transparency
 //                                                                    -> accum (RGBA16F) + reveal (R16F)
 //   3. sky:      the environment along each pixel's view ray, only when the view has turned or zoomed
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "bursting.h"
+#include "camera_layer.h"
 #include "device_film.h"
 #include "film.h"
 #include "render_scene.h"
@@ -70,6 +72,10 @@ struct RenderFrame {
   float blackFilmThickness = Params{}.blackFilmThickness;  // m: thinner film is drawn as black film
   const WireFrame* wireFrame = nullptr;                    // the wands and their string (or ring)
   OrbitCamera camera;
+  // The mirror view (host/camera_layer.h): seen from the depth camera instead of `camera`, with what it saw
+  // (`cameraImage`, in the camera's pixels; null: nothing of it) drawn in at its own depth.
+  const DepthCameraView* mirror = nullptr;
+  const CameraImage* cameraImage = nullptr;
 };
 
 class Renderer {

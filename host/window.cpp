@@ -246,6 +246,9 @@ struct Window::Impl {
       case GLFW_KEY_V:
         k.performerView = true;
         break;
+      case GLFW_KEY_M:
+        k.mirrorView = true;
+        break;
       case GLFW_KEY_O:
         k.operatorOverlay = true;
         break;

@@ -33,6 +33,7 @@ struct WindowKeys {
   bool fullscreen = false;       // F: full screen <-> window
   bool performerView = false;    // V: the performer view on or off
   bool operatorOverlay = false;  // O: the operator overlay on or off
+  bool mirrorView = false;       // M: the mirror view on or off
   int preset = 0;                // 1..9: a digit key, the saved preset of that number (live's presets); 0: none
   bool cameraMoved = false;      // the mouse turned or zoomed camera() (a drag, the wheel)
 };

@@ -52,6 +52,10 @@ struct RenderOutputOptions {
   std::filesystem::path environment;  // equirectangular PNG the film reflects; empty: the built-in sky
   OrbitCamera camera;                 // its direction; with followCamera its target and distance frame the film
   bool followCamera = true;           // --camera follow (default): keep the film framed; fixed: `camera` as is
+  bool mirror = false;                // --view mirror: from the depth camera, mirrored, the performer drawn in
+                                      // (app/show/mirror_view.h); stage (default): the virtual stage from `camera`
+  bool mirrorRoom = false;            // --mirror-room: the mirror view shows the room the camera sees behind the
+                                      // performer instead of the virtual stage
 };
 
 struct RunOptions {

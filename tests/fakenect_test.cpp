@@ -7,6 +7,8 @@
 #include <numbers>
 #include <string>
 
+#include "colour_registration.h"
+#include "depth_recording.h"
 #include "freenect_stream.h"
 #include "hand_sources.h"
 #include "synthetic_depth.h"
@@ -336,6 +338,79 @@ TEST(Fakenect, CrLfLineEndingsAndAForeignFrameHeaderAreNamed) {
   message = errorOf([&] { (void)readFakenectIndex(dir); });
   EXPECT_NE(message.find("has the header 'P2 640 480 65535', expected 'P5 640 480 65535'"), std::string::npos)
       << message;
+}
+
+// A device.json as fakenect records libfreenect's registration (the fields giantbubble reads; docs/formats.md).
+const char* const kDeviceJson =
+    R"({"zero_plane_info": {"dcmos_rcmos_dist": 2.4, "reference_distance": 120.0, "reference_pixel_size": 0.1042}})";
+
+// A depth frame and a colour image with a pattern in it: red increasing across, green down, blue 77.
+kinect::DepthFrame colouredFrame(uint32_t timestamp) {
+  kinect::DepthFrame frame;
+  frame.timestamp = timestamp;
+  for (size_t i = 0; i < frame.raw.size(); ++i) frame.raw[i] = kinect::metresToRaw(2.0);
+  frame.colour.resize(static_cast<size_t>(kinect::kColourBytes));
+  for (int v = 0; v < kinect::kHeight; ++v)
+    for (int u = 0; u < kinect::kWidth; ++u) {
+      const size_t i = 3 * (static_cast<size_t>(v) * kinect::kWidth + static_cast<size_t>(u));
+      frame.colour[i] = static_cast<uint8_t>(u % 256);
+      frame.colour[i + 1] = static_cast<uint8_t>(v % 256);
+      frame.colour[i + 2] = 77;
+    }
+  return frame;
+}
+
+TEST(ColourCapture, ARecordingKeepsItsColourFramesAndDeviceJsonAndPlaysThemBack) {
+  const fs::path dir = scratch("coloured");
+  kinect::DepthFrame frame = colouredFrame(1000);
+  auto registration = std::make_shared<ColourRegistration>(registrationFromDeviceJson(kDeviceJson, "device.json"));
+  frame.registration = registration;
+  {
+    FakenectWriter writer(dir);
+    writer.write(frame, 1700000000.0);
+    frame.timestamp = 2000;
+    writer.write(frame, 1700000000.0 + 1.0 / 30.0);
+  }
+  ASSERT_TRUE(fs::exists(dir / "device.json"));
+  std::ifstream index(dir / "INDEX.txt");
+  std::string first;
+  std::getline(index, first);
+  EXPECT_EQ(first.substr(0, 2), "r-");  // the colour image before its depth frame, as fakenect-record writes them
+
+  // Read straight from the files.
+  const DepthRecording read = readDepthRecording(dir);
+  ASSERT_EQ(read.frames.size(), 2u);
+  EXPECT_EQ(read.frames[1].colour, frame.colour);
+  ASSERT_TRUE(read.frames[1].registration);
+  EXPECT_DOUBLE_EQ(read.frames[1].registration->translation.x(), 0.024);  // 2.4 cm
+
+  // Played through Debian's fakenect, the code path of a live camera.
+  std::unique_ptr<DepthStream> stream = DepthStream::openRecording(dir);
+  kinect::DepthFrame played;
+  ASSERT_EQ(stream->poll(played, 1.0), DepthStream::Poll::Frame);
+  EXPECT_EQ(played.colour, frame.colour);
+  ASSERT_TRUE(played.registration);
+  EXPECT_NE(played.registration->source.find("device.json"), std::string::npos);
+  EXPECT_EQ(played.raw, frame.raw);
+}
+
+TEST(ColourCapture, ARecordingWithoutColourGivesFramesWithoutIt) {
+  const fs::path dir = scratch("depth_only");
+  kinect::DepthFrame frame = colouredFrame(1000);
+  frame.colour.clear();
+  FakenectWriter(dir).write(frame, 1700000000.0);
+  const DepthRecording read = readDepthRecording(dir);
+  ASSERT_EQ(read.frames.size(), 1u);
+  EXPECT_TRUE(read.frames[0].colour.empty());
+  EXPECT_FALSE(read.frames[0].registration);
+}
+
+TEST(ColourCapture, ATruncatedColourFileIsNamedBeforeFakenectReadsIt) {
+  const fs::path dir = scratch("truncated_colour");
+  FakenectWriter(dir).write(colouredFrame(1000), 1700000000.0);
+  for (const auto& entry : fs::directory_iterator(dir))
+    if (entry.path().filename().string().rfind("r-", 0) == 0) fs::resize_file(entry.path(), 1000);
+  EXPECT_NE(errorOf([&] { readFakenectIndex(dir); }).find("is truncated"), std::string::npos);
 }
 
 }  // namespace

@@ -12,10 +12,11 @@
 namespace gb {
 
 CLI::App* addLiveCommand(CLI::App& app, LiveOptions& o) {
-  CLI::App* cmd = app.add_subcommand("live",
-                                     "perform live in a window: the wands follow --input (mouse: orbit, zoom; "
-                                     "keys: R reset, D dip, B burst, Space pause, C colouring, F full screen, V "
-                                     "performer view, O operator overlay, Home camera, 1-9 presets, Esc quit)");
+  CLI::App* cmd =
+      app.add_subcommand("live",
+                         "perform live in a window: the wands follow --input (mouse: orbit, zoom; "
+                         "keys: R reset, D dip, B burst, Space pause, C colouring, F full screen, V "
+                         "performer view, M mirror view, O operator overlay, Home camera, 1-9 presets, Esc quit)");
   cmd->alias("view");
   // --input also takes "mouse" here: the left and right buttons drag the hands, the wheel pushes them.
   cmd->add_option("--scene", o.run.scene, "a built-in scene or a scene file (.toml); the other options change it")

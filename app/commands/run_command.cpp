@@ -14,9 +14,11 @@
 #include "experiment_plot.h"
 #include "experiments.h"
 #include "interrupt.h"
+#include "mirror_view.h"
 #include "osc_events.h"
 #include "output_file.h"
 #include "performer_touch.h"
+#include "performer_view.h"
 #include "realtime_pacer.h"
 #include "run_output.h"
 #include "simulation.h"
@@ -193,6 +195,7 @@ struct OpenedRun {
   std::unique_ptr<Simulation> sim;
   std::unique_ptr<ShowControl> show;
   std::unique_ptr<RunRenderer> renderer;
+  std::unique_ptr<MirrorView> mirror;  // --view mirror: the depth camera's view with the performer drawn in
 };
 
 OpenedRun openRun(const RunOptions& o) {
@@ -200,7 +203,17 @@ OpenedRun openRun(const RunOptions& o) {
   InputOptions input = o.input;
   input.runSeconds = o.durationFromInput ? kMaxRunSeconds : o.duration;  // a file is read no further than the run
   input.wallClock = o.realtime;
-  run.input = makeWandInput(input, o.gestureOptions);
+  run.mirror = std::make_unique<MirrorView>(o.render.mirror, o.render.mirrorRoom);
+  const HandSourceWrapper observe = [&run](std::unique_ptr<HandSource> source) -> std::unique_ptr<HandSource> {
+    auto observed = std::make_unique<ObservedHandSource>(std::move(source));
+    run.mirror->attach(observed.get());
+    return observed;
+  };
+  run.input = makeWandInput(input, o.gestureOptions, {}, o.render.mirror ? observe : HandSourceWrapper());
+  if (o.render.enabled && o.render.mirror && !run.input->cameraCalibration())
+    std::fprintf(stderr,
+                 "note: --view mirror needs a depth camera input (kinect, fakenect:DIR): the virtual stage "
+                 "is drawn instead\n");
   std::printf("input: %s\n", run.input->describe().c_str());
   run.duration = runDuration(o, *run.input);
   run.startFrame = run.input->at(0.0);
@@ -258,7 +271,9 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
   ImageFraming framing;  // the images frame the film wherever it goes, growing only (no jitter)
   if (o.imageEvery > 0)
     writeThicknessImage(o.outDir / imageName(0), sim.film(), sim.aerosol(), framing.frame(sim.film()));
-  if (renderer) renderer->frame(0, sim, run.startFrame.wands);
+  if (renderer)
+    renderer->frame(0, sim, run.startFrame.wands,
+                    [&](RenderFrame& f) { run.mirror->apply(f, input.cameraCalibration()); });
 
   const InterruptCatcher interrupts;  // Ctrl-C or SIGTERM: the frame in flight finishes, then the outputs
   ProgressBar bar(frames);
@@ -325,7 +340,9 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
       if (sim.aerosol().size() > 0) writeAerosolPly(o.outDir / ("aerosol" + meshName(frame).substr(4)), sim.aerosol());
     }
     const double outputsMs = phase.lap();
-    if (renderer) renderer->frame(frame, sim, wands.wands);
+    if (renderer)
+      renderer->frame(frame, sim, wands.wands,
+                      [&](RenderFrame& f) { run.mirror->apply(f, input.cameraCalibration()); });
     addFramePhases(record, sim.lastPhases(), statsMs, outputsMs, renderer ? phase.lap() : 0.0);
     done = frame;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();

@@ -70,6 +70,15 @@ void addRenderOptions(CLI::App& command, RenderOutputOptions& o, RenderedFiles f
           "scene's camera as it is")
       ->check(CLI::IsMember({"follow", "fixed"}));
   command
+      .add_option_function<std::string>(
+          "--view", [&o](const std::string& view) { o.mirror = view == "mirror"; },
+          "stage (default): the virtual stage; mirror: the scene from the depth camera, mirrored, with the "
+          "performer drawn in by depth (a camera input: kinect or fakenect:DIR)")
+      ->check(CLI::IsMember({"stage", "mirror"}));
+  command.add_flag("--mirror-room", o.mirrorRoom,
+                   "in the mirror view, show the room the camera sees behind the performer instead of the virtual "
+                   "stage");
+  command
       .add_option("--samples", o.samples,
                   "multisample anti-aliasing, samples per pixel (1: none); default 4, 1 on a CPU driver (lavapipe)")
       ->transform(WholeNumber(1, 8))
@@ -229,7 +238,8 @@ RunRenderer::RunRenderer(const RenderOutputOptions& options, const std::filesyst
   }
 }
 
-void RunRenderer::frame(long index, Simulation& sim, const WandState& wands) {
+void RunRenderer::frame(long index, Simulation& sim, const WandState& wands,
+                        const std::function<void(RenderFrame&)>& view) {
   while (drawing_.size() >= 2) writeDrawnFrame();  // the renderer keeps two frames
   const bool png = options_.pngEvery > 0 && index % options_.pngEvery == 0;
   // The framing eases every frame, drawn or not, so that it moves at the same pace whatever is written.
@@ -240,7 +250,9 @@ void RunRenderer::frame(long index, Simulation& sim, const WandState& wands) {
   if (!png && !video_) return;
   const WireFrame wire = sim.wireFrame(wands);
   DeviceFilm deviceFilm;
-  const Renderer::Ticket ticket = renderer_->submit(renderFrameOf(sim, wire, camera, readInPlace_, deviceFilm));
+  RenderFrame drawn = renderFrameOf(sim, wire, camera, readInPlace_, deviceFilm);
+  if (view) view(drawn);
+  const Renderer::Ticket ticket = renderer_->submit(drawn);
   drawing_.push_back({ticket, index, png});
   if (readInPlace_) writeDrawnFrame();
 }

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <deque>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -75,7 +76,8 @@ class RunRenderer {
   // Draws frame `index` of `sim`. The frame is drawn while the caller simulates the next two (Renderer::submit
   // keeps two frames in flight) and written (PNG, video) in order, at the call after next or at finish(); a film
   // read in place on the Vulkan stepper's device is drawn and written at once, as the next step would change it.
-  void frame(long index, Simulation& sim, const WandState& wands);
+  // `view`, when given, changes the frame before it is drawn (the mirror view).
+  void frame(long index, Simulation& sim, const WandState& wands, const std::function<void(RenderFrame&)>& view = {});
   // Writes the frames still being drawn and closes the video; says what was written. An encoder that failed is
   // reported (stderr and videoError()), never thrown: the simulation's results are written whatever happened to
   // the video.

@@ -378,9 +378,11 @@ void LiveShow::tellWait(const std::string& message) {
 // frames are kept for the performer view.
 std::unique_ptr<WandInput> LiveShow::openInput() {
   performerView_.attach(nullptr);  // the source it shows goes with the input
+  mirrorView_.attach(nullptr);
   const HandSourceWrapper observe = [this](std::unique_ptr<HandSource> source) -> std::unique_ptr<HandSource> {
     auto observed = std::make_unique<ObservedHandSource>(std::move(source));
     performerView_.attach(observed.get());
+    mirrorView_.attach(observed.get());
     return observed;
   };
   try {
@@ -537,6 +539,7 @@ void LiveShow::act(const WindowKeys& keys) {
     reportCue(shown_, fromCue_.performerView, CueAction::PerformerView, performerView_.toggle(), t_);
   if (keys.operatorOverlay)
     reportCue(shown_, fromCue_.operatorOverlay, CueAction::Operator, toggleOperatorOverlay(), t_);
+  if (keys.mirrorView) say(shown_, mirrorView_.toggle());
   if (keys.resetCamera) {
     camera_->home();
     reportCue(shown_, fromCue_.resetCamera, CueAction::Camera,
@@ -694,7 +697,9 @@ void LiveShow::present(const WindowKeys& keys, int due, double simMs) {
   updateInset();
   const WireFrame wire = sim_->wireFrame(wands_);
   DeviceFilm deviceFilm;
-  window_.present(*renderer_, renderFrameOf(*sim_, wire, view, readInPlace_, deviceFilm));
+  RenderFrame frame = renderFrameOf(*sim_, wire, view, readInPlace_, deviceFilm);
+  mirrorView_.apply(frame, input_ ? input_->cameraCalibration() : nullptr);
+  window_.present(*renderer_, frame);
   if (stream_) {
     stream_->offer(window_.captured());
     for (const std::string& m : stream_->takeMessages()) std::fprintf(stderr, "warning: %s\n", m.c_str());

@@ -16,6 +16,7 @@
 #include "input_options.h"
 #include "interrupt.h"
 #include "live_camera.h"
+#include "mirror_view.h"
 #include "osc_cues.h"
 #include "osc_events.h"
 #include "performance_loop.h"
@@ -125,6 +126,7 @@ class LiveShow {
   std::unique_ptr<VideoStream> stream_;
   std::unique_ptr<LiveCamera> camera_;
   PerformerView performerView_;
+  MirrorView mirrorView_{run_.render.mirror, run_.render.mirrorRoom};
   std::optional<RealTimePacer> pacer_;  // made once the show starts
   double floorScale_;
 

@@ -40,7 +40,7 @@ int subdivisionsFor(float radius) {
 std::unique_ptr<Simulation> startingSimulation(const RunOptions& o, const WandInput& input, const WandState& wands,
                                                std::unique_ptr<Stepper> stepper) {
   if (!o.input.bubbleAt) return std::make_unique<Simulation>(o.params, o.tool, wands, std::move(stepper));
-  const std::optional<Calibration> calibration = input.cameraToWorld();
+  const Calibration* calibration = input.cameraCalibration();
   if (!calibration)
     throw std::invalid_argument(
         "--bubble-at places the bubble in camera space: it needs an input that has one (--input kinect, "

@@ -26,6 +26,7 @@ std::optional<HandSample> ObservedHandSource::next() {
     detection_ = depth_->detection();
     newFrame_ = false;
     fresh_ = true;
+    untaken_ = true;
   }
   return sample;
 }
@@ -41,6 +42,14 @@ std::optional<RgbImage> ObservedHandSource::takeView(int step) {
   const HandSample latest = latest_;
   lock.unlock();  // drawing takes a while: the reading thread goes on meanwhile
   return drawDepthPlot(frame, detection, latest, step);
+}
+
+std::optional<ObservedHandSource::Frame> ObservedHandSource::takeFrame() {
+  if (!depth_) return std::nullopt;
+  const std::lock_guard lock(mutex_);
+  if (!untaken_) return std::nullopt;
+  untaken_ = false;
+  return Frame{frame_, detection_.body};
 }
 
 std::string ObservedHandSource::advice(bool withTracking) {

@@ -34,6 +34,12 @@ class ObservedHandSource : public HandSource {
   [[nodiscard]] bool hasDepth() const { return depth_ != nullptr; }
   // The newest depth frame drawn at 1/step of the camera's resolution, when one arrived since the last call.
   std::optional<RgbImage> takeView(int step);
+  // The newest depth frame and the performer's depth in it, when one came since the last call (the mirror view).
+  struct Frame {
+    kinect::DepthFrame depth;
+    BodyDepth body;
+  };
+  std::optional<Frame> takeFrame();
   // What the performer should do now, from the newest frame (empty before the first), with how sure the tracking
   // of each hand is when asked.
   [[nodiscard]] std::string advice(bool withTracking);
@@ -46,6 +52,7 @@ class ObservedHandSource : public HandSource {
   Detection detection_;    // frame_'s
   bool newFrame_ = false;  // frame_ came, its detection not taken yet
   bool fresh_ = false;     // frame_ and detection_ not drawn yet
+  bool untaken_ = false;   // frame_ and detection_ not taken by takeFrame yet
   bool drawn_ = false;     // a frame was drawn
   HandSample latest_;
 };

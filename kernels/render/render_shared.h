@@ -36,6 +36,9 @@ struct RenderUniforms {
                              // a string thinner than a pixel stays a continuous anti-aliased line
   float blackFilmThickness;  // thinner film is black film: the interference colouring draws no reflection (m)
   uint pad1, pad2;
+  vec4 cameraImage;  // the mirror view (host/camera_layer.h): a fragment at (X, Y) shows the camera image's
+                     // pixel (x X + y, z Y + w) (DepthCameraView::imageOfPicture)
+  vec4 cameraDepth;  // x, y: the depth buffer's value of camera-space distance z is x - y / z; z, w: image size
 };
 
 #ifdef __cplusplus
@@ -44,17 +47,19 @@ struct RenderUniforms {
 
 // Descriptor set 0: the scene.
 #define GB_RENDER_UNIFORMS 0
-#define GB_RENDER_POSITION 1     // film positions, x block then y then z (as the stepper holds them)
-#define GB_RENDER_NORMAL 2       // film vertex normals, same layout
-#define GB_RENDER_THICKNESS 3    // film thickness per particle (m)
-#define GB_RENDER_AIR_FLOW 4     // transferred air flow per particle, vector blocks (m^3/s)
-#define GB_RENDER_TRIANGLES 5    // 3 particle indices per triangle
-#define GB_RENDER_LUT 6          // thin-film reflectance by thickness and angle (kernels/render/thin_film_lut.h)
-#define GB_RENDER_ENVIRONMENT 7  // equirectangular environment radiance
-#define GB_RENDER_MESH 8         // opaque props: 12 floats per vertex (position, normal, albedo, material, pad)
-#define GB_RENDER_DROPLETS 9     // aerosol droplets: vec4 (position, opacity)
-#define GB_RENDER_VARIATION 10   // per-particle thickness factor of the film's swirls (host/film_swirls.h)
-#define GB_RENDER_SCENE_BINDINGS 11
+#define GB_RENDER_POSITION 1        // film positions, x block then y then z (as the stepper holds them)
+#define GB_RENDER_NORMAL 2          // film vertex normals, same layout
+#define GB_RENDER_THICKNESS 3       // film thickness per particle (m)
+#define GB_RENDER_AIR_FLOW 4        // transferred air flow per particle, vector blocks (m^3/s)
+#define GB_RENDER_TRIANGLES 5       // 3 particle indices per triangle
+#define GB_RENDER_LUT 6             // thin-film reflectance by thickness and angle (kernels/render/thin_film_lut.h)
+#define GB_RENDER_ENVIRONMENT 7     // equirectangular environment radiance
+#define GB_RENDER_MESH 8            // opaque props: 12 floats per vertex (position, normal, albedo, material, pad)
+#define GB_RENDER_DROPLETS 9        // aerosol droplets: vec4 (position, opacity)
+#define GB_RENDER_VARIATION 10      // per-particle thickness factor of the film's swirls (host/film_swirls.h)
+#define GB_RENDER_CAMERA_COLOUR 11  // the mirror view's camera image: packed sRGBA8 per pixel (host/camera_layer.h)
+#define GB_RENDER_CAMERA_DEPTH 12   // and its camera-space distance per pixel (m; 0: nothing there)
+#define GB_RENDER_SCENE_BINDINGS 13
 // Descriptor set 1: the composite pass's inputs.
 #define GB_COMPOSITE_OPAQUE 0
 #define GB_COMPOSITE_ACCUM 1

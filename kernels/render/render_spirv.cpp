@@ -1,5 +1,6 @@
 #include "render_spirv.h"
 
+#include "spirv/camera_image_frag.h"
 #include "spirv/composite_frag.h"
 #include "spirv/droplets_frag.h"
 #include "spirv/droplets_vert.h"
@@ -32,6 +33,8 @@ std::span<const uint32_t> renderSpirv(RenderShader shader) {
       return composite_frag_spv;
     case RenderShader::SkyFrag:
       return sky_frag_spv;
+    case RenderShader::CameraImageFrag:
+      return camera_image_frag_spv;
   }
   return {};
 }

@@ -6,16 +6,16 @@
 #include <exception>
 #include <string>
 
-#include "bench_command.h"
-#include "cli_checks.h"
-#include "evaluate_command.h"
-#include "experiments.h"
-#include "live_command.h"
-#include "record_command.h"
-#include "run_command.h"
-#include "scene_file.h"
-#include "thread_policy.h"
-#include "untrusted.h"
+#include "app/commands/bench_command.h"
+#include "app/commands/cli_checks.h"
+#include "app/commands/evaluate_command.h"
+#include "app/commands/live_command.h"
+#include "app/commands/record_command.h"
+#include "app/commands/run_command.h"
+#include "app/commands/thread_policy.h"
+#include "capture/untrusted.h"
+#include "scene/scene_file.h"
+#include "simulation/experiments.h"
 
 namespace {
 

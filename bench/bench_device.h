@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "vulkan_context.h"
+#include "host/vulkan_context.h"
 
 namespace gb::bench {
 

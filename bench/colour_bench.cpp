@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "png_image.h"
+#include "capture/png_image.h"
 
 namespace {
 

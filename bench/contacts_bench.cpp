@@ -15,12 +15,12 @@
 #include <map>
 #include <memory>
 
-#include "bench_device.h"
-#include "collision.h"
-#include "scene_file.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
-#include "vulkan_stepper.h"
+#include "bench/bench_device.h"
+#include "capture/scripted_gestures.h"
+#include "host/vulkan_stepper.h"
+#include "scene/scene_file.h"
+#include "simulation/simulation.h"
+#include "topology/collision.h"
 
 namespace gb {
 namespace {

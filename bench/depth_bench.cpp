@@ -15,9 +15,9 @@
 #include <filesystem>
 #include <string>
 
-#include "depth_plot.h"
-#include "hand_finder.h"
-#include "synthetic_depth.h"
+#include "capture/depth_plot.h"
+#include "capture/hand_finder.h"
+#include "tests/synthetic_depth.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-#include "film_checkpoint.h"
+#include "bench/film_checkpoint.h"
 
 #include <cstdint>
 #include <fstream>

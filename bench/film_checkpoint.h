@@ -8,7 +8,7 @@
 #include <array>
 #include <string>
 
-#include "film.h"
+#include "model/film.h"
 
 namespace gb {
 

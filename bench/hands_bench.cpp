@@ -12,10 +12,10 @@
 #include <map>
 #include <regex>
 
-#include "depth_composite.h"
-#include "depth_plot.h"
-#include "hand_evaluation.h"
-#include "synthetic_depth.h"
+#include "capture/depth_plot.h"
+#include "capture/hand_evaluation.h"
+#include "tests/depth_composite.h"
+#include "tests/synthetic_depth.h"
 
 #ifndef GB_REAL_DEPTH_DIR
 #define GB_REAL_DEPTH_DIR "../shared/real-depth/utd-mhad"

@@ -16,15 +16,15 @@
 #include <cstdio>
 #include <memory>
 
-#include "bench_device.h"
-#include "film_swirls.h"
-#include "render_scene.h"
-#include "renderer.h"
-#include "scene_file.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
-#include "vulkan_context.h"
-#include "vulkan_stepper.h"
+#include "bench/bench_device.h"
+#include "capture/scripted_gestures.h"
+#include "host/film_swirls.h"
+#include "host/render_scene.h"
+#include "host/renderer.h"
+#include "host/vulkan_context.h"
+#include "host/vulkan_stepper.h"
+#include "scene/scene_file.h"
+#include "simulation/simulation.h"
 
 namespace gb {
 namespace {

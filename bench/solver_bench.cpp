@@ -17,13 +17,13 @@
 #include <string>
 #include <vector>
 
-#include "bench_device.h"
-#include "cpu_stepper.h"
-#include "scene_file.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
-#include "solver_comparison.h"
-#include "vulkan_stepper.h"
+#include "bench/bench_device.h"
+#include "capture/scripted_gestures.h"
+#include "host/vulkan_stepper.h"
+#include "research/solver_comparison.h"
+#include "scene/scene_file.h"
+#include "simulation/simulation.h"
+#include "stages/cpu_stepper.h"
 
 namespace {
 

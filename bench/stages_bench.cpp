@@ -10,12 +10,12 @@
 #include <map>
 #include <memory>
 
-#include "bench_device.h"
-#include "cpu_stepper.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
-#include "vulkan_context.h"
-#include "vulkan_stepper.h"
+#include "bench/bench_device.h"
+#include "capture/scripted_gestures.h"
+#include "host/vulkan_context.h"
+#include "host/vulkan_stepper.h"
+#include "simulation/simulation.h"
+#include "stages/cpu_stepper.h"
 
 namespace gb {
 namespace {

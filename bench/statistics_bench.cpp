@@ -10,10 +10,10 @@
 #include <map>
 #include <memory>
 
-#include "bench_device.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
-#include "vulkan_stepper.h"
+#include "bench/bench_device.h"
+#include "capture/scripted_gestures.h"
+#include "host/vulkan_stepper.h"
+#include "simulation/simulation.h"
 
 namespace gb {
 namespace {

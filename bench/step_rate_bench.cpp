@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "scripted_gestures.h"
-#include "simulation.h"
+#include "capture/scripted_gestures.h"
+#include "simulation/simulation.h"
 
 namespace {
 

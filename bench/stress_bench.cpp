@@ -32,10 +32,10 @@
 #include <utility>
 #include <vector>
 
-#include "film_checkpoint.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
-#include "stages.h"
+#include "bench/film_checkpoint.h"
+#include "capture/scripted_gestures.h"
+#include "simulation/simulation.h"
+#include "stages/stages.h"
 
 namespace {
 

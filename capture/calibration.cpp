@@ -1,4 +1,4 @@
-#include "calibration.h"
+#include "capture/calibration.h"
 
 #include <cmath>
 #include <numbers>

@@ -8,8 +8,8 @@
 // where level() undoes a camera pitched up by cameraPitch degrees (rotation about the camera's x axis).
 // Velocities map with the same linear part. docs/capture.md explains how to set each field.
 
-#include "hand_source.h"
-#include "wire_frame.h"
+#include "capture/hand_source.h"
+#include "model/wire_frame.h"
 
 namespace gb {
 

@@ -1,13 +1,13 @@
-#include "colour_registration.h"
+#include "capture/colour_registration.h"
 
 #include <cmath>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "hand_source.h"
-#include "kinect_depth.h"
-#include "untrusted.h"
+#include "capture/hand_source.h"
+#include "capture/kinect_depth.h"
+#include "capture/untrusted.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "depth_plot.h"
+#include "capture/depth_plot.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,9 +7,9 @@
 
 #include <filesystem>
 
-#include "hand_detector.h"
-#include "kinect_depth.h"
-#include "png_image.h"
+#include "capture/hand_detector.h"
+#include "capture/kinect_depth.h"
+#include "capture/png_image.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "depth_recording.h"
+#include "capture/depth_recording.h"
 
 #include <archive.h>
 #include <archive_entry.h>
@@ -9,10 +9,10 @@
 #include <memory>
 #include <random>
 
-#include "colour_registration.h"
-#include "freenect_stream.h"
-#include "trajectory_file.h"
-#include "untrusted.h"
+#include "capture/colour_registration.h"
+#include "capture/freenect_stream.h"
+#include "capture/trajectory_file.h"
+#include "capture/untrusted.h"
 
 namespace gb {
 

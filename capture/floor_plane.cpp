@@ -1,4 +1,4 @@
-#include "floor_plane.h"
+#include "capture/floor_plane.h"
 
 #include <algorithm>
 #include <cmath>

@@ -7,7 +7,7 @@
 #include <optional>
 #include <vector>
 
-#include "hand_source.h"
+#include "capture/hand_source.h"
 
 namespace gb {
 

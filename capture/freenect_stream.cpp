@@ -1,4 +1,4 @@
-#include "freenect_stream.h"
+#include "capture/freenect_stream.h"
 
 #include <dlfcn.h>
 #include <libfreenect.h>
@@ -17,10 +17,10 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "colour_registration.h"
-#include "hand_source.h"
-#include "output_file.h"
-#include "untrusted.h"
+#include "capture/colour_registration.h"
+#include "capture/hand_source.h"
+#include "capture/output_file.h"
+#include "capture/untrusted.h"
 
 #ifndef GB_FREENECT_LIBRARY
 #define GB_FREENECT_LIBRARY "libfreenect.so.0.5"

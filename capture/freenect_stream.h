@@ -22,7 +22,7 @@
 #include <string>
 #include <vector>
 
-#include "kinect_depth.h"
+#include "capture/kinect_depth.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "hand_detector.h"
+#include "capture/hand_detector.h"
 
 #include <algorithm>
 #include <cmath>

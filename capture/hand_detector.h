@@ -15,11 +15,11 @@
 #include <string>
 #include <vector>
 
-#include "floor_plane.h"
-#include "hand_forest.h"
-#include "hand_source.h"
-#include "kinect_depth.h"
-#include "performer_segmentation.h"
+#include "capture/floor_plane.h"
+#include "capture/hand_forest.h"
+#include "capture/hand_source.h"
+#include "capture/kinect_depth.h"
+#include "capture/performer_segmentation.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "hand_evaluation.h"
+#include "capture/hand_evaluation.h"
 
 #include <algorithm>
 #include <chrono>

@@ -11,9 +11,9 @@
 
 #include <vector>
 
-#include "depth_recording.h"
-#include "hand_finder.h"
-#include "hand_source.h"
+#include "capture/depth_recording.h"
+#include "capture/hand_finder.h"
+#include "capture/hand_source.h"
 
 namespace gb {
 

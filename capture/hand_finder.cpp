@@ -1,6 +1,6 @@
-#include "hand_finder.h"
+#include "capture/hand_finder.h"
 
-#include "kinect_depth.h"
+#include "capture/kinect_depth.h"
 
 namespace gb {
 

@@ -3,7 +3,7 @@
 // recording, `giantbubble evaluate` and the benchmarks. It keeps what one frame cannot know: the room seen
 // so far, the performer taken in the frames before, and each hand's identity (HandTracker).
 
-#include "hand_detector.h"
+#include "capture/hand_detector.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "hand_forest.h"
+#include "capture/hand_forest.h"
 
 #include <zlib.h>
 
@@ -8,8 +8,8 @@
 #include <numeric>
 #include <stdexcept>
 
-#include "kinect_depth.h"
-#include "untrusted.h"
+#include "capture/kinect_depth.h"
+#include "capture/untrusted.h"
 
 // The trained model, embedded by hand_forest_model.S.
 extern "C" const uint8_t gb_hand_forest_model_begin[];

@@ -1,11 +1,11 @@
-#include "hand_forest_training.h"
+#include "capture/hand_forest_training.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <numeric>
 
-#include "kinect_depth.h"
+#include "capture/kinect_depth.h"
 
 namespace gb {
 

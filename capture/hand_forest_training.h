@@ -15,8 +15,8 @@
 #include <random>
 #include <vector>
 
-#include "hand_forest.h"
-#include "hand_source.h"
+#include "capture/hand_forest.h"
+#include "capture/hand_source.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "hand_sources.h"
+#include "capture/hand_sources.h"
 
 #include <algorithm>
 #include <chrono>
@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <numbers>
 
-#include "trajectory_file.h"
-#include "untrusted.h"
+#include "capture/trajectory_file.h"
+#include "capture/untrusted.h"
 
 namespace gb {
 

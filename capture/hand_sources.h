@@ -13,11 +13,11 @@
 #include <string>
 #include <utility>
 
-#include "calibration.h"
-#include "freenect_stream.h"
-#include "hand_finder.h"
-#include "scripted_gestures.h"
-#include "trajectory_file.h"
+#include "capture/calibration.h"
+#include "capture/freenect_stream.h"
+#include "capture/hand_finder.h"
+#include "capture/scripted_gestures.h"
+#include "capture/trajectory_file.h"
 
 namespace gb {
 

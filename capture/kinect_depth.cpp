@@ -1,4 +1,4 @@
-#include "kinect_depth.h"
+#include "capture/kinect_depth.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "output_file.h"
+#include "capture/output_file.h"
 
 #include <fcntl.h>
 #include <sys/file.h>
@@ -13,7 +13,7 @@
 #include <iterator>
 #include <utility>
 
-#include "untrusted.h"
+#include "capture/untrusted.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "performer_segmentation.h"
+#include "capture/performer_segmentation.h"
 
 #include <algorithm>
 #include <cmath>

@@ -21,9 +21,9 @@
 #include <string>
 #include <vector>
 
-#include "floor_plane.h"
-#include "hand_forest.h"
-#include "kinect_depth.h"
+#include "capture/floor_plane.h"
+#include "capture/hand_forest.h"
+#include "capture/kinect_depth.h"
 
 namespace gb {
 

@@ -1,11 +1,11 @@
-#include "png_image.h"
+#include "capture/png_image.h"
 
 #include <png.h>
 
 #include <stdexcept>
 
-#include "output_file.h"
-#include "untrusted.h"
+#include "capture/output_file.h"
+#include "capture/untrusted.h"
 
 namespace gb {
 

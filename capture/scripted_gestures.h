@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "wire_frame.h"
+#include "model/wire_frame.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "stabilizer.h"
+#include "capture/stabilizer.h"
 
 #include <algorithm>
 #include <cmath>

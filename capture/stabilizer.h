@@ -26,7 +26,7 @@
 #include <memory>
 #include <string>
 
-#include "hand_source.h"
+#include "capture/hand_source.h"
 
 namespace gb {
 

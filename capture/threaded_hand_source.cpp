@@ -1,4 +1,4 @@
-#include "threaded_hand_source.h"
+#include "capture/threaded_hand_source.h"
 
 #include <utility>
 

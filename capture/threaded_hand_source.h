@@ -16,7 +16,7 @@
 #include <thread>
 #include <vector>
 
-#include "hand_source.h"
+#include "capture/hand_source.h"
 
 namespace gb {
 

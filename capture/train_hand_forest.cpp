@@ -5,10 +5,10 @@
 #include <chrono>
 #include <cstdio>
 
-#include "depth_recording.h"
-#include "hand_finder.h"
-#include "hand_forest_training.h"
-#include "output_file.h"
+#include "capture/depth_recording.h"
+#include "capture/hand_finder.h"
+#include "capture/hand_forest_training.h"
+#include "capture/output_file.h"
 
 namespace {
 

@@ -1,12 +1,12 @@
-#include "trajectory_file.h"
+#include "capture/trajectory_file.h"
 
 #include <charconv>
 #include <cmath>
 #include <optional>
 #include <string>
 
-#include "output_file.h"
-#include "untrusted.h"
+#include "capture/output_file.h"
+#include "capture/untrusted.h"
 
 namespace gb {
 

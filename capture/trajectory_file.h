@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "hand_source.h"
-#include "output_file.h"
+#include "capture/hand_source.h"
+#include "capture/output_file.h"
 
 namespace gb {
 

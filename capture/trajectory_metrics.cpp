@@ -1,4 +1,4 @@
-#include "trajectory_metrics.h"
+#include "capture/trajectory_metrics.h"
 
 #include <cmath>
 #include <limits>

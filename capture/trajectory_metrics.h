@@ -3,7 +3,7 @@
 
 #include <vector>
 
-#include "hand_source.h"
+#include "capture/hand_source.h"
 
 namespace gb {
 

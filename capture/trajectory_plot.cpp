@@ -1,4 +1,4 @@
-#include "trajectory_plot.h"
+#include "capture/trajectory_plot.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "output_file.h"
+#include "capture/output_file.h"
 
 namespace gb {
 

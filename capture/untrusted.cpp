@@ -1,4 +1,4 @@
-#include "untrusted.h"
+#include "capture/untrusted.h"
 
 #include <fcntl.h>
 #include <sys/stat.h>

@@ -1,4 +1,4 @@
-#include "wand_input.h"
+#include "capture/wand_input.h"
 
 #include <algorithm>
 #include <chrono>

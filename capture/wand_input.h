@@ -17,10 +17,10 @@
 #include <utility>
 #include <vector>
 
-#include "calibration.h"
-#include "hand_source.h"
-#include "scripted_gestures.h"
-#include "stabilizer.h"
+#include "capture/calibration.h"
+#include "capture/hand_source.h"
+#include "capture/scripted_gestures.h"
+#include "capture/stabilizer.h"
 
 namespace gb {
 

@@ -1,10 +1,10 @@
-#include "backend.h"
+#include "host/backend.h"
 
 #include <stdexcept>
 
-#include "cpu_stepper.h"
-#include "vulkan_context.h"
-#include "vulkan_stepper.h"
+#include "host/vulkan_context.h"
+#include "host/vulkan_stepper.h"
+#include "stages/cpu_stepper.h"
 
 namespace gb {
 

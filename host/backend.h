@@ -4,8 +4,8 @@
 #include <memory>
 #include <string>
 
-#include "stepper.h"
-#include "vulkan_stepper.h"
+#include "host/vulkan_stepper.h"
+#include "stages/stepper.h"
 
 namespace gb {
 

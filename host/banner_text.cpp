@@ -1,9 +1,9 @@
-#include "banner_text.h"
+#include "host/banner_text.h"
 
 #include <algorithm>
 #include <sstream>
 
-#include "bitmap_font.h"
+#include "host/bitmap_font.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "bitmap_font.h"
+#include "host/bitmap_font.h"
 
 #include <array>
 #include <string_view>

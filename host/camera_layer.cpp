@@ -1,4 +1,4 @@
-#include "camera_layer.h"
+#include "host/camera_layer.h"
 
 #include <cmath>
 

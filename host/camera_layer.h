@@ -10,7 +10,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "film.h"
+#include "model/film.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "device_buffer.h"
+#include "host/device_buffer.h"
 
 #include <cstring>
 #include <span>

@@ -5,7 +5,7 @@
 
 #include <vulkan/vulkan_raii.hpp>
 
-#include "vulkan_context.h"
+#include "host/vulkan_context.h"
 
 namespace gb {
 

@@ -1,10 +1,10 @@
-#include "device_image.h"
+#include "host/device_image.h"
 
 #include <bit>
 #include <cmath>
 #include <stdexcept>
 
-#include "device_buffer.h"
+#include "host/device_buffer.h"
 
 namespace gb {
 

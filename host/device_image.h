@@ -6,7 +6,7 @@
 #include <vector>
 #include <vulkan/vulkan_raii.hpp>
 
-#include "vulkan_context.h"
+#include "host/vulkan_context.h"
 
 namespace gb {
 

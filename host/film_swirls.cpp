@@ -1,9 +1,9 @@
-#include "film_swirls.h"
+#include "host/film_swirls.h"
 
 #include <cmath>
 #include <limits>
 
-#include "procedural_noise.h"
+#include "host/procedural_noise.h"
 
 namespace gb {
 

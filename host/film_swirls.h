@@ -18,7 +18,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "state.h"
+#include "model/state.h"
 
 namespace gb {
 

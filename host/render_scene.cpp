@@ -1,4 +1,4 @@
-#include "render_scene.h"
+#include "host/render_scene.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,8 +6,8 @@
 #include <numbers>
 #include <vector>
 
-#include "procedural_noise.h"
-#include "render_shared.h"
+#include "host/procedural_noise.h"
+#include "kernels/render/render_shared.h"
 
 namespace gb {
 

@@ -7,9 +7,9 @@
 #include <array>
 #include <vector>
 
-#include "bursting.h"
-#include "film.h"
-#include "wire_frame.h"
+#include "model/film.h"
+#include "model/wire_frame.h"
+#include "topology/bursting.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "renderer.h"
+#include "host/renderer.h"
 
 #include <algorithm>
 #include <array>
@@ -9,13 +9,13 @@
 #include <stdexcept>
 #include <string>
 
-#include "device_buffer.h"
-#include "device_image.h"
-#include "film_swirls.h"
-#include "render_shared.h"
-#include "render_spirv.h"
-#include "thin_film.h"
-#include "thin_film_lut.h"
+#include "host/device_buffer.h"
+#include "host/device_image.h"
+#include "host/film_swirls.h"
+#include "host/thin_film.h"
+#include "kernels/render/render_shared.h"
+#include "kernels/render/render_spirv.h"
+#include "kernels/render/thin_film_lut.h"
 
 namespace gb {
 

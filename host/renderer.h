@@ -19,12 +19,12 @@
 #include <string>
 #include <vector>
 
-#include "bursting.h"
-#include "camera_layer.h"
-#include "device_film.h"
-#include "film.h"
-#include "render_scene.h"
-#include "vulkan_context.h"
+#include "host/camera_layer.h"
+#include "host/device_film.h"
+#include "host/render_scene.h"
+#include "host/vulkan_context.h"
+#include "model/film.h"
+#include "topology/bursting.h"
 
 namespace gb {
 

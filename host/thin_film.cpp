@@ -1,11 +1,11 @@
-#include "thin_film.h"
+#include "host/thin_film.h"
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 
-#include "spectral_tables.h"
-#include "thin_film_lut.h"
+#include "host/spectral_tables.h"
+#include "kernels/render/thin_film_lut.h"
 
 namespace gb {
 

@@ -3,7 +3,7 @@
 #include <bit>
 #include <cstdio>
 
-#include "vulkan_stepper_impl.h"
+#include "host/vulkan_stepper_impl.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "vulkan_context.h"
+#include "host/vulkan_context.h"
 
 #include <algorithm>
 #include <cctype>

@@ -2,7 +2,7 @@
 // the device (kernels/statistics/film_statistics_*.comp), and the rest-length rules run there (film_rest_lengths.comp).
 #include <cmath>
 
-#include "vulkan_stepper_impl.h"
+#include "host/vulkan_stepper_impl.h"
 
 namespace gb {
 

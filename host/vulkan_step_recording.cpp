@@ -2,9 +2,9 @@
 // as its kernels with the barriers between their passes.
 #include <cstring>
 
-#include "coarse_correction.h"
-#include "implicit_euler.h"
-#include "vulkan_stepper_impl.h"
+#include "host/vulkan_stepper_impl.h"
+#include "solver/coarse_correction.h"
+#include "solver/implicit_euler.h"
 
 namespace gb {
 

@@ -1,10 +1,10 @@
-#include "vulkan_stepper.h"
+#include "host/vulkan_stepper.h"
 
 #include <cstdio>
 
-#include "coarse_correction.h"
-#include "colouring.h"
-#include "vulkan_stepper_impl.h"
+#include "host/vulkan_stepper_impl.h"
+#include "solver/coarse_correction.h"
+#include "solver/colouring.h"
 
 namespace gb {
 
@@ -469,7 +469,8 @@ bool VulkanStepper::updateRegion(const Params& params, Film& film, std::span<con
   if (params.coarseIterations > 0) ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
   const State& s = film.state;
   const Topology& t = film.topology;
-  m.params = params;
+  m.params = &params;
+  m.paramsOnDevice = params;
   m.buffer(GB_BINDING_PARAMS).write(&params, sizeof(Params));
   const auto n = static_cast<uint32_t>(s.size());
   if (n != m.particles) m.layOutParticles(particleBlocks(s), n);

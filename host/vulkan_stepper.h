@@ -8,9 +8,9 @@
 
 #include <memory>
 
-#include "device_film.h"
-#include "device_residency.h"
-#include "stepper.h"
+#include "host/device_film.h"
+#include "stages/stepper.h"
+#include "topology/device_residency.h"
 
 namespace gb {
 

@@ -8,12 +8,12 @@
 #include <span>
 #include <vector>
 
-#include "collision.h"
-#include "device_buffer.h"
-#include "shared_step.h"
-#include "spirv.h"
-#include "vulkan_context.h"
-#include "vulkan_stepper.h"
+#include "host/device_buffer.h"
+#include "host/vulkan_context.h"
+#include "host/vulkan_stepper.h"
+#include "kernels/shared/shared_step.h"
+#include "kernels/shared/spirv.h"
+#include "topology/collision.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "window.h"
+#include "host/window.h"
 
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
@@ -7,9 +7,9 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "banner_text.h"
-#include "device_buffer.h"
-#include "device_image.h"
+#include "host/banner_text.h"
+#include "host/device_buffer.h"
+#include "host/device_image.h"
 
 namespace gb {
 

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "render_scene.h"
-#include "renderer.h"
-#include "vulkan_context.h"
+#include "host/render_scene.h"
+#include "host/renderer.h"
+#include "host/vulkan_context.h"
 
 struct GLFWwindow;
 

@@ -1,12 +1,12 @@
-#include "solver_comparison.h"
+#include "research/solver_comparison.h"
 
 #include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <utility>
 
-#include "coarse_correction.h"
-#include "energy_budget.h"
+#include "solver/coarse_correction.h"
+#include "solver/energy_budget.h"
 
 namespace gb {
 

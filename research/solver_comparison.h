@@ -20,8 +20,8 @@
 #include <string>
 #include <vector>
 
-#include "film.h"
-#include "implicit_euler.h"
+#include "model/film.h"
+#include "solver/implicit_euler.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "run_options.h"
+#include "scene/run_options.h"
 
 namespace gb {
 

@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "backend.h"
-#include "params.h"
-#include "renderer.h"
-#include "scripted_gestures.h"
-#include "wire_frame.h"
+#include "capture/scripted_gestures.h"
+#include "host/backend.h"
+#include "host/renderer.h"
+#include "model/params.h"
+#include "model/wire_frame.h"
 
 namespace gb {
 

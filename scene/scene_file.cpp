@@ -1,5 +1,5 @@
 // Scene files: TOML (toml++) to RunOptions, with every mistake named by file, line and key.
-#include "scene_file.h"
+#include "scene/scene_file.h"
 
 #include <toml++/toml.h>
 
@@ -11,9 +11,9 @@
 #include <optional>
 #include <sstream>
 
-#include "builtin_scenes.h"
-#include "experiments.h"
-#include "untrusted.h"
+#include "capture/untrusted.h"
+#include "scene/builtin_scenes.h"
+#include "simulation/experiments.h"
 
 namespace gb {
 namespace {

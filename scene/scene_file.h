@@ -10,7 +10,7 @@
 #include <string_view>
 #include <vector>
 
-#include "run_options.h"
+#include "scene/run_options.h"
 
 namespace gb {
 

@@ -1,11 +1,11 @@
 // The live window's message banner drawn on the CPU (host/banner_text.h, host/bitmap_font.h): the words wrapped
 // to the image's width, long messages cut, the glyphs scaled with the image, and text that is not printable
 // ASCII drawn as '?'. Exact checks: the banner is integer arithmetic on whole pixels.
-#include "banner_text.h"
+#include "host/banner_text.h"
 
 #include <gtest/gtest.h>
 
-#include "bitmap_font.h"
+#include "host/bitmap_font.h"
 
 namespace gb {
 namespace {

@@ -1,12 +1,12 @@
-#include "body_touch.h"
+#include "topology/body_touch.h"
 
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <random>
 
-#include "film.h"
-#include "simulation.h"
+#include "model/film.h"
+#include "simulation/simulation.h"
 
 namespace gb {
 namespace {

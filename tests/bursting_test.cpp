@@ -6,9 +6,9 @@
 #include <queue>
 #include <set>
 
-#include "mesh_checks.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
+#include "capture/scripted_gestures.h"
+#include "simulation/simulation.h"
+#include "tests/mesh_checks.h"
 
 namespace gb {
 namespace {

@@ -8,10 +8,10 @@
 #include <sstream>
 #include <string>
 
-#include "film.h"
-#include "scripted_gestures.h"
-#include "thickness_image.h"
-#include "trajectory_plot.h"
+#include "app/outputs/thickness_image.h"
+#include "capture/scripted_gestures.h"
+#include "capture/trajectory_plot.h"
+#include "model/film.h"
 
 namespace gb {
 namespace {

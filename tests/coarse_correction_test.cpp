@@ -1,17 +1,17 @@
 // The implicit step's coarse correction (cpu-reference/solver/coarse_correction.h): its patches, and what it adds to
 // the sweeps on a film-wide mode.
-#include "coarse_correction.h"
+#include "solver/coarse_correction.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cstdio>
 
-#include "colouring.h"
-#include "cpu_stepper.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
-#include "solver_comparison.h"
+#include "capture/scripted_gestures.h"
+#include "research/solver_comparison.h"
+#include "simulation/simulation.h"
+#include "solver/colouring.h"
+#include "stages/cpu_stepper.h"
 
 namespace gb {
 namespace {

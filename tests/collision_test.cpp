@@ -1,15 +1,15 @@
 // Self-collision: film sheets pushed together repel and slip instead of passing through each other.
-#include "collision.h"
+#include "topology/collision.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <map>
 
-#include "cpu_stepper.h"
-#include "scene_file.h"
-#include "simulation.h"
-#include "test_films.h"
+#include "scene/scene_file.h"
+#include "simulation/simulation.h"
+#include "stages/cpu_stepper.h"
+#include "tests/test_films.h"
 
 namespace gb {
 namespace {

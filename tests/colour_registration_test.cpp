@@ -1,12 +1,12 @@
 // The registration of depth pixels to the colour image: the factory constants and a recording's device.json.
-#include "colour_registration.h"
+#include "capture/colour_registration.h"
 
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "hand_source.h"
-#include "kinect_depth.h"
+#include "capture/hand_source.h"
+#include "capture/kinect_depth.h"
 
 namespace gb {
 namespace {

@@ -4,10 +4,10 @@
 
 #include <memory>
 
-#include "scene_file.h"
-#include "simulation.h"
-#include "vulkan_stepper.h"
-#include "vulkan_test_device.h"
+#include "host/vulkan_stepper.h"
+#include "scene/scene_file.h"
+#include "simulation/simulation.h"
+#include "tests/vulkan_test_device.h"
 
 namespace gb::test {
 

@@ -1,11 +1,11 @@
-#include "depth_composite.h"
+#include "tests/depth_composite.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <numbers>
 
-#include "synthetic_depth.h"
+#include "tests/synthetic_depth.h"
 
 namespace gb::test {
 

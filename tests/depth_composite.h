@@ -9,7 +9,7 @@
 
 #include <string>
 
-#include "depth_recording.h"
+#include "capture/depth_recording.h"
 
 namespace gb::test {
 

@@ -10,13 +10,13 @@
 #include <random>
 #include <string>
 
-#include "collision.h"
-#include "default_performance_on_device.h"
-#include "scene_file.h"
-#include "simulation.h"
-#include "test_films.h"
-#include "vulkan_stepper.h"
-#include "vulkan_test_device.h"
+#include "host/vulkan_stepper.h"
+#include "scene/scene_file.h"
+#include "simulation/simulation.h"
+#include "tests/default_performance_on_device.h"
+#include "tests/test_films.h"
+#include "tests/vulkan_test_device.h"
+#include "topology/collision.h"
 
 namespace gb {
 namespace {

@@ -9,11 +9,11 @@
 #include <cstdio>
 #include <string>
 
-#include "default_performance_on_device.h"
-#include "simulation.h"
-#include "test_films.h"
-#include "vulkan_stepper.h"
-#include "vulkan_test_device.h"
+#include "host/vulkan_stepper.h"
+#include "simulation/simulation.h"
+#include "tests/default_performance_on_device.h"
+#include "tests/test_films.h"
+#include "tests/vulkan_test_device.h"
 
 namespace gb {
 namespace {

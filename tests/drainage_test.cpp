@@ -4,9 +4,9 @@
 #include <algorithm>
 #include <numeric>
 
-#include "cpu_stepper.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
+#include "capture/scripted_gestures.h"
+#include "simulation/simulation.h"
+#include "stages/cpu_stepper.h"
 
 namespace gb {
 namespace {

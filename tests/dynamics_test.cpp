@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <random>
 
-#include "scripted_gestures.h"
-#include "simulation.h"
+#include "capture/scripted_gestures.h"
+#include "simulation/simulation.h"
 
 namespace gb {
 namespace {

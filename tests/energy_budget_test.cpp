@@ -1,6 +1,6 @@
 // The implicit step's energy budget (cpu-reference/solver/energy_budget.h): its formulas, and a step that would give a
 // film energy nobody put in.
-#include "energy_budget.h"
+#include "solver/energy_budget.h"
 
 #include <gtest/gtest.h>
 
@@ -8,11 +8,11 @@
 #include <cstdio>
 #include <limits>
 
-#include "cpu_stepper.h"
-#include "scene_file.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
-#include "test_films.h"
+#include "capture/scripted_gestures.h"
+#include "scene/scene_file.h"
+#include "simulation/simulation.h"
+#include "stages/cpu_stepper.h"
+#include "tests/test_films.h"
 
 namespace gb {
 namespace {

@@ -7,11 +7,11 @@
 #include <numbers>
 #include <string>
 
-#include "colour_registration.h"
-#include "depth_recording.h"
-#include "freenect_stream.h"
-#include "hand_sources.h"
-#include "synthetic_depth.h"
+#include "capture/colour_registration.h"
+#include "capture/depth_recording.h"
+#include "capture/freenect_stream.h"
+#include "capture/hand_sources.h"
+#include "tests/synthetic_depth.h"
 
 namespace gb {
 namespace {

@@ -3,7 +3,7 @@
 // device does plays the default performance exactly as the plain CPU stepper: no rule the checks let pass ever acts.
 // On the device (lavapipe in CI), the checks reduced there are the CPU's, and the performance played with the state
 // left on the device is the one played with the state read back after every step.
-#include "film_checks.h"
+#include "topology/film_checks.h"
 
 #include <gtest/gtest.h>
 
@@ -14,13 +14,13 @@
 #include <string>
 #include <vector>
 
-#include "cpu_stepper.h"
-#include "default_performance_on_device.h"
-#include "film_growth.h"
-#include "scene_file.h"
-#include "simulation.h"
-#include "vulkan_stepper.h"
-#include "vulkan_test_device.h"
+#include "host/vulkan_stepper.h"
+#include "scene/scene_file.h"
+#include "simulation/simulation.h"
+#include "stages/cpu_stepper.h"
+#include "tests/default_performance_on_device.h"
+#include "tests/vulkan_test_device.h"
+#include "topology/film_growth.h"
 
 namespace gb {
 namespace {
@@ -354,10 +354,10 @@ TEST(DeviceFilmChecks, RingsAndMergesOnTheDeviceLeaveTheFilmOfTheWholeReadBack) 
   for (int f = 1; f <= 110; ++f) {
     const WandState wands = defaultWandsAt(scene, f);
     everyFrame.advanceFrame(wands);
-    const DeviceReadback before = onDevice.stepper().readback();
+    const DeviceReadback before = onDevice.stepper().device()->readback();
     const size_t trianglesBefore = onDevice.triangleCount();
     onDevice.advanceFrame(wands);
-    const DeviceReadback after = onDevice.stepper().readback();
+    const DeviceReadback after = onDevice.stepper().device()->readback();
     const std::string frame = "frame " + std::to_string(f);
     ASSERT_EQ(everyFrame.lastEvents().particlesAdded, onDevice.lastEvents().particlesAdded) << frame;
     ASSERT_EQ(everyFrame.triangleCount(), onDevice.triangleCount()) << frame;

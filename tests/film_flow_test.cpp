@@ -8,9 +8,9 @@
 #include <cstdio>
 #include <numeric>
 
-#include "bursting.h"
-#include "cpu_stepper.h"
-#include "test_films.h"
+#include "stages/cpu_stepper.h"
+#include "tests/test_films.h"
+#include "topology/bursting.h"
 
 namespace gb {
 namespace {

@@ -3,10 +3,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "film.h"
-#include "mesh_checks.h"
-#include "scripted_gestures.h"
-#include "stages.h"
+#include "capture/scripted_gestures.h"
+#include "model/film.h"
+#include "stages/stages.h"
+#include "tests/mesh_checks.h"
 
 namespace gb {
 namespace {

@@ -1,5 +1,5 @@
 // Film growth at the wire and soap solution control (Section 7, Figure 14c-d).
-#include "film_growth.h"
+#include "topology/film_growth.h"
 
 #include <gtest/gtest.h>
 
@@ -9,11 +9,11 @@
 #include <limits>
 #include <tuple>
 
-#include "cpu_stepper.h"
-#include "implicit_euler.h"
-#include "mesh_checks.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
+#include "capture/scripted_gestures.h"
+#include "simulation/simulation.h"
+#include "solver/implicit_euler.h"
+#include "stages/cpu_stepper.h"
+#include "tests/mesh_checks.h"
 
 namespace gb {
 namespace {

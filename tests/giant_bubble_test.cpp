@@ -11,11 +11,11 @@
 #include <random>
 #include <string>
 
-#include "film_growth.h"
-#include "scene_file.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
-#include "stages.h"
+#include "capture/scripted_gestures.h"
+#include "scene/scene_file.h"
+#include "simulation/simulation.h"
+#include "stages/stages.h"
+#include "topology/film_growth.h"
 
 namespace gb {
 namespace {

@@ -3,9 +3,9 @@
 #include <cmath>
 #include <string>
 
-#include "hand_evaluation.h"
-#include "hand_finder.h"
-#include "synthetic_depth.h"
+#include "capture/hand_evaluation.h"
+#include "capture/hand_finder.h"
+#include "tests/synthetic_depth.h"
 
 namespace gb {
 namespace {

@@ -1,6 +1,6 @@
 // The hand finder judged on real Kinect v1 depth with ground-truth hands (../shared/real-depth/utd-mhad), on a
 // small slice of it: as recorded and composited into rooms (depth_composite.h). gb_hands_bench runs all of it.
-#include "hand_evaluation.h"
+#include "capture/hand_evaluation.h"
 
 #include <gtest/gtest.h>
 
@@ -8,9 +8,9 @@
 #include <filesystem>
 #include <fstream>
 
-#include "depth_composite.h"
-#include "real_depth.h"
-#include "vulkan_test_device.h"
+#include "tests/depth_composite.h"
+#include "tests/real_depth.h"
+#include "tests/vulkan_test_device.h"
 
 namespace gb {
 namespace {

@@ -1,6 +1,6 @@
 // The hand forest's model file (hand_forest.h): what is written is read back, a damaged file is refused by name,
 // and the forest compiled into the program is a real one.
-#include "hand_forest.h"
+#include "capture/hand_forest.h"
 
 #include <gtest/gtest.h>
 

@@ -7,14 +7,14 @@
 #include <cstdio>
 #include <random>
 
-#include "colouring.h"
-#include "cpu_stepper.h"
-#include "film.h"
-#include "float_lanes.h"
-#include "implicit_euler.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
-#include "test_films.h"
+#include "capture/scripted_gestures.h"
+#include "model/film.h"
+#include "simulation/simulation.h"
+#include "solver/colouring.h"
+#include "solver/float_lanes.h"
+#include "solver/implicit_euler.h"
+#include "stages/cpu_stepper.h"
+#include "tests/test_films.h"
 
 namespace gb {
 namespace {

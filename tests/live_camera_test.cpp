@@ -1,13 +1,13 @@
 // The live window's camera (app/show/live_camera.h): it keeps a drifting free bubble in the picture without jumps, lets
 // the user take over, and Home hands control back without a jump.
-#include "live_camera.h"
+#include "app/show/live_camera.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 
-#include "film.h"
+#include "model/film.h"
 
 namespace gb {
 namespace {

@@ -1,7 +1,7 @@
 // Show control (app/control/): every parameter of the table in the catalog with its group and meaning; a set over
 // OSC checked as --param checks it and applied between frames; presets that round-trip every parameter; the
 // OSCQuery namespace and its server on the loopback, whose VALUE follows an OSC set.
-#include "control/live_control.h"
+#include "app/control/live_control.h"
 
 #include <arpa/inet.h>
 #include <gtest/gtest.h>
@@ -15,17 +15,17 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "control/control_routes.h"
-#include "control/control_server.h"
-#include "control/live_params.h"
-#include "control/oscquery_namespace.h"
-#include "control/param_catalog.h"
-#include "control/presets.h"
-#include "live_show.h"
-#include "osc_cues.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
-#include "vulkan_test_device.h"
+#include "app/control/control_routes.h"
+#include "app/control/control_server.h"
+#include "app/control/live_params.h"
+#include "app/control/oscquery_namespace.h"
+#include "app/control/param_catalog.h"
+#include "app/control/presets.h"
+#include "app/show/live_show.h"
+#include "app/show/osc_cues.h"
+#include "capture/scripted_gestures.h"
+#include "simulation/simulation.h"
+#include "tests/vulkan_test_device.h"
 
 namespace gb {
 namespace {

@@ -8,8 +8,8 @@
 #include <fstream>
 #include <string>
 
-#include "freenect_stream.h"
-#include "synthetic_depth.h"
+#include "capture/freenect_stream.h"
+#include "tests/synthetic_depth.h"
 
 int main(int argc, char** argv) {
   if (argc < 3) {

@@ -7,7 +7,7 @@
 #include <set>
 #include <utility>
 
-#include "state.h"
+#include "model/state.h"
 
 namespace gb::test {
 

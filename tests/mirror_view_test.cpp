@@ -1,12 +1,12 @@
 // The mirror view: the depth camera's view of the world (its intrinsics, where the calibration puts it, mirrored),
 // what it draws of a depth frame, and on lavapipe the depth test between the camera image and the film.
-#include "mirror_view.h"
+#include "app/show/mirror_view.h"
 
 #include <gtest/gtest.h>
 
-#include "colour_registration.h"
-#include "test_films.h"
-#include "vulkan_test_device.h"
+#include "capture/colour_registration.h"
+#include "tests/test_films.h"
+#include "tests/vulkan_test_device.h"
 
 namespace gb {
 namespace {

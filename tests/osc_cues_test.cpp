@@ -1,6 +1,6 @@
 // OSC cues in (app/show/osc_cues.h): each cue a show operator sends arrives as its action, in order; a push button let
 // go of is no cue; anything else is counted and ignored, never thrown.
-#include "osc_cues.h"
+#include "app/show/osc_cues.h"
 
 #include <arpa/inet.h>
 #include <gtest/gtest.h>

@@ -1,5 +1,5 @@
 // OSC show control: events and the bubble's state reach a loopback receiver, in order.
-#include "osc_events.h"
+#include "app/outputs/osc_events.h"
 
 #include <gtest/gtest.h>
 #include <lo/lo.h>
@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "run_command.h"
+#include "app/commands/run_command.h"
 
 namespace gb {
 namespace {

@@ -1,10 +1,10 @@
 // The live show's performance loop (app/show/performance_loop.h): a script or a recording plays again once the stage is
 // empty, the wands going back to its start without a jump.
-#include "performance_loop.h"
+#include "app/show/performance_loop.h"
 
 #include <gtest/gtest.h>
 
-#include "scripted_gestures.h"
+#include "capture/scripted_gestures.h"
 
 namespace gb {
 namespace {

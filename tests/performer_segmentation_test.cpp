@@ -1,12 +1,12 @@
 // Who the performer is in rooms with walls, furniture, a floor and other people (performer_segmentation.h), on
 // synthetic depth (synthetic_depth.h) where the truth is known exactly.
-#include "performer_segmentation.h"
+#include "capture/performer_segmentation.h"
 
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
-#include "synthetic_depth.h"
+#include "tests/synthetic_depth.h"
 
 namespace gb {
 namespace {

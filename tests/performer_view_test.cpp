@@ -1,12 +1,12 @@
 // The live window's performer view (app/show/performer_view.h, capture/depth_plot.h): the depth plot drawn small for
 // the window is the full plot's every other pixel, and V says when there is nothing to show.
-#include "performer_view.h"
+#include "app/show/performer_view.h"
 
 #include <gtest/gtest.h>
 
-#include "depth_plot.h"
-#include "hand_detector.h"
-#include "synthetic_depth.h"
+#include "capture/depth_plot.h"
+#include "capture/hand_detector.h"
+#include "tests/synthetic_depth.h"
 
 namespace gb {
 namespace {

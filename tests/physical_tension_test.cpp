@@ -6,11 +6,11 @@
 #include <cmath>
 #include <cstdio>
 
-#include "experiments.h"
-#include "film.h"
-#include "implicit_euler.h"
-#include "stages.h"
-#include "test_films.h"
+#include "model/film.h"
+#include "simulation/experiments.h"
+#include "solver/implicit_euler.h"
+#include "stages/stages.h"
+#include "tests/test_films.h"
 
 namespace gb {
 namespace {

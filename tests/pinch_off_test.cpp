@@ -15,10 +15,10 @@
 #include <sanitizer/allocator_interface.h>
 #endif
 
-#include "film.h"
-#include "mesh_checks.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
+#include "capture/scripted_gestures.h"
+#include "model/film.h"
+#include "simulation/simulation.h"
+#include "tests/mesh_checks.h"
 
 namespace gb {
 namespace {

@@ -7,8 +7,8 @@
 #include <optional>
 #include <string>
 
-#include "depth_recording.h"
-#include "vulkan_test_device.h"
+#include "capture/depth_recording.h"
+#include "tests/vulkan_test_device.h"
 
 namespace gb {
 

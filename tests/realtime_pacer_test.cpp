@@ -1,6 +1,6 @@
 // The live loop's pacing (app/show/realtime_pacer.h): what it gives up, in which order, when the machine cannot keep
 // up.
-#include "realtime_pacer.h"
+#include "app/show/realtime_pacer.h"
 
 #include <gtest/gtest.h>
 

@@ -6,11 +6,11 @@
 
 #include <cmath>
 
-#include "bursting.h"
-#include "film.h"
-#include "params.h"
-#include "renderer.h"
-#include "wire_frame.h"
+#include "host/renderer.h"
+#include "model/film.h"
+#include "model/params.h"
+#include "model/wire_frame.h"
+#include "topology/bursting.h"
 
 namespace gb::test {
 

@@ -1,6 +1,6 @@
 // What the renderer draws, built on the CPU (host/render_scene.h, host/film_swirls.h): the camera that keeps the
 // film framed, the film's drawn thickness swirls, the hole rims and the outdoor sky. No Vulkan.
-#include "render_scene.h"
+#include "host/render_scene.h"
 
 #include <gtest/gtest.h>
 
@@ -9,7 +9,7 @@
 #include <numbers>
 #include <numeric>
 
-#include "film_swirls.h"
+#include "host/film_swirls.h"
 
 namespace gb {
 namespace {

@@ -5,7 +5,7 @@
 // The reference image is tests/data/render_reference.png. Regenerate it only deliberately, after a change that
 // is meant to change the picture, and look at it before committing:
 //   GIANTBUBBLE_REGENERATE_REFERENCE=1 ./build/tests/gb_tests --gtest_filter=Renderer.KnownSceneMatchesReference
-#include "renderer.h"
+#include "host/renderer.h"
 
 #include <gtest/gtest.h>
 
@@ -16,18 +16,18 @@
 #include <numbers>
 #include <stdexcept>
 
-#include "film_swirls.h"
-#include "png_image.h"
-#include "render_output.h"
-#include "render_scene_films.h"
-#include "scene_file.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
-#include "test_films.h"
-#include "thin_film.h"
-#include "thin_film_lut.h"
-#include "vulkan_stepper.h"
-#include "vulkan_test_device.h"
+#include "app/outputs/render_output.h"
+#include "capture/png_image.h"
+#include "capture/scripted_gestures.h"
+#include "host/film_swirls.h"
+#include "host/thin_film.h"
+#include "host/vulkan_stepper.h"
+#include "kernels/render/thin_film_lut.h"
+#include "scene/scene_file.h"
+#include "simulation/simulation.h"
+#include "tests/render_scene_films.h"
+#include "tests/test_films.h"
+#include "tests/vulkan_test_device.h"
 
 namespace gb {
 namespace {

@@ -7,7 +7,7 @@
 #include <sstream>
 #include <string>
 
-#include "run_output.h"
+#include "app/outputs/run_output.h"
 
 namespace gb {
 namespace {

@@ -1,12 +1,12 @@
 // Scene files: the built-in scenes run; every mistake in a scene file is named with its file, line and key.
-#include "scene_file.h"
+#include "scene/scene_file.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <filesystem>
 
-#include "run_command.h"
+#include "app/commands/run_command.h"
 
 namespace gb {
 namespace {

@@ -1,4 +1,4 @@
-#include "scripted_gestures.h"
+#include "capture/scripted_gestures.h"
 
 #include <gtest/gtest.h>
 

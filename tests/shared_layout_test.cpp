@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "params.h"
-#include "shared_step.h"
-#include "spirv.h"
+#include "kernels/shared/shared_step.h"
+#include "kernels/shared/spirv.h"
+#include "model/params.h"
 
 namespace gb {
 namespace {

@@ -1,15 +1,15 @@
 // The candidate solvers of the implicit step (research/solver_comparison.h) that bench/solver_bench.cpp
 // measures: they solve the objective the step solves, and each of them makes progress on it.
-#include "solver_comparison.h"
+#include "research/solver_comparison.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 
-#include "cpu_stepper.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
+#include "capture/scripted_gestures.h"
+#include "simulation/simulation.h"
+#include "stages/cpu_stepper.h"
 
 namespace gb {
 namespace {

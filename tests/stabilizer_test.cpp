@@ -1,4 +1,4 @@
-#include "stabilizer.h"
+#include "capture/stabilizer.h"
 
 #include <gtest/gtest.h>
 
@@ -6,8 +6,8 @@
 #include <cstdio>
 #include <functional>
 
-#include "hand_sources.h"
-#include "trajectory_metrics.h"
+#include "capture/hand_sources.h"
+#include "capture/trajectory_metrics.h"
 
 namespace gb {
 namespace {

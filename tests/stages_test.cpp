@@ -1,13 +1,13 @@
 // Every formula of the step against a value computed by hand.
-#include "stages.h"
+#include "stages/stages.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <random>
 
-#include "energy_budget.h"
-#include "test_films.h"
+#include "solver/energy_budget.h"
+#include "tests/test_films.h"
 
 namespace gb {
 namespace {

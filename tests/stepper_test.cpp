@@ -1,6 +1,6 @@
 // The stage table (cpu-reference/stages/stepper.cpp): its barriers against what each stage reads and writes of the
 // device's buffers (kernels/shared/device_data.h).
-#include "stepper.h"
+#include "stages/stepper.h"
 
 #include <gtest/gtest.h>
 

@@ -1,4 +1,4 @@
-#include "synthetic_depth.h"
+#include "tests/synthetic_depth.h"
 
 #include <algorithm>
 #include <cmath>

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "hand_source.h"
-#include "kinect_depth.h"
+#include "capture/hand_source.h"
+#include "capture/kinect_depth.h"
 
 namespace gb::test {
 

@@ -5,9 +5,9 @@
 #include <random>
 #include <vector>
 
-#include "cpu_stepper.h"
-#include "film.h"
-#include "scripted_gestures.h"
+#include "capture/scripted_gestures.h"
+#include "model/film.h"
+#include "stages/cpu_stepper.h"
 
 namespace gb::test {
 

@@ -3,7 +3,7 @@
 // Shirley (2013) analytic multi-lobe fit of the CIE 1931 observer (not the typed 5 nm table), 1 nm steps (not
 // 5 nm), compared in CIELAB. Also the colour sequence a physicist expects from Newton's series, checked on the
 // table the renderer uses, and the typed observer table itself.
-#include "thin_film.h"
+#include "host/thin_film.h"
 
 #include <gtest/gtest.h>
 
@@ -12,8 +12,8 @@
 #include <cstdio>
 #include <numbers>
 
-#include "spectral_tables.h"
-#include "thin_film_lut.h"
+#include "host/spectral_tables.h"
+#include "kernels/render/thin_film_lut.h"
 
 namespace gb {
 namespace {

@@ -1,5 +1,5 @@
 // How many threads the simulation runs beside other processes' load (app/commands/thread_policy.h).
-#include "thread_policy.h"
+#include "app/commands/thread_policy.h"
 
 #include <gtest/gtest.h>
 #include <omp.h>
@@ -7,9 +7,9 @@
 #include <cmath>
 #include <limits>
 
-#include "scene_file.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
+#include "capture/scripted_gestures.h"
+#include "scene/scene_file.h"
+#include "simulation/simulation.h"
 
 namespace gb {
 namespace {

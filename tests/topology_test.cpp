@@ -5,9 +5,9 @@
 #include <stdexcept>
 #include <vector>
 
-#include "coarse_correction.h"
-#include "colouring.h"
-#include "state.h"
+#include "model/state.h"
+#include "solver/coarse_correction.h"
+#include "solver/colouring.h"
 
 namespace gb {
 namespace {

@@ -3,9 +3,9 @@
 // recording of the judged actions (docs/capture.md); this runs one of each kind.
 #include <gtest/gtest.h>
 
-#include "film_evaluation.h"
-#include "real_depth.h"
-#include "scene_file.h"
+#include "app/commands/film_evaluation.h"
+#include "scene/scene_file.h"
+#include "tests/real_depth.h"
 
 namespace gb {
 namespace {

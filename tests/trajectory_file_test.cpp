@@ -1,4 +1,4 @@
-#include "trajectory_file.h"
+#include "capture/trajectory_file.h"
 
 #include <gtest/gtest.h>
 #include <unistd.h>

@@ -1,6 +1,6 @@
 // Video out (app/show/video_stream.h): ffmpeg's arguments for each kind of address, a bad address named, and a stream
 // that never holds up the show, whether nobody receives it or ffmpeg cannot reach its receiver.
-#include "video_stream.h"
+#include "app/show/video_stream.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@
 #include <chrono>
 #include <thread>
 
-#include "render_output.h"
+#include "app/outputs/render_output.h"
 
 namespace gb {
 namespace {

@@ -5,12 +5,12 @@
 #include <algorithm>
 #include <cmath>
 
-#include "cpu_stepper.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
-#include "test_films.h"
-#include "vulkan_stepper.h"
-#include "vulkan_test_device.h"
+#include "capture/scripted_gestures.h"
+#include "host/vulkan_stepper.h"
+#include "simulation/simulation.h"
+#include "stages/cpu_stepper.h"
+#include "tests/test_films.h"
+#include "tests/vulkan_test_device.h"
 
 namespace gb {
 namespace {

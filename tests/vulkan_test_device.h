@@ -9,8 +9,8 @@
 #include <memory>
 #include <string>
 
-#include "vulkan_context.h"
-#include "vulkan_stepper.h"
+#include "host/vulkan_context.h"
+#include "host/vulkan_stepper.h"
 
 namespace gb::test {
 

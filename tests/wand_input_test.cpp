@@ -1,4 +1,4 @@
-#include "wand_input.h"
+#include "capture/wand_input.h"
 
 #include <gtest/gtest.h>
 
@@ -13,9 +13,9 @@
 #include <numbers>
 #include <thread>
 
-#include "hand_sources.h"
-#include "threaded_hand_source.h"
-#include "trajectory_metrics.h"
+#include "capture/hand_sources.h"
+#include "capture/threaded_hand_source.h"
+#include "capture/trajectory_metrics.h"
 
 namespace gb {
 namespace {

@@ -1,4 +1,4 @@
-#include "bench_command.h"
+#include "app/commands/bench_command.h"
 
 #include <algorithm>
 #include <chrono>
@@ -6,12 +6,12 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "backend.h"
-#include "output_file.h"
-#include "scripted_gestures.h"
-#include "simulation.h"
-#include "untrusted.h"
-#include "vulkan_context.h"
+#include "capture/output_file.h"
+#include "capture/scripted_gestures.h"
+#include "capture/untrusted.h"
+#include "host/backend.h"
+#include "host/vulkan_context.h"
+#include "simulation/simulation.h"
 
 namespace gb {
 

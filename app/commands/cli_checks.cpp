@@ -1,11 +1,11 @@
-#include "cli_checks.h"
+#include "app/commands/cli_checks.h"
 
 #include <charconv>
 #include <cmath>
 #include <iomanip>
 #include <sstream>
 
-#include "untrusted.h"
+#include "capture/untrusted.h"
 
 namespace gb {
 

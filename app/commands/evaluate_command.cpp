@@ -1,16 +1,16 @@
-#include "evaluate_command.h"
+#include "app/commands/evaluate_command.h"
 
 #include <cstdio>
 #include <map>
 
-#include "cli_checks.h"
-#include "depth_recording.h"
-#include "film_evaluation.h"
-#include "hand_evaluation.h"
-#include "input_options.h"
-#include "scene_file.h"
-#include "trajectory_file.h"
-#include "untrusted.h"
+#include "app/commands/cli_checks.h"
+#include "app/commands/film_evaluation.h"
+#include "app/commands/input_options.h"
+#include "capture/depth_recording.h"
+#include "capture/hand_evaluation.h"
+#include "capture/trajectory_file.h"
+#include "capture/untrusted.h"
+#include "scene/scene_file.h"
 
 namespace gb {
 

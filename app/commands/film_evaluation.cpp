@@ -1,14 +1,14 @@
-#include "film_evaluation.h"
+#include "app/commands/film_evaluation.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
 
-#include "input_options.h"
-#include "performer_touch.h"
-#include "simulation.h"
-#include "trajectory_metrics.h"
+#include "app/commands/input_options.h"
+#include "app/show/performer_touch.h"
+#include "capture/trajectory_metrics.h"
+#include "simulation/simulation.h"
 
 namespace gb {
 

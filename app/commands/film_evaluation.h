@@ -10,9 +10,9 @@
 #include <string>
 #include <vector>
 
-#include "depth_recording.h"
-#include "hand_finder.h"
-#include "run_command.h"
+#include "app/commands/run_command.h"
+#include "capture/depth_recording.h"
+#include "capture/hand_finder.h"
 
 namespace gb {
 

@@ -1,15 +1,15 @@
-#include "input_options.h"
+#include "app/commands/input_options.h"
 
 #include <cstring>
 #include <optional>
 #include <stdexcept>
 #include <utility>
 
-#include "cli_checks.h"
-#include "interrupt.h"
-#include "threaded_hand_source.h"
-#include "trajectory_file.h"
-#include "untrusted.h"
+#include "app/commands/cli_checks.h"
+#include "app/commands/interrupt.h"
+#include "capture/threaded_hand_source.h"
+#include "capture/trajectory_file.h"
+#include "capture/untrusted.h"
 
 namespace gb {
 

@@ -9,10 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "hand_sources.h"
-#include "run_options.h"
-#include "stabilizer.h"
-#include "wand_input.h"
+#include "capture/hand_sources.h"
+#include "capture/stabilizer.h"
+#include "capture/wand_input.h"
+#include "scene/run_options.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "interrupt.h"
+#include "app/commands/interrupt.h"
 
 #include <atomic>
 #include <csignal>

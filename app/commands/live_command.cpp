@@ -1,13 +1,13 @@
-#include "live_command.h"
+#include "app/commands/live_command.h"
 
 #include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 
-#include "cli_checks.h"
-#include "input_options.h"
-#include "render_output.h"
-#include "video_stream.h"
+#include "app/commands/cli_checks.h"
+#include "app/commands/input_options.h"
+#include "app/outputs/render_output.h"
+#include "app/show/video_stream.h"
 
 namespace gb {
 

@@ -15,7 +15,7 @@
 // (OSC input_lost) and a Kinect is looked for again every 2 s (input_back); only Esc/Q, the window closing or
 // --frames end it.
 
-#include "live_show.h"
+#include "app/show/live_show.h"
 
 namespace CLI {
 class App;

@@ -1,4 +1,4 @@
-#include "record_command.h"
+#include "app/commands/record_command.h"
 
 #include <unistd.h>
 
@@ -9,14 +9,14 @@
 #include <memory>
 #include <optional>
 
-#include "cli_checks.h"
-#include "depth_plot.h"
-#include "interrupt.h"
-#include "output_file.h"
-#include "trajectory_file.h"
-#include "trajectory_metrics.h"
-#include "trajectory_plot.h"
-#include "untrusted.h"
+#include "app/commands/cli_checks.h"
+#include "app/commands/interrupt.h"
+#include "capture/depth_plot.h"
+#include "capture/output_file.h"
+#include "capture/trajectory_file.h"
+#include "capture/trajectory_metrics.h"
+#include "capture/trajectory_plot.h"
+#include "capture/untrusted.h"
 
 namespace gb {
 

@@ -6,8 +6,8 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
-#include "input_options.h"
-#include "scripted_gestures.h"
+#include "app/commands/input_options.h"
+#include "capture/scripted_gestures.h"
 
 namespace gb {
 

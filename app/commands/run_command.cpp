@@ -1,4 +1,4 @@
-#include "run_command.h"
+#include "app/commands/run_command.h"
 
 #include <unistd.h>
 
@@ -11,21 +11,21 @@
 #include <sstream>
 #include <thread>
 
-#include "experiment_plot.h"
-#include "experiments.h"
-#include "interrupt.h"
-#include "mirror_view.h"
-#include "osc_events.h"
-#include "output_file.h"
-#include "performer_touch.h"
-#include "performer_view.h"
-#include "realtime_pacer.h"
-#include "run_output.h"
-#include "simulation.h"
-#include "thickness_image.h"
-#include "thread_policy.h"
-#include "untrusted.h"
-#include "wand_log.h"
+#include "app/commands/interrupt.h"
+#include "app/commands/thread_policy.h"
+#include "app/outputs/experiment_plot.h"
+#include "app/outputs/osc_events.h"
+#include "app/outputs/run_output.h"
+#include "app/outputs/thickness_image.h"
+#include "app/outputs/wand_log.h"
+#include "app/show/mirror_view.h"
+#include "app/show/performer_touch.h"
+#include "app/show/performer_view.h"
+#include "app/show/realtime_pacer.h"
+#include "capture/output_file.h"
+#include "capture/untrusted.h"
+#include "simulation/experiments.h"
+#include "simulation/simulation.h"
 
 namespace gb {
 

@@ -5,13 +5,13 @@
 #include <filesystem>
 #include <string>
 
-#include "backend.h"
-#include "input_options.h"
-#include "params.h"
-#include "render_output.h"
-#include "run_options.h"
-#include "scripted_gestures.h"
-#include "wire_frame.h"
+#include "app/commands/input_options.h"
+#include "app/outputs/render_output.h"
+#include "capture/scripted_gestures.h"
+#include "host/backend.h"
+#include "model/params.h"
+#include "model/wire_frame.h"
+#include "scene/run_options.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "thread_policy.h"
+#include "app/commands/thread_policy.h"
 
 #include <omp.h>
 #include <sched.h>

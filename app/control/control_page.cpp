@@ -1,4 +1,4 @@
-#include "control/control_page.h"
+#include "app/control/control_page.h"
 
 namespace gb {
 

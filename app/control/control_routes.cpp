@@ -1,7 +1,7 @@
-#include "control/control_routes.h"
+#include "app/control/control_routes.h"
 
-#include "control/control_page.h"
-#include "control/oscquery_namespace.h"
+#include "app/control/control_page.h"
+#include "app/control/oscquery_namespace.h"
 
 namespace gb {
 namespace {

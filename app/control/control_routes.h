@@ -2,8 +2,8 @@
 // What the control server answers (control_server.h), read from the show's ControlState: the OSCQuery namespace
 // and HOST_INFO, the control page, and the values LISTENing clients follow.
 
-#include "control/control_server.h"
-#include "control/control_state.h"
+#include "app/control/control_server.h"
+#include "app/control/control_state.h"
 
 namespace gb {
 

@@ -1,5 +1,5 @@
 // Compiled as C++17: websocketpp 0.8 does not compile as C++20 (app/CMakeLists.txt).
-#include "control/control_server.h"
+#include "app/control/control_server.h"
 
 #include <lo/lo.h>
 

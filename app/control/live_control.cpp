@@ -1,4 +1,4 @@
-#include "control/live_control.h"
+#include "app/control/live_control.h"
 
 #include <lo/lo.h>
 
@@ -9,14 +9,14 @@
 #include <sstream>
 #include <string_view>
 
-#include "cli_checks.h"
-#include "control/control_routes.h"
-#include "control/control_server.h"
-#include "control/param_catalog.h"
-#include "osc_cues.h"
-#include "scene_file.h"
-#include "simulation.h"
-#include "untrusted.h"
+#include "app/commands/cli_checks.h"
+#include "app/control/control_routes.h"
+#include "app/control/control_server.h"
+#include "app/control/param_catalog.h"
+#include "app/show/osc_cues.h"
+#include "capture/untrusted.h"
+#include "scene/scene_file.h"
+#include "simulation/simulation.h"
 
 namespace gb {
 namespace {

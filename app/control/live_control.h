@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "control/control_state.h"
-#include "control/live_params.h"
-#include "control/presets.h"
+#include "app/control/control_state.h"
+#include "app/control/live_params.h"
+#include "app/control/presets.h"
 
 namespace CLI {
 class App;

@@ -1,10 +1,10 @@
-#include "control/live_params.h"
+#include "app/control/live_params.h"
 
 #include <sstream>
 #include <stdexcept>
 
-#include "control/param_catalog.h"
-#include "simulation.h"
+#include "app/control/param_catalog.h"
+#include "simulation/simulation.h"
 
 namespace gb {
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "params.h"
+#include "model/params.h"
 
 namespace gb {
 

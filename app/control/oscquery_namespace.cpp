@@ -1,9 +1,9 @@
-#include "control/oscquery_namespace.h"
+#include "app/control/oscquery_namespace.h"
 
 #include <utility>
 
-#include "control/param_catalog.h"
-#include "osc_cues.h"
+#include "app/control/param_catalog.h"
+#include "app/show/osc_cues.h"
 
 namespace gb {
 namespace {

@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
-#include "control/control_state.h"
+#include "app/control/control_state.h"
 
 namespace gb {
 

@@ -1,11 +1,11 @@
-#include "control/param_catalog.h"
+#include "app/control/param_catalog.h"
 
 #include <algorithm>
 #include <map>
 #include <sstream>
 #include <vector>
 
-#include "control/param_docs.h"
+#include "app/control/param_docs.h"
 
 namespace gb {
 namespace {

@@ -7,7 +7,7 @@
 #include <span>
 #include <string>
 
-#include "params.h"
+#include "model/params.h"
 
 namespace gb {
 

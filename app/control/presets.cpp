@@ -1,4 +1,4 @@
-#include "control/presets.h"
+#include "app/control/presets.h"
 
 #include <toml++/toml.h>
 
@@ -7,7 +7,7 @@
 #include <fstream>
 #include <stdexcept>
 
-#include "scene_file.h"
+#include "scene/scene_file.h"
 
 namespace gb {
 namespace {

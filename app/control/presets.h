@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "params.h"
+#include "model/params.h"
 
 namespace gb {
 

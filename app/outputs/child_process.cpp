@@ -1,4 +1,4 @@
-#include "child_process.h"
+#include "app/outputs/child_process.h"
 
 #include <spawn.h>
 #include <unistd.h>

@@ -1,4 +1,4 @@
-#include "experiment_plot.h"
+#include "app/outputs/experiment_plot.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "output_file.h"
+#include "capture/output_file.h"
 
 namespace gb {
 namespace {

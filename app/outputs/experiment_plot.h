@@ -4,7 +4,7 @@
 
 #include <filesystem>
 
-#include "experiments.h"
+#include "simulation/experiments.h"
 
 namespace gb {
 

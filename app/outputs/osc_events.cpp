@@ -1,4 +1,4 @@
-#include "osc_events.h"
+#include "app/outputs/osc_events.h"
 
 #include <lo/lo.h>
 #include <netdb.h>
@@ -12,8 +12,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "cli_checks.h"
-#include "untrusted.h"
+#include "app/commands/cli_checks.h"
+#include "capture/untrusted.h"
 
 namespace gb {
 

@@ -24,9 +24,9 @@
 #include <memory>
 #include <string>
 
-#include "hand_source.h"
-#include "simulation.h"
-#include "state.h"
+#include "capture/hand_source.h"
+#include "model/state.h"
+#include "simulation/simulation.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "render_output.h"
+#include "app/outputs/render_output.h"
 
 #include <fcntl.h>
 #include <sys/wait.h>
@@ -13,12 +13,12 @@
 #include <sstream>
 #include <utility>
 
-#include "child_process.h"
-#include "cli_checks.h"
-#include "output_file.h"
-#include "png_image.h"
-#include "untrusted.h"
-#include "vulkan_stepper.h"
+#include "app/commands/cli_checks.h"
+#include "app/outputs/child_process.h"
+#include "capture/output_file.h"
+#include "capture/png_image.h"
+#include "capture/untrusted.h"
+#include "host/vulkan_stepper.h"
 
 namespace gb {
 

@@ -12,10 +12,10 @@
 #include <optional>
 #include <string>
 
-#include "output_file.h"
-#include "renderer.h"
-#include "run_options.h"
-#include "simulation.h"
+#include "capture/output_file.h"
+#include "host/renderer.h"
+#include "scene/run_options.h"
+#include "simulation/simulation.h"
 
 namespace CLI {
 class App;

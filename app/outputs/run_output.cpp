@@ -1,4 +1,4 @@
-#include "run_output.h"
+#include "app/outputs/run_output.h"
 
 #include <algorithm>
 #include <bit>

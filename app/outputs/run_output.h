@@ -9,9 +9,9 @@
 #include <utility>
 #include <vector>
 
-#include "film.h"
-#include "output_file.h"
-#include "simulation.h"
+#include "capture/output_file.h"
+#include "model/film.h"
+#include "simulation/simulation.h"
 
 namespace gb {
 

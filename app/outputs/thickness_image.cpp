@@ -1,4 +1,4 @@
-#include "thickness_image.h"
+#include "app/outputs/thickness_image.h"
 
 #include <algorithm>
 #include <array>
@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <vector>
 
-#include "colour_maps.h"
-#include "png_image.h"
+#include "capture/png_image.h"
+#include "kernels/render/colour_maps.h"
 
 namespace gb {
 

@@ -5,8 +5,8 @@
 
 #include <filesystem>
 
-#include "bursting.h"
-#include "film.h"
+#include "model/film.h"
+#include "topology/bursting.h"
 
 namespace gb {
 

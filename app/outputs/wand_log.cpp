@@ -1,4 +1,4 @@
-#include "wand_log.h"
+#include "app/outputs/wand_log.h"
 
 #include <cmath>
 #include <cstdio>

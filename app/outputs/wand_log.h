@@ -6,9 +6,9 @@
 #include <optional>
 #include <string>
 
-#include "output_file.h"
-#include "trajectory_plot.h"
-#include "wand_input.h"
+#include "capture/output_file.h"
+#include "capture/trajectory_plot.h"
+#include "capture/wand_input.h"
 
 namespace gb {
 

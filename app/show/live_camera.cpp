@@ -1,4 +1,4 @@
-#include "live_camera.h"
+#include "app/show/live_camera.h"
 
 #include <algorithm>
 #include <cmath>

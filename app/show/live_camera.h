@@ -9,9 +9,9 @@
 
 #include <Eigen/Dense>
 
-#include "render_scene.h"
-#include "state.h"
-#include "wire_frame.h"
+#include "host/render_scene.h"
+#include "model/state.h"
+#include "model/wire_frame.h"
 
 namespace gb {
 

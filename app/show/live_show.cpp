@@ -1,4 +1,4 @@
-#include "live_show.h"
+#include "app/show/live_show.h"
 
 #include <charconv>
 #include <cmath>
@@ -6,11 +6,11 @@
 #include <functional>
 #include <utility>
 
-#include "cpu_stepper.h"
-#include "performer_touch.h"
-#include "run_output.h"
-#include "scripted_gestures.h"
-#include "vulkan_stepper.h"
+#include "app/outputs/run_output.h"
+#include "app/show/performer_touch.h"
+#include "capture/scripted_gestures.h"
+#include "host/vulkan_stepper.h"
+#include "stages/cpu_stepper.h"
 
 namespace gb {
 

@@ -12,22 +12,22 @@
 #include <string>
 #include <vector>
 
-#include "control/live_control.h"
-#include "input_options.h"
-#include "interrupt.h"
-#include "live_camera.h"
-#include "mirror_view.h"
-#include "osc_cues.h"
-#include "osc_events.h"
-#include "performance_loop.h"
-#include "performer_view.h"
-#include "realtime_pacer.h"
-#include "renderer.h"
-#include "run_command.h"
-#include "simulation.h"
-#include "thread_policy.h"
-#include "video_stream.h"
-#include "window.h"
+#include "app/commands/input_options.h"
+#include "app/commands/interrupt.h"
+#include "app/commands/run_command.h"
+#include "app/commands/thread_policy.h"
+#include "app/control/live_control.h"
+#include "app/outputs/osc_events.h"
+#include "app/show/live_camera.h"
+#include "app/show/mirror_view.h"
+#include "app/show/osc_cues.h"
+#include "app/show/performance_loop.h"
+#include "app/show/performer_view.h"
+#include "app/show/realtime_pacer.h"
+#include "app/show/video_stream.h"
+#include "host/renderer.h"
+#include "host/window.h"
+#include "simulation/simulation.h"
 
 namespace gb {
 

@@ -1,10 +1,10 @@
-#include "mirror_view.h"
+#include "app/show/mirror_view.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "colour_registration.h"
-#include "performer_view.h"
+#include "app/show/performer_view.h"
+#include "capture/colour_registration.h"
 
 namespace gb {
 

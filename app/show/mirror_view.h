@@ -8,11 +8,11 @@
 #include <optional>
 #include <string>
 
-#include "calibration.h"
-#include "camera_layer.h"
-#include "hand_forest.h"
-#include "kinect_depth.h"
-#include "renderer.h"
+#include "capture/calibration.h"
+#include "capture/hand_forest.h"
+#include "capture/kinect_depth.h"
+#include "host/camera_layer.h"
+#include "host/renderer.h"
 
 namespace gb {
 

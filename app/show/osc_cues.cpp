@@ -1,4 +1,4 @@
-#include "osc_cues.h"
+#include "app/show/osc_cues.h"
 
 #include <lo/lo.h>
 
@@ -6,7 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
-#include "untrusted.h"
+#include "capture/untrusted.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "performance_loop.h"
+#include "app/show/performance_loop.h"
 
 #include <algorithm>
 

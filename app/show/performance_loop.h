@@ -8,7 +8,7 @@
 // The return is a smoothstep between the two poses, so the wands never jump: its length is the farther tip's way at
 // kReturnSpeed, at least kShortestReturn.
 
-#include "wire_frame.h"
+#include "model/wire_frame.h"
 
 namespace gb {
 

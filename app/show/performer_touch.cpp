@@ -1,4 +1,4 @@
-#include "performer_touch.h"
+#include "app/show/performer_touch.h"
 
 #include <cmath>
 #include <cstdio>

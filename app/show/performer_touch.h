@@ -5,9 +5,9 @@
 #include <memory>
 #include <string>
 
-#include "run_options.h"
-#include "simulation.h"
-#include "wand_input.h"
+#include "capture/wand_input.h"
+#include "scene/run_options.h"
+#include "simulation/simulation.h"
 
 namespace gb {
 

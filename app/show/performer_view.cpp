@@ -1,10 +1,10 @@
-#include "performer_view.h"
+#include "app/show/performer_view.h"
 
 #include <cstdio>
 #include <utility>
 
-#include "banner_text.h"
-#include "depth_plot.h"
+#include "capture/depth_plot.h"
+#include "host/banner_text.h"
 
 namespace gb {
 

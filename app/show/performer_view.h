@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "hand_sources.h"
-#include "kinect_depth.h"
-#include "png_image.h"
+#include "capture/hand_sources.h"
+#include "capture/kinect_depth.h"
+#include "capture/png_image.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "realtime_pacer.h"
+#include "app/show/realtime_pacer.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "video_stream.h"
+#include "app/show/video_stream.h"
 
 #include <fcntl.h>
 #include <sched.h>
@@ -13,11 +13,11 @@
 #include <stdexcept>
 #include <utility>
 
-#include "child_process.h"
-#include "cli_checks.h"
-#include "output_file.h"
-#include "render_output.h"
-#include "untrusted.h"
+#include "app/commands/cli_checks.h"
+#include "app/outputs/child_process.h"
+#include "app/outputs/render_output.h"
+#include "capture/output_file.h"
+#include "capture/untrusted.h"
 
 namespace gb {
 

@@ -1,9 +1,9 @@
 #pragma once
 // A film: its particles, its mesh and the facts about it that outlive a step.
 
-#include "params.h"
-#include "state.h"
-#include "wire_frame.h"
+#include "model/params.h"
+#include "model/state.h"
+#include "model/wire_frame.h"
 
 namespace gb {
 

@@ -16,8 +16,8 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "film.h"
-#include "stages.h"
+#include "model/film.h"
+#include "stages/stages.h"
 
 namespace gb {
 namespace {

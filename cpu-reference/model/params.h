@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "shared_formulas.h"
-#include "shared_params.h"
+#include "kernels/shared/shared_formulas.h"
+#include "kernels/shared/shared_params.h"
 
 namespace gb {
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "shared_step.h"
+#include "kernels/shared/shared_step.h"
 
 namespace gb {
 
@@ -68,7 +68,7 @@ struct State {
 #define GB_PARTICLE_ARRAY(binding, NAME, name, components, element, access, transfer, created) \
   ParticleArray<GB_ELEMENT_##element, components> name;
 #define GB_PARTICLE_BLOCK(NAME, block, name, components, transfer, created) ParticleArray<float, components> name;
-#include "device_data.h"
+#include "kernels/shared/device_data.h"
 #undef GB_BUFFER
 #undef GB_PARTICLE_ARRAY
 #undef GB_PARTICLE_BLOCK
@@ -106,7 +106,7 @@ void forEachParticleArray(S& state, Visit&& visit) {
   visit(state.name, ParticleArrayInfo{binding, 0, components, Transfer::transfer, created});
 #define GB_PARTICLE_BLOCK(NAME, block, name, components, transfer, created) \
   visit(state.name, ParticleArrayInfo{gpu::GB_BINDING_##NAME, block, components, Transfer::transfer, created});
-#include "device_data.h"
+#include "kernels/shared/device_data.h"
 #undef GB_BUFFER
 #undef GB_PARTICLE_ARRAY
 #undef GB_PARTICLE_BLOCK

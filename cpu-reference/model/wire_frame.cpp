@@ -1,4 +1,4 @@
-#include "wire_frame.h"
+#include "model/wire_frame.h"
 
 #include <algorithm>
 #include <cmath>

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-#include "state.h"
+#include "model/state.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "experiments.h"
+#include "simulation/experiments.h"
 
 #include <cmath>
 #include <limits>
@@ -7,7 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "cpu_stepper.h"
+#include "stages/cpu_stepper.h"
 
 namespace gb {
 namespace {

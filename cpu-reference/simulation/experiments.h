@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "simulation.h"
+#include "simulation/simulation.h"
 
 namespace gb {
 

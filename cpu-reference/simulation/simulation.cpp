@@ -1,4 +1,4 @@
-#include "simulation.h"
+#include "simulation/simulation.h"
 
 #include <algorithm>
 #include <array>
@@ -9,10 +9,10 @@
 #include <string>
 #include <utility>
 
-#include "collision.h"
-#include "film_checks.h"
-#include "film_growth.h"
-#include "implicit_euler.h"
+#include "solver/implicit_euler.h"
+#include "topology/collision.h"
+#include "topology/film_checks.h"
+#include "topology/film_growth.h"
 
 namespace gb {
 
@@ -644,7 +644,8 @@ void Simulation::reloadRegion(const FilmRegion& region, size_t firstParticle, si
   ++loads_;
   geometryFresh_ = false;  // in host memory only the region's: stats() probes the device's
   chooseSubsteps();
-  if (!device() || !device()->updateRegion(params_, film_, region.particles, firstParticle, region.springs, firstSpring))
+  if (!device() ||
+      !device()->updateRegion(params_, film_, region.particles, firstParticle, region.springs, firstSpring))
     throw std::logic_error("Simulation: a stepper that brings back regions takes them back too");
 }
 

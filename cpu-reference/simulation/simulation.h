@@ -9,15 +9,15 @@
 #include <optional>
 #include <stdexcept>
 
-#include "body_touch.h"
-#include "bursting.h"
-#include "collision.h"
-#include "cpu_stepper.h"
-#include "device_residency.h"
-#include "film.h"
-#include "film_growth.h"
-#include "pinch_off.h"
-#include "stepper.h"
+#include "model/film.h"
+#include "stages/cpu_stepper.h"
+#include "stages/stepper.h"
+#include "topology/body_touch.h"
+#include "topology/bursting.h"
+#include "topology/collision.h"
+#include "topology/device_residency.h"
+#include "topology/film_growth.h"
+#include "topology/pinch_off.h"
 
 namespace gb {
 

@@ -1,11 +1,11 @@
-#include "coarse_correction.h"
+#include "solver/coarse_correction.h"
 
 #include <algorithm>
 #include <cmath>
 #include <deque>
 
-#include "colouring.h"
-#include "energy_budget.h"
+#include "solver/colouring.h"
+#include "solver/energy_budget.h"
 
 namespace gb {
 

@@ -19,7 +19,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "implicit_euler.h"
+#include "solver/implicit_euler.h"
 
 namespace gb {
 

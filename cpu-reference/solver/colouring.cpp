@@ -1,4 +1,4 @@
-#include "colouring.h"
+#include "solver/colouring.h"
 
 #include <algorithm>
 

@@ -4,7 +4,7 @@
 // backends, so that they solve the same particles in the same colour order. Contacts need none (the solver reads a
 // contact partner where inertia carries it, implicit_euler.cpp); buildAdjacency drops it whenever the springs change.
 
-#include "state.h"
+#include "model/state.h"
 
 namespace gb {
 

@@ -1,11 +1,11 @@
-#include "energy_budget.h"
+#include "solver/energy_budget.h"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 
-#include "implicit_euler.h"
-#include "particle_lanes.h"
+#include "solver/implicit_euler.h"
+#include "solver/particle_lanes.h"
 
 namespace gb {
 

@@ -1,12 +1,12 @@
-#include "implicit_euler.h"
+#include "solver/implicit_euler.h"
 
 #include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
 
-#include "energy_budget.h"
-#include "particle_lanes.h"
+#include "solver/energy_budget.h"
+#include "solver/particle_lanes.h"
 
 namespace gb {
 

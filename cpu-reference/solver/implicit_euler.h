@@ -20,8 +20,8 @@
 #include <limits>
 #include <vector>
 
-#include "shared_step.h"
-#include "stages.h"
+#include "kernels/shared/shared_step.h"
+#include "stages/stages.h"
 
 namespace gb {
 

@@ -3,8 +3,8 @@
 // Vec3Of<Float4>, and the particles of each lane gathered from one of State's Vec3Arrays. The lanes' stages (the
 // implicit step's sweeps, the geometry stage and the volume) read the film through these.
 
-#include "float_lanes.h"
-#include "state.h"
+#include "model/state.h"
+#include "solver/float_lanes.h"
 
 namespace gb {
 

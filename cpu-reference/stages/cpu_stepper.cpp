@@ -1,13 +1,13 @@
-#include "cpu_stepper.h"
+#include "stages/cpu_stepper.h"
 
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
 #include <utility>
 
-#include "colouring.h"
-#include "energy_budget.h"
-#include "implicit_euler.h"
+#include "solver/colouring.h"
+#include "solver/energy_budget.h"
+#include "solver/implicit_euler.h"
 
 namespace gb {
 

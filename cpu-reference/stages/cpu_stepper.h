@@ -6,10 +6,10 @@
 #include <optional>
 #include <vector>
 
-#include "coarse_correction.h"
-#include "energy_budget.h"
-#include "implicit_euler.h"
-#include "stepper.h"
+#include "solver/coarse_correction.h"
+#include "solver/energy_budget.h"
+#include "solver/implicit_euler.h"
+#include "stages/stepper.h"
 
 namespace gb {
 

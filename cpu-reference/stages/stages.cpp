@@ -1,4 +1,4 @@
-#include "stages.h"
+#include "stages/stages.h"
 
 #include <algorithm>
 #include <array>
@@ -7,9 +7,9 @@
 #include <cstring>
 #include <limits>
 
-#include "energy_budget.h"
-#include "film.h"
-#include "particle_lanes.h"
+#include "model/film.h"
+#include "solver/energy_budget.h"
+#include "solver/particle_lanes.h"
 
 namespace gb {
 

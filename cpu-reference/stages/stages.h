@@ -8,10 +8,10 @@
 
 #include <span>
 
-#include "params.h"
-#include "shared_step.h"
-#include "state.h"
-#include "wire_frame.h"
+#include "kernels/shared/shared_step.h"
+#include "model/params.h"
+#include "model/state.h"
+#include "model/wire_frame.h"
 
 namespace gb {
 

@@ -1,4 +1,4 @@
-#include "stepper.h"
+#include "stages/stepper.h"
 
 #include <array>
 

@@ -9,10 +9,10 @@
 #include <span>
 #include <string>
 
-#include "energy_budget.h"
-#include "film.h"
-#include "shared_step.h"
-#include "stages.h"
+#include "kernels/shared/shared_step.h"
+#include "model/film.h"
+#include "solver/energy_budget.h"
+#include "stages/stages.h"
 
 namespace gb {
 

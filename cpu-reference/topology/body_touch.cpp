@@ -1,4 +1,4 @@
-#include "body_touch.h"
+#include "topology/body_touch.h"
 
 #include <algorithm>
 #include <cmath>

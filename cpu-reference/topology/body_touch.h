@@ -11,7 +11,7 @@
 #include <optional>
 #include <vector>
 
-#include "state.h"
+#include "model/state.h"
 
 namespace gb {
 

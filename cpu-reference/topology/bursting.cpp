@@ -1,4 +1,4 @@
-#include "bursting.h"
+#include "topology/bursting.h"
 
 #include <algorithm>
 #include <array>

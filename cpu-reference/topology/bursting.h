@@ -14,7 +14,7 @@
 #include <limits>
 #include <vector>
 
-#include "film.h"
+#include "model/film.h"
 
 namespace gb {
 

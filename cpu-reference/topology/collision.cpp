@@ -1,4 +1,4 @@
-#include "collision.h"
+#include "topology/collision.h"
 
 #include <omp.h>
 
@@ -9,7 +9,7 @@
 #include <limits>
 #include <span>
 
-#include "float_lanes.h"
+#include "solver/float_lanes.h"
 
 namespace gb {
 

@@ -7,8 +7,8 @@
 
 #include <memory>
 
-#include "film.h"
-#include "shared_formulas.h"
+#include "kernels/shared/shared_formulas.h"
+#include "model/film.h"
 
 namespace gb {
 

@@ -9,9 +9,9 @@
 #include <initializer_list>
 #include <span>
 
-#include "film.h"
-#include "film_checks.h"
-#include "params.h"
+#include "model/film.h"
+#include "model/params.h"
+#include "topology/film_checks.h"
 
 namespace gb {
 

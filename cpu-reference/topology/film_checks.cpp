@@ -1,10 +1,10 @@
-#include "film_checks.h"
+#include "topology/film_checks.h"
 
 #include <algorithm>
 #include <cmath>
 
-#include "collision.h"
-#include "film_growth.h"
+#include "topology/collision.h"
+#include "topology/film_growth.h"
 
 namespace gb {
 

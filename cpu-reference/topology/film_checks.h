@@ -11,8 +11,8 @@
 #include <array>
 #include <limits>
 
-#include "film.h"
-#include "shared_formulas.h"
+#include "kernels/shared/shared_formulas.h"
+#include "model/film.h"
 
 namespace gb {
 

@@ -1,6 +1,6 @@
 // Film growth at the wire: stretch test, ring release, new ring on the wire, CGAL strip triangulation.
 // CGAL stays inside this file.
-#include "film_growth.h"
+#include "topology/film_growth.h"
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
@@ -14,8 +14,8 @@
 #include <span>
 #include <stdexcept>
 
-#include "implicit_euler.h"
-#include "pinch_off.h"
+#include "solver/implicit_euler.h"
+#include "topology/pinch_off.h"
 
 namespace gb {
 namespace {

@@ -12,7 +12,7 @@
 //     follows the remaining solution as a dip with that much solution would (Figure 9): spacing ~
 //     1 / sqrt(solution). A dry wire pays out no film.
 
-#include "film.h"
+#include "model/film.h"
 
 namespace gb {
 

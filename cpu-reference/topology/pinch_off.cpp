@@ -1,4 +1,4 @@
-#include "pinch_off.h"
+#include "topology/pinch_off.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include "stages.h"
+#include "stages/stages.h"
 
 namespace gb {
 

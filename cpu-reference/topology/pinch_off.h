@@ -4,7 +4,7 @@
 // oriented manifold with outward normals; the wire lets go, and from then on Boyle's pressure,
 // Eqs. (10)-(11), acts with V_0 taken at closure.
 
-#include "film.h"
+#include "model/film.h"
 
 namespace gb {
 

@@ -11,9 +11,9 @@
 #include <sstream>
 #include <string>
 
-#include "freenect_stream.h"
-#include "hand_source.h"
-#include "kinect_depth.h"
+#include "capture/freenect_stream.h"
+#include "capture/hand_source.h"
+#include "capture/kinect_depth.h"
 
 namespace fs = std::filesystem;
 

@@ -4,7 +4,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "scene_file.h"
+#include "scene/scene_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   try {

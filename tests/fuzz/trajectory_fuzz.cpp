@@ -7,7 +7,7 @@
 #include <fstream>
 #include <string>
 
-#include "trajectory_file.h"
+#include "capture/trajectory_file.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   static const std::filesystem::path file =

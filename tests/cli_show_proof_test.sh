@@ -245,7 +245,7 @@ case "$CASE" in
     grep -q "error: another run is writing into same (process $first: .*giantbubble run --input trajectory:long.csv" \
       log.txt || fail "the first run is not named"
     grep -q '"scene": "default"' same/stats.json || fail "stats.json is not the first run's"
-    awk -F, 'NR > 1 && NF != 19 { bad = 1 } END { exit bad }' same/stats.csv || fail "stats.csv has rows cut or mixed"
+    awk -F, 'NR > 1 && NF != 22 { bad = 1 } END { exit bad }' same/stats.csv || fail "stats.csv has rows cut or mixed"
     ;;
   failed_run_keeps_previous)
     # A run refused for its input, its OSC target or its environment image leaves the previous run's files as they
@@ -436,7 +436,7 @@ case "$CASE" in
     grep -qF "error: --video: another process is writing $OUT/show.mp4 (it holds $OUT/show.mp4.partial)" log.txt ||
       fail "the video's writer is not named"
     [ ! -e other/stats.json ] || fail "the refused run wrote stats.json"
-    awk -F, 'NR > 1 && NF != 19 { bad = 1 } END { exit bad }' same/stats.csv || fail "stats.csv has rows cut or mixed"
+    awk -F, 'NR > 1 && NF != 22 { bad = 1 } END { exit bad }' same/stats.csv || fail "stats.csv has rows cut or mixed"
     [ "$(mp4_frames show.mp4)" -gt 0 ] || fail "the first run's video does not play"
     ;;
   inputs_that_are_no_files)

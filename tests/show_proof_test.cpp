@@ -700,7 +700,9 @@ TEST(ShowProof, AFakenectTimeThatDoesNotAdvanceIsRefused) {
     std::ofstream index(dir / "INDEX.txt");
     for (int k = 0; k < 5; ++k) index << "r-2.000000-100.pgm\n";  // colour images: no depth frame to check
   }
-  std::ofstream(dir / "r-2.000000-100.pgm") << "x";
+  std::ofstream(dir / "r-2.000000-100.pgm", std::ios::binary)
+      << "P6 640 480 255\n"
+      << std::string(640 * 480 * 3, '\0');  // a colour image fakenect would read
   EXPECT_NE(errorOf([&] { (void)readFakenectIndex(dir); }).find("line 4: 4 entries at time 2.000000"),
             std::string::npos);
   // A time of 1e308 is named as written, not as 309 digits; a line of 5000 bytes is not read.

@@ -48,7 +48,11 @@ class RestingWands : public WandInput {
   explicit RestingWands(const WandState& wands) : wands_(wands) {
     wands_.leftVelocity = wands_.rightVelocity = Vec3::Zero();
   }
-  WandFrame at(double) override { return {wands_}; }
+  WandFrame at(double) override {
+    WandFrame frame;
+    frame.wands = wands_;
+    return frame;
+  }
   [[nodiscard]] std::string describe() const override { return "the wands at rest (no input)"; }
   [[nodiscard]] bool ended() const override { return true; }
 

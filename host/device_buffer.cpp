@@ -8,8 +8,9 @@ namespace gb {
 
 namespace {
 
-constexpr auto kUsage = vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eTransferSrc |
-                        vk::BufferUsageFlagBits::eTransferDst;
+// Index buffer too: the film's triangles, wherever they are held, are the renderer's index buffer for the film.
+constexpr auto kUsage = vk::BufferUsageFlagBits::eStorageBuffer | vk::BufferUsageFlagBits::eIndexBuffer |
+                        vk::BufferUsageFlagBits::eTransferSrc | vk::BufferUsageFlagBits::eTransferDst;
 
 }  // namespace
 

@@ -660,7 +660,8 @@ struct Renderer::Impl {
     cb.beginRenderPass(vk::RenderPassBeginInfo(*filmPass, *filmTarget, area, filmClear), vk::SubpassContents::eInline);
     if (f.triangleCount > 0) {
       cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *film);
-      cb.draw(3 * f.triangleCount, 1, 0, 0);
+      cb.bindIndexBuffer(f.triangles, 0, vk::IndexType::eUint32);
+      cb.drawIndexed(3 * f.triangleCount, 1, 0, 0, 0);
     }
     if (slot().dropletCount > 0) {
       cb.bindPipeline(vk::PipelineBindPoint::eGraphics, *droplets);

@@ -43,10 +43,15 @@ struct InputOptions {
 };
 
 // Rendered pictures of a run (app/outputs/render_output.h writes them).
+// The smallest drawn scale `run --render-scale` takes: below it the string and the wands are under a pixel wide.
+inline constexpr float kSmallestDrawnScale = 0.25f;
+
 struct RenderOutputOptions {
   bool enabled = false;               // --render (or the scene's [render] enabled), --no-render
   RenderOptions image;                // size and colouring (host/renderer.h)
   int samples = 0;                    // --samples: MSAA samples per pixel; 0: the command's own choice (samplesFor)
+  float drawnScale = 0;               // --render-scale: `run` draws at this fraction of the image's size and scales
+                                      // up to it; 0: the command's own choice (drawnScaleFor)
   int pngEvery = 1;                   // write render_NNNNN.png every N frames (0: none)
   std::string video = "render.mp4";   // in the output folder, all frames; empty: none. Needs ffmpeg
   std::filesystem::path environment;  // equirectangular PNG the film reflects; empty: the built-in sky

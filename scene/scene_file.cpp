@@ -288,6 +288,9 @@ Scene parseScene(std::string_view text, const std::string& source, const std::fi
     render.image.colouring = colouringFromName(view.text(n, "colouring", {"interference", "thickness", "airflow"}));
   });
   view.on("every", [&](const toml::node& n) { render.pngEvery = view.integer(n, "every", 0, 1000000); });
+  view.on("scale", [&](const toml::node& n) {
+    render.drawnScale = static_cast<float>(view.number(n, "scale", kSmallestDrawnScale, 1.0));
+  });
   view.on("video", [&](const toml::node& n) { render.video = view.boolean(n, "video") ? "render.mp4" : ""; });
   view.on("camera", [&](const toml::node& n) { eye = view.point(n, "camera"); });
   view.on("target", [&](const toml::node& n) {

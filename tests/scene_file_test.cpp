@@ -88,6 +88,12 @@ TEST(SceneFile, AMissingInputFileIsNamed) {
   EXPECT_NE(errorOf("name = \"x\"\n[input]\nsource = \"script:moonwalk\"\n").find("moonwalk"), std::string::npos);
 }
 
+TEST(SceneFile, ADrawnScaleOutsideAQuarterToOneIsRefused) {
+  const std::string e = errorOf("name = \"x\"\n[render]\nscale = 2.0\n");
+  EXPECT_NE(e.find("test.toml:3:"), std::string::npos) << e;
+  EXPECT_NE(e.find("scale"), std::string::npos) << e;
+}
+
 TEST(SceneFile, MalformedTomlIsNamedWithItsLine) {
   const std::string e = errorOf("name = \"x\"\n[params\n");
   EXPECT_NE(e.find("test.toml:2:"), std::string::npos) << e;
@@ -97,7 +103,7 @@ TEST(SceneFile, AnAcceptedSceneSetsWhatItSays) {
   const Scene s = parseScene(
       "name = \"mine\"\nduration = 2.5\nburst_at = 1.0\n[tool]\nkind = \"ring\"\n"
       "[input]\nsource = \"script:circles\"\nspeed = 1.5\n[params]\nsticky = 28.0\n"
-      "[render]\nwidth = 640\nheight = 360\ncolouring = \"thickness\"\n"
+      "[render]\nwidth = 640\nheight = 360\ncolouring = \"thickness\"\nscale = 0.5\n"
       "camera = [0.0, 1.2, 3.0]\ntarget = [0.0, 1.2, 0.0]\nvideo = false\n",
       "test.toml", std::filesystem::current_path());
   EXPECT_EQ(s.run.duration, 2.5);
@@ -108,6 +114,7 @@ TEST(SceneFile, AnAcceptedSceneSetsWhatItSays) {
   EXPECT_EQ(s.run.params.sticky, 28.0f);
   EXPECT_EQ(s.run.render.image.width, 640);
   EXPECT_EQ(s.run.render.image.colouring, Colouring::Thickness);
+  EXPECT_EQ(s.run.render.drawnScale, 0.5f);
   EXPECT_TRUE(s.run.render.video.empty());
   // The camera looks at the target from 3 m in front of it: the same eye position back (float rounding).
   EXPECT_LT((s.run.render.camera.position() - Vec3(0.0f, 1.2f, 3.0f)).norm(), 1e-5f);

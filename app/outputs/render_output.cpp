@@ -5,9 +5,11 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <sstream>
@@ -15,6 +17,7 @@
 
 #include "app/commands/cli_checks.h"
 #include "app/outputs/child_process.h"
+#include "app/outputs/image_scale.h"
 #include "capture/output_file.h"
 #include "capture/png_image.h"
 #include "capture/untrusted.h"
@@ -83,11 +86,35 @@ void addRenderOptions(CLI::App& command, RenderOutputOptions& o, RenderedFiles f
                   "multisample anti-aliasing, samples per pixel (1: none); default 4, 1 on a CPU driver (lavapipe)")
       ->transform(WholeNumber(1, 8))
       ->check(CLI::IsMember({1, 2, 4, 8}));
+  if (files == RenderedFiles::Written)
+    command
+        .add_option("--render-scale", o.drawnScale,
+                    "draw at this fraction of --width and --height and scale the frames up to it (0.25 to 1); "
+                    "default 1, " +
+                        drawnScaleName(kCpuDrawnScale) + " on a CPU driver (lavapipe)")
+        ->check(CLI::Range(kSmallestDrawnScale, 1.0f));
 }
 
 int samplesFor(const RenderOutputOptions& options, const std::string& deviceType) {
   if (options.samples > 0) return options.samples;
   return deviceType == "CPU" ? 1 : options.image.samples;
+}
+
+float drawnScaleFor(const RenderOutputOptions& options, const std::string& deviceType) {
+  if (options.drawnScale > 0) return options.drawnScale;
+  return deviceType == "CPU" ? kCpuDrawnScale : 1.0f;
+}
+
+std::string drawnScaleName(float scale) {
+  char text[16];
+  std::snprintf(text, sizeof text, "%g", static_cast<double>(scale));
+  return text;
+}
+
+RenderOptions drawnImage(RenderOptions image, float scale) {
+  image.width = std::max(16, static_cast<int>(std::lround(scale * static_cast<float>(image.width))));
+  image.height = std::max(16, static_cast<int>(std::lround(scale * static_cast<float>(image.height))));
+  return image;
 }
 
 EnvironmentImage loadEnvironment(const std::filesystem::path& path) {
@@ -218,13 +245,18 @@ RunRenderer::RunRenderer(const RenderOutputOptions& options, const std::filesyst
                                e.what());
     }
   }
-  RenderOptions image = options.image;
+  RenderOptions image = drawnImage(options.image, drawnScaleFor(options, context->info().type));
   image.samples = samplesFor(options, context->info().type);
+  drawn_ = image;
   renderer_ = std::make_unique<Renderer>(context, image, loadEnvironment(options.environment));
-  std::printf("render: %dx%d %s, %d sample%s per pixel, on %s, film read %s\n", image.width, image.height,
-              colouringName(image.colouring), image.samples, image.samples == 1 ? "" : "s",
+  std::printf("render: %dx%d %s, %d sample%s per pixel, on %s, film read %s\n", options.image.width,
+              options.image.height, colouringName(image.colouring), image.samples, image.samples == 1 ? "" : "s",
               context->info().name.c_str(),
               readInPlace_ ? "in place from the Vulkan stepper's buffers" : "from the CPU state, uploaded each frame");
+  if (image.width != options.image.width || image.height != options.image.height)
+    std::printf("render: drawn at %dx%d (scale %s, --render-scale) and scaled up to %dx%d\n", image.width, image.height,
+                drawnScaleName(drawnScaleFor(options, context->info().type)).c_str(), options.image.width,
+                options.image.height);
   if (!options.video.empty()) {
     if (ffmpegAvailable()) {
       const std::filesystem::path video = outDir / options.video;
@@ -262,7 +294,8 @@ void RunRenderer::writeDrawnFrame() {
   const Drawing drawn = drawing_.front();
   drawing_.pop_front();
   const long index = drawn.index;
-  const std::vector<uint8_t> rgb = renderer_->readPixels(drawn.ticket);
+  const std::vector<uint8_t> rgb = scaleRgb(renderer_->readPixels(drawn.ticket), drawn_.width, drawn_.height,
+                                            options_.image.width, options_.image.height);
   if (drawn.png) {
     char name[40];
     std::snprintf(name, sizeof name, "render_%05ld.png", index);

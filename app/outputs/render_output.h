@@ -38,6 +38,15 @@ void addRenderOptions(CLI::App& command, RenderOutputOptions& options, RenderedF
 // image, so its edges are soft whatever the samples.
 int samplesFor(const RenderOutputOptions& options, const std::string& deviceType);
 
+// The drawn scale `run` renders at on `device` (as samplesFor): --render-scale when given; else 1, except on a CPU
+// driver, whose frame costs its pixels: there it draws at kCpuDrawnScale of the size and the frames are scaled up
+// (app/outputs/image_scale.h). docs/rendering.md shows the two side by side.
+inline constexpr float kCpuDrawnScale = 0.75f;
+float drawnScaleFor(const RenderOutputOptions& options, const std::string& deviceType);
+std::string drawnScaleName(float scale);  // "0.75"
+// `image` at `scale` of its size, at least 16 pixels a side.
+RenderOptions drawnImage(RenderOptions image, float scale);
+
 // The environment to reflect: the built-in outdoor sky, or an equirectangular PNG (sRGB, 2:1) converted to linear
 // radiance. Throws naming the file when it cannot be read or is not 2:1.
 EnvironmentImage loadEnvironment(const std::filesystem::path& path);
@@ -86,6 +95,7 @@ class RunRenderer {
 
  private:
   RenderOutputOptions options_;
+  RenderOptions drawn_;  // the size the renderer draws at (options_.image's scaled by the drawn scale)
   std::filesystem::path outDir_;
   std::unique_ptr<Renderer> renderer_;
   std::unique_ptr<VideoWriter> video_;

@@ -1,13 +1,13 @@
 #version 450
 #extension GL_GOOGLE_include_directive : require
 // The film, pulled straight from the simulation's structure-of-arrays buffers (the Vulkan stepper's own, or
-// the renderer's copy of the CPU state): vertex k of the draw is corner k % 3 of triangle k / 3.
+// the renderer's copy of the CPU state). An indexed draw whose index buffer is the film's triangles: vertex k is
+// particle k.
 #include "render_common.glsl"
 layout(std430, set = 0, binding = GB_RENDER_POSITION) readonly buffer PositionBuffer { float position[]; };
 layout(std430, set = 0, binding = GB_RENDER_NORMAL) readonly buffer NormalBuffer { float normal[]; };
 layout(std430, set = 0, binding = GB_RENDER_THICKNESS) readonly buffer ThicknessBuffer { float thickness[]; };
 layout(std430, set = 0, binding = GB_RENDER_AIR_FLOW) readonly buffer AirFlowBuffer { float airFlow[]; };
-layout(std430, set = 0, binding = GB_RENDER_TRIANGLES) readonly buffer TrianglesBuffer { uint triangles[]; };
 layout(std430, set = 0, binding = GB_RENDER_VARIATION) readonly buffer VariationBuffer { float variation[]; };
 layout(location = 0) out vec3 worldPosition;
 layout(location = 1) out vec3 worldNormal;
@@ -20,7 +20,7 @@ vec3 load3(uint i, uint n, bool isNormal) {
 }
 
 void main() {
-  const uint i = triangles[gl_VertexIndex];
+  const uint i = gl_VertexIndex;
   const uint n = u.particles;
   worldPosition = load3(i, n, false);
   worldNormal = load3(i, n, true);

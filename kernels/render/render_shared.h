@@ -51,7 +51,7 @@ struct RenderUniforms {
 #define GB_RENDER_NORMAL 2          // film vertex normals, same layout
 #define GB_RENDER_THICKNESS 3       // film thickness per particle (m)
 #define GB_RENDER_AIR_FLOW 4        // transferred air flow per particle, vector blocks (m^3/s)
-#define GB_RENDER_TRIANGLES 5       // 3 particle indices per triangle
+#define GB_RENDER_TRIANGLES 5       // 3 particle indices per triangle; the film draw reads them as its index buffer
 #define GB_RENDER_LUT 6             // thin-film reflectance by thickness and angle (kernels/render/thin_film_lut.h)
 #define GB_RENDER_ENVIRONMENT 7     // equirectangular environment radiance
 #define GB_RENDER_MESH 8            // opaque props: 12 floats per vertex (position, normal, albedo, material, pad)

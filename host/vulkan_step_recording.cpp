@@ -160,10 +160,13 @@ void VulkanStepper::Impl::recordStep(const vk::raii::CommandBuffer& cb, const St
 void VulkanStepper::Impl::uploadSteps(std::span<const StepUniforms> steps) {
   ensureStepCapacity(steps.size());
   buffer(GB_BINDING_STEPS).write(steps.data(), steps.size_bytes());  // the CPU's uniforms are the kernels' block
-  if (std::memcmp(&paramsOnDevice, params, sizeof(Params)) != 0) {
-    paramsOnDevice = *params;
-    buffer(GB_BINDING_PARAMS).write(params, sizeof(Params));
-  }
+  if (std::memcmp(&paramsOnDevice, params, sizeof(Params)) != 0) useParams(*params);
+}
+
+void VulkanStepper::Impl::useParams(const Params& live) {
+  params = &live;
+  paramsOnDevice = live;
+  buffer(GB_BINDING_PARAMS).write(&live, sizeof(Params));
 }
 
 float VulkanStepper::run(std::span<const StepUniforms> substeps) {

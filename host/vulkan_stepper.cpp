@@ -348,8 +348,6 @@ void VulkanStepper::load(const Params& params, Film& film) {
   if (params.coarseIterations > 0) ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
   const State& s = film.state;
   const Topology& t = film.topology;
-  m.params = &params;
-  m.paramsOnDevice = params;
   m.particles = static_cast<uint32_t>(s.size());
   m.triangles = static_cast<uint32_t>(t.triangleCount());
   const size_t n = s.size();
@@ -367,7 +365,7 @@ void VulkanStepper::load(const Params& params, Film& film) {
   const size_t startingEntries = m.contactEntryCapacity > 0 ? 0 : n;  // the room grown for an earlier film is kept
   m.ensureContactRoom(std::max(startingEntries, m.partnerEntriesOf(t.contacts)), 0);
 
-  m.buffer(GB_BINDING_PARAMS).write(&params, sizeof(Params));
+  m.useParams(params);
   m.airParity = 0;  // each air array into its own buffer
   forEachParticleArray(s, [&](const auto& array, const ParticleArrayInfo& info) {
     if (info.transfer != Transfer::WithMesh) writeParticleArray(m.buffer(info.binding), array, info, n);
@@ -469,9 +467,7 @@ bool VulkanStepper::updateRegion(const Params& params, Film& film, std::span<con
   if (params.coarseIterations > 0) ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
   const State& s = film.state;
   const Topology& t = film.topology;
-  m.params = &params;
-  m.paramsOnDevice = params;
-  m.buffer(GB_BINDING_PARAMS).write(&params, sizeof(Params));
+  m.useParams(params);
   const auto n = static_cast<uint32_t>(s.size());
   if (n != m.particles) m.layOutParticles(particleBlocks(s), n);
   m.triangles = static_cast<uint32_t>(t.triangleCount());

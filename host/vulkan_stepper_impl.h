@@ -238,6 +238,8 @@ struct VulkanStepper::Impl {
 
   // One step: the rows of stepStages() that run, each followed by its barrier where the table gives one.
   void recordStep(const vk::raii::CommandBuffer& cb, const StepUniforms& u, uint32_t stepIndex);
+  // Reads `live` at every recording from now on (the caller's, Stepper::load) and writes it to GB_BINDING_PARAMS.
+  void useParams(const Params& live);
 
   // The steps' uniforms into GB_BINDING_STEPS, and the parameters into GB_BINDING_PARAMS where they changed since
   // they were last written (a live change, Simulation::setFrameTime).

@@ -8,6 +8,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "host/device_buffer.h"
 #include "host/device_image.h"
@@ -161,7 +162,10 @@ struct Renderer::Impl {
     uint32_t propsVertices = 0, dropletCount = 0;
     bool drawsCameraImage = false;
     vk::raii::DescriptorSet sceneSet{nullptr};
+    vk::raii::QueryPool timestamps{nullptr};  // the frame's first and last command, on a device whose clock the
+                                              // host can read (VulkanContext::timestampsOnHostClock)
   };
+  std::vector<Renderer::BusyInterval> drawn;  // when the device drew the frames waited for, oldest first
   std::array<FrameSlot, 2> slots;
   size_t current = 0;            // the slot of the latest submit
   Renderer::Ticket tickets = 0;  // submits so far
@@ -193,6 +197,8 @@ struct Renderer::Impl {
       f.uniforms = DeviceBuffer(*ctx, sizeof(RenderUniforms));
       f.commands = ctx->newCommandBuffer();
       f.done = ctx->newFence();
+      if (ctx->timestampsOnHostClock())
+        f.timestamps = vk::raii::QueryPool(ctx->device, vk::QueryPoolCreateInfo({}, vk::QueryType::eTimestamp, 2));
     }
   }
   ~Impl() {
@@ -206,6 +212,19 @@ struct Renderer::Impl {
     if (!f.inFlight) return;
     f.inFlight = false;  // also when the wait throws: a lost device is not waited for twice
     ctx->waitFor(f.done);
+    if (*f.timestamps) noteWhenDrawn(f.timestamps);
+  }
+  void noteWhenDrawn(const vk::raii::QueryPool& timestamps) {
+    const auto [result, ticks] =
+        timestamps.getResults<uint64_t>(0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t), vk::QueryResultFlagBits::e64);
+    if (result != vk::Result::eSuccess) return;
+    const std::optional<double> start = ctx->hostSecondsOfTimestamp(ticks[0]);
+    const std::optional<double> end = ctx->hostSecondsOfTimestamp(ticks[1]);
+    if (!start || !end || *end < *start) return;
+    // A window that never asks (live) keeps only the latest: a show runs for hours.
+    constexpr size_t kKept = 1024;
+    if (drawn.size() >= kKept) drawn.erase(drawn.begin());
+    drawn.push_back({*start, *end});
   }
   void waitForAll() {
     // Oldest first: the other slot's frame was submitted before the current one.
@@ -637,6 +656,11 @@ struct Renderer::Impl {
     const vk::raii::CommandBuffer& cb = slot().commands;
     cb.reset();
     cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    const vk::QueryPool timestamps = *slot().timestamps;
+    if (timestamps) {
+      cb.resetQueryPool(timestamps, 0, 2);
+      cb.writeTimestamp(Stage::eTopOfPipe, timestamps, 0);
+    }
     const vk::Rect2D area({0, 0}, extent);
     const std::array<vk::DescriptorSet, 2> sets{*slot().sceneSet, *compositeSet};
     cb.bindDescriptorSets(vk::PipelineBindPoint::eGraphics, *pipelineLayout, 0, sets, {});
@@ -689,6 +713,7 @@ struct Renderer::Impl {
       cb.pipelineBarrier(Stage::eTransfer, Stage::eHost, {}, toHost, {}, {});
     }
     if (after) after(cb, output.handle());
+    if (timestamps) cb.writeTimestamp(Stage::eBottomOfPipe, timestamps, 1);
     cb.end();
   }
 };
@@ -755,6 +780,8 @@ Renderer::Ticket Renderer::submit(const RenderFrame& frame, bool readback, const
 }
 
 void Renderer::wait() { impl_->waitForAll(); }
+
+std::vector<Renderer::BusyInterval> Renderer::takeDrawnIntervals() { return std::exchange(impl_->drawn, {}); }
 
 std::vector<uint8_t> Renderer::readPixels() { return readPixels(impl_->slot().ticket); }
 

@@ -99,6 +99,14 @@ class Renderer {
   using Ticket = uint64_t;
   Ticket submit(const RenderFrame& frame, bool readback = true, const AfterRender& after = {});
   void wait();  // for every frame submitted
+  // When the device drew each frame waited for since the last call, the latest 1024 at most (its first command to
+  // its last, the window's blit included), in seconds of the host's steady clock (std::chrono::steady_clock), oldest
+  // first: `run` tells from them how much of its step the drawing overlapped. Empty on a device whose timestamps the
+  // host cannot read (VulkanContext::timestampsOnHostClock).
+  struct BusyInterval {
+    double start = 0, end = 0;
+  };
+  [[nodiscard]] std::vector<BusyInterval> takeDrawnIntervals();
   // A frame read back, RGB 8 bits per channel (sRGB), rows from the top; waits for it. The last frame submitted,
   // or the one of `frame`'s ticket, which must be one of the last two submitted (std::logic_error otherwise).
   [[nodiscard]] std::vector<uint8_t> readPixels();

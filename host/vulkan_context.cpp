@@ -1,6 +1,7 @@
 #include "host/vulkan_context.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cstdio>
 #include <cstdlib>
@@ -96,6 +97,23 @@ std::vector<VulkanDeviceInfo> listVulkanDevices() {
   return out;
 }
 
+namespace {
+
+// Whether the device's timestamps can be read against CLOCK_MONOTONIC (VK_EXT_calibrated_timestamps), the clock
+// std::chrono::steady_clock reads on Linux.
+bool canCalibrateToTheHostClock(const vk::raii::PhysicalDevice& physical) {
+  const auto available = physical.enumerateDeviceExtensionProperties();
+  if (std::none_of(available.begin(), available.end(), [](const auto& e) {
+        return std::string(e.extensionName.data()) == VK_EXT_CALIBRATED_TIMESTAMPS_EXTENSION_NAME;
+      }))
+    return false;
+  const auto domains = physical.getCalibrateableTimeDomainsEXT();
+  const auto has = [&](vk::TimeDomainEXT d) { return std::find(domains.begin(), domains.end(), d) != domains.end(); };
+  return has(vk::TimeDomainEXT::eDevice) && has(vk::TimeDomainEXT::eClockMonotonic);
+}
+
+}  // namespace
+
 VulkanContext::VulkanContext(const std::string& requestArg, const VulkanExtensions& extensions) try {
   std::string request = requestArg;
   if (request.empty())
@@ -152,7 +170,10 @@ VulkanContext::VulkanContext(const std::string& requestArg, const VulkanExtensio
                      [&](const auto& e) { return std::string(e.extensionName.data()) == wanted; }))
       throw VulkanUnavailable("device " + info_.name + " lacks the extension " + wanted);
   }
-  device = vk::raii::Device(physical, vk::DeviceCreateInfo({}, queueInfo, {}, extensions.device));
+  std::vector<const char*> deviceExtensions = extensions.device;
+  hostClock_ = timestampPeriodNs_ > 0 && canCalibrateToTheHostClock(physical);
+  if (hostClock_) deviceExtensions.push_back(VK_EXT_CALIBRATED_TIMESTAMPS_EXTENSION_NAME);
+  device = vk::raii::Device(physical, vk::DeviceCreateInfo({}, queueInfo, {}, deviceExtensions));
   queue = vk::raii::Queue(device, queueFamily_, 0);
   commandPool = vk::raii::CommandPool(device, {vk::CommandPoolCreateFlagBits::eResetCommandBuffer, queueFamily_});
   fence_ = vk::raii::Fence(device, vk::FenceCreateInfo());
@@ -181,6 +202,17 @@ void VulkanContext::waitFor(const vk::raii::Fence& done) const {
   if (device.waitForFences({*done}, VK_TRUE, UINT64_MAX) != vk::Result::eSuccess)
     throw std::runtime_error("Vulkan: waiting for the GPU failed");
   device.resetFences({*done});
+}
+
+std::optional<double> VulkanContext::hostSecondsOfTimestamp(uint64_t ticks) const {
+  if (!hostClock_) return std::nullopt;
+  const std::array<vk::CalibratedTimestampInfoEXT, 2> domains{
+      vk::CalibratedTimestampInfoEXT(vk::TimeDomainEXT::eDevice),
+      vk::CalibratedTimestampInfoEXT(vk::TimeDomainEXT::eClockMonotonic)};
+  const auto [now, deviation] = device.getCalibratedTimestampsEXT(domains);
+  (void)deviation;  // nanoseconds on lavapipe, microseconds on a GPU: far below a frame
+  const double deviceNs = static_cast<double>(static_cast<int64_t>(ticks - now[0])) * timestampPeriodNs_;
+  return (static_cast<double>(now[1]) + deviceNs) * 1e-9;
 }
 
 vk::raii::Fence VulkanContext::newFence() const { return vk::raii::Fence(device, vk::FenceCreateInfo()); }

@@ -2,6 +2,7 @@
 // The Vulkan instance, the chosen device and its compute queue. Vulkan stays inside host/.
 
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -57,6 +58,10 @@ class VulkanContext {
   [[nodiscard]] bool validationEnabled() const { return validation_; }
   [[nodiscard]] size_t validationErrors() const { return *validationErrors_; }
   [[nodiscard]] double timestampPeriodNs() const { return timestampPeriodNs_; }
+  // A device timestamp (vkCmdWriteTimestamp's ticks) on the host's steady clock (std::chrono::steady_clock's
+  // seconds since its epoch), through VK_EXT_calibrated_timestamps; nothing on a device without it.
+  [[nodiscard]] std::optional<double> hostSecondsOfTimestamp(uint64_t ticks) const;
+  [[nodiscard]] bool timestampsOnHostClock() const { return hostClock_; }
   [[nodiscard]] uint32_t preferredWorkgroupSize() const;
   [[nodiscard]] uint32_t queueFamily() const { return queueFamily_; }
 
@@ -71,7 +76,8 @@ class VulkanContext {
   VulkanDeviceInfo info_;
   uint32_t queueFamily_ = 0;
   bool validation_ = false;
-  double timestampPeriodNs_ = 0.0;                                          // 0 when the queue has no timestamps
+  double timestampPeriodNs_ = 0.0;  // 0 when the queue has no timestamps
+  bool hostClock_ = false;          // VK_EXT_calibrated_timestamps enabled, to CLOCK_MONOTONIC
   std::unique_ptr<size_t> validationErrors_ = std::make_unique<size_t>(0);  // stable address for the callback
   vk::raii::DebugUtilsMessengerEXT messenger_{nullptr};
   vk::raii::Fence fence_{nullptr};

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -162,6 +163,38 @@ TEST(Renderer, SubmittedFramesAreReadBackAsTheirFilmWasTwoInFlight) {
   EXPECT_THROW((void)renderer.readPixels(first), std::logic_error);
   EXPECT_EQ(compare(renderer.readPixels(second), moved).max, 0);
   EXPECT_EQ(compare(renderer.readPixels(), moved).max, 0);  // the last submitted: the same film as `second`
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
+// `run` tells how much of its step the render overlapped from the device's own timestamps read on the host's steady
+// clock: each frame waited for is one interval, inside the wall time from its submit to its wait, oldest first,
+// taken once. Lavapipe has calibrated timestamps (so CI checks them); a device without is named and not timed.
+TEST(Renderer, EachFrameDrawnIsTimedOnTheHostClock) {
+  GB_REQUIRE_VULKAN(device);
+  const test::KnownScene scene = test::makeKnownScene();
+  Renderer renderer(device, smallImage(), studioEnvironment(256));
+  const auto now = [] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  };
+  const double before = now();
+  renderer.submit(test::frameOf(scene));
+  renderer.submit(test::frameOf(scene));
+  renderer.wait();
+  const double after = now();
+  const std::vector<Renderer::BusyInterval> drawn = renderer.takeDrawnIntervals();
+  if (!device->timestampsOnHostClock()) {
+    EXPECT_TRUE(drawn.empty());
+    GTEST_SKIP() << "*** " << device->info().name << " has no timestamps on the host clock: frames not timed ***";
+  }
+  ASSERT_EQ(drawn.size(), 2u);
+  // Tolerance 1 ms: the calibration's own deviation is nanoseconds on lavapipe and microseconds on a GPU.
+  for (const Renderer::BusyInterval& d : drawn) {
+    EXPECT_GE(d.start, before - 1e-3);
+    EXPECT_LE(d.end, after + 1e-3);
+    EXPECT_LT(d.start, d.end);
+  }
+  EXPECT_LE(drawn[0].end, drawn[1].start + 1e-3);  // one queue: the second frame is drawn after the first
+  EXPECT_TRUE(renderer.takeDrawnIntervals().empty());
   EXPECT_EQ(device->validationErrors(), 0u);
 }
 

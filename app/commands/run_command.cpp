@@ -152,6 +152,11 @@ class PhaseClock {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
+// The steady clock's seconds since its epoch, the clock the renderer's device timestamps are read on.
+double steadySeconds(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(t.time_since_epoch()).count();
+}
+
 // Where the frame's time went, for the summary and stats.json: the simulation's phases, then the run's own work.
 void addFramePhases(RunRecord& record, const FramePhases& sim, double statsMs, double outputsMs, double renderMs) {
   record.addPhase("step", sim.step);
@@ -281,6 +286,7 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
   std::string status = "finished";
   int exitCode = 0;
   long done = 0;
+  StepRenderOverlap overlap;
   const auto runStart = std::chrono::steady_clock::now();
   RealTimePacer pacer({o.params.frameTime, sim.solverSweeps(), 3, 1}, runStart);
   for (long frame = 1; frame <= frames; ++frame) {
@@ -307,6 +313,7 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
     try {
       givePerformerBody(sim, wands);
       sim.advanceFrame(wands.wands);
+      overlap.addStep(steadySeconds(frameStart), steadySeconds(std::chrono::steady_clock::now()));
     } catch (const SimulationUnstable& e) {
       bar.finish();
       std::fprintf(stderr, "error: %s\nstopped at frame %ld of %ld; outputs up to frame %ld are in %s\n", e.what(),
@@ -343,6 +350,7 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
     if (renderer)
       renderer->frame(frame, sim, wands.wands,
                       [&](RenderFrame& f) { run.mirror->apply(f, input.cameraCalibration()); });
+    if (renderer) overlap.addRender(renderer->takeDrawnIntervals());
     addFramePhases(record, sim.lastPhases(), statsMs, outputsMs, renderer ? phase.lap() : 0.0);
     done = frame;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
@@ -354,6 +362,8 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
   // row files closed and checked, then the summary.
   if (renderer) {
     renderer->finish();
+    overlap.addRender(renderer->takeDrawnIntervals());
+    record.setOverlap(overlap.totals(), wall);
     if (!renderer->videoError().empty()) {
       record.note("video_error", renderer->videoError());
       if (exitCode == 0) exitCode = 5;
@@ -379,6 +389,7 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
   printSummary(first, last, frames, sim.substepsPerFrame(), wall, o.outDir);
   std::fputs(record.story().c_str(), stdout);
   record.printPhases();
+  record.printOverlap();
   record.printTable1(o.scene);
   return exitCode;
 }

@@ -92,6 +92,8 @@ class RunRenderer {
   // the video.
   void finish();
   [[nodiscard]] const std::string& videoError() const { return videoError_; }
+  // When the device drew the frames written since the last call (Renderer::takeDrawnIntervals).
+  [[nodiscard]] std::vector<Renderer::BusyInterval> takeDrawnIntervals() { return renderer_->takeDrawnIntervals(); }
 
  private:
   RenderOutputOptions options_;

@@ -148,6 +148,13 @@ void RunRecord::writeJson(const std::filesystem::path& path, const std::string& 
   const auto perFrame = [](uint64_t bytes, long frames) {
     return frames > 0 ? static_cast<double>(bytes) / static_cast<double>(frames) : 0.0;
   };
+  if (overlap_) {
+    const auto timed = [&](double seconds) { return overlap_->renderTimed ? nlohmann::json(seconds) : nullptr; };
+    j["step_render_overlap"] = {{"wall_s", overlapWall_},
+                                {"step_s", overlap_->step},
+                                {"render_s", timed(overlap_->render)},
+                                {"both_s", timed(overlap_->both)}};
+  }
   j["readback"] = {
       {"state_readbacks", readback_.stateReadbacks},
       {"frames", readback_.frames},
@@ -207,6 +214,18 @@ void RunRecord::printPhases() const {
     line += figure;
   }
   std::printf("%-28s %s\n", "ms per frame by phase", line.c_str());
+}
+
+void RunRecord::printOverlap() const {
+  if (!overlap_) return;
+  if (!overlap_->renderTimed) {
+    std::printf("%-28s not timed: the render's device has no timestamps on the host's clock\n",
+                "step and render overlap");
+    return;
+  }
+  std::printf("%-28s %.2f s of %.2f s wall (%.0f%%); step %.2f s, render %.2f s\n", "step and render overlap",
+              overlap_->both, overlapWall_, overlapWall_ > 0 ? 100.0 * overlap_->both / overlapWall_ : 0.0,
+              overlap_->step, overlap_->render);
 }
 
 void RunRecord::printTable1(const std::string& scene) const {

@@ -152,11 +152,6 @@ class PhaseClock {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
-// The steady clock's seconds since its epoch, the clock the renderer's device timestamps are read on.
-double steadySeconds(std::chrono::steady_clock::time_point t) {
-  return std::chrono::duration<double>(t.time_since_epoch()).count();
-}
-
 // Where the frame's time went, for the summary and stats.json: the simulation's phases, then the run's own work.
 void addFramePhases(RunRecord& record, const FramePhases& sim, double statsMs, double outputsMs, double renderMs) {
   record.addPhase("step", sim.step);

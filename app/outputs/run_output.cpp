@@ -217,15 +217,7 @@ void RunRecord::printPhases() const {
 }
 
 void RunRecord::printOverlap() const {
-  if (!overlap_) return;
-  if (!overlap_->renderTimed) {
-    std::printf("%-28s not timed: the render's device has no timestamps on the host's clock\n",
-                "step and render overlap");
-    return;
-  }
-  std::printf("%-28s %.2f s of %.2f s wall (%.0f%%); step %.2f s, render %.2f s\n", "step and render overlap",
-              overlap_->both, overlapWall_, overlapWall_ > 0 ? 100.0 * overlap_->both / overlapWall_ : 0.0,
-              overlap_->step, overlap_->render);
+  if (overlap_) std::printf("%-28s %s\n", "step and render overlap", describeOverlap(*overlap_, overlapWall_).c_str());
 }
 
 void RunRecord::printTable1(const std::string& scene) const {

@@ -1,6 +1,7 @@
 #include "app/outputs/step_render_overlap.h"
 
 #include <algorithm>
+#include <cstdio>
 
 namespace gb {
 
@@ -46,6 +47,18 @@ void StepRenderOverlap::addStep(double start, double end) {
 
 void StepRenderOverlap::addRender(const std::vector<Interval>& drawn) {
   renders_.insert(renders_.end(), drawn.begin(), drawn.end());
+}
+
+std::string describeOverlap(const StepRenderOverlap::Totals& totals, double wall) {
+  if (!totals.renderTimed) return "not timed: the render's device has no timestamps on the host's clock";
+  char text[160];
+  std::snprintf(text, sizeof text, "%.2f s of %.2f s wall (%.0f%%); step %.2f s, render %.2f s", totals.both, wall,
+                wall > 0 ? 100.0 * totals.both / wall : 0.0, totals.step, totals.render);
+  return text;
+}
+
+double steadySeconds(std::chrono::steady_clock::time_point t) {
+  return std::chrono::duration<double>(t.time_since_epoch()).count();
 }
 
 StepRenderOverlap::Totals StepRenderOverlap::totals() const {

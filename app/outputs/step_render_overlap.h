@@ -4,6 +4,8 @@
 // host's clock (Renderer::takeDrawnIntervals). On a CPU driver (lavapipe) both run on the same cores, so a large
 // overlap is the render and the step sharing them rather than waiting for each other.
 
+#include <chrono>
+#include <string>
 #include <vector>
 
 #include "host/renderer.h"
@@ -24,5 +26,11 @@ class StepRenderOverlap {
  private:
   std::vector<Interval> steps_, renders_;
 };
+
+// "8.36 s of 16.23 s wall (51%); step 8.86 s, render 13.34 s", or why the render was not timed.
+std::string describeOverlap(const StepRenderOverlap::Totals& totals, double wall);
+
+// The steady clock's seconds since its epoch: the clock the renderer's device timestamps are read on.
+double steadySeconds(std::chrono::steady_clock::time_point t);
 
 }  // namespace gb

@@ -526,7 +526,9 @@ bool LiveShow::frame() {
       advanceStep(frames);
       done += frames;
     }
-    simMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - simStart).count();
+    const auto simEnd = std::chrono::steady_clock::now();
+    simMs = std::chrono::duration<double, std::milli>(simEnd - simStart).count();
+    overlap_.addStep(steadySeconds(simStart), steadySeconds(simEnd));
     if (quitRequested_) return false;  // Esc or Ctrl-C while an input restarted waited for a performer
   }
   present(keys, due, simMs);
@@ -704,6 +706,7 @@ void LiveShow::present(const WindowKeys& keys, int due, double simMs) {
   RenderFrame frame = renderFrameOf(*sim_, wire, view, readInPlace_, deviceFilm);
   mirrorView_.apply(frame, input_ ? input_->cameraCalibration() : nullptr);
   window_.present(*renderer_, frame);
+  overlap_.addRender(renderer_->takeDrawnIntervals());
   if (stream_) {
     stream_->offer(window_.captured());
     for (const std::string& m : stream_->takeMessages()) std::fprintf(stderr, "warning: %s\n", m.c_str());
@@ -736,6 +739,8 @@ int LiveShow::finish() {
       "from instability\n",
       shown_, seconds, static_cast<double>(shown_) / std::max(seconds, 1e-9), dips_, errors, recoveries_);
   std::printf("live: %s\n", filmShown_.describe(run_.params.frameTime).c_str());
+  // The window draws each frame after its step and waits for it: the two take turns (the overlap near 0).
+  std::printf("live: the step and the render overlapped %s\n", describeOverlap(overlap_.totals(), seconds).c_str());
   std::printf(
       "live: a film was on stage for %.1f%% of the show's wall time (%.1f of %.1f s); the performance "
       "played again %ld times\n",

@@ -18,6 +18,7 @@
 #include "app/commands/thread_policy.h"
 #include "app/control/live_control.h"
 #include "app/outputs/osc_events.h"
+#include "app/outputs/step_render_overlap.h"
 #include "app/show/live_camera.h"
 #include "app/show/mirror_view.h"
 #include "app/show/osc_cues.h"
@@ -162,6 +163,7 @@ class LiveShow {
   std::string advised_;
   std::chrono::steady_clock::time_point advisedAt_;
   std::chrono::steady_clock::time_point lastReopen_;
+  StepRenderOverlap overlap_;  // the step's time and the device's drawing (app/outputs/step_render_overlap.h)
   std::optional<SimulationThreads> threads_;  // one fewer for each core another process keeps busy (thread_policy.h)
   std::chrono::steady_clock::time_point start_, lastTitle_, lastPresented_;
 

@@ -218,13 +218,12 @@ struct Renderer::Impl {
     const auto [result, ticks] =
         timestamps.getResults<uint64_t>(0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t), vk::QueryResultFlagBits::e64);
     if (result != vk::Result::eSuccess) return;
-    const std::optional<double> start = ctx->hostSecondsOfTimestamp(ticks[0]);
-    const std::optional<double> end = ctx->hostSecondsOfTimestamp(ticks[1]);
-    if (!start || !end || *end < *start) return;
-    // A window that never asks (live) keeps only the latest: a show runs for hours.
+    const std::vector<double> seconds = ctx->hostSecondsOfTimestamps(ticks);
+    if (seconds.size() != 2 || seconds[1] < seconds[0]) return;
+    // A caller that never takes them keeps only the latest: a show runs for hours.
     constexpr size_t kKept = 1024;
     if (drawn.size() >= kKept) drawn.erase(drawn.begin());
-    drawn.push_back({*start, *end});
+    drawn.push_back({seconds[0], seconds[1]});
   }
   void waitForAll() {
     // Oldest first: the other slot's frame was submitted before the current one.

@@ -204,15 +204,19 @@ void VulkanContext::waitFor(const vk::raii::Fence& done) const {
   device.resetFences({*done});
 }
 
-std::optional<double> VulkanContext::hostSecondsOfTimestamp(uint64_t ticks) const {
-  if (!hostClock_) return std::nullopt;
+std::vector<double> VulkanContext::hostSecondsOfTimestamps(std::span<const uint64_t> ticks) const {
+  if (!hostClock_) return {};
   const std::array<vk::CalibratedTimestampInfoEXT, 2> domains{
       vk::CalibratedTimestampInfoEXT(vk::TimeDomainEXT::eDevice),
       vk::CalibratedTimestampInfoEXT(vk::TimeDomainEXT::eClockMonotonic)};
   const auto [now, deviation] = device.getCalibratedTimestampsEXT(domains);
   (void)deviation;  // nanoseconds on lavapipe, microseconds on a GPU: far below a frame
-  const double deviceNs = static_cast<double>(static_cast<int64_t>(ticks - now[0])) * timestampPeriodNs_;
-  return (static_cast<double>(now[1]) + deviceNs) * 1e-9;
+  std::vector<double> seconds;
+  for (const uint64_t t : ticks) {
+    const double deviceNs = static_cast<double>(static_cast<int64_t>(t - now[0])) * timestampPeriodNs_;
+    seconds.push_back((static_cast<double>(now[1]) + deviceNs) * 1e-9);
+  }
+  return seconds;
 }
 
 vk::raii::Fence VulkanContext::newFence() const { return vk::raii::Fence(device, vk::FenceCreateInfo()); }

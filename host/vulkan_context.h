@@ -2,7 +2,7 @@
 // The Vulkan instance, the chosen device and its compute queue. Vulkan stays inside host/.
 
 #include <memory>
-#include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -58,9 +58,9 @@ class VulkanContext {
   [[nodiscard]] bool validationEnabled() const { return validation_; }
   [[nodiscard]] size_t validationErrors() const { return *validationErrors_; }
   [[nodiscard]] double timestampPeriodNs() const { return timestampPeriodNs_; }
-  // A device timestamp (vkCmdWriteTimestamp's ticks) on the host's steady clock (std::chrono::steady_clock's
-  // seconds since its epoch), through VK_EXT_calibrated_timestamps; nothing on a device without it.
-  [[nodiscard]] std::optional<double> hostSecondsOfTimestamp(uint64_t ticks) const;
+  // Device timestamps (vkCmdWriteTimestamp's ticks) on the host's steady clock (std::chrono::steady_clock's
+  // seconds since its epoch), through one VK_EXT_calibrated_timestamps calibration; empty on a device without it.
+  [[nodiscard]] std::vector<double> hostSecondsOfTimestamps(std::span<const uint64_t> ticks) const;
   [[nodiscard]] bool timestampsOnHostClock() const { return hostClock_; }
   [[nodiscard]] uint32_t preferredWorkgroupSize() const;
   [[nodiscard]] uint32_t queueFamily() const { return queueFamily_; }

@@ -245,7 +245,8 @@ RunRenderer::RunRenderer(const RenderOutputOptions& options, const std::filesyst
                                e.what());
     }
   }
-  RenderOptions image = drawnImage(options.image, drawnScaleFor(options, context->info().type));
+  const float scale = drawnScaleFor(options, context->info().type);
+  RenderOptions image = drawnImage(options.image, scale);
   image.samples = samplesFor(options, context->info().type);
   drawn_ = image;
   renderer_ = std::make_unique<Renderer>(context, image, loadEnvironment(options.environment));
@@ -255,8 +256,7 @@ RunRenderer::RunRenderer(const RenderOutputOptions& options, const std::filesyst
               readInPlace_ ? "in place from the Vulkan stepper's buffers" : "from the CPU state, uploaded each frame");
   if (image.width != options.image.width || image.height != options.image.height)
     std::printf("render: drawn at %dx%d (scale %s, --render-scale) and scaled up to %dx%d\n", image.width, image.height,
-                drawnScaleName(drawnScaleFor(options, context->info().type)).c_str(), options.image.width,
-                options.image.height);
+                drawnScaleName(scale).c_str(), options.image.width, options.image.height);
   if (!options.video.empty()) {
     if (ffmpegAvailable()) {
       const std::filesystem::path video = outDir / options.video;

@@ -132,7 +132,6 @@ void VulkanStepper::Impl::writeMesh(const State& s, const Topology& t) {
   });
   writeVector(buffer(GB_BINDING_REST_LENGTH), t.restLength);
   writeConnectivity(t);
-  writeContacts(t);
 }
 
 void VulkanStepper::Impl::writeConnectivity(const Topology& t) {
@@ -371,6 +370,7 @@ void VulkanStepper::load(const Params& params, Film& film) {
     if (info.transfer != Transfer::WithMesh) writeParticleArray(m.buffer(info.binding), array, info, n);
   });
   m.writeMesh(s, t);
+  m.writeContacts(t);
 
   m.sets.clear();
   const vk::DescriptorPoolSize poolSize(vk::DescriptorType::eStorageBuffer, 2 * GB_BINDING_COUNT);
@@ -386,7 +386,7 @@ void VulkanStepper::load(const Params& params, Film& film) {
   m.writeDescriptorSets();
 }
 
-void VulkanStepper::updateTopology(const Params& params, Film& film) {
+bool VulkanStepper::updateTopology(const Params& params, Film& film) {
   Impl& m = *impl_;
   ensureColouring(film.state.alive, film.topology);
   if (params.coarseIterations > 0) ensurePatches(film.state.alive, params.coarsePatchRings, film.topology);
@@ -400,16 +400,13 @@ void VulkanStepper::updateTopology(const Params& params, Film& film) {
                            fits(GB_BINDING_SPRING_INDEX, t.springIndex.size(), sizeof(uint32_t)) &&
                            fits(GB_BINDING_SPRING_NEIGHBOUR, t.springNeighbour.size(), sizeof(uint32_t)) &&
                            fits(GB_BINDING_TRIANGLE_CORNER, t.triangleCorner.size(), sizeof(uint32_t)) &&
-                           fits(GB_BINDING_CONTACTS, t.contacts.size(), sizeof(uint32_t)) &&
                            fits(GB_BINDING_COLOUR_ORDER, solverListEntries(t), sizeof(uint32_t)) &&
                            fits(GB_BINDING_REDUCE, reduceFloats(t, film.state.size()), sizeof(float));
-  if (!fitsBuffers) {
-    load(params, film);
-    return;
-  }
+  if (!fitsBuffers) return false;
   // A burst only shrinks the mesh: the buffers keep their size, the counts say how much of them is used.
   m.triangles = static_cast<uint32_t>(t.triangleCount());
   m.writeMesh(film.state, t);
+  return true;
 }
 
 void VulkanStepper::updateRestLengths(const Film& film) {
@@ -420,15 +417,34 @@ void VulkanStepper::updateRestLengths(const Film& film) {
 }
 
 bool VulkanStepper::storeRegion(Film& film, std::span<const uint32_t> particles, std::span<const uint32_t> springs) {
+  storeRuns(film, particles, springs, [](const void*, const ParticleArrayInfo&) { return true; });
+  return true;
+}
+
+bool VulkanStepper::storeParticleArraysOf(Film& film, std::span<const uint32_t> particles,
+                                          std::initializer_list<const void*> arrays) {
+  storeRuns(film, particles, {}, [&](const void* array, const ParticleArrayInfo&) {
+    return std::find(arrays.begin(), arrays.end(), array) != arrays.end();
+  });
+  return true;
+}
+
+template <class Chosen>
+void VulkanStepper::storeRuns(Film& film, std::span<const uint32_t> particles, std::span<const uint32_t> springs,
+                              Chosen&& chosen) {
   Impl& m = *impl_;
   State& s = film.state;
   if (s.size() != m.particles) throw std::logic_error("VulkanStepper::storeRegion: not the loaded film");
   const std::vector<IndexRun> particleRuns = runsOf(particles), springRuns = runsOf(springs);
   const vk::DeviceSize blockBytes = s.size() * sizeof(float);
-  // The arrays store() brings back, each run of each, then the springs' runs, one after the other in the copy.
+  const auto picked = [&](const void* array, const ParticleArrayInfo& info) {
+    return info.transfer == Transfer::ReadBack && chosen(array, info);
+  };
+  // The arrays picked of those store() brings back, each run of each, then the springs' runs, one after the other in
+  // the copy.
   std::vector<Impl::DevicePart> parts;
   forEachParticleArray(s, [&](const auto& array, const ParticleArrayInfo& info) {
-    if (info.transfer != Transfer::ReadBack) return;
+    if (!picked(&array, info)) return;
     forEachComponent(array, [&](const auto&, int c) {
       for (const IndexRun& run : particleRuns)
         parts.push_back({&m.holding(info.binding),
@@ -439,7 +455,7 @@ bool VulkanStepper::storeRegion(Film& film, std::span<const uint32_t> particles,
   for (const IndexRun& run : springRuns)
     parts.push_back(
         {&m.buffer(GB_BINDING_REST_LENGTH), run.first * sizeof(float), (run.end - run.first) * sizeof(float)});
-  if (parts.empty()) return true;
+  if (parts.empty()) return;
   m.copyIntoReadback(parts);
   // The same runs in the same order, out of the copy.
   vk::DeviceSize at = 0;
@@ -451,11 +467,10 @@ bool VulkanStepper::storeRegion(Film& film, std::span<const uint32_t> particles,
     }
   };
   forEachParticleArray(s, [&](auto& array, const ParticleArrayInfo& info) {
-    if (info.transfer != Transfer::ReadBack) return;
+    if (!picked(&array, info)) return;
     forEachComponent(array, [&](auto& values, int) { readRuns(values.data(), particleRuns); });
   });
   readRuns(film.topology.restLength.data(), springRuns);
-  return true;
 }
 
 bool VulkanStepper::updateRegion(const Params& params, Film& film, std::span<const uint32_t> particles,

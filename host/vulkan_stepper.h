@@ -84,10 +84,12 @@ class VulkanStepper final : public Stepper, public DeviceResidency {
   bool probeFilm(const FilmProbe& probe, FilmSums& sums, FilmChecks& checks) override;
   [[nodiscard]] DeviceReadback readback() const override;
   void updateRestLengths(const Film& film) override;
-  void updateTopology(const Params& params, Film& film) override;
+  bool updateTopology(const Params& params, Film& film) override;
   // The region's ranges copied into host-cached memory in one submission, and the region's changes written in
   // ranges; the per-particle buffers of a grown film laid out for the new count by copies on the device.
   bool storeRegion(Film& film, std::span<const uint32_t> particles, std::span<const uint32_t> springs) override;
+  bool storeParticleArraysOf(Film& film, std::span<const uint32_t> particles,
+                             std::initializer_list<const void*> arrays) override;
   bool updateRegion(const Params& params, Film& film, std::span<const uint32_t> particles, size_t firstNewParticle,
                     std::span<const uint32_t> springs, size_t firstNewSpring) override;
 
@@ -101,6 +103,9 @@ class VulkanStepper final : public Stepper, public DeviceResidency {
   // Copies the per-particle arrays that chosen(array, info) picks from the device into the film's state.
   template <class Chosen>
   void storeArrays(Film& film, Chosen&& chosen);
+  // Copies those arrays of the particles listed, and the rest lengths of the springs listed, run by run.
+  template <class Chosen>
+  void storeRuns(Film& film, std::span<const uint32_t> particles, std::span<const uint32_t> springs, Chosen&& chosen);
 
   struct Impl;
   std::unique_ptr<Impl> impl_;

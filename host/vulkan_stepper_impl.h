@@ -131,8 +131,9 @@ struct VulkanStepper::Impl {
 
   void ensureStepCapacity(size_t count);
 
-  // The mesh: the arrays that travel with it (alive flags), wire flags, triangles, rest lengths, the CSR one-ring and
-  // the contacts. A load writes it with the state; a burst (updateTopology) writes only it.
+  // The mesh: the arrays that travel with it (alive flags), wire flags, triangles, rest lengths and the CSR one-ring.
+  // A load writes it with the state and the contacts; a burst (updateTopology) writes only it, and the device's
+  // contact list stays the next search's history.
   void writeMesh(const State& s, const Topology& t);
   // The mesh's connectivity, which only the host changes: wire flags, triangles, the CSR one-ring, the solver's lists
   // (updateRegion writes it with the region's rest lengths, keeping the device's own).

@@ -292,9 +292,8 @@ void Simulation::advanceFrame(const WandState& next) {
   const auto stepped = Clock::now();
   if (passed) {
     ++readbackRecord_.framesPassed;
-  } else if (heldForARegion_) {  // applyRulesBetweenSteps where the checks let pass all that reads the whole state
-    events_ = {};
-    applyRulesOfAnUnbrokenFilm(next, wandSpeed);
+  } else if (heldForARegion_) {
+    applyRulesWhereTheyLie(next, wandSpeed);
   } else {
     applyRulesBetweenSteps(next, wandSpeed);
   }
@@ -329,6 +328,7 @@ bool Simulation::passesOnDevice(const WandState& next, float wandSpeed) {
     ++readbackRecord_.framesHeldByRule[rule];
     heldRule_ = rule;
     heldForARegion_ = aRegionServes(*checks, next, wandSpeed);
+    if (heldForARegion_) regionChecks_ = *checks;
     return false;
   }
   if (bodyTouchesFilm()) {  // the body's touch is tested on the film in host memory
@@ -347,14 +347,78 @@ void Simulation::applyRulesBetweenSteps(const WandState& next, float wandSpeed) 
   touchByBody();
   burstOnFloorTouch();
   events_ = advanceBurst(params_, time_, film_, burst_, aerosol_);
-  if (events_.particlesRemoved > 0) {  // the mesh shrank
-    if (DeviceResidency* d = device())
-      d->updateTopology(params_, film_);
-    else
-      stepper_->load(params_, film_);
-  }
+  if (events_.particlesRemoved > 0) takeShrunkMesh();
   if (!burst_.active()) applyRulesOfAnUnbrokenFilm(next, wandSpeed);
   if (tipsTogether(next) && !film_.topology.isClosed() && !burst_.active()) events_.pinchedOff = pinch();
+}
+
+void Simulation::applyRulesWhereTheyLie(const WandState& next, float wandSpeed) {
+  const FilmChecks& checks = regionChecks_;
+  events_ = {};
+  if (film_.topology.isClosed() && !burst_.active()) {  // burstOnWandTouch, whose test the checks say cannot pass
+    for (int w = 0; w < 2; ++w) wandArmed_[w] = wandArmed_[w] || checks.nearestTip[w] > params_.pinchDistance;
+  }
+  if (!burst_.active() && checks.lowest < kFloorTouching * (1.0f + kFilmCheckMargin)) {
+    device()->storeParticleArrays(film_, {&film_.state.position});  // what burstOnFloorTouch reads
+    positionsOnDevice_ = false;
+    burstOnFloorTouch();
+  }
+  advanceBurstWhereItLies(checks);
+  if (!burst_.active()) applyRulesOfAnUnbrokenFilm(next, wandSpeed);
+  if (tipsTogether(next) && !film_.topology.isClosed() && !burst_.active()) events_.pinchedOff = pinch();
+}
+
+void Simulation::advanceBurstWhereItLies(const FilmChecks& checks) {
+  State& s = film_.state;
+  DeviceResidency& d = *device();
+  if (checks.thinnest < params_.thicknessThreshold * (1.0f + kFilmCheckMargin)) {
+    d.storeParticleArrays(film_, {&s.thickness, &s.voronoiArea});  // what the crack's test reads
+    crackWhereThin(params_, time_, film_, burst_);
+  }
+  // What the front reads, asked for until it asks no more: each time with rings around what it asked for, since a
+  // front that reads further may reach further; twice as many rings each time, as a fast rim crosses many a frame.
+  std::vector<char> readable(s.size(), 0);
+  int rings = 1;
+  for (std::vector<uint32_t> unread = particlesTheFrontReads(params_, time_, film_, burst_, readable); !unread.empty();
+       unread = particlesTheFrontReads(params_, time_, film_, burst_, readable), rings *= 2) {
+    for (uint32_t i : unread) readable[i] = 1;
+    for (size_t ring = 0, from = 0; ring < static_cast<size_t>(rings); ++ring) {
+      const size_t to = unread.size();
+      for (size_t u = from; u < to; ++u)
+        for (uint32_t k = film_.topology.springOffset[unread[u]]; k < film_.topology.springOffset[unread[u] + 1]; ++k)
+          if (const uint32_t j = film_.topology.springNeighbour[k]; !readable[j]) {
+            readable[j] = 1;
+            unread.push_back(j);
+          }
+      from = to;
+    }
+    std::sort(unread.begin(), unread.end());
+    if (!d.storeParticleArraysOf(film_, unread, {&s.position, &s.velocity, &s.liquid, &s.thickness})) {
+      pullState();  // a stepper that brings back only the whole state
+      break;
+    }
+  }
+  if (restLengthsOnDevice_ && frontReachesThisFrame()) {
+    d.storeRestLengths(film_);  // the springs the front leaves keep their rest lengths
+    restLengthsOnDevice_ = false;
+  }
+  events_ = advanceFront(params_, time_, film_, burst_, aerosol_);
+  if (events_.particlesRemoved > 0) takeShrunkMesh();
+}
+
+bool Simulation::frontReachesThisFrame() const {
+  const State& s = film_.state;
+  if (burst_.arrival.size() != s.size()) return false;  // no crack scheduled since the film last changed its size
+  for (size_t i = 0; i < s.size(); ++i)
+    if (s.alive[i] && burst_.arrival[i] <= time_) return true;
+  return false;
+}
+
+void Simulation::takeShrunkMesh() {
+  DeviceResidency* d = device();
+  if (d && d->updateTopology(params_, film_)) return;
+  pullState();  // the state the device stepped, for a load
+  stepper_->load(params_, film_);
 }
 
 void Simulation::applyRulesOfAnUnbrokenFilm(const WandState& next, float wandSpeed) {
@@ -410,14 +474,21 @@ void Simulation::yieldStretchedSpringsWhereTheyLie() {
 }
 
 bool Simulation::aRegionServes(const FilmChecks& checks, const WandState& next, float wandSpeed) const {
+  // The explicit integrator's substeps read the state; the body's touch reads the whole film.
+  if (params_.integrator == 0 || bodyTouchesFilm()) return false;
   FilmChecks others = checks;
   others.yielding = 0;  // the rest-length rules run where the state lies
   others.slack = 0;
   others.rungsPastGrowth = 0;
-  const char* rule = ruleThatMayAct(others, next, wandSpeed, true);
-  if (rule == nullptr || params_.integrator == 0) return false;  // the explicit integrator's substeps read the state
-  const std::string_view first = rule;
-  return (first == "ring" && !tipsTogether(next)) || first == "merge";  // a closed film: no ring, no pinch-off
+  others.lowest = std::numeric_limits<float>::infinity();    // the floor's test reads the positions alone,
+  others.thinnest = std::numeric_limits<float>::infinity();  // the crack's the thickness and area
+  if (checks.unstable) return false;
+  if (burst_.active()) return true;  // the burst alone acts on a film it takes (applyRulesBetweenSteps)
+  // Beside a crack scheduled (its front the region), nothing but the floor or a crack by thinning, or a ring at the
+  // wire (the tips not together for a pinch-off), or the merges (a closed film: no ring, no pinch-off).
+  const char* rule = ruleBesideTheBurst(others, next, wandSpeed, true);
+  const std::string_view first = rule == nullptr ? "" : rule;
+  return rule == nullptr || (first == "ring" && !tipsTogether(next)) || first == "merge";
 }
 
 bool Simulation::tipsTogether(const WandState& wands) const {
@@ -499,12 +570,17 @@ bool Simulation::yieldApplies() const {
 
 const char* Simulation::ruleThatMayAct(const FilmChecks& c, const WandState& next, float wandSpeed,
                                        bool deviceRules) const {
+  if (c.particles == 0) return nullptr;                                // the film is gone
+  if (c.unstable) return "unstable";                                   // checkStable
+  if (burst_.cause != nullptr && burst_.finished < 0) return "burst";  // a crack scheduled, or a burst under way
+  return ruleBesideTheBurst(c, next, wandSpeed, deviceRules);
+}
+
+const char* Simulation::ruleBesideTheBurst(const FilmChecks& c, const WandState& next, float wandSpeed,
+                                           bool deviceRules) const {
   constexpr float m = kFilmCheckMargin;
   const Params& p = params_;
   const Topology& topo = film_.topology;
-  if (c.particles == 0) return nullptr;                                   // the film is gone
-  if (c.unstable) return "unstable";                                      // checkStable
-  if (burst_.cause != nullptr && burst_.finished < 0) return "burst";     // a crack scheduled, or a burst under way
   if (c.lowest < kFloorTouching * (1.0f + m)) return "floor";             // burstOnFloorTouch
   if (c.thinnest < p.thicknessThreshold * (1.0f + m)) return "thinning";  // advanceBurst: a crack by thinning
   if (topo.isClosed()) {  // burstOnWandTouch; the winding number is 0 or 1, its float sum within 5% of it
@@ -697,7 +773,8 @@ size_t Simulation::topParticle() const {
 }
 
 bool Simulation::pinch() {
-  if (film_.topology.isClosed() || burst_.active()) return false;
+  // A film the burst took whole has nothing left to pinch.
+  if (film_.topology.isClosed() || burst_.active() || film_.topology.triangleCount() == 0) return false;
   pullState();
   try {
     if (!pinchOff(params_, film_)) return false;

@@ -203,7 +203,8 @@ class Simulation {
   // The yield of stretched springs on the stepper's device, or on the film in host memory.
   void yieldStretchedSpringsWhereTheyLie();
   // Whether the checks that held a frame leave its rules on the CPU to a region of the film: the first that may act,
-  // besides those the device runs, is a ring at the wire (the tips not together for a pinch-off) or the merges.
+  // besides those the device runs, is a ring at the wire (the tips not together for a pinch-off), the merges, the
+  // floor, a crack by thinning or a burst under way.
   [[nodiscard]] bool aRegionServes(const FilmChecks& checks, const WandState& next, float wandSpeed) const;
   // Whether two wand tips are close enough for the open film between them to pinch off (Params::pinchDistance).
   [[nodiscard]] bool tipsTogether(const WandState& wands) const;
@@ -229,6 +230,16 @@ class Simulation {
   // The rules between steps on the film in host memory: the stability check, the bursts, the rest-length rules,
   // merges, growth at the wire, pinch-off (the device's yield and payout in their places where it runs them).
   void applyRulesBetweenSteps(const WandState& next, float wandSpeed);
+  // The same on a film whose state stayed on the device (aRegionServes): each rule brings back what it reads. The
+  // floor's test the positions; a crack by thinning the thickness and area; the burst's front the particles it
+  // reaches, their neighbours and the corners of the triangles that die (particlesTheFrontReads); the rest as
+  // applyRulesOfAnUnbrokenFilm.
+  void applyRulesWhereTheyLie(const WandState& next, float wandSpeed);
+  void advanceBurstWhereItLies(const FilmChecks& checks);
+  // Whether the burst's front takes a particle this frame: a living one is scheduled by now.
+  [[nodiscard]] bool frontReachesThisFrame() const;
+  // After the burst shrank the mesh: the stepper takes the new mesh in place, or the whole film where it does not.
+  void takeShrunkMesh();
   // The film checks of the rules between steps from the stepper's device (FilmChecks), if it checks there.
   [[nodiscard]] std::optional<FilmChecks> checksOnDevice(bool atPresentPositions);
   // The first rule between steps that may act on the film the device's checks describe, by name ("contraction",
@@ -237,6 +248,9 @@ class Simulation {
   // Null means that none acts.
   [[nodiscard]] const char* ruleThatMayAct(const FilmChecks& checks, const WandState& next, float wandSpeed,
                                            bool deviceRules) const;
+  // The same, leaving out the stability check and a burst scheduled or under way.
+  [[nodiscard]] const char* ruleBesideTheBurst(const FilmChecks& checks, const WandState& next, float wandSpeed,
+                                               bool deviceRules) const;
   // Whether the yield of stretched springs applies to the film: an open film of the spring model with yieldStretch.
   [[nodiscard]] bool yieldApplies() const;
   // Whether the contraction of slack springs applies to the film: a closed film of the spring model.
@@ -273,6 +287,7 @@ class Simulation {
   std::optional<FilmChecks> heldChecks_;
   // The frame was held for rules that a region of the film serves (aRegionServes): its state stays on the device.
   bool heldForARegion_ = false;
+  FilmChecks regionChecks_;         // the checks that held it, with what the device's rules then did
   const char* heldRule_ = nullptr;  // the rule that held this frame (ruleThatMayAct's name), null where none did
   std::unique_ptr<Stepper> stepper_;
   BurstFront burst_;

@@ -157,43 +157,87 @@ void startCrack(BurstFront& front, const Film& film, size_t i, double t, const c
   front.arrival[i] = std::min(front.arrival[i], static_cast<float>(t));
 }
 
-TopologyEvents advanceBurst(const Params& p, double now, Film& film, BurstFront& front, Aerosol& aerosol) {
-  TopologyEvents events;
-  State& s = film.state;
-  const Topology& topo = film.topology;
+void crackWhereThin(const Params& p, double now, const Film& film, BurstFront& front) {
   fitToFilm(front, film);
-  // Algorithm 3, line 1: particles thinner than the threshold crack (a particle with no area left has no
-  // meaningful thickness and is left to its neighbours).
+  // A particle with no area left has no meaningful thickness and is left to its neighbours.
+  const State& s = film.state;
   for (size_t i = 0; i < s.size(); ++i)
     if (s.alive[i] && s.voronoiArea[i] > 0 && s.thickness[i] < p.thicknessThreshold)
       startCrack(front, film, i, now, "thin");
+}
 
-  // The front: Dijkstra over the one-ring from every scheduled particle, settling all arrivals up to now.
+namespace {
+
+// The front: Dijkstra over the one-ring from every scheduled particle, settling in `arrival` every arrival up to
+// now. Returns the particles it reached, in the order it reached them. With `readable`, the front reads only the
+// particles it holds: one it needs beyond them (a particle it reaches, a neighbour it measures, a corner of a
+// triangle that dies) goes into `unread`, and the front goes no further there.
+std::vector<uint32_t> settleFront(const Params& p, double now, const Film& film, std::vector<float>& arrival,
+                                  const std::vector<char>* readable, std::vector<uint32_t>* unread) {
+  const State& s = film.state;
+  const Topology& topo = film.topology;
+  const auto reads = [&](uint32_t i) {
+    if (readable == nullptr || (*readable)[i]) return true;
+    unread->push_back(i);
+    return false;
+  };
   using Entry = std::pair<float, uint32_t>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<>> queue;
   for (uint32_t i = 0; i < s.size(); ++i)
-    if (s.alive[i] && front.arrival[i] <= now) queue.push({front.arrival[i], i});
+    if (s.alive[i] && arrival[i] <= now) queue.push({arrival[i], i});
   std::vector<uint32_t> dying;
   std::vector<char> settled(s.size(), 0);
   while (!queue.empty()) {
     const auto [t, i] = queue.top();
     queue.pop();
-    if (t > front.arrival[i] || !s.alive[i] || settled[i]) continue;
+    if (t > arrival[i] || !s.alive[i] || settled[i] || !reads(i)) continue;
     settled[i] = 1;
     dying.push_back(i);
+    if (readable != nullptr)  // the droplets of its triangles read their corners
+      for (uint32_t k = topo.triangleOffset[i]; k < topo.triangleOffset[i + 1]; ++k)
+        for (int c = 0; c < 3; ++c) reads(topo.triangleOf(topo.triangleCorner[k])[c]);
     for (uint32_t k = topo.springOffset[i]; k < topo.springOffset[i + 1]; ++k) {
       const uint32_t j = topo.springNeighbour[k];
+      if (!reads(j)) continue;
       // Paper's mode: the one-ring of this frame's dead is next frame's front. Taylor-Culick: the rim
       // reaches j after the distance over the speed in j's film.
       const float reach = p.holeOpening == 1 ? static_cast<float>(now) + p.frameTime
                                              : t + (s.position.get(j) - s.position.get(i)).norm() /
                                                        taylorCulickSpeed(p, s.thickness[j]);
-      if (reach < front.arrival[j]) {
-        front.arrival[j] = reach;
-        if (front.arrival[j] <= now) queue.push({front.arrival[j], j});
+      if (reach < arrival[j]) {
+        arrival[j] = reach;
+        if (arrival[j] <= now) queue.push({arrival[j], j});
       }
     }
   }
+  return dying;
+}
+
+}  // namespace
+
+std::vector<uint32_t> particlesTheFrontReads(const Params& p, double now, const Film& film, const BurstFront& front,
+                                             const std::vector<char>& readable) {
+  std::vector<uint32_t> unread;
+  for (uint32_t v : front.torn)  // the torn triangles' droplets
+    if (!readable[v]) unread.push_back(v);
+  std::vector<float> arrival = front.arrival;  // a dry run: the front stays where it is
+  if (arrival.size() != film.state.size()) arrival.assign(film.state.size(), kNever);  // as fitToFilm
+  (void)settleFront(p, now, film, arrival, &readable, &unread);
+  std::sort(unread.begin(), unread.end());
+  unread.erase(std::unique(unread.begin(), unread.end()), unread.end());
+  return unread;
+}
+
+TopologyEvents advanceBurst(const Params& p, double now, Film& film, BurstFront& front, Aerosol& aerosol) {
+  crackWhereThin(p, now, film, front);  // Algorithm 3, line 1
+  return advanceFront(p, now, film, front, aerosol);
+}
+
+TopologyEvents advanceFront(const Params& p, double now, Film& film, BurstFront& front, Aerosol& aerosol) {
+  TopologyEvents events;
+  State& s = film.state;
+  fitToFilm(front, film);
+  const std::vector<uint32_t> dying = settleFront(p, now, film, front.arrival, nullptr, nullptr);
   if (dying.empty()) return events;
   if (front.started < 0) {
     front.started = *std::min_element(front.arrival.begin(), front.arrival.end());

@@ -11,6 +11,7 @@
 // are all dead become aerosol droplets carrying their liquid, gathered a few centimetres at a time
 // (bursting.cpp, emitDroplets).
 
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -63,10 +64,20 @@ float taylorCulickSpeed(const Params& params, float thickness);
 // burst keeps the first one's.
 void startCrack(BurstFront& front, const Film& film, size_t i, double t, const char* cause);
 
-// One frame's topology step at time `now`: cracks where the film is thinner than the threshold, the front
-// advanced to `now`, the particles it reached removed with their springs and triangles, droplets emitted
-// for triangles with no living corner, and the CSR one-ring rebuilt. Returns what happened; the film's
-// topology changed iff particlesRemoved > 0.
+// One frame's topology step at time `now`: cracks where the film is thinner than the threshold (crackWhereThin),
+// then the front advanced to `now`, the particles it reached removed with their springs and triangles, droplets
+// emitted for triangles with no living corner, and the CSR one-ring rebuilt (advanceFront). Returns what happened;
+// the film's topology changed iff particlesRemoved > 0.
 TopologyEvents advanceBurst(const Params& params, double now, Film& film, BurstFront& front, Aerosol& aerosol);
+void crackWhereThin(const Params& params, double now, const Film& film, BurstFront& front);
+TopologyEvents advanceFront(const Params& params, double now, Film& film, BurstFront& front, Aerosol& aerosol);
+
+// What advanceFront reads of the particles' state, beyond those `readable` flags (one flag a particle): the
+// particles the front reaches and their neighbours (their positions and thickness), and the corners of the triangles
+// that die (their positions, velocities, liquid and thickness, for the droplets). Ascending; empty when the readable
+// particles are all the front reads. Where the state lies on a device, the front brings back only these: asked again
+// with them readable until it names none, since a front that reads further may reach further (Simulation).
+std::vector<uint32_t> particlesTheFrontReads(const Params& params, double now, const Film& film,
+                                             const BurstFront& front, const std::vector<char>& readable);
 
 }  // namespace gb

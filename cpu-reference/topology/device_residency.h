@@ -49,6 +49,10 @@ class DeviceResidency {
   // store() brings back, of the particles listed, and the rest lengths of the springs listed (both ascending). False
   // where the stepper brings back nothing by regions (the caller then calls store()).
   virtual bool storeRegion(Film& film, std::span<const uint32_t> particles, std::span<const uint32_t> springs) = 0;
+  // Brings back the per-particle arrays of film.state listed (by address) of the particles listed (ascending): what
+  // the burst's front reads (particlesTheFrontReads). False where the stepper brings back nothing by regions.
+  virtual bool storeParticleArraysOf(Film& film, std::span<const uint32_t> particles,
+                                     std::initializer_list<const void*> arrays) = 0;
   // Takes a film that a rule between steps changed in a region and may have grown (film growth at the wire appends
   // particles, springs and triangles, old indices staying): the per-particle arrays of the particles listed and of
   // those from firstNewParticle on, the rest lengths of the springs listed and of those from firstNewSpring on, and the
@@ -56,10 +60,11 @@ class DeviceResidency {
   // history of the next search. False where the stepper takes only whole films (the caller then calls Stepper::load).
   virtual bool updateRegion(const Params& params, Film& film, std::span<const uint32_t> particles,
                             size_t firstNewParticle, std::span<const uint32_t> springs, size_t firstNewSpring) = 0;
-  // Takes a film whose mesh changed but whose particles did not move or change (a burst removed springs and
-  // triangles and flagged particles dead): writes only the topology and the alive flags and keeps the state on the
-  // device; a load (Stepper::load) whenever the particle count changed.
-  virtual void updateTopology(const Params& params, Film& film) = 0;
+  // Takes a film whose mesh shrank but whose particles did not move or change (a burst removed springs and
+  // triangles and flagged particles dead): writes only the topology, its rest lengths and the alive flags, and keeps
+  // the state and the contact list (the next search's history) on the device. False where the mesh does not fit the
+  // loaded one's room: the caller then brings the state back and loads the film (Stepper::load).
+  virtual bool updateTopology(const Params& params, Film& film) = 0;
   // Takes the film's changed spring rest lengths (the wire paying out film between frames, film_growth.h).
   virtual void updateRestLengths(const Film& film) = 0;
   // Takes the film's new self-collision contact list (Topology::contacts), found between frames.

@@ -164,7 +164,8 @@ class Simulation {
     // (Simulation::ruleThatMayAct's names).
     std::map<std::string, long> framesHeldByRule;
     // What those frames copied, by the same rule: whole-state read-backs and bytes (the event's kind: a ring at the
-    // wire brings back the region it reads, a merge or a burst the whole state).
+    // wire brings back the region it reads, the merges what they choose by, a burst what its front reads, a pinch-off
+    // the whole state).
     std::map<std::string, size_t> stateReadbacksHeldByRule;
     std::map<std::string, uint64_t> bytesHeldByRule;
     size_t stateReadbacks = 0;

@@ -283,7 +283,9 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
   long done = 0;
   StepRenderOverlap overlap;
   const auto runStart = std::chrono::steady_clock::now();
-  RealTimePacer pacer({o.params.frameTime, sim.solverSweeps(), 3, 1}, runStart);
+  // With --realtime the image is drawn smaller while the machine is behind, then the sweeps go down (RealTimePacer).
+  const double smallestImage = o.realtime && renderer ? kRealtimeRunSmallestImage : 1.0;
+  RealTimePacer pacer({o.params.frameTime, sim.solverSweeps(), 3, 1, smallestImage}, runStart);
   for (long frame = 1; frame <= frames; ++frame) {
     if (const int signal = InterruptCatcher::signal()) {
       status = "interrupted";
@@ -320,7 +322,6 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
     }
     wandLog.add(t, wands);  // a row beside each row of stats.csv: none for a frame that blew up
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
-    pacer.record(1, ms, 0.0);
     PhaseClock phase;
     last = sim.stats();
     events += describeEvents(sim.lastEvents());
@@ -346,7 +347,10 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
       renderer->frame(frame, sim, wands.wands,
                       [&](RenderFrame& f) { run.mirror->apply(f, input.cameraCalibration()); });
     if (renderer) overlap.addRender(renderer->takeDrawnIntervals());
-    addFramePhases(record, sim.lastPhases(), statsMs, outputsMs, renderer ? phase.lap() : 0.0);
+    const double renderMs = renderer ? phase.lap() : 0.0;
+    addFramePhases(record, sim.lastPhases(), statsMs, outputsMs, renderMs);
+    pacer.record(1, ms + statsMs + outputsMs, renderMs);
+    if (o.realtime && renderer) renderer->setDynamicScale(pacer.renderScale());
     done = frame;
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
     if (o.progress) bar.update(frame, sim.time(), wall);

@@ -248,7 +248,7 @@ RunRenderer::RunRenderer(const RenderOutputOptions& options, const std::filesyst
   const float scale = drawnScaleFor(options, context->info().type);
   RenderOptions image = drawnImage(options.image, scale);
   image.samples = samplesFor(options, context->info().type);
-  drawn_ = image;
+  drawn_ = fullDrawn_ = image;
   renderer_ = std::make_unique<Renderer>(context, image, loadEnvironment(options.environment));
   std::printf("render: %dx%d %s, %d sample%s per pixel, on %s, film read %s\n", options.image.width,
               options.image.height, colouringName(image.colouring), image.samples, image.samples == 1 ? "" : "s",
@@ -286,7 +286,18 @@ void RunRenderer::frame(long index, Simulation& sim, const WandState& wands,
   if (view) view(drawn);
   const Renderer::Ticket ticket = renderer_->submit(drawn);
   drawing_.push_back({ticket, index, png});
+  if (dynamicScale_ < 1.0) ++framesBelowFull_;
   if (readInPlace_) writeDrawnFrame();
+}
+
+void RunRenderer::setDynamicScale(double fraction) {
+  dynamicScale_ = std::clamp(fraction, 0.0, 1.0);
+  lowestDynamicScale_ = std::min(lowestDynamicScale_, dynamicScale_);
+  const RenderOptions next = drawnImage(fullDrawn_, static_cast<float>(dynamicScale_));
+  if (next.width == drawn_.width && next.height == drawn_.height) return;
+  while (!drawing_.empty()) writeDrawnFrame();  // each is scaled up from the size it was drawn at
+  renderer_->resize(next.width, next.height);
+  drawn_ = next;
 }
 
 void RunRenderer::writeDrawnFrame() {
@@ -328,6 +339,9 @@ void RunRenderer::finish() {
   } catch (const std::exception& e) {  // the device was lost drawing them: the run's other outputs still matter
     std::fprintf(stderr, "error: render: the last frames: %s\n", e.what());
   }
+  if (framesBelowFull_ > 0)
+    std::printf("render: behind the wall clock, %ld frames drawn smaller, down to %.0f%% of %dx%d\n", framesBelowFull_,
+                100.0 * lowestDynamicScale_, fullDrawn_.width, fullDrawn_.height);
   if (!video_) return;
   try {
     video_->close();

@@ -78,6 +78,10 @@ class VideoWriter {
 };
 
 // The renderer of a run and what it writes.
+// The smallest image run --realtime draws while behind the wall clock, as a fraction of its drawn size: half its width
+// and height, live's floor too (LiveOptions::minRenderScale).
+inline constexpr double kRealtimeRunSmallestImage = 0.5;
+
 class RunRenderer {
  public:
   RunRenderer(const RenderOutputOptions& options, const std::filesystem::path& outDir, Simulation& sim,
@@ -92,12 +96,19 @@ class RunRenderer {
   // the video.
   void finish();
   [[nodiscard]] const std::string& videoError() const { return videoError_; }
+  // Draws the next frames at `fraction` (0-1] of the drawn size: run --realtime lowers it while the machine is behind
+  // the wall clock (RealTimePacer::renderScale, as live's dynamic resolution). The frames in flight are written
+  // first; every frame is still scaled up to the image's size. finish() says how low it went.
+  void setDynamicScale(double fraction);
   // When the device drew the frames written since the last call (Renderer::takeDrawnIntervals).
   [[nodiscard]] std::vector<Renderer::BusyInterval> takeDrawnIntervals() { return renderer_->takeDrawnIntervals(); }
 
  private:
   RenderOutputOptions options_;
-  RenderOptions drawn_;  // the size the renderer draws at (options_.image's scaled by the drawn scale)
+  RenderOptions drawn_;      // the size the renderer draws at (options_.image's scaled by the drawn scale)
+  RenderOptions fullDrawn_;  // drawn_ at a dynamic scale of 1
+  double dynamicScale_ = 1.0, lowestDynamicScale_ = 1.0;
+  long framesBelowFull_ = 0;  // frames drawn at a dynamic scale below 1
   std::filesystem::path outDir_;
   std::unique_ptr<Renderer> renderer_;
   std::unique_ptr<VideoWriter> video_;

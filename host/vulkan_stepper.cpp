@@ -431,11 +431,13 @@ bool VulkanStepper::storeParticleArraysOf(Film& film, std::span<const uint32_t> 
 
 template <class Chosen>
 void VulkanStepper::storeRuns(Film& film, std::span<const uint32_t> particles, std::span<const uint32_t> springs,
-                              Chosen&& chosen) {
+                              Chosen&& chosen, bool everyParticle) {
   Impl& m = *impl_;
   State& s = film.state;
-  if (s.size() != m.particles) throw std::logic_error("VulkanStepper::storeRegion: not the loaded film");
-  const std::vector<IndexRun> particleRuns = runsOf(particles), springRuns = runsOf(springs);
+  if (s.size() != m.particles) throw std::logic_error("VulkanStepper: not the loaded film");
+  const std::vector<IndexRun> particleRuns =
+      everyParticle ? std::vector<IndexRun>{{0, static_cast<uint32_t>(s.size())}} : runsOf(particles);
+  const std::vector<IndexRun> springRuns = runsOf(springs);
   const vk::DeviceSize blockBytes = s.size() * sizeof(float);
   const auto picked = [&](const void* array, const ParticleArrayInfo& info) {
     return info.transfer == Transfer::ReadBack && chosen(array, info);
@@ -530,45 +532,24 @@ bool VulkanStepper::updateRegion(const Params& params, Film& film, std::span<con
 // CPU reads the device's own memory through a mapping (resizable BAR) at uncached speed, which made this the
 // slowest part of a frame on an H100 (docs/performance.md).
 void VulkanStepper::store(Film& film) {
-  storeArrays(film, [](const void*, const ParticleArrayInfo& info) { return info.transfer == Transfer::ReadBack; });
+  storeRuns(
+      film, {}, {}, [](const void*, const ParticleArrayInfo&) { return true; }, true);
   ++impl_->copiedToHost.stateReadbacks;
 }
 
 void VulkanStepper::storePositions(Film& film) {
   const void* position = &film.state.position;
-  storeArrays(film, [&](const void* array, const ParticleArrayInfo&) { return array == position; });
+  storeRuns(
+      film, {}, {}, [&](const void* array, const ParticleArrayInfo&) { return array == position; }, true);
 }
 
 void VulkanStepper::storeParticleArrays(Film& film, std::initializer_list<const void*> arrays) {
-  storeArrays(film, [&](const void* array, const ParticleArrayInfo&) {
-    return std::find(arrays.begin(), arrays.end(), array) != arrays.end();
-  });
-}
-
-template <class Chosen>
-void VulkanStepper::storeArrays(Film& film, Chosen&& chosen) {
-  Impl& m = *impl_;
-  State& s = film.state;
-  if (s.size() != m.particles) throw std::logic_error("VulkanStepper::store: not the loaded film");
-  // The arrays to bring back: where each lies on the device, in the table's order (device_data.h), one after the
-  // other in the host-cached copy.
-  const vk::DeviceSize blockBytes = s.size() * sizeof(float);
-  std::vector<Impl::DevicePart> parts;
-  forEachParticleArray(s, [&](const auto& array, const ParticleArrayInfo& info) {
-    if (chosen(&array, info))
-      parts.push_back({&m.holding(info.binding), static_cast<vk::DeviceSize>(info.block) * blockBytes,
-                       static_cast<vk::DeviceSize>(info.components) * blockBytes});
-  });
-  m.copyIntoReadback(parts);
-  // The same arrays in the same order, out of the copy.
-  vk::DeviceSize at = 0;
-  forEachParticleArray(s, [&](auto& array, const ParticleArrayInfo& info) {
-    if (!chosen(&array, info)) return;
-    forEachComponent(array, [&](auto& values, int) {
-      m.readFrom(m.readback, values.data(), blockBytes, at);
-      at += blockBytes;
-    });
-  });
+  storeRuns(
+      film, {}, {},
+      [&](const void* array, const ParticleArrayInfo&) {
+        return std::find(arrays.begin(), arrays.end(), array) != arrays.end();
+      },
+      true);
 }
 
 DeviceReadback VulkanStepper::readback() const { return impl_->copiedToHost; }

@@ -100,12 +100,12 @@ class VulkanStepper final : public Stepper, public DeviceResidency {
   [[nodiscard]] std::shared_ptr<const VulkanContext> sharedContext() const;
 
  private:
-  // Copies the per-particle arrays that chosen(array, info) picks from the device into the film's state.
+  // Copies the per-particle arrays that chosen(array, info) picks of those store() brings back, of the particles listed
+  // (of every particle with everyParticle), and the rest lengths of the springs listed, from the device into the film,
+  // run by run.
   template <class Chosen>
-  void storeArrays(Film& film, Chosen&& chosen);
-  // Copies those arrays of the particles listed, and the rest lengths of the springs listed, run by run.
-  template <class Chosen>
-  void storeRuns(Film& film, std::span<const uint32_t> particles, std::span<const uint32_t> springs, Chosen&& chosen);
+  void storeRuns(Film& film, std::span<const uint32_t> particles, std::span<const uint32_t> springs, Chosen&& chosen,
+                 bool everyParticle = false);
 
   struct Impl;
   std::unique_ptr<Impl> impl_;

@@ -358,7 +358,7 @@ void Simulation::applyRulesWhereTheyLie(const WandState& next, float wandSpeed) 
   if (film_.topology.isClosed() && !burst_.active()) {  // burstOnWandTouch, whose test the checks say cannot pass
     for (int w = 0; w < 2; ++w) wandArmed_[w] = wandArmed_[w] || checks.nearestTip[w] > params_.pinchDistance;
   }
-  if (!burst_.active() && checks.lowest < kFloorTouching * (1.0f + kFilmCheckMargin)) {
+  if (!burst_.active() && mayTouchTheFloor(checks)) {
     device()->storeParticleArrays(film_, {&film_.state.position});  // what burstOnFloorTouch reads
     positionsOnDevice_ = false;
     burstOnFloorTouch();
@@ -371,7 +371,7 @@ void Simulation::applyRulesWhereTheyLie(const WandState& next, float wandSpeed) 
 void Simulation::advanceBurstWhereItLies(const FilmChecks& checks) {
   State& s = film_.state;
   DeviceResidency& d = *device();
-  if (checks.thinnest < params_.thicknessThreshold * (1.0f + kFilmCheckMargin)) {
+  if (mayCrackByThinning(checks)) {
     d.storeParticleArrays(film_, {&s.thickness, &s.voronoiArea});  // what the crack's test reads
     crackWhereThin(params_, time_, film_, burst_);
   }
@@ -576,13 +576,21 @@ const char* Simulation::ruleThatMayAct(const FilmChecks& c, const WandState& nex
   return ruleBesideTheBurst(c, next, wandSpeed, deviceRules);
 }
 
+bool Simulation::mayTouchTheFloor(const FilmChecks& c) const {
+  return c.lowest < kFloorTouching * (1.0f + kFilmCheckMargin);
+}
+
+bool Simulation::mayCrackByThinning(const FilmChecks& c) const {
+  return c.thinnest < params_.thicknessThreshold * (1.0f + kFilmCheckMargin);
+}
+
 const char* Simulation::ruleBesideTheBurst(const FilmChecks& c, const WandState& next, float wandSpeed,
                                            bool deviceRules) const {
   constexpr float m = kFilmCheckMargin;
   const Params& p = params_;
   const Topology& topo = film_.topology;
-  if (c.lowest < kFloorTouching * (1.0f + m)) return "floor";             // burstOnFloorTouch
-  if (c.thinnest < p.thicknessThreshold * (1.0f + m)) return "thinning";  // advanceBurst: a crack by thinning
+  if (mayTouchTheFloor(c)) return "floor";       // burstOnFloorTouch
+  if (mayCrackByThinning(c)) return "thinning";  // advanceBurst: a crack by thinning
   if (topo.isClosed()) {  // burstOnWandTouch; the winding number is 0 or 1, its float sum within 5% of it
     for (int w = 0; w < 2; ++w) {
       const float d = c.nearestTip[w];

@@ -249,6 +249,10 @@ class Simulation {
   // Null means that none acts.
   [[nodiscard]] const char* ruleThatMayAct(const FilmChecks& checks, const WandState& next, float wandSpeed,
                                            bool deviceRules) const;
+  // Whether the checks say a particle may touch the floor (burstOnFloorTouch), or be thin enough to crack
+  // (crackWhereThin), their thresholds loosened by kFilmCheckMargin.
+  [[nodiscard]] bool mayTouchTheFloor(const FilmChecks& checks) const;
+  [[nodiscard]] bool mayCrackByThinning(const FilmChecks& checks) const;
   // The same, leaving out the stability check and a burst scheduled or under way.
   [[nodiscard]] const char* ruleBesideTheBurst(const FilmChecks& checks, const WandState& next, float wandSpeed,
                                                bool deviceRules) const;

@@ -1,5 +1,6 @@
 // The Vulkan stepper's film probe: the frame's statistics and the film checks of the rules between steps summed on
 // the device (kernels/statistics/film_statistics_*.comp), and the rest-length rules run there (film_rest_lengths.comp).
+#include <algorithm>
 #include <cmath>
 
 #include "host/vulkan_stepper_impl.h"
@@ -108,6 +109,34 @@ bool VulkanStepper::yieldStretchedSprings() { return impl_->runSpringRule(GB_RUL
 bool VulkanStepper::payOutFilmAtWire() { return impl_->runSpringRule(GB_RULE_PAYOUT); }
 
 bool VulkanStepper::contractSlackSprings(float share) { return impl_->runSpringRule(GB_RULE_CONTRACT, share); }
+
+bool VulkanStepper::findCrowdedSprings(CrowdedCandidates& found) {
+  Impl& m = *impl_;
+  if (!m.statisticsOnDevice || m.springs >= kExactFloatIndices) return false;
+  if (m.sets.empty()) throw std::logic_error("VulkanStepper: no film loaded");
+  found = {};
+  if (m.particles == 0) return true;
+  const uint32_t at = gpu::reduceStatisticsAt(m.energyBase, m.particles);
+  const vk::raii::CommandBuffer& cb = m.commands;
+  cb.reset();
+  cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+  computeToComputeBarrier(cb);
+  m.dispatchGroups(cb, Kernel::CrowdedSprings, 1, m.particles, 0, 0, at);
+  computeToHostBarrier(cb);
+  cb.end();
+  m.ctx->submitAndWait(cb);
+  std::array<float, GB_CROWDED_LIST> head{};
+  m.readFrom(m.buffer(GB_BINDING_REDUCE), head.data(), sizeof head, at * sizeof(float));
+  const auto listed = static_cast<size_t>(head[GB_CROWDED_LISTED]);
+  if (listed > size_t{2} * GB_STATISTICS_TERMS * m.particles - GB_CROWDED_LIST) return false;  // the list overflowed
+  found.medianSquaredLength = head[GB_CROWDED_MEDIAN];
+  std::vector<float> list(listed);
+  m.readFrom(m.buffer(GB_BINDING_REDUCE), list.data(), listed * sizeof(float), (at + GB_CROWDED_LIST) * sizeof(float));
+  found.springs.reserve(listed);
+  for (const float spring : list) found.springs.push_back(static_cast<uint32_t>(spring));
+  std::sort(found.springs.begin(), found.springs.end());  // listed as the invocations came
+  return true;
+}
 
 void VulkanStepper::storeRestLengths(Film& film) {
   Impl& m = *impl_;

@@ -67,11 +67,8 @@ std::array<int, GB_BINDING_COUNT> particleBlocks(const State& s) {
   return blocks;
 }
 
-// Ascending indices as runs of consecutive ones, [first, end): a region's particles lie in a few runs (a ring at the
-// wire is numbered in order), each one range of a buffer.
-struct IndexRun {
-  uint32_t first, end;
-};
+}  // namespace
+
 std::vector<IndexRun> runsOf(std::span<const uint32_t> ascending) {
   std::vector<IndexRun> runs;
   for (const uint32_t i : ascending) {
@@ -82,8 +79,6 @@ std::vector<IndexRun> runsOf(std::span<const uint32_t> ascending) {
   }
   return runs;
 }
-
-}  // namespace
 
 VulkanStepper::Impl::Impl(std::shared_ptr<const VulkanContext> context, VulkanStepperOptions stepperOptions)
     : ctx(std::move(context)),
@@ -143,6 +138,7 @@ void VulkanStepper::Impl::writeConnectivity(const Topology& t) {
   writeVector(buffer(GB_BINDING_TRIANGLE_OFFSET), t.triangleOffset);
   writeVector(buffer(GB_BINDING_TRIANGLE_CORNER), t.triangleCorner);
   writeSolverLists(t);
+  springs = static_cast<uint32_t>(t.springCount());
   energyBase = energyTermsAt(t);
   writeVelocityBudget({});  // no budget has run on this mesh yet
 }
@@ -422,8 +418,9 @@ bool VulkanStepper::storeRegion(Film& film, std::span<const uint32_t> particles,
 }
 
 bool VulkanStepper::storeParticleArraysOf(Film& film, std::span<const uint32_t> particles,
-                                          std::initializer_list<const void*> arrays) {
-  storeRuns(film, particles, {}, [&](const void* array, const ParticleArrayInfo&) {
+                                          std::initializer_list<const void*> arrays,
+                                          std::span<const uint32_t> springs) {
+  storeRuns(film, particles, springs, [&](const void* array, const ParticleArrayInfo&) {
     return std::find(arrays.begin(), arrays.end(), array) != arrays.end();
   });
   return true;
@@ -496,19 +493,8 @@ bool VulkanStepper::updateRegion(const Params& params, Film& film, std::span<con
   if (firstNewParticle < n) particleRuns.push_back({static_cast<uint32_t>(firstNewParticle), n});
   if (firstNewSpring < t.restLength.size())
     springRuns.push_back({static_cast<uint32_t>(firstNewSpring), static_cast<uint32_t>(t.restLength.size())});
-  const vk::DeviceSize blockBytes = vk::DeviceSize{n} * sizeof(float);
-  std::vector<Impl::HostPart> parts;
-  forEachParticleArray(s, [&](const auto& array, const ParticleArrayInfo& info) {
-    forEachComponent(array, [&](const auto& values, int c) {
-      for (const IndexRun& run : particleRuns)
-        parts.push_back({values.data() + run.first, &m.holding(info.binding),
-                         static_cast<vk::DeviceSize>(info.block + c) * blockBytes + run.first * sizeof(float),
-                         (run.end - run.first) * sizeof(float)});
-    });
-  });
-  for (const IndexRun& run : springRuns)
-    parts.push_back({t.restLength.data() + run.first, &m.buffer(GB_BINDING_REST_LENGTH), run.first * sizeof(float),
-                     (run.end - run.first) * sizeof(float)});
+  std::vector<Impl::HostPart> parts = m.particleArrayParts(s, particleRuns);
+  m.addRestLengthParts(parts, t, springRuns);
   m.writeThroughUpload(parts);
   m.writeConnectivity(t);
   m.volumeInA = true;  // as a load leaves them
@@ -516,16 +502,88 @@ bool VulkanStepper::updateRegion(const Params& params, Film& film, std::span<con
   m.writeDescriptorSets();
   // The geometry and film state everywhere at the present positions, as a reloaded film has them: the contact search
   // reads the normals before the next step makes them anew.
-  StepUniforms u;
-  u.dt = 0.0f;
-  m.uploadSteps(std::span(&u, 1));
+  m.bringGeometryToPresentPositions();
+  return true;
+}
+
+bool VulkanStepper::updateMergedRegion(const Params& params, Film& film, std::span<const uint32_t> particles,
+                                       std::span<const uint32_t> from) {
+  Impl& m = *impl_;
+  if (m.sets.empty()) return false;
+  const State& s = film.state;
+  const Topology& t = film.topology;
+  const size_t before = m.springs, after = t.springCount();
+  if (s.size() != m.particles || from.size() != after || std::max(before, after) >= kExactFloatIndices)
+    throw std::logic_error("VulkanStepper::updateMergedRegion: not the loaded film, or more springs than it takes");
+  ensureColouring(s.alive, film.topology);
+  if (params.coarseIterations > 0) ensurePatches(s.alive, params.coarsePatchRings, film.topology);
+  m.useParams(params);
+  m.triangles = static_cast<uint32_t>(t.triangleCount());
+  m.growKeeping(GB_BINDING_REST_LENGTH, std::max(before, after) * sizeof(float), before * sizeof(float));
+  m.ensureMeshRoom(t, s.size());
+  // The gather's region: where each spring comes from, then the rest lengths before (rest_length_gather.comp).
+  const uint32_t at = gpu::reduceStatisticsAt(energyTermsAt(t), m.particles);
+  m.ensureRoom(GB_BINDING_REDUCE, std::max(reduceFloats(t, s.size()), at + after + before) * sizeof(float));
+  m.writeDescriptorSets();
+  m.copyOnDevice(m.buffer(GB_BINDING_REST_LENGTH), 0, m.buffer(GB_BINDING_REDUCE), (at + after) * sizeof(float),
+                 before * sizeof(float));
+  std::vector<float> source(after);
+  std::vector<uint32_t> made;
+  for (size_t k = 0; k < after; ++k) {
+    source[k] = from[k] == kMadeSpring ? -1.0f : static_cast<float>(from[k]);
+    if (from[k] == kMadeSpring) made.push_back(static_cast<uint32_t>(k));
+  }
+  std::vector<Impl::HostPart> parts = m.particleArrayParts(s, runsOf(particles));
+  m.addRestLengthParts(parts, t, runsOf(made));  // the gather leaves them
+  parts.push_back({source.data(), &m.buffer(GB_BINDING_REDUCE), at * sizeof(float), after * sizeof(float)});
+  m.writeThroughUpload(parts);
+  m.writeConnectivity(t);
+  m.volumeInA = true;  // as a load leaves them
+  m.driftInA = true;
   const vk::raii::CommandBuffer& cb = m.commands;
   cb.reset();
   cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
-  m.recordGeometryAtPresentPositions(cb, u);
+  m.dispatch(cb, Kernel::RestLengthGather, static_cast<uint32_t>(after), 0, 0, at);
+  computeToComputeBarrier(cb);
   cb.end();
   m.ctx->submitAndWait(cb);
   return true;
+}
+
+void VulkanStepper::refreshGeometry() { impl_->bringGeometryToPresentPositions(); }
+
+std::vector<VulkanStepper::Impl::HostPart> VulkanStepper::Impl::particleArrayParts(const State& s,
+                                                                                   std::span<const IndexRun> runs) {
+  const vk::DeviceSize blockBytes = vk::DeviceSize{s.size()} * sizeof(float);
+  std::vector<HostPart> parts;
+  forEachParticleArray(s, [&](const auto& array, const ParticleArrayInfo& info) {
+    forEachComponent(array, [&](const auto& values, int c) {
+      for (const IndexRun& run : runs)
+        parts.push_back({values.data() + run.first, &holding(info.binding),
+                         static_cast<vk::DeviceSize>(info.block + c) * blockBytes + run.first * sizeof(float),
+                         (run.end - run.first) * sizeof(float)});
+    });
+  });
+  return parts;
+}
+
+void VulkanStepper::Impl::addRestLengthParts(std::vector<HostPart>& parts, const Topology& t,
+                                             std::span<const IndexRun> runs) {
+  for (const IndexRun& run : runs)
+    parts.push_back({t.restLength.data() + run.first, &buffer(GB_BINDING_REST_LENGTH), run.first * sizeof(float),
+                     (run.end - run.first) * sizeof(float)});
+}
+
+void VulkanStepper::Impl::bringGeometryToPresentPositions() {
+  StepUniforms u;
+  u.dt = 0.0f;
+  uploadSteps(std::span(&u, 1));
+  const vk::raii::CommandBuffer& cb = commands;
+  cb.reset();
+  cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+  recordGeometryAtPresentPositions(cb, u);
+  cb.end();
+  ctx->submitAndWait(cb);
 }
 
 // The state is copied in one submission into host-cached memory and read from there: on a discrete GPU the

@@ -88,8 +88,13 @@ class VulkanStepper final : public Stepper, public DeviceResidency {
   // The region's ranges copied into host-cached memory in one submission, and the region's changes written in
   // ranges; the per-particle buffers of a grown film laid out for the new count by copies on the device.
   bool storeRegion(Film& film, std::span<const uint32_t> particles, std::span<const uint32_t> springs) override;
-  bool storeParticleArraysOf(Film& film, std::span<const uint32_t> particles,
-                             std::initializer_list<const void*> arrays) override;
+  bool storeParticleArraysOf(Film& film, std::span<const uint32_t> particles, std::initializer_list<const void*> arrays,
+                             std::span<const uint32_t> springs) override;
+  // On the device (crowded_springs, rest_length_gather) where options.statistics says so.
+  bool findCrowdedSprings(CrowdedCandidates& found) override;
+  bool updateMergedRegion(const Params& params, Film& film, std::span<const uint32_t> particles,
+                          std::span<const uint32_t> from) override;
+  void refreshGeometry() override;
   bool updateRegion(const Params& params, Film& film, std::span<const uint32_t> particles, size_t firstNewParticle,
                     std::span<const uint32_t> springs, size_t firstNewSpring) override;
 

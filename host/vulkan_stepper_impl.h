@@ -71,6 +71,16 @@ void writeVector(DeviceBuffer& buffer, const std::vector<T>& values) {
   buffer.write(values.data(), values.size() * sizeof(T));
 }
 
+// Ascending indices as runs of consecutive ones, [first, end): a region's particles lie in a few runs (a ring at the
+// wire is numbered in order), each one range of a buffer.
+struct IndexRun {
+  uint32_t first, end;
+};
+std::vector<IndexRun> runsOf(std::span<const uint32_t> ascending);
+
+// Indices the kernels read as floats from the reduce buffer (crowded_springs, rest_length_gather) are exact below this.
+constexpr size_t kExactFloatIndices = size_t{1} << 24;
+
 struct VulkanStepper::Impl {
   std::shared_ptr<const VulkanContext> ctx;
   uint32_t workgroup = 64;
@@ -83,6 +93,7 @@ struct VulkanStepper::Impl {
   const Params* params = nullptr;  // the caller's, read at every recording (Stepper::load)
   Params paramsOnDevice;           // the block GB_BINDING_PARAMS holds, written again when the caller's changed
   uint32_t particles = 0, triangles = 0;
+  uint32_t springs = 0;                                // of the mesh the device holds (writeConnectivity)
   std::array<DeviceBuffer, GB_BINDING_COUNT> buffers;  // indexed by binding; AIR_FLOW/NEXT are the two air
                                                        // buffers of descriptor set 0
   std::vector<uint32_t> colourOffset;                  // the implicit solver's colours (Topology::colourOffset)
@@ -174,6 +185,12 @@ struct VulkanStepper::Impl {
   // Writes the parts through `upload` (grown to fit) in one submission, and waits for it: many small ranges cost one
   // submission, where a write to device-only memory costs one each.
   void writeThroughUpload(std::span<const HostPart> parts);
+  // The parts that write every per-particle array of the particles in `runs`, and those that write the rest lengths
+  // of the springs in `runs`, from the film in host memory.
+  std::vector<HostPart> particleArrayParts(const State& s, std::span<const IndexRun> runs);
+  void addRestLengthParts(std::vector<HostPart>& parts, const Topology& t, std::span<const IndexRun> runs);
+  // The geometry and film state at the present positions (recordGeometryAtPresentPositions), submitted and waited for.
+  void bringGeometryToPresentPositions();
   // A copy of `bytes` on the device, between the compute work before and after it.
   void copyOnDevice(const DeviceBuffer& from, vk::DeviceSize fromOffset, const DeviceBuffer& to,
                     vk::DeviceSize toOffset, vk::DeviceSize bytes);

@@ -147,33 +147,34 @@ Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, co
 }
 
 Topology rebuildTopology(const Topology& previous, std::vector<uint32_t> triangles, const Vec3Array& positions,
-                         float prestrain, std::vector<size_t>* made) {
+                         float prestrain, std::vector<uint32_t>* from) {
   // An old spring is found in its lower end's old one-ring (a few entries): a sorted copy of every spring would cost
   // the merging of a free bubble's crowded particles a millisecond a frame.
-  const auto oldRest = [&](uint32_t a, uint32_t b) -> std::optional<float> {
-    if (a >= previous.particleCount()) return std::nullopt;  // appended since: all its springs are new
+  const auto oldSpring = [&](uint32_t a, uint32_t b) -> uint32_t {
+    if (a >= previous.particleCount()) return kMadeSpring;  // appended since: all its springs are new
     for (uint32_t k = previous.springOffset[a]; k < previous.springOffset[a + 1]; ++k)
-      if (previous.springNeighbour[k] == b) return previous.restLength[previous.springIndex[k]];
-    return std::nullopt;
+      if (previous.springNeighbour[k] == b) return previous.springIndex[k];
+    return kMadeSpring;
   };
   Topology topo = buildTopology(positions.size(), std::move(triangles), positions);
+  if (from) from->assign(topo.springCount(), kMadeSpring);
   for (size_t k = 0; k < topo.springCount(); ++k) {
-    const std::optional<float> rest = oldRest(topo.springEnds[2 * k], topo.springEnds[2 * k + 1]);
-    topo.restLength[k] = rest ? *rest : topo.restLength[k] * (1.0f - prestrain);
-    if (!rest && made) made->push_back(k);
+    const uint32_t old = oldSpring(topo.springEnds[2 * k], topo.springEnds[2 * k + 1]);
+    topo.restLength[k] = old != kMadeSpring ? previous.restLength[old] : topo.restLength[k] * (1.0f - prestrain);
+    if (from) (*from)[k] = old;
   }
   return topo;
 }
 
 Topology collapsedTopology(Topology previous, std::vector<uint32_t> triangles, const std::vector<uint32_t>& into,
-                           const Vec3Array& positions, float prestrain, std::vector<size_t>* made) {
+                           const Vec3Array& positions, float prestrain, std::vector<uint32_t>* from) {
   const size_t springs = previous.springCount();
   const auto endsOf = [&](size_t k) { return Edge{previous.springEnds[2 * k], previous.springEnds[2 * k + 1]}; };
   bool ordered = true;
   for (size_t k = 0; k < springs && ordered; ++k)
     ordered = endsOf(k).first < endsOf(k).second && (k == 0 || endsOf(k - 1) < endsOf(k));
   if (!previous.isClosed() || !ordered)
-    return rebuildTopology(previous, std::move(triangles), positions, prestrain, made);
+    return rebuildTopology(previous, std::move(triangles), positions, prestrain, from);
   const auto had = [&](uint32_t a, uint32_t b) {
     for (uint32_t k = previous.springOffset[a]; k < previous.springOffset[a + 1]; ++k)
       if (previous.springNeighbour[k] == b) return true;
@@ -197,20 +198,21 @@ Topology collapsedTopology(Topology previous, std::vector<uint32_t> triangles, c
   std::vector<float> restLength;
   springEnds.reserve(2 * (springs + moved.size()));
   restLength.reserve(springs + moved.size());
-  const auto add = [&](Edge e, float rest) {
+  if (from) from->clear();
+  const auto add = [&](Edge e, float rest, uint32_t old) {
     springEnds.push_back(e.first);
     springEnds.push_back(e.second);
     restLength.push_back(rest);
+    if (from) from->push_back(old);
   };
   const auto addMoved = [&](Edge e) {
-    if (made) made->push_back(restLength.size());
-    add(e, (positions.get(e.first) - positions.get(e.second)).norm() * (1.0f - prestrain));
+    add(e, (positions.get(e.first) - positions.get(e.second)).norm() * (1.0f - prestrain), kMadeSpring);
   };
   auto next = moved.begin();
   for (size_t k = 0; k < springs; ++k) {  // both in (lower, upper) order: merged as they come
     if (!stays(k)) continue;
     for (; next != moved.end() && *next < endsOf(k); ++next) addMoved(*next);
-    add(endsOf(k), previous.restLength[k]);
+    add(endsOf(k), previous.restLength[k], static_cast<uint32_t>(k));
   }
   for (; next != moved.end(); ++next) addMoved(*next);
   // The previous topology's arrays hold the new one: made anew in the memory they have (a fresh allocation for each

@@ -195,11 +195,16 @@ std::vector<EdgeUse> edgeUses(size_t particleCount, const std::vector<uint32_t>&
 // triangle list.
 Topology buildTopology(size_t particleCount, std::vector<uint32_t> triangles, const Vec3Array& positions);
 
+// Where each spring of a remade topology comes from (`from`, below): the previous topology's spring whose rest length
+// it keeps, or kMadeSpring for a spring made anew.
+constexpr uint32_t kMadeSpring = 0xffffffffu;
+
 // The topology of a changed mesh (new particles and triangles stitched to an old film): springs that the
 // previous topology had keep their rest length; new springs rest `prestrain` shorter than they are now,
-// as at film creation; `made`, if given, gets the new springs' indices.
+// as at film creation; `from`, if given, gets where each spring comes from (kMadeSpring: made anew). A device that
+// holds the rest lengths takes them from it (DeviceResidency::updateMergedRegion).
 Topology rebuildTopology(const Topology& previous, std::vector<uint32_t> triangles, const Vec3Array& positions,
-                         float prestrain, std::vector<size_t>* made = nullptr);
+                         float prestrain, std::vector<uint32_t>* from = nullptr);
 
 // The topology of a closed mesh after edges collapsed (a free bubble's crowded particles merged): particle i now
 // lies at into[i], `triangles` are the surviving ones relabelled, and no two collapsed edges share a triangle. The
@@ -208,7 +213,7 @@ Topology rebuildTopology(const Topology& previous, std::vector<uint32_t> triangl
 // rest length, one whose end moved is new unless the survivor had it. A mesh that is open, or whose springs are not
 // in (lower, upper) order, is rebuilt. The previous topology's arrays are reused (taken by value: move it in).
 Topology collapsedTopology(Topology previous, std::vector<uint32_t> triangles, const std::vector<uint32_t>& into,
-                           const Vec3Array& positions, float prestrain, std::vector<size_t>* made = nullptr);
+                           const Vec3Array& positions, float prestrain, std::vector<uint32_t>* from = nullptr);
 
 // Adds triangles to a mesh in place, without remaking what it had (the film growing a strip at its wire: a remade
 // topology cost 25 ms at 100,000 particles, every few frames while the film is drawn). `added` joins particles of the

@@ -393,7 +393,7 @@ void Simulation::advanceBurstWhereItLies(const FilmChecks& checks) {
       from = to;
     }
     std::sort(unread.begin(), unread.end());
-    if (!d.storeParticleArraysOf(film_, unread, {&s.position, &s.velocity, &s.liquid, &s.thickness})) {
+    if (!d.storeParticleArraysOf(film_, unread, {&s.position, &s.velocity, &s.liquid, &s.thickness}, {})) {
       pullState();  // a stepper that brings back only the whole state
       break;
     }
@@ -437,31 +437,60 @@ void Simulation::applyRulesOfAnUnbrokenFilm(const WandState& next, float wandSpe
 }
 
 void Simulation::mergeCrowdedParticlesWhereTheyLie(SpringEnergyAllowance& allowance) {
-  if (!stateOnDevice_ || !device()->storeRegion(film_, {}, {})) {  // the film in host memory, or a whole stepper
-    pullState();
+  CrowdedCandidates candidates;
+  if (!stateOnDevice_ || params_.tensionModel != 0 || !device()->findCrowdedSprings(candidates)) {
+    pullState();  // the film in host memory, or a stepper that does not find the merges' springs
     if (mergeCrowdedParticlesInRounds(params_, film_, allowance) > 0) reloadFilm();
     return;
   }
-  // The state stayed on the device. What the merges choose by, they read of every particle and spring: the positions,
-  // thickness and elasticity, and the rest lengths. Tried on a copy of the film, they name the particles they merge,
-  // whose state alone then comes back for the merges on the film; they choose the same again.
-  if (restLengthsOnDevice_) {
-    device()->storeRestLengths(film_);
-    restLengthsOnDevice_ = false;
+  // The state stayed on the device, which finds what each round tries. What the round reads comes back, and the
+  // device takes what it changed; the geometry is made anew after the last round, as the CPU's reload makes it.
+  std::vector<char> inHostMemory(film_.state.size(), 0);  // as the CPU's merges find it this frame
+  bool merged = false;
+  for (int round = 0; round < params_.mergeInterval; ++round) {
+    if (round > 0 && !device()->findCrowdedSprings(candidates))
+      throw std::logic_error("Simulation: a stepper that found the merges' springs finds them again");
+    if (candidates.springs.empty()) break;
+    bringBackWhatAMergeRoundReads(candidates.springs, inHostMemory);
+    std::vector<CrowdedSpring> tried = crowdedSpringsAmong(params_, film_, candidates.springs);
+    keepTheMergeable(tried, std::sqrt(candidates.medianSquaredLength));
+    const std::vector<Merge> merges = chooseMerges(film_, tried);
+    if (merges.empty()) break;
+    std::vector<uint32_t> particles;  // whose whole state the merges read and write
+    for (const Merge& m : merges) particles.insert(particles.end(), {m.survivor, m.joining});
+    std::sort(particles.begin(), particles.end());
+    device()->storeRegion(film_, particles, {});
+    std::vector<uint32_t> from;
+    makeMerges(params_, film_, merges, allowance, &from);
+    if (!device()->updateMergedRegion(params_, film_, particles, from))
+      throw std::logic_error("Simulation: a stepper that found the merges' springs takes their changes");
+    merged = true;
   }
+  if (!merged) return;
+  device()->refreshGeometry();
+  checksForNextFrame_.reset();  // of the film before it changed
+  ++loads_;
+  geometryFresh_ = false;  // in host memory only the merges' regions: stats() probes the device's
+  chooseSubsteps();
+}
+
+void Simulation::bringBackWhatAMergeRoundReads(std::span<const uint32_t> springs, std::vector<char>& inHostMemory) {
+  const Topology& topo = film_.topology;
+  std::vector<uint32_t> unread;
+  const auto read = [&](uint32_t i) {
+    if (inHostMemory[i]) return;
+    inHostMemory[i] = 1;
+    unread.push_back(i);
+  };
+  for (const uint32_t k : springs)
+    for (const uint32_t end : {topo.springEnds[2 * k], topo.springEnds[2 * k + 1]}) {
+      read(end);
+      for (uint32_t r = topo.springOffset[end]; r < topo.springOffset[end + 1]; ++r) read(topo.springNeighbour[r]);
+    }
+  std::sort(unread.begin(), unread.end());
   State& s = film_.state;
-  device()->storeParticleArrays(film_, {&s.position, &s.thickness, &s.elasticity});
-  positionsOnDevice_ = false;  // the merges keep them current in host memory
-  Film trial = film_;
-  SpringEnergyAllowance trialAllowance = allowance;
-  if (mergeCrowdedParticlesInRounds(params_, trial, trialAllowance) == 0) return;
-  std::vector<uint32_t> merged;  // the survivors, with their mass grown, and the particles merged into them
-  for (uint32_t i = 0; i < s.size(); ++i)
-    if (trial.state.alive[i] != s.alive[i] || trial.state.mass[i] != s.mass[i]) merged.push_back(i);
-  if (!device()->storeRegion(film_, merged, {}))
-    throw std::logic_error("Simulation: a stepper that brings back regions brings back every region");
-  mergeCrowdedParticlesInRounds(params_, film_, allowance);
-  reloadRegion({merged, {}}, s.size(), 0);  // every rest length: the springs were made anew
+  device()->storeParticleArraysOf(film_, unread, {&s.position, &s.thickness, &s.elasticity},
+                                  restLengthsOnDevice_ ? springs : std::span<const uint32_t>{});
 }
 
 void Simulation::yieldStretchedSpringsWhereTheyLie() {

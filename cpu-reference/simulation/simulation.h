@@ -7,7 +7,9 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <span>
 #include <stdexcept>
+#include <vector>
 
 #include "model/film.h"
 #include "stages/cpu_stepper.h"
@@ -195,9 +197,14 @@ class Simulation {
   void growFilm(const WandState& wands, float wandSpeed);
   // The rules of a film no burst is taking (applyRulesBetweenSteps): the rest-length rules, the merges and growth at
   // the wire, each where the state lies. A film whose state stayed on the device brings back the region a ring at
-  // the wire reads (wireGrowthRegion), or what the merges choose by and the particles they merge.
+  // the wire reads (wireGrowthRegion), or what the merges' springs found on the device read and the particles they
+  // merge.
   void applyRulesOfAnUnbrokenFilm(const WandState& next, float wandSpeed);
   void mergeCrowdedParticlesWhereTheyLie(SpringEnergyAllowance& allowance);
+  // What a round of merges reads of the springs it may try, where the state stayed on the device: the positions,
+  // thickness and elasticity of their ends and of the ends' one-rings (those not yet in host memory this frame), and
+  // their rest lengths where the device changed them.
+  void bringBackWhatAMergeRoundReads(std::span<const uint32_t> springs, std::vector<char>& inHostMemory);
   // After a rule changed `region` of a film left on the device and appended particles and springs from the first
   // new ones on: the stepper takes the region and the new ones (Stepper::updateRegion).
   void reloadRegion(const FilmRegion& region, size_t firstParticle, size_t firstSpring);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <span>
+#include <vector>
 
 #include "model/film.h"
 #include "model/params.h"
@@ -33,6 +34,16 @@ struct FilmSums {
   double maxSpeed = 0;
 };
 
+// What a round of merges tries, found on the device (kernels/statistics/crowded_springs.comp): the median of the
+// living springs' squared lengths (squaredLengthOf), exactly the CPU's, whose root is the CPU's median spring; and the
+// living springs that the film checks' loosened tests (kFilmCheckMargin) find crowded and shorter than kCrowdedEdge
+// of the median spring, ascending: every spring the CPU's tests pass (crowdedSpringsAmong, keepTheMergeable), and
+// perhaps a few more that they then drop.
+struct CrowdedCandidates {
+  float medianSquaredLength = 0.0f;
+  std::vector<uint32_t> springs;
+};
+
 class DeviceResidency {
  public:
   virtual ~DeviceResidency() = default;
@@ -49,10 +60,23 @@ class DeviceResidency {
   // store() brings back, of the particles listed, and the rest lengths of the springs listed (both ascending). False
   // where the stepper brings back nothing by regions (the caller then calls store()).
   virtual bool storeRegion(Film& film, std::span<const uint32_t> particles, std::span<const uint32_t> springs) = 0;
-  // Brings back the per-particle arrays of film.state listed (by address) of the particles listed (ascending): what
-  // the burst's front reads (particlesTheFrontReads). False where the stepper brings back nothing by regions.
+  // Brings back the per-particle arrays of film.state listed (by address) of the particles listed (ascending), and
+  // the rest lengths of the springs listed (ascending): what the burst's front reads (particlesTheFrontReads), or a
+  // round of merges. False where the stepper brings back nothing by regions.
   virtual bool storeParticleArraysOf(Film& film, std::span<const uint32_t> particles,
-                                     std::initializer_list<const void*> arrays) = 0;
+                                     std::initializer_list<const void*> arrays, std::span<const uint32_t> springs) = 0;
+  // Finds on the device what a round of merges tries (mergeCrowdedParticles, CrowdedCandidates above), from the state
+  // as the last step or update left it. False where the caller finds it in host memory.
+  virtual bool findCrowdedSprings(CrowdedCandidates& found) = 0;
+  // Takes a film whose merges (makeMerges) changed the particles listed (ascending) and renumbered its springs: those
+  // particles' per-particle arrays, the mesh's connectivity, and the rest lengths, each spring k keeping the one the
+  // device holds for spring from[k] of the mesh before, or taking the film's where from[k] is kMadeSpring. The
+  // geometry stays as the step left it (another round of merges reads the thickness the CPU's merges read) until
+  // refreshGeometry. False where the stepper takes only whole films.
+  virtual bool updateMergedRegion(const Params& params, Film& film, std::span<const uint32_t> particles,
+                                  std::span<const uint32_t> from) = 0;
+  // Brings the geometry and film state on the device up to the present positions, as a load leaves them.
+  virtual void refreshGeometry() = 0;
   // Takes a film that a rule between steps changed in a region and may have grown (film growth at the wire appends
   // particles, springs and triangles, old indices staying): the per-particle arrays of the particles listed and of
   // those from firstNewParticle on, the rest lengths of the springs listed and of those from firstNewSpring on, and the

@@ -362,36 +362,80 @@ size_t mergeCrowdedParticles(const Params& params, Film& film) {
 }
 
 size_t mergeCrowdedParticles(const Params& params, Film& film, SpringEnergyAllowance& allowance) {
-  Topology& topo = film.topology;
-  State& s = film.state;
-  if (!topo.isClosed() || params.tensionModel != 0 || topo.springCount() == 0) return 0;
-  const float dipThickness = initialThickness(params);
-  std::vector<std::pair<float, size_t>> crowded;  // length, spring: slack, with a thick end
-  for (size_t k = 0; k < topo.springCount(); ++k) {
-    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
-    if (!s.alive[a] || !s.alive[b]) continue;
-    const float length = (s.position.get(a) - s.position.get(b)).norm();
-    if (springCrowded(length, topo.restLength[k], std::max(s.thickness[a], s.thickness[b]), dipThickness))
-      crowded.emplace_back(length, k);
-  }
-  if (crowded.empty()) return 0;  // most frames: the median below is not needed
+  if (!film.topology.isClosed() || params.tensionModel != 0 || film.topology.springCount() == 0) return 0;
+  std::vector<CrowdedSpring> crowded = crowdedSprings(params, film);
+  if (crowded.empty()) return 0;  // most frames: the median is not needed
+  keepTheMergeable(crowded, medianSpringLength(film));
+  const std::vector<Merge> merges = chooseMerges(film, crowded);
+  if (!merges.empty()) makeMerges(params, film, merges, allowance);
+  return merges.size();
+}
+
+float springLength(const State& s, uint32_t a, uint32_t b) {
+  return std::sqrt(squaredLengthOf(s.position.x[a] - s.position.x[b], s.position.y[a] - s.position.y[b],
+                                   s.position.z[a] - s.position.z[b]));
+}
+
+float medianSpringLength(const Film& film) {
+  const Topology& topo = film.topology;
+  const State& s = film.state;
   std::vector<float> lengths;
   lengths.reserve(topo.springCount());
   for (size_t k = 0; k < topo.springCount(); ++k) {
     const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
-    if (s.alive[a] && s.alive[b]) lengths.push_back((s.position.get(a) - s.position.get(b)).norm());
+    if (s.alive[a] && s.alive[b]) lengths.push_back(springLength(s, a, b));
   }
+  if (lengths.empty()) return 0.0f;
   std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
-  const float shortest = kCrowdedEdge * lengths[lengths.size() / 2];
-  std::erase_if(crowded, [&](const std::pair<float, size_t>& c) { return !(c.first < shortest); });
-  if (crowded.empty()) return 0;
-  std::sort(crowded.begin(), crowded.end());  // the shortest first; ties by spring: deterministic
-  std::vector<char> touched(s.size(), 0);     // merged or beside a merge this frame: its ring has changed
-  std::vector<uint32_t> into(s.size());
-  for (uint32_t i = 0; i < into.size(); ++i) into[i] = i;
-  size_t merged = 0;
-  for (const auto& [length, k] : crowded) {
-    const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+  return lengths[lengths.size() / 2];
+}
+
+namespace {
+
+// Spring k with its length, where it lives and is crowded.
+std::optional<CrowdedSpring> crowdedSpring(const Params& params, const Film& film, size_t k) {
+  const Topology& topo = film.topology;
+  const State& s = film.state;
+  const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
+  if (!s.alive[a] || !s.alive[b]) return std::nullopt;
+  const float length = springLength(s, a, b);
+  if (!springCrowded(length, topo.restLength[k], std::max(s.thickness[a], s.thickness[b]), initialThickness(params)))
+    return std::nullopt;
+  return CrowdedSpring{length, k};
+}
+
+}  // namespace
+
+std::vector<CrowdedSpring> crowdedSprings(const Params& params, const Film& film) {
+  std::vector<CrowdedSpring> crowded;
+  for (size_t k = 0; k < film.topology.springCount(); ++k)
+    if (const std::optional<CrowdedSpring> c = crowdedSpring(params, film, k)) crowded.push_back(*c);
+  return crowded;
+}
+
+std::vector<CrowdedSpring> crowdedSpringsAmong(const Params& params, const Film& film,
+                                               std::span<const uint32_t> springs) {
+  std::vector<CrowdedSpring> crowded;
+  for (uint32_t k : springs)
+    if (const std::optional<CrowdedSpring> c = crowdedSpring(params, film, k)) crowded.push_back(*c);
+  return crowded;
+}
+
+void keepTheMergeable(std::vector<CrowdedSpring>& crowded, float medianLength) {
+  const float shortest = kCrowdedEdge * medianLength;
+  std::erase_if(crowded, [&](const CrowdedSpring& c) { return !(c.length < shortest); });
+  std::sort(crowded.begin(), crowded.end());
+}
+
+std::vector<Merge> chooseMerges(const Film& film, const std::vector<CrowdedSpring>& tried) {
+  const Topology& topo = film.topology;
+  const State& s = film.state;
+  // Merged or beside a merge this round: its ring changes. A merge leaves the positions that a later one reads
+  // as they were (those of its one-rings, which no merge before it touched), so the merges are chosen first.
+  std::vector<char> touched(s.size(), 0);
+  std::vector<Merge> merges;
+  for (const CrowdedSpring& c : tried) {
+    const uint32_t a = topo.springEnds[2 * c.spring], b = topo.springEnds[2 * c.spring + 1];
     if (touched[a] || touched[b]) continue;
     const float ma = s.mass[a], mb = s.mass[b];
     const Vec3 x = (ma * s.position.get(a) + mb * s.position.get(b)) / (ma + mb);
@@ -400,11 +444,21 @@ size_t mergeCrowdedParticles(const Params& params, Film& film, SpringEnergyAllow
       touched[p] = 1;
       for (uint32_t n : ringOf(topo, p)) touched[n] = 1;
     }
-    mergeInto(s, a, b);
-    into[b] = a;
-    ++merged;
+    merges.push_back({a, b});
   }
-  if (merged == 0) return 0;
+  return merges;
+}
+
+void makeMerges(const Params& params, Film& film, const std::vector<Merge>& merges, SpringEnergyAllowance& allowance,
+                std::vector<uint32_t>* from) {
+  Topology& topo = film.topology;
+  State& s = film.state;
+  std::vector<uint32_t> into(s.size());
+  for (uint32_t i = 0; i < into.size(); ++i) into[i] = i;
+  for (const Merge& m : merges) {
+    mergeInto(s, m.survivor, m.joining);
+    into[m.joining] = m.survivor;
+  }
   std::vector<uint32_t> triangles;
   triangles.reserve(topo.triangles.size());
   for (size_t t = 0; t < topo.triangleCount(); ++t) {
@@ -413,14 +467,17 @@ size_t mergeCrowdedParticles(const Params& params, Film& film, SpringEnergyAllow
     if (tri[0] == tri[1] || tri[1] == tri[2] || tri[0] == tri[2]) continue;  // the two across each merged edge
     triangles.insert(triangles.end(), tri.begin(), tri.end());
   }
-  std::vector<size_t> made;
-  topo = collapsedTopology(std::move(topo), std::move(triangles), into, s.position, params.springPrestrain, &made);
-  for (size_t k : made) {  // as taut as new film while the allowance pays, else at their length
+  std::vector<uint32_t> springFrom;
+  topo =
+      collapsedTopology(std::move(topo), std::move(triangles), into, s.position, params.springPrestrain, &springFrom);
+  for (size_t k = 0; k < springFrom.size();
+       ++k) {  // as taut as new film while the allowance pays, else at their length
+    if (springFrom[k] != kMadeSpring) continue;
     const uint32_t a = topo.springEnds[2 * k], b = topo.springEnds[2 * k + 1];
     const float length = (s.position.get(a) - s.position.get(b)).norm();
     if (!allowance.pays(springEnergy(s, a, b, length, topo.restLength[k]))) topo.restLength[k] = length;
   }
-  return merged;
+  if (from) *from = std::move(springFrom);
 }
 
 size_t yieldStretchedSprings(const Params& params, Film& film) {

@@ -12,6 +12,11 @@
 //     follows the remaining solution as a dip with that much solution would (Figure 9): spacing ~
 //     1 / sqrt(solution). A dry wire pays out no film.
 
+#include <compare>
+#include <cstdint>
+#include <span>
+#include <vector>
+
 #include "model/film.h"
 
 namespace gb {
@@ -90,11 +95,44 @@ ContractionEnergy contractionEnergy(const Params& params, const Film& film);
 // break the manifold (the two one-rings share other particles than the two across the edge) or turn a triangle
 // over, and no two merges touch the same one-ring in one call. New springs rest as at creation
 // (rebuildTopology). Returns how many particles merged; the caller refreshes the geometry and reloads the stepper.
-constexpr float kCrowdedEdge = 0.5f;
+// kCrowdedEdge (shared_formulas.h) is the fraction of the median spring.
 // The springs a merge makes rest as taut as new film while `allowance` pays for their energy, at their length
 // (no energy) after.
 size_t mergeCrowdedParticles(const Params& params, Film& film, SpringEnergyAllowance& allowance);
 size_t mergeCrowdedParticles(const Params& params, Film& film);  // no bound
+
+// mergeCrowdedParticles in its parts, for a film whose state is on a device and comes back in regions
+// (Simulation::mergeCrowdedParticlesWhereTheyLie): each part reads the film's state only where it says.
+//
+// A crowded spring (springCrowded) and its length.
+struct CrowdedSpring {
+  float length;
+  size_t spring;
+  auto operator<=>(const CrowdedSpring&) const = default;  // the shortest first; ties by spring: deterministic
+};
+// The length of the spring between particles a and b: the root of squaredLengthOf, as the device's median is taken.
+float springLength(const State& s, uint32_t a, uint32_t b);
+// The median of the living springs' lengths (both ends alive): reads every position.
+float medianSpringLength(const Film& film);
+// The living springs that are crowded, of all (reads every position and thickness and rest length), or of those
+// listed (reads only theirs and their ends').
+std::vector<CrowdedSpring> crowdedSprings(const Params& params, const Film& film);
+std::vector<CrowdedSpring> crowdedSpringsAmong(const Params& params, const Film& film,
+                                               std::span<const uint32_t> springs);
+// Keeps those shorter than kCrowdedEdge of the median spring, shortest first: the springs a merge round tries.
+void keepTheMergeable(std::vector<CrowdedSpring>& crowded, float medianLength);
+// A merge: the particle that joins another, and the one it joins (which survives at their centre of mass).
+struct Merge {
+  uint32_t survivor, joining;
+};
+// The merges a round makes of the springs it tries, in that order: those that keep the mesh a manifold without
+// folds, no two touching the same one-ring. Reads the positions of the springs' ends and their one-rings.
+std::vector<Merge> chooseMerges(const Film& film, const std::vector<CrowdedSpring>& tried);
+// Makes the merges and collapses the mesh; `from`, if given, gets where each spring of the new mesh comes from
+// (collapsedTopology). Reads and writes the whole state of the merged particles, and reads the positions, thickness
+// and elasticity of their one-rings.
+void makeMerges(const Params& params, Film& film, const std::vector<Merge>& merges, SpringEnergyAllowance& allowance,
+                std::vector<uint32_t>* from = nullptr);
 
 struct GrowthEvent {
   size_t restLengthsChanged = 0;  // rungs lengthened by the payout

@@ -155,6 +155,15 @@ GB_FORMULA float contractionShareOf(float quadratic, float linear, float allowan
 GB_FORMULA float contractedRestLengthOf(float rest, float taut, float share) {
   return share == 1.0f ? taut : rest + share * (taut - rest);
 }
+// The squared length of a spring (x, y, z its ends' difference), summed as Eigen's norm() sums a Vec3, x^2 + (y^2 +
+// z^2): the merges' median spring is chosen among these on the device (kernels/statistics/crowded_springs.comp) and its
+// square root taken on the CPU, which must give the median of the CPU's lengths to the last bit.
+GB_FORMULA float squaredLengthOf(float x, float y, float z) {
+  GB_PRECISE const float squared = x * x + (y * y + z * z);
+  return squared;
+}
+// A crowded spring merges its ends only if shorter than this fraction of the film's median spring.
+GB_CONST float kCrowdedEdge = 0.5f;
 // Crowding (mergeCrowdedParticles): a slack spring with an end at least as thick as the dip may merge its ends (if
 // it is also short against the film's median spring).
 GB_FORMULA bool springCrowded(float length, float rest, float thickerEnd, float dipThickness) {

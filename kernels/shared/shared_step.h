@@ -145,6 +145,14 @@ struct PushBlock {
 #define GB_STATISTICS_TERMS 28
 #define GB_STAT_KEEPS_LARGEST(c) ((c) == GB_STAT_SPEED || (c) >= GB_STAT_UNSTABLE)
 
+// Between frames the statistics region also holds the merges' work: what crowded_springs finds (the median squared
+// spring length, the living springs, the springs listed, then the list: spring numbers as floats, exact below 2^24
+// springs), or what rest_length_gather reads (where each spring of the new mesh comes from, as floats, negative for a
+// spring made anew; then the rest lengths of the mesh before).
+#define GB_CROWDED_MEDIAN 0
+#define GB_CROWDED_LIVING 1
+#define GB_CROWDED_LISTED 2
+#define GB_CROWDED_LIST 3
 #ifdef __cplusplus
 namespace gb::gpu {
 #define GB_REGION inline constexpr

@@ -74,6 +74,10 @@ CLI::App* addLiveCommand(CLI::App& app, LiveOptions& o) {
   cmd->add_flag("--fixed-step", o.fixedStep,
                 "advance one 0.02 s frame per presented frame instead of keeping the wall clock (slow motion on a slow "
                 "machine)");
+  cmd->add_option("--min-render-scale", o.minRenderScale,
+                  "smallest image drawn when the machine cannot keep up, as a fraction of the window's width and "
+                  "height (scaled up to the window; 1: always the window's size)")
+      ->check(FiniteRange(0.1, 1.0));
   cmd->add_option("--min-sweeps", o.minSweeps, "fewest solver sweeps per frame when the machine cannot keep up")
       ->transform(WholeNumber(1, 1000));
   cmd->add_option(

@@ -200,22 +200,28 @@ std::optional<KeyPress> parseKeyPress(const std::string& text, std::string& why)
   return press;
 }
 
-void LiveShow::FilmShownTally::add(int frames, int sweepsTaken, double seconds) {
+void LiveShow::FilmShownTally::add(int frames, int sweepsTaken, double seconds, double renderScale) {
   ++presented;
   simulated += frames;
   sweeps += static_cast<long>(sweepsTaken) * frames;
   wallSeconds += seconds;
+  if (renderScale < 1.0) ++drawnSmaller;
+  smallestScale = std::min(smallestScale, renderScale);
 }
 
 std::string LiveShow::FilmShownTally::describe(double frameTime) const {
   if (presented == 0) return "no film was shown";
-  char text[200];
-  std::snprintf(text, sizeof text,
-                "while a film was shown: %ld frames presented in %.2f s (%.1f frames/s), real time x%.2f, %.1f "
-                "sweeps a frame",
-                presented, wallSeconds, static_cast<double>(presented) / std::max(wallSeconds, 1e-9),
-                static_cast<double>(simulated) * frameTime / std::max(wallSeconds, 1e-9),
-                static_cast<double>(sweeps) / static_cast<double>(std::max(simulated, 1L)));
+  char text[260];
+  const int written = std::snprintf(
+      text, sizeof text,
+      "while a film was shown: %ld frames presented in %.2f s (%.1f frames/s), real time x%.2f, %.1f sweeps a frame",
+      presented, wallSeconds, static_cast<double>(presented) / std::max(wallSeconds, 1e-9),
+      static_cast<double>(simulated) * frameTime / std::max(wallSeconds, 1e-9),
+      static_cast<double>(sweeps) / static_cast<double>(std::max(simulated, 1L)));
+  if (drawnSmaller > 0 && written > 0 && static_cast<size_t>(written) < sizeof text)
+    std::snprintf(text + written, sizeof text - static_cast<size_t>(written),
+                  ", %ld drawn smaller than the window (down to %.0f%% of its width and height)", drawnSmaller,
+                  100.0 * smallestScale);
   return text;
 }
 
@@ -714,7 +720,8 @@ void LiveShow::present(const WindowKeys& keys, int due, double simMs) {
   const auto now = std::chrono::steady_clock::now();
   pacer_->record(due, simMs, std::chrono::duration<double, std::milli>(now - renderStart).count());
   if (filmGoneSince_ < 0 && !paused_)
-    filmShown_.add(due, sim_->solverSweeps(), std::chrono::duration<double>(now - lastPresented_).count());
+    filmShown_.add(due, sim_->solverSweeps(), std::chrono::duration<double>(now - lastPresented_).count(),
+                   pacer_->renderScale());
   lastPresented_ = now;
   if (control_)
     control_->publish(*sim_, t_, paused_,

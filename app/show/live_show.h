@@ -172,7 +172,9 @@ class LiveShow {
   struct FilmShownTally {
     long presented = 0, simulated = 0, sweeps = 0;
     double wallSeconds = 0;
-    void add(int frames, int sweepsTaken, double seconds);
+    long drawnSmaller = 0;     // frames drawn smaller than the window (dynamic resolution)
+    double smallestScale = 1;  // the smallest of them, as a fraction of the window's width and height
+    void add(int frames, int sweepsTaken, double seconds, double renderScale);
     [[nodiscard]] std::string describe(double frameTime) const;
   } filmShown_;
   // How often the film was in the picture while it was on stage: its centre inside the image.

@@ -77,9 +77,8 @@ void main() {
       if (j < i || alive[j] == 0u) continue;
       const float squared = squaredSpringLength(i, j);
       const uint spring = springIndex[k];
-      if (!(squared * kLess < shortestSquared) ||
-          !springCrowded(sqrt(squared) * kLess, restLength[spring], max(thickness[i], thickness[j]) * kMore,
-                         dipThickness))
+      if (!(squared * kLess < shortestSquared) || !springCrowded(sqrt(squared) * kLess, restLength[spring],
+                                                                 max(thickness[i], thickness[j]) * kMore, dipThickness))
         continue;
       const uint slot = atomicAdd(listed, 1u);
       if (slot < room) reduce[pc.first + uint(GB_CROWDED_LIST) + slot] = float(spring);

@@ -448,8 +448,10 @@ void Simulation::mergeCrowdedParticlesWhereTheyLie(SpringEnergyAllowance& allowa
   std::vector<char> inHostMemory(film_.state.size(), 0);  // as the CPU's merges find it this frame
   bool merged = false;
   for (int round = 0; round < params_.mergeInterval; ++round) {
-    if (round > 0 && !device()->findCrowdedSprings(candidates))
-      throw std::logic_error("Simulation: a stepper that found the merges' springs finds them again");
+    if (round > 0 && !device()->findCrowdedSprings(candidates)) {  // the device took every change so far
+      finishMergesInHostMemory(allowance, params_.mergeInterval - round);
+      return;
+    }
     if (candidates.springs.empty()) break;
     bringBackWhatAMergeRoundReads(candidates.springs, inHostMemory);
     std::vector<CrowdedSpring> tried = crowdedSpringsAmong(params_, film_, candidates.springs);
@@ -462,7 +464,7 @@ void Simulation::mergeCrowdedParticlesWhereTheyLie(SpringEnergyAllowance& allowa
     device()->storeRegion(film_, particles, {});
     std::vector<uint32_t> from;
     makeMerges(params_, film_, merges, allowance, &from);
-    if (!device()->updateMergedRegion(params_, film_, particles, from))
+    if (!device()->updateMergedRegion(params_, film_, particles, from))  // a stepper with no film loaded
       throw std::logic_error("Simulation: a stepper that found the merges' springs takes their changes");
     merged = true;
   }
@@ -472,6 +474,13 @@ void Simulation::mergeCrowdedParticlesWhereTheyLie(SpringEnergyAllowance& allowa
   ++loads_;
   geometryFresh_ = false;  // in host memory only the merges' regions: stats() probes the device's
   chooseSubsteps();
+}
+
+void Simulation::finishMergesInHostMemory(SpringEnergyAllowance& allowance, int rounds) {
+  pullState();
+  for (int round = 0; round < rounds; ++round)
+    if (mergeCrowdedParticles(params_, film_, allowance) == 0) break;
+  reloadFilm();
 }
 
 void Simulation::bringBackWhatAMergeRoundReads(std::span<const uint32_t> springs, std::vector<char>& inHostMemory) {

@@ -205,6 +205,9 @@ class Simulation {
   // thickness and elasticity of their ends and of the ends' one-rings (those not yet in host memory this frame), and
   // their rest lengths where the device changed them.
   void bringBackWhatAMergeRoundReads(std::span<const uint32_t> springs, std::vector<char>& inHostMemory);
+  // Where the device cannot find the merges' springs after a round it took (their list outgrew its room): the film
+  // comes back whole and the rounds left run on it, then the stepper takes it whole.
+  void finishMergesInHostMemory(SpringEnergyAllowance& allowance, int rounds);
   // After a rule changed `region` of a film left on the device and appended particles and springs from the first
   // new ones on: the stepper takes the region and the new ones (Stepper::updateRegion).
   void reloadRegion(const FilmRegion& region, size_t firstParticle, size_t firstSpring);

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
+#include <utility>
 
 #include "host/banner_text.h"
 #include "host/device_buffer.h"
@@ -112,6 +114,12 @@ struct Window::Impl {
   DeviceImage captureImage;
   DeviceBuffer captureBuffer;
   std::vector<uint8_t> capturedPixels;
+  // A frame submitted and not yet shown (submit, showSubmitted): its renderer and the swapchain image it goes to.
+  struct Pending {
+    Renderer* renderer;
+    uint32_t image;
+  };
+  std::optional<Pending> pending;
   WindowKeys keys;
   PointerListener pointer;  // empty: the mouse only moves the camera
   std::string message;      // the banner's text (showMessage), shown until messageUntil
@@ -173,6 +181,7 @@ struct Window::Impl {
   }
 
   ~Impl() {
+    if (pending) ctx->device.waitIdle();  // a frame still drawn into a swapchain image
     swapchain.clear();
     surface.clear();
     if (window) glfwDestroyWindow(window);
@@ -451,6 +460,7 @@ WindowKeys Window::poll() {
 
 void Window::setFullscreen(bool on) {
   if (on == impl_->fullscreen) return;
+  showSubmitted();  // into the swapchain it was drawn for
   if (on)
     impl_->enterFullscreen();
   else
@@ -466,6 +476,7 @@ std::array<int, 2> Window::size() const {
 }
 
 void Window::setInset(int width, int height, const std::vector<uint8_t>& rgb) {
+  showSubmitted();  // its blit reads the layer's pixels
   Impl& m = *impl_;
   if (rgb.empty() || width <= 0 || height <= 0) {
     m.inset.uploaded = false;
@@ -485,6 +496,7 @@ void Window::setOperatorOverlay(bool on) { impl_->operatorOverlay = on; }
 bool Window::operatorOverlay() const { return impl_->operatorOverlay; }
 
 void Window::captureFrames(int width, int height) {
+  showSubmitted();  // its blit writes the copy
   Impl& m = *impl_;
   m.ctx->device.waitIdle();
   m.captureBuffer = DeviceBuffer();
@@ -510,23 +522,38 @@ void Window::showMessage(const std::string& line, double seconds) {
 }
 
 void Window::present(Renderer& renderer, RenderFrame frame) {
+  submit(renderer, std::move(frame));
+  showSubmitted();
+}
+
+void Window::submit(Renderer& renderer, RenderFrame frame) {
+  showSubmitted();
   Impl& m = *impl_;
   const uint32_t index = m.acquire();
   if (m.operatorOverlay) m.updateOverlay();
   const vk::Extent2D from(static_cast<uint32_t>(renderer.options().width),
                           static_cast<uint32_t>(renderer.options().height));
-  renderer.render(frame, false,
+  renderer.submit(frame, false,
                   [&](const vk::raii::CommandBuffer& cb, vk::Image output) { m.recordBlit(cb, output, from, index); });
-  if (m.captureBuffer.size() > 0) {  // render() waited for the frame: its copy is there
+  m.pending = Impl::Pending{&renderer, index};
+}
+
+bool Window::showSubmitted() {
+  Impl& m = *impl_;
+  if (!m.pending) return false;
+  const Impl::Pending shown = *std::exchange(m.pending, std::nullopt);
+  shown.renderer->wait();
+  if (m.captureBuffer.size() > 0) {  // the frame's copy is there
     m.capturedPixels.resize(m.captureBuffer.size());
     m.captureBuffer.read(m.capturedPixels.data(), m.capturedPixels.size());
   }
   try {
     const vk::SwapchainKHR chain = *m.swapchain;
-    (void)m.ctx->queue.presentKHR(vk::PresentInfoKHR({}, chain, index));
+    (void)m.ctx->queue.presentKHR(vk::PresentInfoKHR({}, chain, shown.image));
   } catch (const vk::OutOfDateKHRError&) {
     m.makeSwapchain();
   }
+  return true;
 }
 
 }  // namespace gb

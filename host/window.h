@@ -73,6 +73,12 @@ class Window {
   // Renders `frame` (with its own camera) and shows it: the renderer's image scaled to the window, the inset over
   // its bottom right corner. Waits until it is presented.
   void present(Renderer& renderer, RenderFrame frame);
+  // present() in two halves, so that the caller may simulate the next frame while the device draws this one:
+  // submit() starts drawing `frame` (everything it points to is copied first, Renderer::submit) after showing a frame
+  // still pending; showSubmitted() waits for it and shows it (false when none is pending). A pending frame is shown
+  // first by whatever changes what the window draws into (present, setFullscreen, setInset, captureFrames).
+  void submit(Renderer& renderer, RenderFrame frame);
+  bool showSubmitted();
 
   // Full screen: borderless over the placement's monitor at its own resolution (no change of video mode), or back
   // to the window as it was. The swapchain follows at once; size() says its new size.

@@ -697,8 +697,12 @@ void LiveShow::advanceStep(int frames) {
 }
 
 // The frame drawn (the window's blit scales the image to the window: dynamic resolution), streamed and counted.
+// With the film in host memory the device draws it while the next frame is simulated: the frame drawn last time is
+// shown and streamed here first, and this one goes to the device. A film drawn in place from the stepper's buffers
+// is drawn and shown at once, since the next step writes those buffers.
 void LiveShow::present(const WindowKeys& keys, int due, double simMs) {
   const auto renderStart = std::chrono::steady_clock::now();
+  showDrawnFrame();
   const auto [width, height] = showSize();
   renderer_->resize(std::max(16, static_cast<int>(std::lround(width * pacer_->renderScale()))),
                     std::max(16, static_cast<int>(std::lround(height * pacer_->renderScale()))));
@@ -711,12 +715,8 @@ void LiveShow::present(const WindowKeys& keys, int due, double simMs) {
   DeviceFilm deviceFilm;
   RenderFrame frame = renderFrameOf(*sim_, wire, view, readInPlace_, deviceFilm);
   mirrorView_.apply(frame, input_ ? input_->cameraCalibration() : nullptr);
-  window_.present(*renderer_, frame);
-  overlap_.addRender(renderer_->takeDrawnIntervals());
-  if (stream_) {
-    stream_->offer(window_.captured());
-    for (const std::string& m : stream_->takeMessages()) std::fprintf(stderr, "warning: %s\n", m.c_str());
-  }
+  window_.submit(*renderer_, frame);
+  if (readInPlace_) showDrawnFrame();
   const auto now = std::chrono::steady_clock::now();
   pacer_->record(due, simMs, std::chrono::duration<double, std::milli>(now - renderStart).count());
   if (filmGoneSince_ < 0 && !paused_)
@@ -735,7 +735,17 @@ void LiveShow::present(const WindowKeys& keys, int due, double simMs) {
   }
 }
 
+void LiveShow::showDrawnFrame() {
+  if (!window_.showSubmitted()) return;
+  overlap_.addRender(renderer_->takeDrawnIntervals());
+  if (stream_) {
+    stream_->offer(window_.captured());
+    for (const std::string& m : stream_->takeMessages()) std::fprintf(stderr, "warning: %s\n", m.c_str());
+  }
+}
+
 int LiveShow::finish() {
+  showDrawnFrame();  // the last frame drawn
   const auto end = std::chrono::steady_clock::now();
   const double seconds = std::chrono::duration<double>(end - start_).count();
   const size_t errors = window_.context()->validationErrors();
@@ -746,7 +756,7 @@ int LiveShow::finish() {
       "from instability\n",
       shown_, seconds, static_cast<double>(shown_) / std::max(seconds, 1e-9), dips_, errors, recoveries_);
   std::printf("live: %s\n", filmShown_.describe(run_.params.frameTime).c_str());
-  // The window draws each frame after its step and waits for it: the two take turns (the overlap near 0).
+  // With the film in host memory the device draws each frame while the next one is simulated.
   std::printf("live: the step and the render overlapped %s\n", describeOverlap(overlap_.totals(), seconds).c_str());
   std::printf(
       "live: a film was on stage for %.1f%% of the show's wall time (%.1f of %.1f s); the performance "

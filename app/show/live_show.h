@@ -93,6 +93,8 @@ class LiveShow {
   void moveWands();
   void advanceStep(int frames);
   void present(const WindowKeys& keys, int due, double simMs);
+  // Waits for the frame drawn last and shows it (Window::showSubmitted), streams it and counts its drawing.
+  void showDrawnFrame();
 
   // What the show says and does on the way.
   void say(long frame, const std::string& what) const;

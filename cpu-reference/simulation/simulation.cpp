@@ -125,11 +125,12 @@ double millisecondsBetween(Clock::time_point from, Clock::time_point to) {
   return std::chrono::duration<double, std::milli>(to - from).count();
 }
 
-// The merges of a frame on which they are due: up to one round for each frame since the last (a round merges no two
-// particles of one one-ring), so that they keep up with the film as when they run every frame.
-size_t mergeCrowdedParticlesInRounds(const Params& params, Film& film, SpringEnergyAllowance& allowance) {
+// The merges of a frame on which they are due: up to `rounds` rounds, one for each frame since the last
+// (Params::mergeInterval; a round merges no two particles of one one-ring), so that they keep up with the film as when
+// they run every frame.
+size_t mergeCrowdedParticlesInRounds(const Params& params, Film& film, SpringEnergyAllowance& allowance, int rounds) {
   size_t merged = 0;
-  for (int round = 0; round < params.mergeInterval; ++round) {
+  for (int round = 0; round < rounds; ++round) {
     const size_t more = mergeCrowdedParticles(params, film, allowance);
     if (more == 0) break;
     merged += more;
@@ -440,7 +441,7 @@ void Simulation::mergeCrowdedParticlesWhereTheyLie(SpringEnergyAllowance& allowa
   CrowdedCandidates candidates;
   if (!stateOnDevice_ || params_.tensionModel != 0 || !device()->findCrowdedSprings(candidates)) {
     pullState();  // the film in host memory, or a stepper that does not find the merges' springs
-    if (mergeCrowdedParticlesInRounds(params_, film_, allowance) > 0) reloadFilm();
+    if (mergeCrowdedParticlesInRounds(params_, film_, allowance, params_.mergeInterval) > 0) reloadFilm();
     return;
   }
   // The state stayed on the device, which finds what each round tries. What the round reads comes back, and the
@@ -478,8 +479,7 @@ void Simulation::mergeCrowdedParticlesWhereTheyLie(SpringEnergyAllowance& allowa
 
 void Simulation::finishMergesInHostMemory(SpringEnergyAllowance& allowance, int rounds) {
   pullState();
-  for (int round = 0; round < rounds; ++round)
-    if (mergeCrowdedParticles(params_, film_, allowance) == 0) break;
+  mergeCrowdedParticlesInRounds(params_, film_, allowance, rounds);
   reloadFilm();
 }
 

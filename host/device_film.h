@@ -1,6 +1,6 @@
 #pragma once
-// The film as it lies in the Vulkan stepper's storage buffers, for the renderer to read in place (no copy to the
-// host and back): positions, vertex normals and air flow as x, y, z blocks of `particles` floats, thickness one
+// The film as it lies in the Vulkan stepper's storage buffers, for the renderer to copy on the device (never
+// through the host): positions, vertex normals and air flow as x, y, z blocks of `particles` floats, thickness one
 // float per particle, triangles three indices each.
 
 #include <cstdint>

@@ -153,9 +153,12 @@ struct Renderer::Impl {
   // attachments (its external dependencies).
   struct FrameSlot {
     vk::raii::CommandBuffer commands{nullptr};
+    vk::raii::CommandBuffer snapshotCommands{nullptr};  // copies a film read on the device into the buffers below
     vk::raii::Fence done{nullptr};
-    bool inFlight = false;  // `commands` submitted and not yet waited for
+    bool inFlight = false;    // `commands` submitted and not yet waited for
+    bool filmCopied = false;  // the film was copied on the device (copyOnTheDevice), not uploaded from the host
     Renderer::Ticket ticket = 0;
+    // The frame's own film (uploaded from the host, or copied from the stepper's buffers), props, droplets, swirls.
     DeviceBuffer uniforms, position, normal, thickness, airFlow, triangles, propsMesh, dropletBuffer, variation;
     DeviceBuffer cameraColour, cameraDepth;  // the mirror view's camera image
     DeviceBuffer readback;
@@ -196,6 +199,7 @@ struct Renderer::Impl {
     for (FrameSlot& f : slots) {
       f.uniforms = DeviceBuffer(*ctx, sizeof(RenderUniforms));
       f.commands = ctx->newCommandBuffer();
+      f.snapshotCommands = ctx->newCommandBuffer();
       f.done = ctx->newFence();
       if (ctx->timestampsOnHostClock())
         f.timestamps = vk::raii::QueryPool(ctx->device, vk::QueryPoolCreateInfo({}, vk::QueryType::eTimestamp, 2));
@@ -515,9 +519,13 @@ struct Renderer::Impl {
     if (buffer.size() < std::max<size_t>(bytes, 16)) buffer = DeviceBuffer(*ctx, bytes + bytes / 2);
   }
 
-  // The film's buffers for this frame: the stepper's own, or a copy of the host state.
+  // The film's buffers for this frame: a copy of the stepper's own made on the device, or of the host state.
   DeviceFilm filmBuffers(const RenderFrame& frame) {
-    if (frame.deviceFilm) return *frame.deviceFilm;
+    slot().filmCopied = frame.deviceFilm != nullptr;
+    if (frame.deviceFilm) {
+      copyOnTheDevice(*frame.deviceFilm);
+      return slotFilm(frame.deviceFilm->particleCount, frame.deviceFilm->triangleCount);
+    }
     const State& s = frame.film->state;
     const std::vector<uint32_t>& tris = frame.film->topology.triangles;
     const size_t n = s.size(), bytes = n * sizeof(float);
@@ -536,13 +544,38 @@ struct Renderer::Impl {
     writeVec3(slot().airFlow, s.airFlow);
     slot().thickness.write(s.thickness.data(), bytes);
     slot().triangles.write(tris.data(), tris.size() * sizeof(uint32_t));
-    return {slot().position.handle(),
-            slot().normal.handle(),
-            slot().thickness.handle(),
-            slot().airFlow.handle(),
-            slot().triangles.handle(),
-            static_cast<uint32_t>(n),
-            static_cast<uint32_t>(frame.film->topology.triangleCount())};
+    return slotFilm(static_cast<uint32_t>(n), static_cast<uint32_t>(frame.film->topology.triangleCount()));
+  }
+  DeviceFilm slotFilm(uint32_t particles, uint32_t triangles) const {
+    const FrameSlot& f = slot();
+    return {f.position.handle(), f.normal.handle(), f.thickness.handle(), f.airFlow.handle(), f.triangles.handle(),
+            particles,           triangles};
+  }
+
+  // The Vulkan stepper's film copied into this frame's buffers on the device, waited for: the caller may then step
+  // again, writing the stepper's buffers, while the frame is drawn from the copy. The copy costs the device a pass
+  // over the film's arrays; a step that waited for the drawing would cost it the whole render.
+  void copyOnTheDevice(const DeviceFilm& f) {
+    const vk::DeviceSize bytes = static_cast<vk::DeviceSize>(f.particleCount) * sizeof(float);
+    struct Copy {
+      vk::Buffer from;
+      DeviceBuffer& to;
+      vk::DeviceSize bytes;
+    };
+    const Copy copies[] = {{f.position, slot().position, 3 * bytes},
+                           {f.normal, slot().normal, 3 * bytes},
+                           {f.airFlow, slot().airFlow, 3 * bytes},
+                           {f.thickness, slot().thickness, bytes},
+                           {f.triangles, slot().triangles, 3ull * f.triangleCount * sizeof(uint32_t)}};
+    const vk::raii::CommandBuffer& cb = slot().snapshotCommands;
+    cb.reset();
+    cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
+    for (const Copy& c : copies) {
+      reserve(c.to, c.bytes);
+      if (c.bytes > 0) cb.copyBuffer(c.from, c.to.handle(), vk::BufferCopy(0, 0, c.bytes));
+    }
+    cb.end();
+    ctx->submitAndWait(cb);
   }
 
   void uploadPropsAndDroplets(const RenderFrame& frame) {
@@ -659,6 +692,10 @@ struct Renderer::Impl {
     if (timestamps) {
       cb.resetQueryPool(timestamps, 0, 2);
       cb.writeTimestamp(Stage::eTopOfPipe, timestamps, 0);
+    }
+    if (slot().filmCopied) {  // the copy's writes, seen by the film's index and vertex reads
+      const vk::MemoryBarrier copied(Access::eTransferWrite, Access::eIndexRead | Access::eShaderRead);
+      cb.pipelineBarrier(Stage::eTransfer, Stage::eVertexInput | Stage::eVertexShader, {}, copied, {}, {});
     }
     const vk::Rect2D area({0, 0}, extent);
     const std::array<vk::DescriptorSet, 2> sets{*slot().sceneSet, *compositeSet};

@@ -65,8 +65,8 @@ struct RenderFrame {
   // The film's topology, and its state: uploaded whole without deviceFilm; with it, the positions of the hole rims
   // and, for the drawn swirls (thicknessVariation), which particles are new are read from it.
   const Film* film = nullptr;
-  const DeviceFilm* deviceFilm = nullptr;  // the Vulkan stepper's buffers on the renderer's device: read in
-                                           // place; null: the film's state is uploaded from the host
+  const DeviceFilm* deviceFilm = nullptr;  // the Vulkan stepper's buffers on the renderer's device: copied there,
+                                           // never through the host; null: the film's state is uploaded
   const Aerosol* aerosol = nullptr;
   float aerosolLifetime = 1.0f;                            // s, for the droplets' fade
   float blackFilmThickness = Params{}.blackFilmThickness;  // m: thinner film is drawn as black film
@@ -92,10 +92,10 @@ class Renderer {
   // commands into the same submission once the output image is in transfer-source layout (the window's blit).
   using AfterRender = std::function<void(const vk::raii::CommandBuffer&, vk::Image output)>;
   void render(const RenderFrame& frame, bool readback = true, const AfterRender& after = {});
-  // The same without waiting: everything `frame` points to is copied to the device before it returns, so the
-  // caller may change it (simulate the next frame) while the device draws. Two frames may be in flight: the one
-  // submitted two calls before is waited for first. A film read in place (`frame.deviceFilm`) must stay unchanged
-  // until wait(). Returns the frame's ticket, for readPixels.
+  // The same without waiting: everything `frame` points to is copied before it returns, so the caller may change it
+  // (simulate the next frame) while the device draws. A film on the device (`frame.deviceFilm`) is copied there into
+  // the frame's own buffers, and submit waits for that copy alone. Two frames may be in flight: the one submitted two
+  // calls before is waited for first. Returns the frame's ticket, for readPixels.
   using Ticket = uint64_t;
   Ticket submit(const RenderFrame& frame, bool readback = true, const AfterRender& after = {});
   void wait();  // for every frame submitted

@@ -99,9 +99,9 @@ class VulkanStepper final : public Stepper, public DeviceResidency {
                     std::span<const uint32_t> springs, size_t firstNewSpring) override;
 
   [[nodiscard]] const VulkanContext& context() const;
-  // The film's buffers as the last batch left them, for a renderer on the same device to read in place.
+  // The film's buffers as the last batch left them, for a renderer on the same device to copy there.
   [[nodiscard]] DeviceFilm deviceFilm();
-  // The device, for a renderer that reads deviceFilm() in place.
+  // The device, for a renderer that copies deviceFilm() there.
   [[nodiscard]] std::shared_ptr<const VulkanContext> sharedContext() const;
 
  private:

@@ -209,18 +209,20 @@ void VideoWriter::close() {
                                               : " (killed by signal " + std::to_string(WTERMSIG(status)) + ")"));
 }
 
-const Film& filmToDraw(Simulation& sim, bool readInPlace) { return readInPlace ? sim.filmPositionsOnly() : sim.film(); }
+const Film& filmToDraw(Simulation& sim, bool filmOnDevice) {
+  return filmOnDevice ? sim.filmPositionsOnly() : sim.film();
+}
 
-RenderFrame renderFrameOf(Simulation& sim, const WireFrame& wireFrame, const OrbitCamera& camera, bool readInPlace,
+RenderFrame renderFrameOf(Simulation& sim, const WireFrame& wireFrame, const OrbitCamera& camera, bool filmOnDevice,
                           DeviceFilm& deviceFilm) {
   RenderFrame f;
-  f.film = &filmToDraw(sim, readInPlace);
+  f.film = &filmToDraw(sim, filmOnDevice);
   f.aerosol = &sim.aerosol();
   f.aerosolLifetime = sim.params().aerosolLifetime;
   f.blackFilmThickness = sim.params().blackFilmThickness;
   f.wireFrame = &wireFrame;
   f.camera = camera;
-  if (readInPlace) {
+  if (filmOnDevice) {
     deviceFilm = dynamic_cast<VulkanStepper&>(sim.stepper()).deviceFilm();
     f.deviceFilm = &deviceFilm;
   }
@@ -236,7 +238,7 @@ RunRenderer::RunRenderer(const RenderOutputOptions& options, const std::filesyst
   std::shared_ptr<const VulkanContext> context;
   if (auto* vulkan = dynamic_cast<VulkanStepper*>(&sim.stepper())) {
     context = vulkan->sharedContext();
-    readInPlace_ = true;
+    filmOnDevice_ = true;
   } else {
     try {
       context = std::make_shared<const VulkanContext>(device);
@@ -253,7 +255,8 @@ RunRenderer::RunRenderer(const RenderOutputOptions& options, const std::filesyst
   std::printf("render: %dx%d %s, %d sample%s per pixel, on %s, film read %s\n", options.image.width,
               options.image.height, colouringName(image.colouring), image.samples, image.samples == 1 ? "" : "s",
               context->info().name.c_str(),
-              readInPlace_ ? "in place from the Vulkan stepper's buffers" : "from the CPU state, uploaded each frame");
+              filmOnDevice_ ? "from the Vulkan stepper's buffers, copied on the device"
+                            : "from the CPU state, uploaded each frame");
   if (image.width != options.image.width || image.height != options.image.height)
     std::printf("render: drawn at %dx%d (scale %s, --render-scale) and scaled up to %dx%d\n", image.width, image.height,
                 drawnScaleName(scale).c_str(), options.image.width, options.image.height);
@@ -277,17 +280,16 @@ void RunRenderer::frame(long index, Simulation& sim, const WandState& wands,
   // The framing eases every frame, drawn or not, so that it moves at the same pace whatever is written.
   const OrbitCamera camera =
       options_.followCamera
-          ? framing_.update(options_.camera, filmToDraw(sim, readInPlace_).state, sim.params().frameTime)
+          ? framing_.update(options_.camera, filmToDraw(sim, filmOnDevice_).state, sim.params().frameTime)
           : options_.camera;
   if (!png && !video_) return;
   const WireFrame wire = sim.wireFrame(wands);
   DeviceFilm deviceFilm;
-  RenderFrame drawn = renderFrameOf(sim, wire, camera, readInPlace_, deviceFilm);
+  RenderFrame drawn = renderFrameOf(sim, wire, camera, filmOnDevice_, deviceFilm);
   if (view) view(drawn);
   const Renderer::Ticket ticket = renderer_->submit(drawn);
   drawing_.push_back({ticket, index, png});
   if (dynamicScale_ < 1.0) ++framesBelowFull_;
-  if (readInPlace_) writeDrawnFrame();
 }
 
 void RunRenderer::setDynamicScale(double fraction) {

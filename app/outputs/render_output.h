@@ -1,8 +1,8 @@
 #pragma once
 // Rendered pictures of a run (`giantbubble run --render`): PNG frames beside the meshes and stats, and an MP4
 // through an ffmpeg pipe when ffmpeg is installed. The renderer (host/renderer.h) shares the Vulkan stepper's
-// device and reads its buffers in place; with the CPU backend it takes a Vulkan device of its own (lavapipe
-// without a GPU) and uploads the film each frame.
+// device and copies the film from its buffers there; with the CPU backend it takes a Vulkan device of its own
+// (lavapipe without a GPU) and uploads the film each frame.
 
 #include <cstdio>
 #include <deque>
@@ -87,8 +87,8 @@ class RunRenderer {
   RunRenderer(const RenderOutputOptions& options, const std::filesystem::path& outDir, Simulation& sim,
               const std::string& device);
   // Draws frame `index` of `sim`. The frame is drawn while the caller simulates the next two (Renderer::submit
-  // keeps two frames in flight) and written (PNG, video) in order, at the call after next or at finish(); a film
-  // read in place on the Vulkan stepper's device is drawn and written at once, as the next step would change it.
+  // keeps two frames in flight, a film on the Vulkan stepper's device copied there) and written (PNG, video) in
+  // order, at the call after next or at finish().
   // `view`, when given, changes the frame before it is drawn (the mirror view).
   void frame(long index, Simulation& sim, const WandState& wands, const std::function<void(RenderFrame&)>& view = {});
   // Writes the frames still being drawn and closes the video; says what was written. An encoder that failed is
@@ -112,7 +112,7 @@ class RunRenderer {
   std::filesystem::path outDir_;
   std::unique_ptr<Renderer> renderer_;
   std::unique_ptr<VideoWriter> video_;
-  bool readInPlace_ = false;
+  bool filmOnDevice_ = false;
   long written_ = 0;
   FilmFraming framing_;
   std::string videoError_;  // why the video stopped (empty while it is fine)
@@ -126,14 +126,14 @@ class RunRenderer {
   void dropVideo(const std::string& why);
 };
 
-// The film in host memory as far as drawing it reads it: where the renderer draws the Vulkan stepper's buffers in
-// place (readInPlace), the framing and the hole rims need only where the particles are, and the state stays on the
+// The film in host memory as far as drawing it reads it: where the renderer draws the Vulkan stepper's film on the
+// device (filmOnDevice), the framing and the hole rims need only where the particles are, and the state stays on the
 // device but for its positions (Simulation::filmPositionsOnly); otherwise the whole film.
-const Film& filmToDraw(Simulation& sim, bool readInPlace);
+const Film& filmToDraw(Simulation& sim, bool filmOnDevice);
 
-// The frame a renderer draws of a simulation: its film, droplets and wands, in place on the device when the
+// The frame a renderer draws of a simulation: its film, droplets and wands, the film on the device when the
 // stepper is the Vulkan stepper on `renderer`'s device. `deviceFilm` is storage for that case.
-RenderFrame renderFrameOf(Simulation& sim, const WireFrame& wireFrame, const OrbitCamera& camera, bool readInPlace,
+RenderFrame renderFrameOf(Simulation& sim, const WireFrame& wireFrame, const OrbitCamera& camera, bool filmOnDevice,
                           DeviceFilm& deviceFilm);
 
 }  // namespace gb

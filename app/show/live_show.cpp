@@ -474,7 +474,7 @@ bool LiveShow::setUp() {
   }
   std::printf("live: input %s\n", input_->describe().c_str());
   std::unique_ptr<Stepper> stepper = newStepper();
-  readInPlace_ = dynamic_cast<VulkanStepper*>(stepper.get()) != nullptr;
+  filmOnDevice_ = dynamic_cast<VulkanStepper*>(stepper.get()) != nullptr;
   std::printf("live: %s, %d sample%s per pixel, on %s (validation layer %s), simulation on %s\n",
               colouringName(image_.colouring), image_.samples, image_.samples == 1 ? "" : "s",
               window_.context()->info().name.c_str(), window_.context()->validationEnabled() ? "on" : "off",
@@ -697,26 +697,24 @@ void LiveShow::advanceStep(int frames) {
 }
 
 // The frame drawn (the window's blit scales the image to the window: dynamic resolution), streamed and counted.
-// With the film in host memory the device draws it while the next frame is simulated: the frame drawn last time is
-// shown and streamed here first, and this one goes to the device. A film drawn in place from the stepper's buffers
-// is drawn and shown at once, since the next step writes those buffers.
+// The device draws it while the next frame is simulated (a film on the Vulkan stepper's device is copied there
+// first): the frame drawn last time is shown and streamed here first, and this one goes to the device.
 void LiveShow::present(const WindowKeys& keys, int due, double simMs) {
   const auto renderStart = std::chrono::steady_clock::now();
   showDrawnFrame();
   const auto [width, height] = showSize();
   renderer_->resize(std::max(16, static_cast<int>(std::lround(width * pacer_->renderScale()))),
                     std::max(16, static_cast<int>(std::lround(height * pacer_->renderScale()))));
-  const State& drawn = filmToDraw(*sim_, readInPlace_).state;  // where the particles are
+  const State& drawn = filmToDraw(*sim_, filmOnDevice_).state;  // where the particles are
   const OrbitCamera view = camera_->update(drawn, wands_, run_.params.frameTime * static_cast<float>(due),
                                            window_.camera(), keys.cameraMoved);
   if (filmGoneSince_ < 0) inPicture_.add(view, camera_->aspect(), drawn);
   updateInset();
   const WireFrame wire = sim_->wireFrame(wands_);
   DeviceFilm deviceFilm;
-  RenderFrame frame = renderFrameOf(*sim_, wire, view, readInPlace_, deviceFilm);
+  RenderFrame frame = renderFrameOf(*sim_, wire, view, filmOnDevice_, deviceFilm);
   mirrorView_.apply(frame, input_ ? input_->cameraCalibration() : nullptr);
   window_.submit(*renderer_, frame);
-  if (readInPlace_) showDrawnFrame();
   const auto now = std::chrono::steady_clock::now();
   pacer_->record(due, simMs, std::chrono::duration<double, std::milli>(now - renderStart).count());
   if (filmGoneSince_ < 0 && !paused_)

@@ -141,7 +141,7 @@ class LiveShow {
   std::unique_ptr<PerformerWaitScreen> waiting_;
 
   std::unique_ptr<WandInput> input_;
-  bool readInPlace_ = false;
+  bool filmOnDevice_ = false;
   double t_ = 0;
   WandFrame hands_;
   WandState wands_;

@@ -219,15 +219,12 @@ struct Renderer::Impl {
     if (*f.timestamps) noteWhenDrawn(f.timestamps);
   }
   void noteWhenDrawn(const vk::raii::QueryPool& timestamps) {
-    const auto [result, ticks] =
-        timestamps.getResults<uint64_t>(0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t), vk::QueryResultFlagBits::e64);
-    if (result != vk::Result::eSuccess) return;
-    const std::vector<double> seconds = ctx->hostSecondsOfTimestamps(ticks);
-    if (seconds.size() != 2 || seconds[1] < seconds[0]) return;
+    const std::optional<Renderer::BusyInterval> interval = ctx->busyInterval(timestamps);
+    if (!interval) return;
     // A caller that never takes them keeps only the latest: a show runs for hours.
     constexpr size_t kKept = 1024;
     if (drawn.size() >= kKept) drawn.erase(drawn.begin());
-    drawn.push_back({seconds[0], seconds[1]});
+    drawn.push_back(*interval);
   }
   void waitForAll() {
     // Oldest first: the other slot's frame was submitted before the current one.

@@ -103,9 +103,7 @@ class Renderer {
   // its last, the window's blit included), in seconds of the host's steady clock (std::chrono::steady_clock), oldest
   // first: `run` tells from them how much of its step the drawing overlapped. Empty on a device whose timestamps the
   // host cannot read (VulkanContext::timestampsOnHostClock).
-  struct BusyInterval {
-    double start = 0, end = 0;
-  };
+  using BusyInterval = DeviceBusyInterval;
   [[nodiscard]] std::vector<BusyInterval> takeDrawnIntervals();
   // A frame read back, RGB 8 bits per channel (sRGB), rows from the top; waits for it. The last frame submitted,
   // or the one of `frame`'s ticket, which must be one of the last two submitted (std::logic_error otherwise).

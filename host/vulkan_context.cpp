@@ -204,6 +204,15 @@ void VulkanContext::waitFor(const vk::raii::Fence& done) const {
   device.resetFences({*done});
 }
 
+std::optional<DeviceBusyInterval> VulkanContext::busyInterval(const vk::raii::QueryPool& firstAndLast) const {
+  const auto [result, ticks] =
+      firstAndLast.getResults<uint64_t>(0, 2, 2 * sizeof(uint64_t), sizeof(uint64_t), vk::QueryResultFlagBits::e64);
+  if (result != vk::Result::eSuccess) return std::nullopt;
+  const std::vector<double> seconds = hostSecondsOfTimestamps(ticks);
+  if (seconds.size() != 2 || seconds[1] < seconds[0]) return std::nullopt;
+  return DeviceBusyInterval{seconds[0], seconds[1]};
+}
+
 std::vector<double> VulkanContext::hostSecondsOfTimestamps(std::span<const uint64_t> ticks) const {
   if (!hostClock_) return {};
   const std::array<vk::CalibratedTimestampInfoEXT, 2> domains{

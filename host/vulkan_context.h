@@ -2,11 +2,14 @@
 // The Vulkan instance, the chosen device and its compute queue. Vulkan stays inside host/.
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
 #include <vulkan/vulkan_raii.hpp>
+
+#include "host/busy_interval.h"
 
 namespace gb {
 
@@ -61,6 +64,9 @@ class VulkanContext {
   // Device timestamps (vkCmdWriteTimestamp's ticks) on the host's steady clock (std::chrono::steady_clock's
   // seconds since its epoch), through one VK_EXT_calibrated_timestamps calibration; empty on a device without it.
   [[nodiscard]] std::vector<double> hostSecondsOfTimestamps(std::span<const uint64_t> ticks) const;
+  // The interval between a query pool's two timestamps (a submission's first and last command, waited for) on the
+  // host's clock; empty where they cannot be read there.
+  [[nodiscard]] std::optional<DeviceBusyInterval> busyInterval(const vk::raii::QueryPool& firstAndLast) const;
   [[nodiscard]] bool timestampsOnHostClock() const { return hostClock_; }
   [[nodiscard]] uint32_t preferredWorkgroupSize() const;
   [[nodiscard]] uint32_t queueFamily() const { return queueFamily_; }

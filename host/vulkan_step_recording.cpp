@@ -174,6 +174,7 @@ float VulkanStepper::run(std::span<const StepUniforms> substeps) {
   if (m.sets.empty()) throw std::logic_error("VulkanStepper: no film loaded");
   if (substeps.empty()) return m.params->pressureCoefficient;
   m.uploadSteps(substeps);
+  m.lastStep.reset();
   const vk::raii::CommandBuffer& cb = m.commands;
   cb.reset();
   cb.begin({vk::CommandBufferUsageFlagBits::eOneTimeSubmit});
@@ -202,10 +203,17 @@ float VulkanStepper::run(std::span<const StepUniforms> substeps) {
       times_[static_cast<int>(order[k])] +=
           static_cast<double>(ticks[k + 1] - ticks[k]) * m.ctx->timestampPeriodNs() * 1e-6;
   } else {
+    const vk::QueryPool stamps = *m.stepTimestamps;
+    if (stamps) {
+      cb.resetQueryPool(stamps, 0, 2);
+      cb.writeTimestamp(vk::PipelineStageFlagBits::eTopOfPipe, stamps, 0);
+    }
     for (uint32_t k = 0; k < substeps.size(); ++k) m.recordStep(cb, substeps[k], k);
     computeToHostBarrier(cb);
+    if (stamps) cb.writeTimestamp(vk::PipelineStageFlagBits::eBottomOfPipe, stamps, 1);
     cb.end();
     m.ctx->submitAndWait(cb);
+    if (stamps) m.lastStep = m.ctx->busyInterval(m.stepTimestamps);
   }
   const StepUniforms& last = substeps.back();
   lastBudget_ = m.params->integrator != 0 && m.params->energyBudget != 0 ? m.readVelocityBudget() : VelocityBudget{};

@@ -106,6 +106,8 @@ VulkanStepper::Impl::Impl(std::shared_ptr<const VulkanContext> context, VulkanSt
     pipelines.emplace_back(device, nullptr, vk::ComputePipelineCreateInfo({}, stage, *pipelineLayout));
   }
   commands = ctx->newCommandBuffer();
+  if (ctx->timestampsOnHostClock())
+    stepTimestamps = vk::raii::QueryPool(device, vk::QueryPoolCreateInfo({}, vk::QueryType::eTimestamp, 2));
 }
 
 void VulkanStepper::Impl::ensureRoom(int binding, size_t bytes) {
@@ -613,6 +615,8 @@ void VulkanStepper::storeParticleArrays(Film& film, std::initializer_list<const 
 DeviceReadback VulkanStepper::readback() const { return impl_->copiedToHost; }
 
 std::shared_ptr<const VulkanContext> VulkanStepper::sharedContext() const { return impl_->ctx; }
+
+std::optional<DeviceBusyInterval> VulkanStepper::lastStepOnDevice() const { return impl_->lastStep; }
 
 DeviceFilm VulkanStepper::deviceFilm() {
   Impl& m = *impl_;

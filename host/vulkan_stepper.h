@@ -7,7 +7,9 @@
 // (findContacts; kernels/contacts/contact_*.comp), where the sweeps read them.
 
 #include <memory>
+#include <optional>
 
+#include "host/busy_interval.h"
 #include "host/device_film.h"
 #include "stages/stepper.h"
 #include "topology/device_residency.h"
@@ -16,7 +18,6 @@ namespace gb {
 
 class VulkanContext;
 
-// Where the self-collision contacts are found for the Vulkan stepper.
 // Where a part of a frame's work between steps runs.
 enum class WorkPlace {
   Automatic,  // on the device, unless the Vulkan device is a CPU driver (lavapipe), where the CPU does it faster
@@ -99,6 +100,10 @@ class VulkanStepper final : public Stepper, public DeviceResidency {
                     std::span<const uint32_t> springs, size_t firstNewSpring) override;
 
   [[nodiscard]] const VulkanContext& context() const;
+  // When the device ran the last step's batch (run), on the host's clock: a batch submitted behind a frame being
+  // drawn waits in the queue before it starts. Empty before a step, and on a device whose timestamps the host cannot
+  // read (VulkanContext::timestampsOnHostClock).
+  [[nodiscard]] std::optional<DeviceBusyInterval> lastStepOnDevice() const;
   // The film's buffers as the last batch left them, for a renderer on the same device to copy there.
   [[nodiscard]] DeviceFilm deviceFilm();
   // The device, for a renderer that copies deviceFilm() there.

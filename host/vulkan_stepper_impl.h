@@ -89,6 +89,9 @@ struct VulkanStepper::Impl {
   std::vector<vk::raii::ShaderModule> modules;
   std::vector<vk::raii::Pipeline> pipelines;
   vk::raii::CommandBuffer commands{nullptr};
+  // The step's batch timed first and last, on a device whose clock the host reads (timestampsOnHostClock).
+  vk::raii::QueryPool stepTimestamps{nullptr};
+  std::optional<DeviceBusyInterval> lastStep;
 
   const Params* params = nullptr;  // the caller's, read at every recording (Stepper::load)
   Params paramsOnDevice;           // the block GB_BINDING_PARAMS holds, written again when the caller's changed

@@ -15,9 +15,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
 #include "app/outputs/render_output.h"
+#include "app/outputs/step_render_overlap.h"
 #include "capture/png_image.h"
 #include "capture/scripted_gestures.h"
 #include "host/film_swirls.h"
@@ -228,6 +230,43 @@ TEST(Renderer, DrawsTheVulkanSteppersFilmAsItWasWhenSubmitted) {
   empty.film.topology.triangles.clear();
   renderer.render(test::frameOf(empty));
   EXPECT_GT(compare(uploaded, renderer.readPixels()).mean, 1.0);
+  EXPECT_EQ(device->validationErrors(), 0u);
+}
+
+// `run` and `live` count the Vulkan stepper's step as its batch on the device (VulkanStepper::lastStepOnDevice): a
+// step submitted behind a frame being drawn waits for it in the queue, and waiting is not stepping while drawing.
+// The interval lies inside the host's call; on a CPU driver (lavapipe), whose one queue runs the submissions in turn,
+// it starts after the frame submitted before it was drawn.
+TEST(Renderer, AStepBehindAFrameIsTimedWhereTheDeviceRanIt) {
+  GB_REQUIRE_VULKAN(device);
+  if (!device->timestampsOnHostClock())
+    GTEST_SKIP() << "*** " << device->info().name << " has no timestamps on the host clock: steps not timed ***";
+  Params params;
+  Simulation sim(params, generateSphere(params, Vec3(0, 1.5f, 0), 0.4f, 3), WandState{},
+                 std::make_unique<VulkanStepper>(device));
+  const auto& stepper = dynamic_cast<const VulkanStepper&>(sim.stepper());
+  EXPECT_FALSE(stepper.lastStepOnDevice().has_value());
+  RenderOptions large = smallImage();
+  large.width = 960;  // a frame that takes the device a while
+  large.height = 540;
+  Renderer renderer(device, large, studioEnvironment(256));
+  const test::KnownScene scene = test::makeKnownScene();
+  renderer.submit(test::frameOf(scene));
+  const double before = steadySeconds(std::chrono::steady_clock::now());
+  sim.advanceFrame(WandState{});
+  const double after = steadySeconds(std::chrono::steady_clock::now());
+  renderer.wait();
+  const std::optional<DeviceBusyInterval> step = stepper.lastStepOnDevice();
+  const std::vector<Renderer::BusyInterval> drawn = renderer.takeDrawnIntervals();
+  ASSERT_TRUE(step.has_value());
+  ASSERT_EQ(drawn.size(), 1u);
+  // Tolerance 1 ms: the calibration's own deviation is nanoseconds on lavapipe and microseconds on a GPU.
+  EXPECT_GE(step->start, before - 1e-3);
+  EXPECT_LE(step->end, after + 1e-3);
+  EXPECT_LT(step->start, step->end);
+  if (device->info().type == "CPU") {
+    EXPECT_GE(step->start, drawn[0].end - 1e-3);
+  }
   EXPECT_EQ(device->validationErrors(), 0u);
 }
 

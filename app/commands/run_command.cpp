@@ -310,7 +310,7 @@ int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
     try {
       givePerformerBody(sim, wands);
       sim.advanceFrame(wands.wands);
-      overlap.addStep(steadySeconds(frameStart), steadySeconds(std::chrono::steady_clock::now()));
+      overlap.addStep(sim.stepper(), steadySeconds(frameStart), steadySeconds(std::chrono::steady_clock::now()));
     } catch (const SimulationUnstable& e) {
       bar.finish();
       std::fprintf(stderr, "error: %s\nstopped at frame %ld of %ld; outputs up to frame %ld are in %s\n", e.what(),

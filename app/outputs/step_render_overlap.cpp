@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "host/vulkan_stepper.h"
+
 namespace gb {
 
 namespace {
@@ -43,6 +45,15 @@ double sharedTime(const std::vector<Renderer::BusyInterval>& a, const std::vecto
 
 void StepRenderOverlap::addStep(double start, double end) {
   if (end >= start) steps_.push_back({start, end});
+}
+
+void StepRenderOverlap::addStep(const Stepper& stepper, double start, double end) {
+  const auto* vulkan = dynamic_cast<const VulkanStepper*>(&stepper);
+  if (const std::optional<Interval> onDevice = vulkan ? vulkan->lastStepOnDevice() : std::nullopt) {
+    steps_.push_back(*onDevice);
+    return;
+  }
+  addStep(start, end);
 }
 
 void StepRenderOverlap::addRender(const std::vector<Interval>& drawn) {

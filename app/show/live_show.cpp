@@ -529,12 +529,12 @@ bool LiveShow::frame() {
     const int longest = run_.params.integrator != 0 ? o_.longestStep : 1;  // explicit: substeps would grow instead
     for (int done = 0; done < due && !quitRequested_;) {
       const int frames = std::min(longest, due - done);
+      const auto stepStart = std::chrono::steady_clock::now();
       advanceStep(frames);
+      overlap_.addStep(sim_->stepper(), steadySeconds(stepStart), steadySeconds(std::chrono::steady_clock::now()));
       done += frames;
     }
-    const auto simEnd = std::chrono::steady_clock::now();
-    simMs = std::chrono::duration<double, std::milli>(simEnd - simStart).count();
-    overlap_.addStep(steadySeconds(simStart), steadySeconds(simEnd));
+    simMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - simStart).count();
     if (quitRequested_) return false;  // Esc or Ctrl-C while an input restarted waited for a performer
   }
   present(keys, due, simMs);

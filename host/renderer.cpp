@@ -550,8 +550,9 @@ struct Renderer::Impl {
   }
 
   // The Vulkan stepper's film copied into this frame's buffers on the device, waited for: the caller may then step
-  // again, writing the stepper's buffers, while the frame is drawn from the copy. The copy costs the device a pass
-  // over the film's arrays; a step that waited for the drawing would cost it the whole render.
+  // again, writing the stepper's buffers, while the frame is drawn from the copy. The copy costs the device one pass
+  // over the film's arrays; without it the host would wait for the whole drawing before the next step. On a queue
+  // that runs submissions in turn (lavapipe's) the copy itself follows the frame submitted before.
   void copyOnTheDevice(const DeviceFilm& f) {
     const vk::DeviceSize bytes = static_cast<vk::DeviceSize>(f.particleCount) * sizeof(float);
     struct Copy {

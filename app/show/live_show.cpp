@@ -754,7 +754,7 @@ int LiveShow::finish() {
       "from instability\n",
       shown_, seconds, static_cast<double>(shown_) / std::max(seconds, 1e-9), dips_, errors, recoveries_);
   std::printf("live: %s\n", filmShown_.describe(run_.params.frameTime).c_str());
-  // With the film in host memory the device draws each frame while the next one is simulated.
+  // The device draws each frame while the next one is simulated (on the Vulkan backend from its copy of the film).
   std::printf("live: the step and the render overlapped %s\n", describeOverlap(overlap_.totals(), seconds).c_str());
   std::printf(
       "live: a film was on stage for %.1f%% of the show's wall time (%.1f of %.1f s); the performance "

@@ -53,7 +53,9 @@ struct RenderOutputOptions {
   float drawnScale = 0;               // --render-scale: `run` draws at this fraction of the image's size and scales
                                       // up to it; 0: the command's own choice (drawnScaleFor)
   int pngEvery = 1;                   // write render_NNNNN.png every N frames (0: none)
-  std::string video = "render.mp4";   // in the output folder, all frames; empty: none. Needs ffmpeg
+  std::string video = "render.mp4";   // in the output folder; empty: none. Needs ffmpeg
+  double videoFps = 0;                // --video-fps: the video's frames per second, a whole fraction of the
+                                      // simulation's; 0: the command's own choice (videoStrideFor)
   std::filesystem::path environment;  // equirectangular PNG the film reflects; empty: the built-in sky
   OrbitCamera camera;                 // its direction; with followCamera its target and distance frame the film
   bool followCamera = true;           // --camera follow (default): keep the film framed; fixed: `camera` as is

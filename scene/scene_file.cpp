@@ -292,6 +292,7 @@ Scene parseScene(std::string_view text, const std::string& source, const std::fi
     render.drawnScale = static_cast<float>(view.number(n, "scale", kSmallestDrawnScale, 1.0));
   });
   view.on("video", [&](const toml::node& n) { render.video = view.boolean(n, "video") ? "render.mp4" : ""; });
+  view.on("video_fps", [&](const toml::node& n) { render.videoFps = view.number(n, "video_fps", 1.0, 1000.0); });
   view.on("camera", [&](const toml::node& n) { eye = view.point(n, "camera"); });
   view.on("target", [&](const toml::node& n) {
     const auto t = view.point(n, "target");

@@ -13,8 +13,10 @@ rm -rf "$OUT"
 mkdir -p "$OUT"
 cd "$OUT" || exit 1
 # --no-render: the default scene renders its video; the cases that want frames add RENDER after SMALL (the last wins).
+# RENDER's video takes every simulation frame (--video-fps 50, the rate at h = 0.02 s; a CPU driver's own is 25), so
+# that its frames are counted against the rows of stats.csv.
 SMALL=(--particles 400 --backend cpu --ply-every 0 --images-every 0 --no-progress --no-render)
-RENDER=(--render --width 64 --height 48 --render-every 0)
+RENDER=(--render --width 64 --height 48 --render-every 0 --video-fps 50)
 
 fail() {
   echo "FAIL: $*"
@@ -282,7 +284,12 @@ case "$CASE" in
     # only `giantbubble run` without an option; options change it, and --no-render turns it off.
     "$EXE" run --duration 0.1 --particles 400 --backend cpu --ply-every 0 --images-every 0 --no-progress \
       --width 64 --height 48 --out run >log.txt 2>&1 || fail "$(cat log.txt)"
-    [ "$(mp4_frames run/render.mp4)" -eq 6 ] || fail "no 6-frame render.mp4: $(cat log.txt)"
+    # Frames 0 to 5, a video frame every STRIDE of them as the run says (2 on a CPU driver, 1 on a GPU).
+    stride=$(sed -n 's/^render: video at .* (every \([0-9]*\) frames, --video-fps)$/\1/p' log.txt)
+    grep -q "^render: video at 50 frames/s (every frame, --video-fps)$" log.txt && stride=1
+    [ -n "$stride" ] || fail "the run does not say its video's rate: $(cat log.txt)"
+    [ "$(mp4_frames run/render.mp4)" -eq $((5 / stride + 1)) ] ||
+      fail "render.mp4 has not a frame every $stride of 6: $(cat log.txt)"
     [ -f run/render_00000.png ] && [ ! -f run/render_00001.png ] || fail "not a rendered PNG every 25 frames"
     "$EXE" run --duration 0.1 "${SMALL[@]}" --out quiet >log.txt 2>&1 || fail "$(cat log.txt)"
     [ ! -e quiet/render.mp4 ] || fail "--no-render made a video"
@@ -514,7 +521,7 @@ case "$CASE" in
         fail "live after SIG${signal%:*}: exit status $(cat status.txt), expected ${signal#*:}"
       grep -q "live: presented" log.txt || fail "the show's totals were not printed"
     done
-    for args in "--render" "--video show.mp4" "--render-every 5"; do
+    for args in "--render" "--video show.mp4" "--render-every 5" "--video-fps 25"; do
       # shellcheck disable=SC2086
       "$EXE" live $args >log.txt 2>&1 && fail "live $args exited 0"
       grep -q "live draws the show in its window and writes no files" log.txt || fail "live $args: $(cat log.txt)"

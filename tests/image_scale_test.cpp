@@ -58,5 +58,21 @@ TEST(RenderOutput, ACpuDriverDrawsAtItsDrawnScaleUnlessAsked) {
   EXPECT_EQ(drawnImage(image, 0.25f).width, 16);
 }
 
+TEST(RenderOutput, ACpuDriversVideoTakesBroadcastRateUnlessAsked) {
+  // Exact: a choice, not a measurement (docs/rendering.md, "Video rate"). At h = 0.02 s a CPU driver draws every
+  // second frame (25 frames/s), a GPU every frame; --video-fps always wins, rounded to a whole stride, at least 1.
+  RenderOutputOptions o;
+  EXPECT_EQ(videoStrideFor(o, "CPU", 0.02), 2);
+  EXPECT_EQ(videoStrideFor(o, "discrete GPU", 0.02), 1);
+  EXPECT_EQ(videoStrideFor(o, "CPU", 0.04), 1);   // a 25 Hz simulation: every frame
+  EXPECT_EQ(videoStrideFor(o, "CPU", 0.005), 8);  // 200 Hz
+  o.videoFps = 50;
+  EXPECT_EQ(videoStrideFor(o, "CPU", 0.02), 1);
+  o.videoFps = 30;  // 50 / 30 rounds to 2: the video plays at 25, real time
+  EXPECT_EQ(videoStrideFor(o, "discrete GPU", 0.02), 2);
+  o.videoFps = 1000;  // faster than the simulation: every frame
+  EXPECT_EQ(videoStrideFor(o, "CPU", 0.02), 1);
+}
+
 }  // namespace
 }  // namespace gb

@@ -104,7 +104,7 @@ TEST(SceneFile, AnAcceptedSceneSetsWhatItSays) {
       "name = \"mine\"\nduration = 2.5\nburst_at = 1.0\n[tool]\nkind = \"ring\"\n"
       "[input]\nsource = \"script:circles\"\nspeed = 1.5\n[params]\nsticky = 28.0\n"
       "[render]\nwidth = 640\nheight = 360\ncolouring = \"thickness\"\nscale = 0.5\n"
-      "camera = [0.0, 1.2, 3.0]\ntarget = [0.0, 1.2, 0.0]\nvideo = false\n",
+      "camera = [0.0, 1.2, 3.0]\ntarget = [0.0, 1.2, 0.0]\nvideo = false\nvideo_fps = 30\n",
       "test.toml", std::filesystem::current_path());
   EXPECT_EQ(s.run.duration, 2.5);
   EXPECT_EQ(s.run.burstAt, 1.0);
@@ -116,6 +116,7 @@ TEST(SceneFile, AnAcceptedSceneSetsWhatItSays) {
   EXPECT_EQ(s.run.render.image.colouring, Colouring::Thickness);
   EXPECT_EQ(s.run.render.drawnScale, 0.5f);
   EXPECT_TRUE(s.run.render.video.empty());
+  EXPECT_EQ(s.run.render.videoFps, 30.0);
   // The camera looks at the target from 3 m in front of it: the same eye position back (float rounding).
   EXPECT_LT((s.run.render.camera.position() - Vec3(0.0f, 1.2f, 3.0f)).norm(), 1e-5f);
 }

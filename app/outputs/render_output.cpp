@@ -27,9 +27,10 @@ namespace gb {
 
 namespace {
 
-// --render, --render-every and --video on a command that writes no rendered files: refused by name, not shown.
+// --render, --render-every, --video and --video-fps on a command that writes no rendered files: refused by name, not
+// shown.
 void refuseRenderedFiles(CLI::App& command) {
-  for (const char* name : {"--render", "--render-every", "--video"})
+  for (const char* name : {"--render", "--render-every", "--video", "--video-fps"})
     command
         .add_option_function<std::string>(
             name,
@@ -52,8 +53,13 @@ void addRenderOptions(CLI::App& command, RenderOutputOptions& o, RenderedFiles f
                      "a scene's own video (the default scene renders one)");
     command.add_option("--render-every", o.pngEvery, "write a rendered PNG every N frames, 0 for none")
         ->transform(WholeNumber(0, 1000000));
-    command.add_option("--video", o.video,
-                       "MP4 of every rendered frame, in the output folder (needs ffmpeg); '' for none");
+    command.add_option("--video", o.video, "MP4 of the run, in the output folder (needs ffmpeg); '' for none");
+    command
+        .add_option("--video-fps", o.videoFps,
+                    "the video's frames per second, a frame every (simulation's rate / this) frames; default the "
+                    "simulation's rate, " +
+                        std::to_string(static_cast<int>(kCpuVideoFps)) + " on a CPU driver (lavapipe)")
+        ->check(CLI::Range(1.0, 1000.0));
   } else {
     refuseRenderedFiles(command);
   }
@@ -103,6 +109,12 @@ int samplesFor(const RenderOutputOptions& options, const std::string& deviceType
 float drawnScaleFor(const RenderOutputOptions& options, const std::string& deviceType) {
   if (options.drawnScale > 0) return options.drawnScale;
   return deviceType == "CPU" ? kCpuDrawnScale : 1.0f;
+}
+
+int videoStrideFor(const RenderOutputOptions& options, const std::string& deviceType, double frameTime) {
+  const double fps = options.videoFps > 0 ? options.videoFps : deviceType == "CPU" ? kCpuVideoFps : 0.0;
+  if (fps <= 0) return 1;
+  return static_cast<int>(std::clamp(std::lround(1.0 / (frameTime * fps)), 1L, 1000000L));
 }
 
 std::string drawnScaleName(float scale) {
@@ -264,8 +276,11 @@ RunRenderer::RunRenderer(const RenderOutputOptions& options, const std::filesyst
     if (ffmpegAvailable()) {
       const std::filesystem::path video = outDir / options.video;
       std::filesystem::create_directories(video.parent_path());  // --video sub/show.mp4 makes sub, as --out does
-      video_ =
-          std::make_unique<VideoWriter>(video, options.image.width, options.image.height, 1.0 / sim.params().frameTime);
+      videoStride_ = videoStrideFor(options, context->info().type, sim.params().frameTime);
+      const double fps = 1.0 / (static_cast<double>(sim.params().frameTime) * videoStride_);
+      video_ = std::make_unique<VideoWriter>(video, options.image.width, options.image.height, fps);
+      std::printf("render: video at %g frames/s (%s, --video-fps)\n", fps,
+                  videoStride_ == 1 ? "every frame" : ("every " + std::to_string(videoStride_) + " frames").c_str());
     } else {
       options_.pngEvery = std::max(options_.pngEvery, 1);
       std::printf("render: ffmpeg is not installed, so no video; the frames are written as PNG instead\n");
@@ -277,18 +292,19 @@ void RunRenderer::frame(long index, Simulation& sim, const WandState& wands,
                         const std::function<void(RenderFrame&)>& view) {
   while (drawing_.size() >= 2) writeDrawnFrame();  // the renderer keeps two frames
   const bool png = options_.pngEvery > 0 && index % options_.pngEvery == 0;
+  const bool video = video_ && index % videoStride_ == 0;
   // The framing eases every frame, drawn or not, so that it moves at the same pace whatever is written.
   const OrbitCamera camera =
       options_.followCamera
           ? framing_.update(options_.camera, filmToDraw(sim, filmOnDevice_).state, sim.params().frameTime)
           : options_.camera;
-  if (!png && !video_) return;
+  if (!png && !video) return;
   const WireFrame wire = sim.wireFrame(wands);
   DeviceFilm deviceFilm;
   RenderFrame drawn = renderFrameOf(sim, wire, camera, filmOnDevice_, deviceFilm);
   if (view) view(drawn);
   const Renderer::Ticket ticket = renderer_->submit(drawn);
-  drawing_.push_back({ticket, index, png});
+  drawing_.push_back({ticket, index, png, video});
   if (dynamicScale_ < 1.0) ++framesBelowFull_;
 }
 
@@ -314,14 +330,14 @@ void RunRenderer::writeDrawnFrame() {
     std::snprintf(name, sizeof name, "render_%05ld.png", index);
     writePng(outDir_ / name, options_.image.width, options_.image.height, rgb);
   }
-  if (video_) {
+  if (video_ && drawn.video) {
     try {
       video_->write(rgb);
+      ++videoFrames_;
     } catch (const std::exception& e) {
       dropVideo(e.what());
     }
   }
-  ++written_;
 }
 
 void RunRenderer::dropVideo(const std::string& why) {
@@ -348,7 +364,7 @@ void RunRenderer::finish() {
   try {
     video_->close();
     video_.reset();
-    std::printf("render: %ld frames, video %s\n", written_, printablePath(outDir_ / options_.video).c_str());
+    std::printf("render: %ld frames, video %s\n", videoFrames_, printablePath(outDir_ / options_.video).c_str());
   } catch (const std::exception& e) {
     video_.reset();
     videoError_ = e.what();

@@ -44,8 +44,17 @@ int samplesFor(const RenderOutputOptions& options, const std::string& deviceType
 inline constexpr float kCpuDrawnScale = 0.75f;
 float drawnScaleFor(const RenderOutputOptions& options, const std::string& deviceType);
 std::string drawnScaleName(float scale);  // "0.75"
+
 // `image` at `scale` of its size, at least 16 pixels a side.
 RenderOptions drawnImage(RenderOptions image, float scale);
+
+// Every how many simulation frames `run` draws a video frame on `device` (as samplesFor): the whole number nearest
+// the simulation's frame rate over --video-fps, at least 1; without --video-fps every frame (the simulation's rate,
+// 50 frames/s at h = 0.02 s), except on a CPU driver, where a frame's drawing costs about twice its simulation and the
+// video takes kCpuVideoFps, the rate of broadcast video (docs/rendering.md "Video rate"). The video then plays at
+// the simulation's rate over the stride: real time whatever the stride.
+inline constexpr double kCpuVideoFps = 25.0;
+int videoStrideFor(const RenderOutputOptions& options, const std::string& deviceType, double frameTime);
 
 // The environment to reflect: the built-in outdoor sky, or an equirectangular PNG (sRGB, 2:1) converted to linear
 // radiance. Throws naming the file when it cannot be read or is not 2:1.
@@ -113,13 +122,14 @@ class RunRenderer {
   std::unique_ptr<Renderer> renderer_;
   std::unique_ptr<VideoWriter> video_;
   bool filmOnDevice_ = false;
-  long written_ = 0;
+  int videoStride_ = 1;   // a video frame every this many simulation frames (videoStrideFor)
+  long videoFrames_ = 0;  // frames written to the video
   FilmFraming framing_;
   std::string videoError_;  // why the video stopped (empty while it is fine)
   struct Drawing {
     Renderer::Ticket ticket;
     long index;
-    bool png;
+    bool png, video;
   };
   std::deque<Drawing> drawing_;  // frames submitted and not yet written, oldest first
   void writeDrawnFrame();        // the oldest of them

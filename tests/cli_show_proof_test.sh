@@ -144,7 +144,7 @@ case "$CASE" in
     ;;
   not_finite)
     for args in "--duration nan" "--speed nan" "--reach nan" "--camera-pitch nan" "--solution nan" \
-      "--depth-band nan 2" "--burst-at inf" "--duration -inf"; do
+      "--depth-band nan 2" "--burst-at inf" "--duration -inf" "--video-fps nan" "--render-scale nan"; do
       # shellcheck disable=SC2086
       "$EXE" run $args --out run >log.txt 2>&1
       rc=$?

@@ -59,7 +59,7 @@ void addRenderOptions(CLI::App& command, RenderOutputOptions& o, RenderedFiles f
                     "the video's frames per second, a frame every (simulation's rate / this) frames; default the "
                     "simulation's rate, " +
                         std::to_string(static_cast<int>(kCpuVideoFps)) + " on a CPU driver (lavapipe)")
-        ->check(CLI::Range(1.0, 1000.0));
+        ->check(FiniteRange(1.0, 1000.0));
   } else {
     refuseRenderedFiles(command);
   }
@@ -98,7 +98,7 @@ void addRenderOptions(CLI::App& command, RenderOutputOptions& o, RenderedFiles f
                     "draw at this fraction of --width and --height and scale the frames up to it (0.25 to 1); "
                     "default 1, " +
                         drawnScaleName(kCpuDrawnScale) + " on a CPU driver (lavapipe)")
-        ->check(CLI::Range(kSmallestDrawnScale, 1.0f));
+        ->check(FiniteRange(kSmallestDrawnScale, 1.0));
 }
 
 int samplesFor(const RenderOutputOptions& options, const std::string& deviceType) {

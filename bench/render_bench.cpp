@@ -4,8 +4,9 @@
 // BM_Render/upload:   one frame rendered from the CPU state (uploaded every frame, the CPU backend's path).
 // BM_Render/inplace:  one frame rendered from the Vulkan stepper's own buffers (no copy).
 // BM_FrameSimulationAndRender: a whole frame as `giantbubble run --render` does it, minus the file output.
-// BM_RenderMainJob/F: the README's main job's render of its frame F (60: the bag being drawn; 200: the free
-//                      bubble), 960x540, one sample, pixels read back: the main job's own per-frame render.
+// BM_RenderMainJob/F/S: the README's main job's render of its frame F (60: the bag being drawn; 200: the free
+//                      bubble), 960x540 at drawn scale S percent (75: 720x405, as `run` draws on a CPU driver), one
+//                      sample, pixels read back: the main job's own per-frame render.
 // BM_PropsMesh, BM_FilmSwirls, BM_FollowCamera/L/Y: the renderer's CPU work per frame, what bounds it on a real GPU
 //                      (the follow camera on a bubble of 10 x 4^L + 2 particles centred Y cm above the floor: at
 //                      120 the default pitch holds, at 60 the camera is pitched down to keep above the floor).
@@ -13,6 +14,7 @@
 #include <sys/resource.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 
@@ -157,8 +159,9 @@ void BM_RenderMainJob(benchmark::State& state) {
   const auto device = vulkanDevice();
   if (!device) return state.SkipWithError("no Vulkan device");
   RenderOptions options;
-  options.width = 960;
-  options.height = 540;
+  const float scale = 0.01f * static_cast<float>(state.range(1));
+  options.width = static_cast<int>(std::lround(960.0f * scale));
+  options.height = static_cast<int>(std::lround(540.0f * scale));
   options.samples = 1;
   MainJobFrame m = mainJobAt(static_cast<int>(state.range(0)), 960.0f / 540.0f);
   Renderer renderer(device, options, skyEnvironment());  // the main job's
@@ -172,7 +175,13 @@ void BM_RenderMainJob(benchmark::State& state) {
   }
   report(state, *m.sim, cpu);
 }
-BENCHMARK(BM_RenderMainJob)->Arg(60)->Arg(200)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_RenderMainJob)
+    ->Args({60, 100})
+    ->Args({60, 75})
+    ->Args({200, 100})
+    ->Args({200, 75})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 // The renderer's own CPU work per frame, no Vulkan: the props mesh (floor, string, sticks, the rims of holes)
 // and the film's swirl factors. On a real GPU this, not the GPU, bounds the render's frame rate.

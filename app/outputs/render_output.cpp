@@ -290,7 +290,6 @@ RunRenderer::RunRenderer(const RenderOutputOptions& options, const std::filesyst
 
 void RunRenderer::frame(long index, Simulation& sim, const WandState& wands,
                         const std::function<void(RenderFrame&)>& view) {
-  while (drawing_.size() >= 2) writeDrawnFrame();  // the renderer keeps two frames
   const bool png = options_.pngEvery > 0 && index % options_.pngEvery == 0;
   const bool video = video_ && index % videoStride_ == 0;
   // The framing eases every frame, drawn or not, so that it moves at the same pace whatever is written.
@@ -299,6 +298,9 @@ void RunRenderer::frame(long index, Simulation& sim, const WandState& wands,
           ? framing_.update(options_.camera, filmToDraw(sim, filmOnDevice_).state, sim.params().frameTime)
           : options_.camera;
   if (!png && !video) return;
+  // The renderer keeps two frames: the older is written before a third is submitted, and not on a frame that draws
+  // nothing, so that it has every simulated frame until then to be drawn.
+  while (drawing_.size() >= 2) writeDrawnFrame();
   const WireFrame wire = sim.wireFrame(wands);
   DeviceFilm deviceFilm;
   RenderFrame drawn = renderFrameOf(sim, wire, camera, filmOnDevice_, deviceFilm);

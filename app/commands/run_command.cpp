@@ -8,6 +8,7 @@
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -237,160 +238,232 @@ OpenedRun openRun(const RunOptions& o) {
   return run;
 }
 
-// Simulates the frames of an opened run and writes every output; returns the exit code (run_command.h).
-int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
-  WandInput& input = *run.input;
-  Simulation& sim = *run.sim;
-  ShowControl& show = *run.show;
-  RunRenderer* renderer = run.renderer.get();
-  WandLog wandLog(o.outDir / "wands.csv");
-  wandLog.add(0.0, run.startFrame);
-  const long frames = std::max(1L, std::lround(run.duration / o.params.frameTime));
-  const long poke = pokeFrame(o);
-  if (o.burstAt >= 0 && poke == 0)
-    std::printf("note: no poke at %.2f s: the input is not a script (--burst-at pokes any input)\n", o.burstAt);
-  std::printf("giantbubble run: %zu particles, %zu triangles, %d substeps of %.3g ms per %.3g s frame, %ld frames\n",
-              sim.particleCount(), sim.triangleCount(), sim.substepsPerFrame(),
-              1e3 * o.params.frameTime / sim.substepsPerFrame(), o.params.frameTime, frames);
+// The frames of an opened run, simulated one after another, and every output they write. A run ends finished,
+// interrupted (Ctrl-C or SIGTERM: the frame in flight finishes, then the outputs) or unstable (the outputs up to
+// the frame before).
+class FrameLoop {
+ public:
+  FrameLoop(const RunOptions& o, OpenedRun& run, RunRecord& record)
+      : o_(o),
+        run_(run),
+        input_(*run.input),
+        sim_(*run.sim),
+        renderer_(run.renderer.get()),
+        record_(record),
+        wandLog_(o.outDir / "wands.csv"),
+        stats_(o.outDir / "stats.csv"),
+        frames_(std::max(1L, std::lround(run.duration / o.params.frameTime))),
+        poke_(pokeFrame(o)) {}
 
-  SimulationThreads threads;  // one fewer for each core another process keeps busy (thread_policy.h)
-  StatsWriter stats(o.outDir / "stats.csv");
-  const FrameStats first = sim.stats();
-  // A performer waited for: the film is made when both hands are found, and the run's time 0 is then.
-  const std::string created =
-      input.performerFound().value_or(0.0) > 0.0 ? "performer_found film_created" : "film_created";
-  stats.write(0, first, sim.substepsPerFrame(), 0.0, created);
-  record.start(first);
-  if (const auto found = input.performerFound()) {
-    char seconds[32];
-    std::snprintf(seconds, sizeof seconds, "%.3f", *found);
-    record.note("performer_found_after_s", seconds);
+  long frames() const { return frames_; }
+
+  // Frame 0: the film as the hands made it, in every output.
+  void writeStart() {
+    wandLog_.add(0.0, run_.startFrame);
+    if (o_.burstAt >= 0 && poke_ == 0)
+      std::printf("note: no poke at %.2f s: the input is not a script (--burst-at pokes any input)\n", o_.burstAt);
+    std::printf("giantbubble run: %zu particles, %zu triangles, %d substeps of %.3g ms per %.3g s frame, %ld frames\n",
+                sim_.particleCount(), sim_.triangleCount(), sim_.substepsPerFrame(),
+                1e3 * o_.params.frameTime / sim_.substepsPerFrame(), o_.params.frameTime, frames_);
+    first_ = last_ = sim_.stats();
+    // A performer waited for: the film is made when both hands are found, and the run's time 0 is then.
+    const std::string created =
+        input_.performerFound().value_or(0.0) > 0.0 ? "performer_found film_created" : "film_created";
+    stats_.write(0, first_, sim_.substepsPerFrame(), 0.0, created);
+    record_.start(first_);
+    if (const auto found = input_.performerFound()) {
+      char seconds[32];
+      std::snprintf(seconds, sizeof seconds, "%.3f", *found);
+      record_.note("performer_found_after_s", seconds);
+    }
+    run_.show->frame(sim_, first_, created);
+    writeFiles(0);
+    render(0, run_.startFrame.wands);
   }
-  show.frame(sim, first, created);
-  if (o.plyEvery > 0) writePly(o.outDir / meshName(0), sim.film());
-  ImageFraming framing;  // the images frame the film wherever it goes, growing only (no jitter)
-  if (o.imageEvery > 0)
-    writeThicknessImage(o.outDir / imageName(0), sim.film(), sim.aerosol(), framing.frame(sim.film()));
-  if (renderer)
-    renderer->frame(0, sim, run.startFrame.wands,
-                    [&](RenderFrame& f) { run.mirror->apply(f, input.cameraCalibration()); });
 
-  const InterruptCatcher interrupts;  // Ctrl-C or SIGTERM: the frame in flight finishes, then the outputs
-  ProgressBar bar(frames);
-  FrameStats last = first;
-  std::string status = "finished";
-  int exitCode = 0;
-  long done = 0;
-  StepRenderOverlap overlap;
-  const auto runStart = std::chrono::steady_clock::now();
-  // With --realtime the image is drawn smaller while the machine is behind, then the sweeps go down (RealTimePacer).
-  const double smallestImage = o.realtime && renderer ? kRealtimeRunSmallestImage : 1.0;
-  RealTimePacer pacer({o.params.frameTime, sim.solverSweeps(), 3, 1, smallestImage}, runStart);
-  for (long frame = 1; frame <= frames; ++frame) {
+  // Starts the wall clock the run is measured (and, with --realtime, paced) by.
+  void startClock() {
+    runStart_ = std::chrono::steady_clock::now();
+    // With --realtime the image is drawn smaller while the machine is behind, then the sweeps go down.
+    const double smallestImage = o_.realtime && renderer_ ? kRealtimeRunSmallestImage : 1.0;
+    pacer_.emplace(PacerOptions{o_.params.frameTime, sim_.solverSweeps(), 3, 1, smallestImage}, runStart_);
+  }
+
+  // Simulates frame `frame` and writes its outputs; false when the run stops before it (a signal, an instability).
+  bool advance(long frame) {
     if (const int signal = InterruptCatcher::signal()) {
-      status = "interrupted";
-      exitCode = 128 + signal;
-      bar.finish();
-      std::fprintf(stderr, "%s: stopping after frame %ld of %ld; writing the outputs\n", signalName(signal), done,
-                   frames);
-      break;
+      stopOnSignal(signal);
+      return false;
     }
-    const double t = static_cast<double>(frame) * o.params.frameTime;
-    if (o.realtime) {  // the frame is shown when the wall clock reaches it: wait when ahead
-      std::this_thread::sleep_until(runStart + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                                                   std::chrono::duration<double>(t - o.params.frameTime)));
-      sim.setSolverSweeps(pacer.sweeps());
-    }
-    const WandFrame wands = input.at(t);  // a live camera may wait here for its next frame
-    passOnMessages(input, o.progress);
+    const double t = static_cast<double>(frame) * o_.params.frameTime;
+    if (o_.realtime) waitForWallClock(t);
+    const WandFrame wands = input_.at(t);  // a live camera may wait here for its next frame
+    passOnMessages(input_, o_.progress);
     const auto frameStart = std::chrono::steady_clock::now();
     std::string events;
-    if (frame == poke && pokeTop(sim)) events += "poked ";  // nothing to poke once the film is gone
-    threads.update();
+    if (frame == poke_ && pokeTop(sim_)) events += "poked ";  // nothing to poke once the film is gone
+    threads_.update();
     try {
-      givePerformerBody(sim, wands);
-      sim.advanceFrame(wands.wands);
-      overlap.addStep(sim.stepper(), steadySeconds(frameStart), steadySeconds(std::chrono::steady_clock::now()));
+      givePerformerBody(sim_, wands);
+      sim_.advanceFrame(wands.wands);
+      overlap_.addStep(sim_.stepper(), steadySeconds(frameStart), steadySeconds(std::chrono::steady_clock::now()));
     } catch (const SimulationUnstable& e) {
-      bar.finish();
-      std::fprintf(stderr, "error: %s\nstopped at frame %ld of %ld; outputs up to frame %ld are in %s\n", e.what(),
-                   frame, frames, frame - 1, printablePath(o.outDir).c_str());
-      if (o.plyEvery > 0) writePly(o.outDir / ("unstable_" + meshName(frame)), sim.film());
-      status = "unstable at frame " + std::to_string(frame) + ": " + e.what();
-      exitCode = 3;
-      break;
+      stopUnstable(frame, e);
+      return false;
     }
-    wandLog.add(t, wands);  // a row beside each row of stats.csv: none for a frame that blew up
-    const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
+    wandLog_.add(t, wands);  // a row beside each row of stats.csv: none for a frame that blew up
+    const double stepMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
+    writeFrame(frame, wands, events, stepMs);
+    done_ = frame;
+    if (o_.progress) bar_.update(frame, sim_.time(), wallSeconds());
+    return true;
+  }
+
+  // The outputs, whatever stopped the run: the video first (a failed encoder is noted, not thrown), then the row
+  // files closed and checked, then the summary. Returns the exit code (run_command.h).
+  int finish() {
+    if (exitCode_ == 0) bar_.finish();
+    const double wall = wallSeconds();
+    if (renderer_) finishVideo(wall);
+    stats_.close();
+    wandLog_.close();
+    wandLog_.writePlot(o_.outDir / "wands.svg",
+                       "giantbubble run" +
+                           (status_ == "finished" ? "" : " (" + status_.substr(0, status_.find(':')) + ")") + ": " +
+                           input_.describe(),
+                       input_.camera());
+    record_.setRealTimeFactor(last_.time / std::max(wall, 1e-9));
+    record_.setEnergyBudget(sim_.energyBudgetRecord());
+    record_.setReadback(sim_.readbackRecord());
+    record_.writeJson(o_.outDir / "stats.json", o_.scene, status_);
+    if (status_ == "interrupted") {
+      std::fprintf(stderr,
+                   "interrupted: %ld of %ld frames simulated; outputs in %s (stats.json status \"interrupted\")\n",
+                   done_, frames_, printablePath(o_.outDir).c_str());
+      return exitCode_;
+    }
+    if (exitCode_ == 3) return exitCode_;
+    printSummary(first_, last_, frames_, sim_.substepsPerFrame(), wall, o_.outDir);
+    std::fputs(record_.story().c_str(), stdout);
+    record_.printPhases();
+    record_.printOverlap();
+    record_.printTable1(o_.scene);
+    return exitCode_;
+  }
+
+ private:
+  double wallSeconds() const {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart_).count();
+  }
+
+  // With --realtime the frame is shown when the wall clock reaches it: wait when ahead.
+  void waitForWallClock(double t) {
+    std::this_thread::sleep_until(runStart_ + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                  std::chrono::duration<double>(t - o_.params.frameTime)));
+    sim_.setSolverSweeps(pacer_->sweeps());
+  }
+
+  void stopOnSignal(int signal) {
+    status_ = "interrupted";
+    exitCode_ = 128 + signal;
+    bar_.finish();
+    std::fprintf(stderr, "%s: stopping after frame %ld of %ld; writing the outputs\n", signalName(signal), done_,
+                 frames_);
+  }
+
+  void stopUnstable(long frame, const SimulationUnstable& e) {
+    bar_.finish();
+    std::fprintf(stderr, "error: %s\nstopped at frame %ld of %ld; outputs up to frame %ld are in %s\n", e.what(), frame,
+                 frames_, frame - 1, printablePath(o_.outDir).c_str());
+    if (o_.plyEvery > 0) writePly(o_.outDir / ("unstable_" + meshName(frame)), sim_.film());
+    status_ = "unstable at frame " + std::to_string(frame) + ": " + e.what();
+    exitCode_ = 3;
+  }
+
+  // A simulated frame's rows, touches, files and picture, and where its time went.
+  void writeFrame(long frame, const WandFrame& wands, std::string events, double stepMs) {
     PhaseClock phase;
-    last = sim.stats();
-    events += describeEvents(sim.lastEvents());
+    last_ = sim_.stats();
+    events += describeEvents(sim_.lastEvents());
     if (!events.empty() && events.back() == ' ') events.pop_back();
-    const std::string touched = touchInWords(sim, events);
-    const std::optional<Touch> touch = touched.empty() ? std::nullopt : sim.lastTouch();
+    const std::string touched = touchInWords(sim_, events);
+    const std::optional<Touch> touch = touched.empty() ? std::nullopt : sim_.lastTouch();
     if (touch) {
-      std::printf("%s%.2f s: %s\n", o.progress && isatty(STDOUT_FILENO) ? "\n" : "", last.time, touched.c_str());
-      record.addTouch(last.time, *touch);
+      std::printf("%s%.2f s: %s\n", o_.progress && isatty(STDOUT_FILENO) ? "\n" : "", last_.time, touched.c_str());
+      record_.addTouch(last_.time, *touch);
     }
-    stats.write(frame, last, sim.substepsPerFrame(), ms, events, touch);
-    record.addFrame(last, sim.substepsPerFrame(), ms, events);
-    show.frame(sim, last, events);
+    stats_.write(frame, last_, sim_.substepsPerFrame(), stepMs, events, touch);
+    record_.addFrame(last_, sim_.substepsPerFrame(), stepMs, events);
+    run_.show->frame(sim_, last_, events);
     const double statsMs = phase.lap();
-    if (o.imageEvery > 0 && frame % o.imageEvery == 0)
-      writeThicknessImage(o.outDir / imageName(frame), sim.film(), sim.aerosol(), framing.frame(sim.film()));
-    if (o.plyEvery > 0 && frame % o.plyEvery == 0) {
-      writePly(o.outDir / meshName(frame), sim.film());
-      if (sim.aerosol().size() > 0) writeAerosolPly(o.outDir / ("aerosol" + meshName(frame).substr(4)), sim.aerosol());
-    }
+    writeFiles(frame);
     const double outputsMs = phase.lap();
-    if (renderer)
-      renderer->frame(frame, sim, wands.wands,
-                      [&](RenderFrame& f) { run.mirror->apply(f, input.cameraCalibration()); });
-    if (renderer) overlap.addRender(renderer->takeDrawnIntervals());
-    const double renderMs = renderer ? phase.lap() : 0.0;
-    addFramePhases(record, sim.lastPhases(), statsMs, outputsMs, renderMs);
-    pacer.record(1, ms + statsMs + outputsMs, renderMs);
-    if (o.realtime && renderer) renderer->setDynamicScale(pacer.renderScale());
-    done = frame;
-    const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
-    if (o.progress) bar.update(frame, sim.time(), wall);
+    render(frame, wands.wands);
+    const double renderMs = renderer_ ? phase.lap() : 0.0;
+    addFramePhases(record_, sim_.lastPhases(), statsMs, outputsMs, renderMs);
+    pacer_->record(1, stepMs + statsMs + outputsMs, renderMs);
+    if (o_.realtime && renderer_) renderer_->setDynamicScale(pacer_->renderScale());
   }
-  if (exitCode == 0) bar.finish();
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - runStart).count();
-  // The outputs, whatever stopped the run: the video first (a failed encoder is noted, not thrown), then the
-  // row files closed and checked, then the summary.
-  if (renderer) {
-    renderer->finish();
-    overlap.addRender(renderer->takeDrawnIntervals());
-    record.setOverlap(overlap.totals(), wall);
-    if (!renderer->videoError().empty()) {
-      record.note("video_error", renderer->videoError());
-      if (exitCode == 0) exitCode = 5;
+
+  // The thickness image and the PLY meshes due at `frame`.
+  void writeFiles(long frame) {
+    if (o_.imageEvery > 0 && frame % o_.imageEvery == 0)
+      writeThicknessImage(o_.outDir / imageName(frame), sim_.film(), sim_.aerosol(), imageFraming_.frame(sim_.film()));
+    if (o_.plyEvery > 0 && frame % o_.plyEvery == 0) {
+      writePly(o_.outDir / meshName(frame), sim_.film());
+      if (frame > 0 && sim_.aerosol().size() > 0)
+        writeAerosolPly(o_.outDir / ("aerosol" + meshName(frame).substr(4)), sim_.aerosol());
     }
   }
-  stats.close();
-  wandLog.close();
-  wandLog.writePlot(o.outDir / "wands.svg",
-                    "giantbubble run" + (status == "finished" ? "" : " (" + status.substr(0, status.find(':')) + ")") +
-                        ": " + input.describe(),
-                    input.camera());
-  record.setRealTimeFactor(last.time / std::max(wall, 1e-9));
-  record.setEnergyBudget(sim.energyBudgetRecord());
-  record.setReadback(sim.readbackRecord());
-  record.writeJson(o.outDir / "stats.json", o.scene, status);
-  if (status == "interrupted") {
-    std::fprintf(stderr,
-                 "interrupted: %ld of %ld frames simulated; outputs in %s (stats.json status \"interrupted\")\n", done,
-                 frames, printablePath(o.outDir).c_str());
-    return exitCode;
+
+  void render(long frame, const WandState& wands) {
+    if (!renderer_) return;
+    renderer_->frame(frame, sim_, wands, [&](RenderFrame& f) { run_.mirror->apply(f, input_.cameraCalibration()); });
+    overlap_.addRender(renderer_->takeDrawnIntervals());
   }
-  if (exitCode == 3) return exitCode;
-  printSummary(first, last, frames, sim.substepsPerFrame(), wall, o.outDir);
-  std::fputs(record.story().c_str(), stdout);
-  record.printPhases();
-  record.printOverlap();
-  record.printTable1(o.scene);
-  return exitCode;
+
+  void finishVideo(double wall) {
+    renderer_->finish();
+    overlap_.addRender(renderer_->takeDrawnIntervals());
+    record_.setOverlap(overlap_.totals(), wall);
+    if (!renderer_->videoError().empty()) {
+      record_.note("video_error", renderer_->videoError());
+      if (exitCode_ == 0) exitCode_ = 5;
+    }
+  }
+
+  const RunOptions& o_;
+  OpenedRun& run_;
+  WandInput& input_;
+  Simulation& sim_;
+  RunRenderer* renderer_;
+  RunRecord& record_;
+  WandLog wandLog_;
+  StatsWriter stats_;
+  const long frames_;
+  const long poke_;
+  SimulationThreads threads_;  // one fewer for each core another process keeps busy (thread_policy.h)
+  ImageFraming imageFraming_;  // the images frame the film wherever it goes, growing only (no jitter)
+  ProgressBar bar_{frames_};
+  StepRenderOverlap overlap_;
+  std::chrono::steady_clock::time_point runStart_ = std::chrono::steady_clock::now();
+  std::optional<RealTimePacer> pacer_;
+  FrameStats first_, last_;
+  std::string status_ = "finished";
+  int exitCode_ = 0;
+  long done_ = 0;
+};
+
+// Simulates the frames of an opened run and writes every output; returns the exit code (run_command.h).
+int runFrames(const RunOptions& o, OpenedRun& run, RunRecord& record) {
+  FrameLoop loop(o, run, record);
+  loop.writeStart();
+  const InterruptCatcher interrupts;  // from here a signal stops the run between frames
+  loop.startClock();
+  for (long frame = 1; frame <= loop.frames(); ++frame)
+    if (!loop.advance(frame)) break;
+  return loop.finish();
 }
 
 // What a run writes, checked together before anything is (output_file.h): its folder, the files it writes into it

@@ -78,75 +78,22 @@ int main(int argc, char** argv) {
   CLI::App app{"giantbubble: real-time giant soap bubbles blown and burst with your hands"};
   app.require_subcommand(0, 1);
 
-  gb::RunOptions run;
-  std::string sceneName = sceneArgument(argc, argv);
-  const bool sceneSetsDuration = !sceneName.empty();
-  {
-    try {
-      // Without --scene, the built-in scene "default" (scenes/default.toml): the giant bubble performance.
-      const gb::Scene scene = gb::resolveScene(sceneName.empty() ? "default" : sceneName);
-      run = scene.run;
-      run.scene = scene.name;
-    } catch (const std::exception& e) {
-      std::fprintf(stderr, "error: %s\n", e.what());
-      return 1;
-    }
+  gb::RunCommandLine runLine;
+  runLine.scene = sceneArgument(argc, argv);
+  gb::RunOptions& run = runLine.options;
+  try {
+    // Without --scene, the built-in scene "default" (scenes/default.toml): the giant bubble performance.
+    const gb::Scene scene = gb::resolveScene(runLine.scene.empty() ? "default" : runLine.scene);
+    run = scene.run;
+    run.scene = scene.name;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "error: %s\n", e.what());
+    return 1;
   }
-  std::string tool = run.tool.kind == gb::ToolKind::Ring ? "ring" : "two-wands";
-  std::vector<std::string> assignments;
-  CLI::App* runCmd = app.add_subcommand("run", "simulate a performance headless and write its outputs");
-  runCmd
-      ->add_option("--scene", sceneName,
-                   "a built-in scene (giantbubble scenes lists them) or a scene file (.toml); "
-                   "the other options change it")
-      ->check(gb::NotEmpty());
-  runCmd->add_option("--duration", run.duration, "simulated seconds")
-      ->check(gb::FiniteRange(0.001, gb::kMaxRunSeconds));
-  runCmd->add_option("--out", run.outDir, "output folder (created if missing)");
-  runCmd->add_option("--ply-every", run.plyEvery, "write a PLY mesh every N frames, 0 for none")
-      ->transform(gb::WholeNumber(0, 1000000));
-  runCmd->add_option("--images-every", run.imageEvery, "write a thickness image (PNG) every N frames, 0 for none")
-      ->transform(gb::WholeNumber(0, 1000000));
-  runCmd->add_option("--tool", tool, "bubble tool")->check(CLI::IsMember({"two-wands", "ring"}));
-  gb::addInputOptions(runCmd, run.input);  // --input, --gesture and the capture options
-  gb::addBubbleOptions(runCmd, run.input);
-  runCmd->add_option("--speed", run.gestureOptions.speed, "peak wand speed (m/s)")->check(gb::FiniteRange(0.0, 20.0));
-  runCmd->add_option("--solution", run.params.solution, "remaining soap solution (0, 1]")
-      ->check(gb::FiniteRange(0.01, 1.0));
-  runCmd->add_option("--particles", run.params.particlesAtFullSolution, "particles of a film at full solution")
-      ->transform(gb::WholeNumber(16, gb::kMaxParticles));
-  runCmd->add_option("--param", assignments, "set a model parameter, NAME=VALUE (repeatable)");
-  runCmd
-      ->add_option("--burst-at", run.burstAt,
-                   "poke the top of the film at this time (s), whatever the input; negative: never")
-      ->check(gb::FiniteRange(gb::kNeverBurst, gb::kMaxRunSeconds));
-  runCmd->add_flag("!--no-progress", run.progress, "do not show the progress bar");
-  runCmd->add_flag("--realtime", run.realtime,
-                   "keep the wall clock: wait when ahead of it, take fewer solver sweeps when behind (a show's pace)");
-  runCmd->add_option("--osc", run.osc, "send events and the bubble's size and position as OSC to HOST:PORT (UDP)")
-      ->check(gb::NotEmpty());
-  std::string backend = "auto";
-  runCmd->add_option("--backend", backend, "cpu, vulkan, or auto (Vulkan on a GPU, else the CPU)")
-      ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
-  runCmd->add_option("--device", run.device,
-                     "Vulkan device: index or part of its name (default: $GIANTBUBBLE_VULKAN_DEVICE, else the best)");
-  std::string betweenSteps = "auto";
-  runCmd
-      ->add_option("--between-steps", betweenSteps,
-                   "Vulkan backend: where the contact search, the statistics and the film checks run: device, cpu, or "
-                   "auto (the device unless it is a CPU driver)")
-      ->check(CLI::IsMember({"auto", "device", "cpu"}));
-  gb::addRenderOptions(*runCmd, run.render);
-
+  runLine.tool = run.tool.kind == gb::ToolKind::Ring ? "ring" : "two-wands";
+  CLI::App* runCmd = gb::addRunCommand(app, runLine);
   gb::BenchOptions bench;
-  CLI::App* benchCmd = app.add_subcommand("bench", "measure step throughput on each backend for several film sizes");
-  benchCmd->add_option("--sizes", bench.sizes, "film sizes in particles")
-      ->transform(gb::WholeNumber(100, gb::kMaxParticles));
-  benchCmd->add_option("--backends", bench.backends, "backends to measure")->check(CLI::IsMember({"cpu", "vulkan"}));
-  benchCmd->add_option("--steps", bench.steps, "substeps timed per film")->transform(gb::WholeNumber(8, 100000));
-  benchCmd->add_option("--json", bench.json, "where to write the results (.json)")->check(gb::NotEmpty());
-  benchCmd->add_option("--device", bench.device, "Vulkan device: index or part of its name");
-
+  CLI::App* benchCmd = gb::addBenchCommand(app, bench);
   CLI::App* scenesCmd = app.add_subcommand("scenes", "list the built-in scenes (the paper's figures), one per line");
 
   gb::RecordOptions record;
@@ -155,12 +102,12 @@ int main(int argc, char** argv) {
   CLI::App* evaluateCmd = gb::addEvaluateCommand(app, evaluate);
   gb::LiveOptions view;
   view.run = run;  // the scene, if any
-  view.tool = tool;
+  view.tool = runLine.tool;
   CLI::App* viewCmd = gb::addLiveCommand(app, view);
 
   try {
     app.parse(argc, argv);
-    for (const std::string& a : assignments) applyParameter(run.params, a);
+    for (const std::string& a : runLine.assignments) applyParameter(run.params, a);
     for (const std::string& a : view.assignments) applyParameter(view.run.params, a);
     for (const gb::Params* p : {&run.params, &view.run.params})
       if (const auto errors = gb::validate(*p); !errors.empty()) throw CLI::ValidationError("--param", errors.front());
@@ -181,14 +128,7 @@ int main(int argc, char** argv) {
   try {
     if (recordCmd->parsed()) return gb::runRecord(record);
     if (evaluateCmd->parsed()) return gb::runEvaluate(evaluate);
-    run.tool.kind = tool == "ring" ? gb::ToolKind::Ring : gb::ToolKind::TwoWands;
-    run.durationFromInput = runCmd->count("--duration") == 0 && !sceneSetsDuration;
-    if (runCmd->count("--burst-at") > 0) run.burstOnAnyInput = true;
-    run.backend = gb::backendFromName(backend);
-    run.betweenSteps = gb::workPlaceFromName(betweenSteps);
-    // A scene's own video (the default scene's) is made where a Vulkan device allows, with a note where not;
-    // --render asks for it and fails without one.
-    run.renderIfPossible = runCmd->count("--render") == 0;
+    gb::resolveRunCommandLine(runLine, *runCmd);
     return gb::runSimulation(run);
   } catch (const std::bad_alloc&) {
     std::fprintf(stderr, "error: out of memory%s\n",

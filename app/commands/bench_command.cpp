@@ -1,11 +1,13 @@
 #include "app/commands/bench_command.h"
 
+#include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "app/commands/cli_checks.h"
 #include "capture/output_file.h"
 #include "capture/scripted_gestures.h"
 #include "capture/untrusted.h"
@@ -154,6 +156,16 @@ FilmRun benchOne(const std::string& backendName, const std::string& device, int 
 }
 
 }  // namespace
+
+CLI::App* addBenchCommand(CLI::App& app, BenchOptions& o) {
+  CLI::App* command = app.add_subcommand("bench", "measure step throughput on each backend for several film sizes");
+  command->add_option("--sizes", o.sizes, "film sizes in particles")->transform(WholeNumber(100, kMaxParticles));
+  command->add_option("--backends", o.backends, "backends to measure")->check(CLI::IsMember({"cpu", "vulkan"}));
+  command->add_option("--steps", o.steps, "substeps timed per film")->transform(WholeNumber(8, 100000));
+  command->add_option("--json", o.json, "where to write the results (.json)")->check(NotEmpty());
+  command->add_option("--device", o.device, "Vulkan device: index or part of its name");
+  return command;
+}
 
 int runBenchmark(const BenchOptions& o) {
   std::vector<OutputFolder> holds;

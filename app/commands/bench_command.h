@@ -7,6 +7,10 @@
 #include <string>
 #include <vector>
 
+namespace CLI {
+class App;
+}
+
 namespace gb {
 
 struct BenchOptions {
@@ -16,6 +20,9 @@ struct BenchOptions {
   std::filesystem::path json = "bench.json";
   std::string device;  // Vulkan device request
 };
+
+// Adds the `bench` subcommand and its options to the application.
+CLI::App* addBenchCommand(CLI::App& app, BenchOptions& options);
 
 int runBenchmark(const BenchOptions& options);
 

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <CLI/CLI.hpp>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +13,7 @@
 #include <sstream>
 #include <thread>
 
+#include "app/commands/cli_checks.h"
 #include "app/commands/interrupt.h"
 #include "app/commands/thread_policy.h"
 #include "app/outputs/experiment_plot.h"
@@ -480,6 +482,64 @@ std::vector<Output> outputsOf(const RunOptions& o) {
 }
 
 }  // namespace
+
+CLI::App* addRunCommand(CLI::App& app, RunCommandLine& line) {
+  RunOptions& run = line.options;
+  CLI::App* command = app.add_subcommand("run", "simulate a performance headless and write its outputs");
+  command
+      ->add_option("--scene", line.scene,
+                   "a built-in scene (giantbubble scenes lists them) or a scene file (.toml); "
+                   "the other options change it")
+      ->check(NotEmpty());
+  command->add_option("--duration", run.duration, "simulated seconds")->check(FiniteRange(0.001, kMaxRunSeconds));
+  command->add_option("--out", run.outDir, "output folder (created if missing)");
+  command->add_option("--ply-every", run.plyEvery, "write a PLY mesh every N frames, 0 for none")
+      ->transform(WholeNumber(0, 1000000));
+  command->add_option("--images-every", run.imageEvery, "write a thickness image (PNG) every N frames, 0 for none")
+      ->transform(WholeNumber(0, 1000000));
+  command->add_option("--tool", line.tool, "bubble tool")->check(CLI::IsMember({"two-wands", "ring"}));
+  addInputOptions(command, run.input);  // --input, --gesture and the capture options
+  addBubbleOptions(command, run.input);
+  command->add_option("--speed", run.gestureOptions.speed, "peak wand speed (m/s)")->check(FiniteRange(0.0, 20.0));
+  command->add_option("--solution", run.params.solution, "remaining soap solution (0, 1]")
+      ->check(FiniteRange(0.01, 1.0));
+  command->add_option("--particles", run.params.particlesAtFullSolution, "particles of a film at full solution")
+      ->transform(WholeNumber(16, kMaxParticles));
+  command->add_option("--param", line.assignments, "set a model parameter, NAME=VALUE (repeatable)");
+  command
+      ->add_option("--burst-at", run.burstAt,
+                   "poke the top of the film at this time (s), whatever the input; negative: never")
+      ->check(FiniteRange(kNeverBurst, kMaxRunSeconds));
+  command->add_flag("!--no-progress", run.progress, "do not show the progress bar");
+  command->add_flag("--realtime", run.realtime,
+                    "keep the wall clock: wait when ahead of it, take fewer solver sweeps when behind (a show's pace)");
+  command->add_option("--osc", run.osc, "send events and the bubble's size and position as OSC to HOST:PORT (UDP)")
+      ->check(NotEmpty());
+  command->add_option("--backend", line.backend, "cpu, vulkan, or auto (Vulkan on a GPU, else the CPU)")
+      ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
+  command->add_option("--device", run.device,
+                      "Vulkan device: index or part of its name (default: $GIANTBUBBLE_VULKAN_DEVICE, else the best)");
+  command
+      ->add_option("--between-steps", line.betweenSteps,
+                   "Vulkan backend: where the contact search, the statistics and the film checks run: device, cpu, or "
+                   "auto (the device unless it is a CPU driver)")
+      ->check(CLI::IsMember({"auto", "device", "cpu"}));
+  addRenderOptions(*command, run.render);
+  return command;
+}
+
+void resolveRunCommandLine(RunCommandLine& line, const CLI::App& command) {
+  RunOptions& run = line.options;
+  run.tool.kind = line.tool == "ring" ? ToolKind::Ring : ToolKind::TwoWands;
+  // A recorded input's own length, unless --duration or a scene gives one.
+  run.durationFromInput = command.count("--duration") == 0 && line.scene.empty();
+  if (command.count("--burst-at") > 0) run.burstOnAnyInput = true;
+  run.backend = backendFromName(line.backend);
+  run.betweenSteps = workPlaceFromName(line.betweenSteps);
+  // A scene's own video (the default scene's) is made where a Vulkan device allows, with a note where not;
+  // --render asks for it and fails without one.
+  run.renderIfPossible = command.count("--render") == 0;
+}
 
 int runSimulation(const RunOptions& o) {
   // A second run into the same folder is refused while this one lives.

@@ -149,6 +149,89 @@ CLI::App* addRecordCommand(CLI::App& app, RecordOptions& o) {
   return cmd;
 }
 
+namespace {
+
+// What a recording read: the hands, and for --depth-plot the depth frame asked for with what the detection saw.
+struct Recording {
+  std::vector<HandSample> samples;
+  int depthFrames = 0;
+  bool plotNext = false;  // the depth frame just read is the one to plot
+  kinect::DepthFrame plotted;
+  Detection plottedDetection;
+  HandSample plottedHands;
+};
+
+// Once a second of a live recording: the hands seen, which body is taken and why, and what to change, so that a
+// performer can set up by it.
+void printLiveProgress(const Recording& r, const HandSample& s, double elapsed, const DepthHandSource* depth) {
+  const std::string why =
+      depth ? depth->detection().why + (depth->detection().advice.empty() ? "" : "; " + depth->detection().advice) : "";
+  std::fprintf(stderr, "%.0f s, %zu frames, left hand %s, right hand %s: %s\n", elapsed, r.samples.size(),
+               s.left.measured ? "seen" : "not seen", s.right.measured ? "seen" : "not seen", why.c_str());
+}
+
+// Reads `source` until it ends, `duration` s have been read (negative: no limit) or Ctrl-C, writing each sample
+// to `trajectory` as it comes (and, through the depth callback, each depth frame to the fakenect recording).
+void readSamples(HandSource& source, DepthHandSource* depth, TrajectoryWriter* trajectory, double duration, bool live,
+                 Recording& r) {
+  double lastProgress = -1.0;
+  try {
+    while (!InterruptCatcher::requested()) {
+      std::optional<HandSample> s = source.next();
+      for (const std::string& m : source.takeMessages()) std::fprintf(stderr, "%s\n", m.c_str());
+      if (!s) break;
+      if (!r.samples.empty() && duration >= 0 && s->time - r.samples.front().time > duration + 1e-9) break;
+      r.samples.push_back(*s);
+      if (trajectory) trajectory->write(*s);
+      if (depth && r.plotNext) {
+        r.plottedDetection = depth->detection();  // as the performance saw it: the room and the hands so far
+        r.plottedHands = *s;
+        r.plotNext = false;
+      }
+      const double elapsed = s->time - r.samples.front().time;
+      if (live && elapsed - lastProgress >= 1.0) {
+        lastProgress = elapsed;
+        printLiveProgress(r, *s, elapsed, depth);
+      }
+    }
+  } catch (const HandSourceLost& e) {
+    std::fprintf(stderr, "warning: input lost after %zu samples: %s; what was recorded is kept\n", r.samples.size(),
+                 e.what());
+  }
+}
+
+// --plot: the recorded hands and the wands the stabilizer makes of them.
+void writePlotOf(const RecordOptions& o, const std::vector<HandSample>& samples, const HandSource& source,
+                 const ScriptedHandSource* script) {
+  const Stabilized s = stabilize(samples, stabilizerFromName(o.input.stabilizer), o.input, script);
+  TrajectoryPlot plot;
+  plot.title = source.describe() + ", " + o.input.stabilizer + " stabilizer";
+  plot.leftInput = s.plotInput[0];
+  plot.rightInput = s.plotInput[1];
+  plot.leftWand = s.wand[0];
+  plot.rightWand = s.wand[1];
+  plot.camera = s.camera;
+  writeTrajectoryPlot(o.plot, plot);
+  std::printf("plot written to %s\n", printablePath(o.plot).c_str());
+}
+
+// --depth-plot: the depth frame asked for, the body taken and the hands reported. False when there was no such frame.
+bool writeDepthPlotOf(const RecordOptions& o, const Recording& r) {
+  if (o.depthPlotFrame >= r.depthFrames) {
+    std::fprintf(stderr, "error: --depth-plot-frame %d: the input had %d depth frames\n", o.depthPlotFrame,
+                 r.depthFrames);
+    return false;
+  }
+  writeDepthPlot(o.depthPlot, r.plotted, r.plottedDetection, r.plottedHands);
+  std::printf("depth plot written to %s: %s; hands reported: %s%s\n", printablePath(o.depthPlot).c_str(),
+              r.plottedDetection.why.c_str(), r.plottedHands.left.measured ? "left " : "",
+              r.plottedHands.right.measured ? "right" : (r.plottedHands.left.measured ? "" : "none"));
+  if (!r.plottedDetection.advice.empty()) std::printf("advice: %s\n", r.plottedDetection.advice.c_str());
+  return true;
+}
+
+}  // namespace
+
 int runRecord(const RecordOptions& o) {
   if (o.trajectory.empty() && o.fakenect.empty() && o.plot.empty() && o.depthPlot.empty() && !o.report) {
     std::fprintf(stderr,
@@ -157,7 +240,6 @@ int runRecord(const RecordOptions& o) {
     return 1;
   }
   const std::vector<OutputFolder> holds = checkOutputs(outputsOf(o));  // refused now, not after the recording
-  const std::string spec = o.input.spec();
   const bool noisy = o.noise.sigma > 0 || o.noise.outlierRate > 0;
   if (noisy && !o.input.scripted()) {
     std::fprintf(stderr, "error: --noise and --outliers apply to a scripted input (script:NAME) only\n");
@@ -165,30 +247,26 @@ int runRecord(const RecordOptions& o) {
   }
   SourceOptions sourceOptions = sourceOptionsOf(o.input, o.gesture);
   sourceOptions.noise = o.noise;
-  std::unique_ptr<HandSource> source = makeHandSource(spec, sourceOptions);
+  std::unique_ptr<HandSource> source = makeHandSource(o.input.spec(), sourceOptions);
   const auto* script = dynamic_cast<const ScriptedHandSource*>(source.get());
   auto* depth = dynamic_cast<DepthHandSource*>(source.get());
   std::printf("recording from %s\n", source->describe().c_str());
-
-  std::unique_ptr<FakenectWriter> fakenect;
   if ((!o.fakenect.empty() || !o.depthPlot.empty()) && !depth) {
     std::fprintf(stderr,
                  "error: --fakenect and --depth-plot need depth frames: the input must be kinect or fakenect:DIR\n");
     return 1;
   }
+
+  std::unique_ptr<FakenectWriter> fakenect;
   if (!o.fakenect.empty()) fakenect = std::make_unique<FakenectWriter>(o.fakenect);
+  Recording recording;
   const double base = std::chrono::duration<double>(std::chrono::system_clock::now().time_since_epoch()).count();
-  kinect::DepthFrame plotted;
-  Detection plottedDetection;
-  HandSample plottedHands;
-  int frames = 0;
-  bool plotNext = false;  // the frame just read is the one to plot
   if (depth)
     depth->onFrame([&, base](const kinect::DepthFrame& f) {
       if (fakenect) fakenect->write(f, base + f.time);
-      plotNext = o.depthPlotFrame < 0 || frames == o.depthPlotFrame;
-      if (plotNext) plotted = f;
-      ++frames;
+      recording.plotNext = o.depthPlotFrame < 0 || recording.depthFrames == o.depthPlotFrame;
+      if (recording.plotNext) recording.plotted = f;
+      ++recording.depthFrames;
     });
   std::unique_ptr<TrajectoryWriter> trajectory;
   if (!o.trajectory.empty()) trajectory = std::make_unique<TrajectoryWriter>(o.trajectory);
@@ -198,42 +276,14 @@ int runRecord(const RecordOptions& o) {
   const bool live = depth && !source->length();
   if (live && duration < 0) std::printf("recording until Ctrl-C\n");
   std::optional<InterruptCatcher> interrupts(std::in_place);  // Ctrl-C ends the recording, keeping it
-
-  std::vector<HandSample> samples;
-  double lastProgress = -1.0;
-  try {
-    while (!InterruptCatcher::requested()) {
-      std::optional<HandSample> s = source->next();
-      for (const std::string& m : source->takeMessages()) std::fprintf(stderr, "%s\n", m.c_str());
-      if (!s) break;
-      if (!samples.empty() && duration >= 0 && s->time - samples.front().time > duration + 1e-9) break;
-      samples.push_back(*s);
-      if (trajectory) trajectory->write(*s);
-      if (depth && plotNext) {
-        plottedDetection = depth->detection();  // as the performance saw it: the room and the hands so far
-        plottedHands = *s;
-        plotNext = false;
-      }
-      const double elapsed = s->time - samples.front().time;
-      if (live && elapsed - lastProgress >= 1.0) {
-        lastProgress = elapsed;
-        // Which body is taken and why, and what to change, so that a performer can set up by it.
-        const std::string why =
-            depth ? depth->detection().why + (depth->detection().advice.empty() ? "" : "; " + depth->detection().advice)
-                  : "";
-        std::fprintf(stderr, "%.0f s, %zu frames, left hand %s, right hand %s: %s\n", elapsed, samples.size(),
-                     s->left.measured ? "seen" : "not seen", s->right.measured ? "seen" : "not seen", why.c_str());
-      }
-    }
-  } catch (const HandSourceLost& e) {
-    std::fprintf(stderr, "warning: input lost after %zu samples: %s; what was recorded is kept\n", samples.size(),
-                 e.what());
-  }
+  readSamples(*source, depth, trajectory.get(), duration, live, recording);
   const int exitStatus = InterruptCatcher::exitStatus(0);  // docs/user-guide.md: 130 after Ctrl-C, 143 after SIGTERM
   if (InterruptCatcher::requested())
     std::fprintf(stderr, "%s: the recording stops; what was recorded is written\n",
                  signalName(InterruptCatcher::signal()));
   interrupts.reset();
+
+  const std::vector<HandSample>& samples = recording.samples;
   if (samples.empty()) {
     std::fprintf(stderr, "error: no samples from %s\n", source->describe().c_str());
     return 1;
@@ -246,29 +296,8 @@ int runRecord(const RecordOptions& o) {
   if (fakenect)
     std::printf("fakenect recording written to %s (%d depth frames)\n", printablePath(o.fakenect).c_str(),
                 fakenect->frames());
-  if (!o.plot.empty()) {
-    const Stabilized s = stabilize(samples, stabilizerFromName(o.input.stabilizer), o.input, script);
-    TrajectoryPlot plot;
-    plot.title = source->describe() + ", " + o.input.stabilizer + " stabilizer";
-    plot.leftInput = s.plotInput[0];
-    plot.rightInput = s.plotInput[1];
-    plot.leftWand = s.wand[0];
-    plot.rightWand = s.wand[1];
-    plot.camera = s.camera;
-    writeTrajectoryPlot(o.plot, plot);
-    std::printf("plot written to %s\n", printablePath(o.plot).c_str());
-  }
-  if (!o.depthPlot.empty()) {
-    if (o.depthPlotFrame >= frames) {
-      std::fprintf(stderr, "error: --depth-plot-frame %d: the input had %d depth frames\n", o.depthPlotFrame, frames);
-      return 1;
-    }
-    writeDepthPlot(o.depthPlot, plotted, plottedDetection, plottedHands);
-    std::printf("depth plot written to %s: %s; hands reported: %s%s\n", printablePath(o.depthPlot).c_str(),
-                plottedDetection.why.c_str(), plottedHands.left.measured ? "left " : "",
-                plottedHands.right.measured ? "right" : (plottedHands.left.measured ? "" : "none"));
-    if (!plottedDetection.advice.empty()) std::printf("advice: %s\n", plottedDetection.advice.c_str());
-  }
+  if (!o.plot.empty()) writePlotOf(o, samples, *source, script);
+  if (!o.depthPlot.empty() && !writeDepthPlotOf(o, recording)) return 1;
   if (o.report) {
     if (samples.size() < 10) {
       std::fprintf(stderr, "error: too few samples for a report\n");

@@ -28,15 +28,20 @@ double joinTolerance(double z) { return std::max(0.07, 2.5 * depthStep(z)); }
 // A depth still the room's: within the noise of a few raw steps (at least 5 cm).
 double roomTolerance(double z) { return std::max(0.05, 3.0 * depthStep(z)); }
 
-struct Grid {
+}  // namespace
+
+// The half-resolution grid of a frame's readings in camera space, and which points hold one.
+struct DepthGrid {
   std::vector<Vec3d> point = std::vector<Vec3d>(kNodes, Vec3d::Zero());
   std::vector<uint8_t> valid = std::vector<uint8_t>(kNodes, 0);
 };
 
+namespace {
+
 // Each 2 x 2 block's first pixel with a reading inside the band, in camera space.
-Grid sampleGrid(const kinect::DepthFrame& frame, const SegmentationOptions& o) {
+DepthGrid sampleGrid(const kinect::DepthFrame& frame, const SegmentationOptions& o) {
   const auto& table = kinect::depthTable();
-  Grid g;
+  DepthGrid g;
   for (int v = 0; v < kH; ++v)
     for (int u = 0; u < kW; ++u)
       for (int k = 0; k < kStep * kStep; ++k) {
@@ -51,7 +56,7 @@ Grid sampleGrid(const kinect::DepthFrame& frame, const SegmentationOptions& o) {
 }
 
 // The floor of the grid's points (every other one each way), when one is in view.
-std::optional<FloorPlane> gridFloor(const Grid& g, const std::optional<Vec3d>& gravityUp) {
+std::optional<FloorPlane> gridFloor(const DepthGrid& g, const std::optional<Vec3d>& gravityUp) {
   std::vector<Vec3d> sample;
   for (int v = 0; v < kH; v += 2)
     for (int u = 0; u < kW; u += 2)
@@ -61,7 +66,7 @@ std::optional<FloorPlane> gridFloor(const Grid& g, const std::optional<Vec3d>& g
 
 // The 8 neighbours of node i on the same surface.
 template <typename Visit>
-void forNeighbours(const Grid& g, int i, Visit visit) {
+void forNeighbours(const DepthGrid& g, int i, Visit visit) {
   const int u = i % kW, v = i / kW;
   const double z = g.point[static_cast<size_t>(i)].z(), tolerance = joinTolerance(z);
   for (int dv = -1; dv <= 1; ++dv) {
@@ -81,7 +86,7 @@ double median(std::vector<double> values) {
 }
 
 // The connected bodies of the grid's valid points, each at least minBodyArea.
-std::vector<BodyCandidate> connectedBodies(const Grid& g, const SegmentationOptions& o) {
+std::vector<BodyCandidate> connectedBodies(const DepthGrid& g, const SegmentationOptions& o) {
   std::vector<BodyCandidate> bodies;
   std::vector<uint8_t> labelled(kNodes, 0);
   std::vector<int> stack;
@@ -109,7 +114,7 @@ std::vector<BodyCandidate> connectedBodies(const Grid& g, const SegmentationOpti
 
 // The share of the points within 3 cm of their least-squares plane: near 1 for a wall, a door or a table top,
 // well under for a person (a head, arms and legs off the torso's plane).
-double flatShare(const Grid& g, const std::vector<int>& nodes) {
+double flatShare(const DepthGrid& g, const std::vector<int>& nodes) {
   Vec3d mean = Vec3d::Zero();
   for (const int i : nodes) mean += g.point[static_cast<size_t>(i)];
   mean /= static_cast<double>(nodes.size());
@@ -127,7 +132,7 @@ double flatShare(const Grid& g, const std::vector<int>& nodes) {
 
 // Measures a body: its size along up and across, how much of it moved, how flat it is, where it touches the
 // image's edges, how much of it was the performer before.
-void measure(const Grid& g, const Vec3d& up, const std::vector<float>& previous, const std::vector<float>& before,
+void measure(const DepthGrid& g, const Vec3d& up, const std::vector<float>& previous, const std::vector<float>& before,
              BodyCandidate& b) {
   std::vector<double> xs, ys, zs;
   double low = std::numeric_limits<double>::infinity(), high = -low, left = low, right = -low;
@@ -220,7 +225,7 @@ class MaskSums {
 // end-on as a few depth steps): a piece nearer than the performer just beside it in the image, within
 // kMaxBridge of the performer's nearest point, joins them, in rounds, so that a hand beyond a forearm joins
 // too. Returns the performer's nodes with the pieces.
-std::vector<int> attachFragments(const Grid& g, const std::vector<std::vector<int>>& pieces,
+std::vector<int> attachFragments(const DepthGrid& g, const std::vector<std::vector<int>>& pieces,
                                  const std::vector<int>& body) {
   constexpr int kReach = 4;           // half-resolution pixels searched around each piece's point
   constexpr double kMaxBridge = 0.6;  // m: a forearm hidden behind its hand leaves the hand up to an arm in front
@@ -263,7 +268,7 @@ std::vector<int> attachFragments(const Grid& g, const std::vector<std::vector<in
 }
 
 // Every grid component (no size limit), for the pieces a performer may have lost.
-std::vector<std::vector<int>> smallPieces(const Grid& g, const std::vector<uint8_t>& taken) {
+std::vector<std::vector<int>> smallPieces(const DepthGrid& g, const std::vector<uint8_t>& taken) {
   constexpr size_t kMinPiece = 6;  // nodes: smaller pieces are noise
   std::vector<std::vector<int>> pieces;
   std::vector<uint8_t> labelled = taken;
@@ -319,28 +324,47 @@ PerformerSegmenter::PerformerSegmenter(const SegmentationOptions& options)
       performerDepth_(kNodes, 0.0f),
       sincePerformer_(kNodes, std::numeric_limits<uint16_t>::max()) {}
 
+namespace {
+
+constexpr uint16_t kLearnedAfter = 10;  // frames a depth is seen unchanged before it is the room (1/3 s)
+constexpr uint16_t kMovedAfter = 150;   // frames a nearer surface stays before it is the room (5 s)
+constexpr int kMotionFrames = 10;       // frames between the depths compared for motion (1/3 s)
+constexpr int kStillForRoom = 300;      // frames a performer may stay perfectly still (10 s)
+constexpr uint16_t kForgetAfter = 90;   // frames after the performer was last at a point before it is learned
+
+// The candidate a performer is most likely to be (the highest score), or -1 when none may be.
+int likeliestPerformer(const std::vector<BodyCandidate>& candidates) {
+  int best = -1;
+  for (size_t k = 0; k < candidates.size(); ++k)
+    if (candidates[k].score > 0.0 && (best < 0 || candidates[k].score > candidates[static_cast<size_t>(best)].score))
+      best = static_cast<int>(k);
+  return best;
+}
+
+// Why nobody was taken, naming the largest body and what ruled it out.
+std::string whyNoPerformer(const std::vector<BodyCandidate>& candidates, const SegmentationOptions& o) {
+  char text[120];
+  std::snprintf(text, sizeof text, "no body in the depth band %.1f-%.1f m", o.nearLimit, o.farLimit);
+  std::string why = text;
+  if (!candidates.empty()) {
+    const BodyCandidate& largest = candidates.front();
+    std::snprintf(text, sizeof text, " looks like a person (the largest, at %.1f m: %s)", largest.depth,
+                  largest.rejected.c_str());
+    why += text;
+  }
+  return why;
+}
+
+}  // namespace
+
 Segmentation PerformerSegmenter::segment(const kinect::DepthFrame& frame) {
-  constexpr uint16_t kLearnedAfter = 10;  // frames a depth is seen unchanged before it is the room (1/3 s)
-  constexpr uint16_t kMovedAfter = 150;   // frames a nearer surface stays before it is the room (5 s)
-  constexpr int kMotionFrames = 10;       // frames between the depths compared for motion (1/3 s)
-  constexpr int kStillForRoom = 300;      // frames a performer may stay perfectly still (10 s)
-  constexpr uint16_t kForgetAfter = 90;   // frames after the performer was last at a point before it is learned
   Segmentation s;
-  Grid g = sampleGrid(frame, options_);
-  const Grid sampled = g;
+  DepthGrid g = sampleGrid(frame, options_);
+  const DepthGrid sampled = g;
   const std::optional<Vec3d> gravity = options_.gravityUp ? options_.gravityUp : frame.gravityUp;
   s.floor = gridFloor(g, gravity);
   const Vec3d up = s.floor ? s.floor->up : gravity.value_or(Vec3d::UnitY());
-  int learned = 0;
-  for (size_t i = 0; i < static_cast<size_t>(kNodes); ++i) {
-    learned += seen_[i] >= kLearnedAfter ? 1 : 0;
-    if (!g.valid[i]) continue;
-    const double z = g.point[i].z();
-    const bool floor = s.floor && s.floor->heightOf(g.point[i]) < options_.floorClearance;
-    const bool room = seen_[i] >= kLearnedAfter && z > room_[i] - roomTolerance(z);
-    if (floor || room) g.valid[i] = 0;
-  }
-  s.roomLearned = static_cast<double>(learned) / kNodes;
+  s.roomLearned = clearFloorAndRoom(g, s.floor);
 
   s.candidates = connectedBodies(g, options_);
   for (BodyCandidate& b : s.candidates) {
@@ -348,53 +372,63 @@ Segmentation PerformerSegmenter::segment(const kinect::DepthFrame& frame) {
     b.rejected = rejection(b);
     if (b.rejected.empty()) b.score = performerScore(b, options_);
   }
-  for (size_t k = 0; k < s.candidates.size(); ++k)
-    if (s.candidates[k].score > 0.0 && (s.performer < 0 || s.candidates[k].score > s.candidates[s.performer].score))
-      s.performer = static_cast<int>(k);
-
+  s.performer = likeliestPerformer(s.candidates);
   std::fill(performer_.begin(), performer_.end(), uint8_t{0});
   std::fill(performerDepth_.begin(), performerDepth_.end(), 0.0f);
   if (s.performer >= 0) {
-    const BodyCandidate& taken = s.candidates[static_cast<size_t>(s.performer)];
-    stillFrames_ = taken.overlap > 0.5 && taken.moving < 0.02 ? stillFrames_ + 1 : 0;
-    // The performer split into bodies (arms crossed in front of the chest, a hand before the belly): the other
-    // bodies that were mostly the performer before are theirs too.
-    std::vector<int> nodes = taken.nodes;
-    for (const BodyCandidate& b : s.candidates)
-      if (&b != &taken && b.overlap > 0.5 && b.area < 2.5) nodes.insert(nodes.end(), b.nodes.begin(), b.nodes.end());
-    std::vector<uint8_t> inBody(kNodes, 0);
-    for (const int i : nodes) inBody[static_cast<size_t>(i)] = 1;
-    const std::vector<int> body = attachFragments(g, smallPieces(g, inBody), nodes);
-    for (const int i : body) {
-      performer_[static_cast<size_t>(i)] = 1;
-      performerDepth_[static_cast<size_t>(i)] = static_cast<float>(g.point[static_cast<size_t>(i)].z());
-      s.body.depth[static_cast<size_t>(i)] = static_cast<float>(g.point[static_cast<size_t>(i)].z());
-    }
-    s.why = "the performer is " + describeBody(taken);
-    if (s.candidates.size() > 1) {
-      char more[96];
-      std::snprintf(more, sizeof more, ", the most likely of %zu bodies (nearest, moving, taken before)",
-                    s.candidates.size());
-      s.why += more;
-    }
-    s.advice = adviceFor(taken);
+    takePerformer(g, s);
   } else {
-    char text[120];
-    std::snprintf(text, sizeof text, "no body in the depth band %.1f-%.1f m", options_.nearLimit, options_.farLimit);
-    s.why = text;
-    if (!s.candidates.empty()) {
-      const BodyCandidate& largest = s.candidates.front();
-      std::snprintf(text, sizeof text, " looks like a person (the largest, at %.1f m: %s)", largest.depth,
-                    largest.rejected.c_str());
-      s.why += text;
-    }
+    s.why = whyNoPerformer(s.candidates, options_);
     s.advice = "step in front of the camera, 1.5-3 m away";
   }
+  learnRoom(sampled);
+  return s;
+}
 
-  // Learn the room from every reading that is not the performer (nor beside them: their edges), unless the
-  // performer has not moved for so long that it is part of the room.
-  // A performer lost for a moment (hidden, or split by a crossing arm) is not learned either: a point is
-  // learned only kForgetAfter frames after the performer was last at it or beside it.
+double PerformerSegmenter::clearFloorAndRoom(DepthGrid& g, const std::optional<FloorPlane>& floor) const {
+  int learned = 0;
+  for (size_t i = 0; i < static_cast<size_t>(kNodes); ++i) {
+    learned += seen_[i] >= kLearnedAfter ? 1 : 0;
+    if (!g.valid[i]) continue;
+    const double z = g.point[i].z();
+    const bool onFloor = floor && floor->heightOf(g.point[i]) < options_.floorClearance;
+    const bool room = seen_[i] >= kLearnedAfter && z > room_[i] - roomTolerance(z);
+    if (onFloor || room) g.valid[i] = 0;
+  }
+  return static_cast<double>(learned) / kNodes;
+}
+
+void PerformerSegmenter::takePerformer(const DepthGrid& g, Segmentation& s) {
+  const BodyCandidate& taken = s.candidates[static_cast<size_t>(s.performer)];
+  stillFrames_ = taken.overlap > 0.5 && taken.moving < 0.02 ? stillFrames_ + 1 : 0;
+  // The performer split into bodies (arms crossed in front of the chest, a hand before the belly): the other
+  // bodies that were mostly the performer before are theirs too.
+  std::vector<int> nodes = taken.nodes;
+  for (const BodyCandidate& b : s.candidates)
+    if (&b != &taken && b.overlap > 0.5 && b.area < 2.5) nodes.insert(nodes.end(), b.nodes.begin(), b.nodes.end());
+  std::vector<uint8_t> inBody(kNodes, 0);
+  for (const int i : nodes) inBody[static_cast<size_t>(i)] = 1;
+  const std::vector<int> body = attachFragments(g, smallPieces(g, inBody), nodes);
+  for (const int i : body) {
+    performer_[static_cast<size_t>(i)] = 1;
+    performerDepth_[static_cast<size_t>(i)] = static_cast<float>(g.point[static_cast<size_t>(i)].z());
+    s.body.depth[static_cast<size_t>(i)] = static_cast<float>(g.point[static_cast<size_t>(i)].z());
+  }
+  s.why = "the performer is " + describeBody(taken);
+  if (s.candidates.size() > 1) {
+    char more[96];
+    std::snprintf(more, sizeof more, ", the most likely of %zu bodies (nearest, moving, taken before)",
+                  s.candidates.size());
+    s.why += more;
+  }
+  s.advice = adviceFor(taken);
+}
+
+// Learn the room from every reading that is not the performer (nor beside them: their edges), unless the
+// performer has not moved for so long that it is part of the room.
+// A performer lost for a moment (hidden, or split by a crossing arm) is not learned either: a point is
+// learned only kForgetAfter frames after the performer was last at it or beside it.
+void PerformerSegmenter::learnRoom(const DepthGrid& sampled) {
   const bool performerIsRoom = stillFrames_ > kStillForRoom;
   std::vector<uint8_t> near(kNodes, 0);
   for (int v = 0; v < kH; ++v)
@@ -429,7 +463,6 @@ Segmentation PerformerSegmenter::segment(const kinect::DepthFrame& frame) {
       nearerFrames_[i] = 1;
     }
   }
-  return s;
 }
 
 }  // namespace gb

@@ -67,6 +67,8 @@ std::optional<FloorPlane> floorOf(const kinect::DepthFrame& frame, const Segment
                                   const std::optional<Vec3d>& gravityUp);
 
 // The segmentation over time: it learns the room and remembers the performer of the frame before.
+struct DepthGrid;  // the half-resolution grid of a frame's readings (performer_segmentation.cpp)
+
 class PerformerSegmenter {
  public:
   explicit PerformerSegmenter(const SegmentationOptions& options = {});
@@ -74,6 +76,12 @@ class PerformerSegmenter {
   [[nodiscard]] const SegmentationOptions& options() const { return options_; }
 
  private:
+  // The parts of segment(), in order: the floor and the learned room taken out of the grid (returns the share of
+  // the grid the room is learned at), the likeliest body taken as the performer, the room learned from the rest.
+  double clearFloorAndRoom(DepthGrid& g, const std::optional<FloorPlane>& floor) const;
+  void takePerformer(const DepthGrid& g, Segmentation& s);
+  void learnRoom(const DepthGrid& sampled);
+
   SegmentationOptions options_;
   // The room's depth per grid point (0: not learned), the frames it has been seen there, and a nearer surface
   // that may become the room if it stays.

@@ -66,8 +66,9 @@ struct Segmentation {
 std::optional<FloorPlane> floorOf(const kinect::DepthFrame& frame, const SegmentationOptions& options,
                                   const std::optional<Vec3d>& gravityUp);
 
-// The segmentation over time: it learns the room and remembers the performer of the frame before.
 struct DepthGrid;  // the half-resolution grid of a frame's readings (performer_segmentation.cpp)
+
+// The segmentation over time: it learns the room and remembers the performer of the frame before.
 
 class PerformerSegmenter {
  public:
